@@ -1,0 +1,30 @@
+#pragma once
+// The CLI is a thin layer: each command lives in its own cmd_*.cpp, parses its options with CLI11
+// and calls the library. register_* adds the subcommand to `app`; its callback stores the exit code
+// (0 ok, 1 internal error, 2 input error, 3 numerical failure) in `exit_code`.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace machdyn::cli {
+
+/// Runs `body`, turning exceptions into a message on stderr and an exit code:
+/// InputError → 2 (every diagnostic on its own line), SolverError → 3, anything else → 1.
+int guarded(const std::function<int()>& body);
+
+/// Adds the `--set NAME.FIELD=VALUE` option (repeatable) to a command.
+void add_set_option(CLI::App& cmd, std::vector<std::string>& sets);
+
+/// Writes `content` to `path` through a temporary file and a rename, so a reader never sees a
+/// half-written result. Creates parent folders. Throws std::runtime_error on failure.
+void write_file_atomic(const std::string& path, const std::string& content);
+
+void register_simulate(CLI::App& app, int& exit_code);
+void register_modes(CLI::App& app, int& exit_code);
+void register_examples(CLI::App& app, int& exit_code);
+void register_gears(CLI::App& app, int& exit_code);
+
+}  // namespace machdyn::cli

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// The equations of motion of an elastic drive chain (model/model.hpp) as a first-order system for
+/// the integrators:
+///   y = [q; v],   q' = v,   M v' = f(t, v) − Bᵀ (C B q + D B v)
+/// M = diag(I or m), row l of B gives the deflection δ_l = q_a/i − q_b of link l, C = diag(c),
+/// D = diag(d), f the loads (model/model.hpp). Link loads F = C B q + D B v are linear in y.
+
+#include <string>
+#include <vector>
+
+#include "machdyn/model/model.hpp"
+#include "machdyn/solve/ode_system.hpp"
+
+namespace machdyn {
+
+class ChainSystem final : public OdeSystem {
+ public:
+  /// Keeps a reference: `model` must outlive the system.
+  explicit ChainSystem(const Model& model);
+
+  [[nodiscard]] int size() const override { return 2 * n_; }
+  void rhs(double t, const double* y, double* dydt) override;
+  [[nodiscard]] bool has_jacobian() const override { return true; }
+  void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override;
+  [[nodiscard]] std::string state_name(int i) const override;
+
+  /// y0 from the bodies' initial positions and velocities.
+  void initial_state(double* y) const;
+  /// The load F of link l for state y.
+  [[nodiscard]] double link_load(int l, const double* y) const;
+  /// Weights w with F_l = wᵀ y (size 2n): F_l is linear in the state.
+  [[nodiscard]] std::vector<double> link_load_weights(int l) const;
+  /// The external loads as generalized forces f(t, v) (size n).
+  void generalized_loads(double t, const double* y, double* f) const;
+
+ private:
+  struct FlatLink {
+    int a, b;
+    double inv_ratio, c, d;
+  };
+  const Model& m_;
+  int n_;
+  std::vector<double> inv_mass_;
+  std::vector<FlatLink> links_;
+};
+
+}  // namespace machdyn

@@ -1,0 +1,41 @@
+#pragma once
+/// @file
+/// Modal analysis of the linear(ized) drive chain: the generalized eigenproblem
+///   K φ = ω² M φ,   K = Bᵀ C B (link stiffnesses through their ratios), M = diag(I or m).
+/// Elastic modes have ω > 0; rigid-body modes (K φ = 0: the drive turns as a whole) are counted
+/// apart. Shapes are mass-normalized, φᵀ M φ = 1, with the largest-magnitude entry positive.
+/// Dampers and loads do not enter (undamped natural frequencies).
+
+#include <Eigen/Core>
+
+#include "machdyn/model/model.hpp"
+
+namespace machdyn {
+
+/// M as a vector of the diagonal (kg·m² or kg).
+Eigen::VectorXd mass_diagonal(const Model& m);
+/// K = Bᵀ C B (n × n, symmetric positive semi-definite).
+Eigen::MatrixXd stiffness_matrix(const Model& m);
+/// D = Bᵀ diag(d) B.
+Eigen::MatrixXd damping_matrix(const Model& m);
+/// B: row l gives δ_l = B.row(l) · q.
+Eigen::MatrixXd deflection_matrix(const Model& m);
+
+struct Modes {
+  int rigid_body_modes = 0;     ///< dim ker K
+  Eigen::VectorXd omega;        ///< elastic natural frequencies, rad/s, ascending
+  Eigen::MatrixXd shapes;       ///< n × omega.size(), column k mass-normalized
+  Eigen::MatrixXd rigid_shapes; ///< n × rigid_body_modes, mass-normalized
+};
+
+/// Solves K φ = ω² M φ (Eigen's GeneralizedSelfAdjointEigenSolver, Cholesky of M). An eigenvalue
+/// below 1e-10 · max(λ) (or exactly zero stiffness) counts as a rigid-body mode.
+Modes compute_modes(const Model& m);
+
+/// Link loads of the particular (quasi-static) solution for constant generalized forces f:
+/// the deflections of q_e = Σ_elastic φ_k φ_kᵀ f / ω_k², the motion without elastic vibration
+/// (rigid-body modes accelerate and do not load links). For the three-mass hoist this is
+/// eq. 22 of paper 002: M12*, M23*.
+Eigen::VectorXd static_link_loads(const Model& m, const Modes& modes, const Eigen::VectorXd& f);
+
+}  // namespace machdyn

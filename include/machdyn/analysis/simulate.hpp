@@ -1,0 +1,43 @@
+#pragma once
+/// @file
+/// Time simulation of a drive chain: the time series on the output grid, the peaks of every link
+/// load located on the continuous solution, the quasi-static loads and dynamic factors.
+
+#include <string>
+#include <vector>
+
+#include "machdyn/model/model.hpp"
+#include "machdyn/solve/driver.hpp"
+#include "machdyn/solve/stepper.hpp"
+
+namespace machdyn {
+
+/// Extremes of one link load over the run. `t_max`/`t_min` are located to ~1e-12 relative on the
+/// dense output (the load rate F' = wᵀ y' changes sign there), not only on output points.
+struct LinkSummary {
+  double max = 0.0, min = 0.0;      ///< N·m or N
+  double t_max = 0.0, t_min = 0.0;  ///< s
+  /// Quasi-static load at t_max: the particular solution (modes.hpp, static_link_loads) for the
+  /// loads acting at t_max — the load of rigid acceleration.
+  double static_load = 0.0;
+  /// max / static_load; NaN when the static load is zero.
+  double dynamic_factor = 0.0;
+};
+
+struct SimulationResult {
+  std::vector<std::string> column_names;      ///< "t_s", "I1.position_rad", ..., "c1.load_N_m"
+  std::vector<std::vector<double>> columns;   ///< one series per name, on the output grid
+  std::vector<LinkSummary> links;             ///< in Model::links order
+  RunStats stats;
+  std::string method_reason;                  ///< why this integrator (for `integrator: auto`)
+};
+
+/// The integrator `auto` picks: dopri5 unless the chain has a strongly damped mode so fast that
+/// an explicit method would spend > 2e4 steps on stability alone (|Re λ| · t_end > 2e4 with
+/// damping ratio ζ ≥ 0.5), then CVODE BDF. `reason` says which.
+Method choose_method(const Model& m, std::string* reason);
+
+/// Runs the model's simulation settings. Throws SolverError on numerical failure.
+SimulationResult simulate(const Model& m);
+
+}  // namespace machdyn

@@ -1,0 +1,63 @@
+#pragma once
+/// @file
+/// Quantities with units, as users write them in model files: `2.5 kg*m^2`, `143.5 mm`, `30 deg`,
+/// `1.2 kN*m`, `1500 rpm`, `3e4 N*m/rad`. A plain number is SI.
+///
+/// Dimensions are exponents of kilogram, metre and second. The radian is dimensionless (as in SI),
+/// so `N*m/rad` is a torque per unit angle and `rpm` is 2π/60 s⁻¹. Grammar:
+///   quantity := number [unit-expr];  unit-expr := factor (('*' | '/' | '·') factor)*
+///   factor := unit ['^' integer] | '(' unit-expr ')' ['^' integer]
+/// `a/b*c` is `(a/b)*c`. Units: m g t s min h N J W Pa Hz rad deg rev rpm %, SI prefixes
+/// (n u µ m c d k M G) on m g s N J W Pa Hz rad, and `Nm`, `kNm` for N*m.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace machdyn {
+
+/// Exponents of (kg, m, s).
+struct Dim {
+  int kg = 0, m = 0, s = 0;
+  friend constexpr bool operator==(const Dim&, const Dim&) = default;
+  constexpr Dim operator*(const Dim& o) const { return {kg + o.kg, m + o.m, s + o.s}; }
+  constexpr Dim operator/(const Dim& o) const { return {kg - o.kg, m - o.m, s - o.s}; }
+  constexpr Dim pow(int p) const { return {kg * p, m * p, s * p}; }
+};
+
+namespace dim {
+inline constexpr Dim none{0, 0, 0};            ///< ratio, angle (rad)
+inline constexpr Dim mass{1, 0, 0};            ///< kg
+inline constexpr Dim length{0, 1, 0};          ///< m
+inline constexpr Dim time{0, 0, 1};            ///< s
+inline constexpr Dim inertia{1, 2, 0};         ///< kg*m^2
+inline constexpr Dim force{1, 1, -2};          ///< N
+inline constexpr Dim torque{1, 2, -2};         ///< N*m (also N*m/rad, J)
+inline constexpr Dim velocity{0, 1, -1};       ///< m/s
+inline constexpr Dim angular_velocity{0, 0, -1};  ///< rad/s
+inline constexpr Dim stiffness_lin{1, 0, -2};  ///< N/m
+inline constexpr Dim damping_lin{1, 0, -1};    ///< N*s/m
+inline constexpr Dim damping_rot{1, 2, -1};    ///< N*m*s/rad
+inline constexpr Dim inv_length{0, -1, 0};     ///< 1/m (rad/m)
+}  // namespace dim
+
+/// A name and an SI unit for a dimension, for messages: "a torque (N*m)". Unknown: the exponents.
+std::string describe(const Dim& d);
+
+/// A parsed quantity in SI.
+struct Quantity {
+  double value = 0.0;
+  Dim dim;
+  bool has_unit = false;  ///< false for a plain number, which is SI in whatever dimension is expected
+};
+
+/// Parses `text`. Returns nullopt and sets `error` (what was expected at which character) on failure.
+/// Non-finite numbers (nan, inf) are rejected.
+std::optional<Quantity> parse_quantity(std::string_view text, std::string* error);
+
+/// Parses and checks the dimension (a plain number is taken as SI of `expected`); on mismatch sets `error` to e.g.
+/// "expected a torque (N*m), got a force (N) in '12 N'".
+std::optional<double> parse_as(std::string_view text, const Dim& expected, std::string* error);
+
+}  // namespace machdyn

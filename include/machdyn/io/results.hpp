@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// Results as text users load anywhere: the time-series CSV and the JSON summaries of `simulate`
+/// and `modes`. Numbers are SI; column and key names carry the unit.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "machdyn/analysis/modes.hpp"
+#include "machdyn/analysis/simulate.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn {
+
+/// CSV: a header of column names (`t_s`, `I1.position_rad`, …, `c1.load_N_m`), then one row per
+/// output time, 17 significant digits.
+std::string timeseries_csv(const SimulationResult& r);
+
+/// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static, dynamic_factor,
+/// unit}}, solver: {method, reason, steps, rejected_steps, rhs_evals, jac_evals, wall_time_s}}`.
+/// dynamic_factor is null when the static load is zero.
+nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
+
+/// `{model, frequencies_rad_s, frequencies_hz, rigid_body_modes, shapes: [{frequency_rad_s,
+/// frequency_hz, NAME: amplitude, ...}], bodies: [names]}`.
+nlohmann::json modes_summary(const Model& m, const Modes& modes);
+
+}  // namespace machdyn

@@ -1,0 +1,108 @@
+#pragma once
+/// @file
+/// The compiled, immutable model of a drive: flat arrays of bodies, links and loads with every
+/// quantity in SI. Built only by compile_model() (model/compile.hpp), which has checked it.
+///
+/// Coordinates. Each body has one generalized coordinate q: an angle φ in rad (rotational body,
+/// "inertia" I in kg·m²) or a displacement x in m (translational body, "mass" m in kg). The ground
+/// has q ≡ 0. Positive loads act in the direction of positive q.
+///
+/// Links. A link joins body a to body b (either may be the ground) through a ratio i (default 1):
+///   deflection     δ = q_a / i − q_b                   (rad or m, in b's coordinate)
+///   load           F = c δ + d δ̇                       (N·m or N; positive = tension of the paper's
+///                                                        M12 = c1 (φ1 − φ2))
+///   acts on b with +F and on a with −F / i.
+/// A gear stage with ratio i = ω_a/ω_b and an elastic output shaft, or a rope drum (i in rad/m, the
+/// drum's 1/R) are links with a ratio. A link to the ground has i = 1.
+
+#include <string>
+#include <vector>
+
+namespace machdyn {
+
+enum class BodyKind { rotational, translational };
+
+struct Body {
+  std::string name;
+  BodyKind kind = BodyKind::rotational;
+  double inertia = 0.0;  ///< I in kg·m² (rotational) or m in kg (translational); > 0
+  double q0 = 0.0;       ///< initial position, rad or m
+  double v0 = 0.0;       ///< initial velocity, rad/s or m/s
+};
+
+/// Index of the ground in Link::a / Link::b.
+inline constexpr int kGround = -1;
+
+enum class LinkKind { spring, damper, spring_damper };
+
+struct Link {
+  std::string name;
+  LinkKind kind = LinkKind::spring;
+  int a = kGround;     ///< body index or kGround
+  int b = kGround;     ///< body index or kGround
+  double ratio = 1.0;  ///< i, nonzero; dimension of q_a / q_b
+  double c = 0.0;      ///< stiffness, N·m/rad or N/m (in b's coordinate), >= 0
+  double d = 0.0;      ///< damping, N·m·s/rad or N·s/m, >= 0
+};
+
+enum class LoadKind { constant, step, ramp, table, motor_linear, motor_kloss };
+
+/// A torque (rotational body) or force (translational body) on one body.
+///   constant:      M = value
+///   step:          M = before for t < t0, value for t >= t0
+///   ramp:          M = before for t <= t0, linear to value at t1, value after
+///   table:         M(t) piecewise linear through (times, values), held constant outside
+///   motor_linear:  M = M_s (1 − ω/ω0)              (M_s stall torque, ω0 no-load speed)
+///   motor_kloss:   M = 2 M_k s s_k / (s² + s_k²),  s = (ω0 − ω)/ω0   (Kloss formula; M_k breakdown
+///                  torque, s_k breakdown slip, ω0 synchronous speed). ω is the body's velocity.
+struct Load {
+  std::string name;
+  LoadKind kind = LoadKind::constant;
+  int body = 0;
+  double value = 0.0;     ///< constant, step (after), ramp (end), motor_linear: M_s, motor_kloss: M_k
+  double before = 0.0;    ///< step, ramp: value before t0
+  double t0 = 0.0, t1 = 0.0;
+  double omega0 = 0.0;    ///< motors: no-load or synchronous speed, rad/s (m/s on a translational body)
+  double s_k = 0.0;       ///< motor_kloss: breakdown slip, 0 < s_k < 1
+  std::vector<double> times, values;  ///< table
+
+  /// The load at time t for a body moving with velocity v.
+  [[nodiscard]] double evaluate(double t, double v) const;
+  /// ∂M/∂v (nonzero for motors), for the Jacobian.
+  [[nodiscard]] double slope(double t, double v) const;
+};
+
+enum class IntegratorChoice { automatic, dopri5, bdf };
+
+/// Run settings, one struct for the file, the JSON summary and `--set simulation.FIELD=...`.
+struct SimulationSettings {
+  double t_end = 1.0;      ///< s
+  double dt_out = 0.0;     ///< output step, s (0: t_end / 1000)
+  double rtol = 1e-8;      ///< relative tolerance
+  double atol = 1e-10;     ///< absolute tolerance (SI units of each state)
+  IntegratorChoice integrator = IntegratorChoice::automatic;
+  long max_steps = 50'000'000;
+};
+
+struct Model {
+  std::string name;         ///< from the file's `name:` (or its file name)
+  std::string description;
+  std::string source;       ///< the file it was compiled from
+  std::vector<Body> bodies;
+  std::vector<Link> links;
+  std::vector<Load> loads;
+  SimulationSettings simulation;
+
+  [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
+  /// Index of the body called `name`, kGround for "ground", or -2 if none.
+  [[nodiscard]] int body_index(const std::string& name) const;
+};
+
+/// Unit suffixes for output columns: "rad" or "m", "rad/s" or "m/s", "N*m" or "N".
+const char* position_unit(BodyKind k);
+const char* velocity_unit(BodyKind k);
+const char* load_unit(BodyKind k);
+/// The unit of a link's load: that of body b (or a, for a link to the ground).
+const char* link_load_unit(const Model& m, const Link& l);
+
+}  // namespace machdyn

@@ -1,0 +1,245 @@
+#include "machdyn/model/compile.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "machdyn/io/yaml_reader.hpp"
+
+namespace machdyn {
+namespace {
+
+Dim position_dim(BodyKind k) { return k == BodyKind::rotational ? dim::none : dim::length; }
+Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
+Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
+
+void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
+  if (!section) return;
+  if (!section->is_map()) {
+    diag.error(section->loc, "'bodies' must be a map of NAME: {fields}");
+    return;
+  }
+  for (const auto& [name, spec] : section->fields) {
+    FieldReader f(spec, fmt::format("body '{}'", name), diag);
+    if (name == "ground") diag.error(spec.loc, "'ground' is reserved for the fixed frame; name the body otherwise");
+    Body b;
+    b.name = name;
+    auto type = f.word("type", {"rotational", "translational"}, "rotational");
+    b.kind = type && *type == "translational" ? BodyKind::translational : BodyKind::rotational;
+    auto inertia = b.kind == BodyKind::rotational ? f.positive("inertia", dim::inertia)
+                                                   : f.positive("mass", dim::mass);
+    b.inertia = inertia.value_or(1.0);
+    b.q0 = f.quantity("position", position_dim(b.kind), 0.0).value_or(0.0);
+    b.v0 = f.quantity("velocity", velocity_dim(b.kind), 0.0).value_or(0.0);
+    f.finish();
+    m.bodies.push_back(b);
+  }
+}
+
+void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
+  if (!section) return;
+  if (!section->is_map()) {
+    diag.error(section->loc, "'links' must be a map of NAME: {fields}");
+    return;
+  }
+  for (const auto& [name, spec] : section->fields) {
+    FieldReader f(spec, fmt::format("link '{}'", name), diag);
+    Link l;
+    l.name = name;
+    auto type = f.word("type", {"spring", "damper", "spring-damper"});
+    const SpecNode* between = f.node("between");
+    bool ends_ok = false;
+    if (!between) {
+      diag.error(spec.loc, fmt::format("link '{}': missing field 'between' (two body names, e.g. [I1, I2])", name));
+    } else if (!between->is_seq() || between->items.size() != 2 || !between->items[0].is_scalar() ||
+               !between->items[1].is_scalar()) {
+      diag.error(between->loc, fmt::format("link '{}': 'between' expected two body names, e.g. [I1, I2]", name));
+    } else {
+      ends_ok = true;
+      int idx[2];
+      for (int k = 0; k < 2; ++k) {
+        const auto& item = between->items[static_cast<size_t>(k)];
+        idx[k] = m.body_index(item.scalar);
+        if (idx[k] == -2) {
+          diag.error(item.loc, fmt::format("link '{}': unknown body '{}'", name, item.scalar));
+          ends_ok = false;
+        }
+      }
+      l.a = idx[0];
+      l.b = idx[1];
+      if (ends_ok && l.a == l.b) {
+        diag.error(between->loc, fmt::format("link '{}': joins '{}' to itself", name, between->items[0].scalar));
+        ends_ok = false;
+      }
+    }
+    // Dimensions follow the bodies: ratio = [q_a]/[q_b]; stiffness = [load]/[q] of the loaded side.
+    BodyKind ka = BodyKind::rotational, kb = BodyKind::rotational;
+    if (ends_ok) {
+      ka = l.a != kGround ? m.bodies[static_cast<size_t>(l.a)].kind : (l.b != kGround ? m.bodies[static_cast<size_t>(l.b)].kind : ka);
+      kb = l.b != kGround ? m.bodies[static_cast<size_t>(l.b)].kind : ka;
+    }
+    BodyKind side = kb;
+    if (ends_ok && (l.a == kGround || l.b == kGround)) {
+      if (f.map().find("ratio")) f.error_at("ratio", "a link to the ground has no ratio");
+      f.node("ratio");
+    } else {
+      auto r = f.quantity("ratio", position_dim(ka) / position_dim(kb), 1.0);
+      if (r && *r == 0.0) f.error_at("ratio", "field 'ratio' must not be zero");
+      l.ratio = r.value_or(1.0);
+    }
+    const Dim qd = position_dim(side), ld = load_dim(side);
+    bool needs_c = type && (*type == "spring" || *type == "spring-damper");
+    bool needs_d = type && (*type == "damper" || *type == "spring-damper");
+    if (type) l.kind = *type == "spring" ? LinkKind::spring : *type == "damper" ? LinkKind::damper : LinkKind::spring_damper;
+    if (needs_c) l.c = f.positive("stiffness", ld / qd).value_or(0.0);
+    else if (type && f.node("stiffness"))
+      f.error_at("stiffness", fmt::format("a {} has no stiffness; use type spring-damper", *type));
+    if (needs_d) l.d = f.positive("damping", ld / qd * dim::time, std::nullopt, true).value_or(0.0);
+    else if (type && f.node("damping")) f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
+    f.finish();
+    m.links.push_back(l);
+  }
+}
+
+void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
+  if (!section) return;
+  if (!section->is_map()) {
+    diag.error(section->loc, "'loads' must be a map of NAME: {fields}");
+    return;
+  }
+  for (const auto& [name, spec] : section->fields) {
+    FieldReader f(spec, fmt::format("load '{}'", name), diag);
+    Load ld;
+    ld.name = name;
+    auto type = f.word("type", {"constant", "step", "ramp", "table", "motor-linear", "motor-kloss"});
+    auto body = f.text("body");
+    BodyKind kind = BodyKind::rotational;
+    bool body_ok = false;
+    if (body) {
+      int i = m.body_index(*body);
+      if (i < 0) f.error_at("body", fmt::format("unknown body '{}'", *body));
+      else {
+        ld.body = i;
+        kind = m.bodies[static_cast<size_t>(i)].kind;
+        body_ok = true;
+      }
+    }
+    const Dim vd = load_dim(kind);
+    if (!type || !body_ok) {  // field dimensions depend on both; avoid a cascade of messages
+      for (const auto& [k, v] : spec.fields) f.node(k);
+      continue;
+    }
+    const std::string& t = *type;
+    if (t == "constant") {
+      ld.kind = LoadKind::constant;
+      ld.value = f.quantity("value", vd).value_or(0.0);
+    } else if (t == "step") {
+      ld.kind = LoadKind::step;
+      ld.value = f.quantity("value", vd).value_or(0.0);
+      ld.before = f.quantity("before", vd, 0.0).value_or(0.0);
+      ld.t0 = f.quantity("time", dim::time).value_or(0.0);
+    } else if (t == "ramp") {
+      ld.kind = LoadKind::ramp;
+      ld.value = f.quantity("value", vd).value_or(0.0);
+      ld.before = f.quantity("before", vd, 0.0).value_or(0.0);
+      ld.t0 = f.quantity("start", dim::time, 0.0).value_or(0.0);
+      auto t1 = f.quantity("end", dim::time);
+      ld.t1 = t1.value_or(ld.t0 + 1.0);
+      if (t1 && *t1 <= ld.t0) f.error_at("end", "field 'end' must be later than 'start'");
+    } else if (t == "table") {
+      ld.kind = LoadKind::table;
+      const SpecNode* pts = f.node("points");
+      if (!pts) {
+        diag.error(spec.loc, fmt::format("load '{}': missing field 'points' ([[t, value], ...])", name));
+      } else if (!pts->is_seq() || pts->items.empty()) {
+        diag.error(pts->loc, fmt::format("load '{}': 'points' expected a list of [t, value] pairs", name));
+      } else {
+        for (const auto& p : pts->items) {
+          if (!p.is_seq() || p.items.size() != 2 || !p.items[0].is_scalar() || !p.items[1].is_scalar()) {
+            diag.error(p.loc, fmt::format("load '{}': expected a pair [t, value]", name));
+            continue;
+          }
+          std::string e1, e2;
+          auto tv = parse_as(p.items[0].scalar, dim::time, &e1);
+          auto vv = parse_as(p.items[1].scalar, vd, &e2);
+          if (!tv) diag.error(p.items[0].loc, fmt::format("load '{}': {}", name, e1));
+          if (!vv) diag.error(p.items[1].loc, fmt::format("load '{}': {}", name, e2));
+          if (!tv || !vv) continue;
+          if (!ld.times.empty() && *tv <= ld.times.back())
+            diag.error(p.items[0].loc, fmt::format("load '{}': times must increase", name));
+          ld.times.push_back(*tv);
+          ld.values.push_back(*vv);
+        }
+        if (ld.times.empty()) ld.times = {0.0}, ld.values = {0.0};
+      }
+    } else if (t == "motor-linear") {
+      ld.kind = LoadKind::motor_linear;
+      ld.value = f.quantity("stall_torque", vd).value_or(0.0);
+      ld.omega0 = f.positive("no_load_speed", velocity_dim(kind)).value_or(1.0);
+    } else if (t == "motor-kloss") {
+      ld.kind = LoadKind::motor_kloss;
+      ld.value = f.positive("breakdown_torque", vd).value_or(0.0);
+      auto sk = f.positive("breakdown_slip", dim::none);
+      if (sk && *sk >= 1.0) f.error_at("breakdown_slip", "field 'breakdown_slip' must be below 1");
+      ld.s_k = sk.value_or(0.2);
+      ld.omega0 = f.positive("synchronous_speed", velocity_dim(kind)).value_or(1.0);
+    }
+    f.finish();
+    m.loads.push_back(ld);
+  }
+}
+
+void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
+  SimulationSettings& s = m.simulation;
+  if (!section) return;
+  FieldReader f(*section, "simulation", diag);
+  s.t_end = f.positive("t_end", dim::time, s.t_end).value_or(s.t_end);
+  s.dt_out = f.positive("dt_out", dim::time, 0.0, true).value_or(0.0);
+  s.rtol = f.positive("rtol", dim::none, s.rtol).value_or(s.rtol);
+  s.atol = f.positive("atol", dim::none, s.atol).value_or(s.atol);
+  auto integ = f.word("integrator", {"auto", "dopri5", "bdf"}, "auto");
+  if (integ) s.integrator = *integ == "dopri5" ? IntegratorChoice::dopri5
+                           : *integ == "bdf"   ? IntegratorChoice::bdf
+                                               : IntegratorChoice::automatic;
+  s.max_steps = f.integer("max_steps", 1, 2'000'000'000L, s.max_steps).value_or(s.max_steps);
+  if (s.rtol < 1e-14 || s.rtol > 0.1) f.error_at("rtol", "field 'rtol' must lie in [1e-14, 0.1]");
+  if (s.dt_out > s.t_end) f.error_at("dt_out", "field 'dt_out' is longer than t_end");
+  if (s.dt_out > 0.0 && s.t_end / s.dt_out > 1e8) f.error_at("dt_out", "more than 1e8 output rows; raise 'dt_out'");
+  f.finish();
+  if (s.dt_out == 0.0) s.dt_out = s.t_end / 1000.0;
+}
+
+}  // namespace
+
+Model compile_model(const SpecNode& root, const std::string& source) {
+  Diagnostics diag;
+  Model m;
+  m.source = source;
+  if (!root.is_map()) {
+    diag.error(root.loc.line > 0 ? root.loc : Location{source, 1, 1},
+               "expected a model: a map with 'bodies', 'links', 'loads', 'simulation'");
+    diag.throw_if_any();
+  }
+  FieldReader top(root, "model", diag);
+  m.name = top.text("name", std::filesystem::path(source).stem().string()).value_or("");
+  m.description = top.text("description", "").value_or("");
+  const SpecNode* bodies = top.node("bodies");
+  compile_bodies(bodies, m, diag);
+  if (m.bodies.empty())
+    diag.error(bodies ? bodies->loc : Location{source, 1, 1},
+               "the model has no body with mass or inertia: add at least one under 'bodies'");
+  compile_links(top.node("links"), m, diag);
+  compile_loads(top.node("loads"), m, diag);
+  compile_simulation(top.node("simulation"), m, diag);
+  top.finish();
+  diag.throw_if_any();
+  return m;
+}
+
+Model load_model(const std::string& path, const std::vector<std::string>& overrides) {
+  SpecNode root = read_yaml_file(path);
+  for (const auto& o : overrides) apply_set(root, o);
+  return compile_model(root, path);
+}
+
+}  // namespace machdyn

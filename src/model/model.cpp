@@ -1,0 +1,65 @@
+#include "machdyn/model/model.hpp"
+
+#include <algorithm>
+
+namespace machdyn {
+
+double Load::evaluate(double t, double v) const {
+  switch (kind) {
+    case LoadKind::constant:
+      return value;
+    case LoadKind::step:
+      return t < t0 ? before : value;
+    case LoadKind::ramp:
+      if (t <= t0) return before;
+      if (t >= t1) return value;
+      return before + (value - before) * (t - t0) / (t1 - t0);
+    case LoadKind::table: {
+      if (t <= times.front()) return values.front();
+      if (t >= times.back()) return values.back();
+      auto it = std::upper_bound(times.begin(), times.end(), t);
+      size_t k = static_cast<size_t>(it - times.begin());
+      double w = (t - times[k - 1]) / (times[k] - times[k - 1]);
+      return values[k - 1] + w * (values[k] - values[k - 1]);
+    }
+    case LoadKind::motor_linear:
+      return value * (1.0 - v / omega0);
+    case LoadKind::motor_kloss: {
+      double s = (omega0 - v) / omega0;
+      return 2.0 * value * s * s_k / (s * s + s_k * s_k);
+    }
+  }
+  return 0.0;
+}
+
+double Load::slope(double /*t*/, double v) const {
+  switch (kind) {
+    case LoadKind::motor_linear:
+      return -value / omega0;
+    case LoadKind::motor_kloss: {
+      // dM/ds = 2 M_k s_k (s_k² − s²)/(s² + s_k²)², ds/dv = −1/ω0
+      double s = (omega0 - v) / omega0, den = s * s + s_k * s_k;
+      return -2.0 * value * s_k * (s_k * s_k - s * s) / (den * den) / omega0;
+    }
+    default:
+      return 0.0;
+  }
+}
+
+int Model::body_index(const std::string& n) const {
+  if (n == "ground") return kGround;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == n) return static_cast<int>(i);
+  return -2;
+}
+
+const char* position_unit(BodyKind k) { return k == BodyKind::rotational ? "rad" : "m"; }
+const char* velocity_unit(BodyKind k) { return k == BodyKind::rotational ? "rad/s" : "m/s"; }
+const char* load_unit(BodyKind k) { return k == BodyKind::rotational ? "N*m" : "N"; }
+
+const char* link_load_unit(const Model& m, const Link& l) {
+  int side = l.b != kGround ? l.b : l.a;
+  return load_unit(m.bodies[static_cast<size_t>(side)].kind);
+}
+
+}  // namespace machdyn

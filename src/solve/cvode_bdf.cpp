@@ -1,0 +1,162 @@
+#include "cvode_bdf.hpp"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "machdyn/common/diagnostics.hpp"
+
+namespace machdyn {
+
+struct CvodeBdf::Impl {
+  SUNContext ctx = nullptr;
+  void* mem = nullptr;
+  N_Vector y = nullptr, dky = nullptr;
+  SUNMatrix A = nullptr;
+  SUNLinearSolver LS = nullptr;
+  OdeSystem* sys = nullptr;
+  bool initialized = false;
+  bool finite = true;
+  int bad_component = -1;
+};
+
+namespace {
+
+int rhs_cb(realtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto* impl = static_cast<CvodeBdf::Impl*>(user);
+  const double* yy = N_VGetArrayPointer(y);
+  double* dd = N_VGetArrayPointer(ydot);
+  impl->sys->rhs(t, yy, dd);
+  const int n = impl->sys->size();
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(dd[i])) {
+      impl->bad_component = i;
+      return 1;  // recoverable: CVODE retries with a smaller step
+    }
+  return 0;
+}
+
+int jac_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
+  auto* impl = static_cast<CvodeBdf::Impl*>(user);
+  const int n = impl->sys->size();
+  // SUNDIALS dense matrices are column-major, like Eigen's default.
+  Eigen::Map<Eigen::MatrixXd> JJ(SM_DATA_D(J), n, n);
+  impl->sys->jacobian(t, N_VGetArrayPointer(y), JJ);
+  return 0;
+}
+
+}  // namespace
+
+CvodeBdf::CvodeBdf(OdeSystem& system, const StepperOptions& options)
+    : impl_(new Impl), sys_(system), opt_(options), y_(static_cast<size_t>(system.size()), 0.0) {
+  const auto n = static_cast<sunindextype>(system.size());
+  impl_->sys = &system;
+  if (SUNContext_Create(nullptr, &impl_->ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
+  impl_->y = N_VNew_Serial(n, impl_->ctx);
+  impl_->dky = N_VNew_Serial(n, impl_->ctx);
+  impl_->A = SUNDenseMatrix(n, n, impl_->ctx);
+  impl_->LS = SUNLinSol_Dense(impl_->y, impl_->A, impl_->ctx);
+  impl_->mem = CVodeCreate(CV_BDF, impl_->ctx);
+  if (!impl_->y || !impl_->A || !impl_->LS || !impl_->mem) throw std::runtime_error("CVODE allocation failed");
+}
+
+CvodeBdf::~CvodeBdf() {
+  CVodeFree(&impl_->mem);
+  SUNLinSolFree(impl_->LS);
+  SUNMatDestroy(impl_->A);
+  N_VDestroy(impl_->y);
+  N_VDestroy(impl_->dky);
+  SUNContext_Free(&impl_->ctx);
+  delete impl_;
+}
+
+void CvodeBdf::reset(double t0, const double* y0) {
+  std::copy(y0, y0 + sys_.size(), N_VGetArrayPointer(impl_->y));
+  std::copy(y0, y0 + sys_.size(), y_.begin());
+  t_ = t_old_ = t0;
+  if (!impl_->initialized) {
+    CVodeInit(impl_->mem, rhs_cb, t0, impl_->y);
+    CVodeSetUserData(impl_->mem, impl_);
+    CVodeSStolerances(impl_->mem, opt_.rtol, opt_.atol);
+    CVodeSetLinearSolver(impl_->mem, impl_->LS, impl_->A);
+    if (sys_.has_jacobian()) CVodeSetJacFn(impl_->mem, jac_cb);
+    CVodeSetMaxNumSteps(impl_->mem, 100000);
+    CVodeSetErrHandlerFn(impl_->mem, [](int, const char*, const char*, char*, void*) {}, nullptr);
+    if (opt_.h_max > 0) CVodeSetMaxStep(impl_->mem, opt_.h_max);
+    impl_->initialized = true;
+  } else {
+    CVodeReInit(impl_->mem, t0, impl_->y);
+  }
+}
+
+void CvodeBdf::step(double t_limit) {
+  if (stats().steps >= opt_.max_steps) throw SolverError("integrator", t_, "the maximum number of steps was reached");
+  CVodeSetStopTime(impl_->mem, t_limit);
+  double tret = t_;
+  impl_->bad_component = -1;
+  int flag = CVode(impl_->mem, t_limit, impl_->y, &tret, CV_ONE_STEP);
+  if (flag < 0) {
+    double tcur = t_;
+    CVodeGetCurrentTime(impl_->mem, &tcur);
+    std::string element = impl_->bad_component >= 0 ? sys_.state_name(impl_->bad_component) : "integrator";
+    if (flag == CV_ERR_FAILURE || flag == CV_CONV_FAILURE) {
+      // Blame the component with the largest weighted local error.
+      N_Vector ele = N_VClone(impl_->y), ewt = N_VClone(impl_->y);
+      if (CVodeGetEstLocalErrors(impl_->mem, ele) == 0 && CVodeGetErrWeights(impl_->mem, ewt) == 0 &&
+          impl_->bad_component < 0) {
+        double worst = -1;
+        for (int i = 0; i < sys_.size(); ++i) {
+          double e = std::abs(NV_Ith_S(ele, i) * NV_Ith_S(ewt, i));
+          if (e > worst) worst = e, element = sys_.state_name(i);
+        }
+      }
+      N_VDestroy(ele);
+      N_VDestroy(ewt);
+    }
+    throw SolverError(element, tcur, fmt::format("CVODE failed: {}", CVodeGetReturnFlagName(flag)));
+  }
+  t_old_ = t_;
+  t_ = tret;
+  std::copy(N_VGetArrayPointer(impl_->y), N_VGetArrayPointer(impl_->y) + sys_.size(), y_.begin());
+}
+
+void CvodeBdf::interpolate(double t, double* y_out) const {
+  if (t >= t_) {
+    std::copy(y_.begin(), y_.end(), y_out);
+    return;
+  }
+  CVodeGetDky(impl_->mem, t, 0, impl_->dky);
+  std::copy(N_VGetArrayPointer(impl_->dky), N_VGetArrayPointer(impl_->dky) + sys_.size(), y_out);
+}
+
+void CvodeBdf::derivative(double t, double* dy_out) const {
+  CVodeGetDky(impl_->mem, std::min(t, t_), 1, impl_->dky);
+  std::copy(N_VGetArrayPointer(impl_->dky), N_VGetArrayPointer(impl_->dky) + sys_.size(), dy_out);
+}
+
+StepperStats CvodeBdf::stats() const {
+  StepperStats s;
+  long v = 0;
+  CVodeGetNumSteps(impl_->mem, &v);
+  s.steps = v;
+  CVodeGetNumRhsEvals(impl_->mem, &v);
+  s.rhs_evals = v;
+  long lsrhs = 0;
+  CVodeGetNumLinRhsEvals(impl_->mem, &lsrhs);
+  s.rhs_evals += lsrhs;
+  CVodeGetNumJacEvals(impl_->mem, &v);
+  s.jac_evals = v;
+  long ef = 0, cf = 0;
+  CVodeGetNumErrTestFails(impl_->mem, &ef);
+  CVodeGetNumNonlinSolvConvFails(impl_->mem, &cf);
+  s.rejected = ef + cf;
+  return s;
+}
+
+
+}  // namespace machdyn

@@ -1,0 +1,58 @@
+// Implementation of the test helpers (the file name puts it into the test executable).
+#include "support/support.hpp"
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace machdyn::test {
+
+std::filesystem::path temp_dir() {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("machdyn-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    static struct Cleanup {
+      std::filesystem::path p;
+      ~Cleanup() {
+        std::error_code ec;
+        std::filesystem::remove_all(p, ec);
+      }
+    } cleanup{d};
+    return d;
+  }();
+  return dir;
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  auto p = temp_dir() / name;
+  std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+CliResult run_cli(const std::string& args, const std::filesystem::path& cwd) {
+  static int counter = 0;
+  const auto base = temp_dir() / ("cli-" + std::to_string(++counter));
+  const std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(MACHDYN_CLI) + "' " + args + " >'" +
+                          base.string() + ".out' 2>'" + base.string() + ".err' </dev/null";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  r.out = slurp(base.string() + ".out");
+  r.err = slurp(base.string() + ".err");
+  return r;
+}
+
+std::string example(const std::string& name) { return std::string(MACHDYN_SOURCE_DIR) + "/examples/" + name; }
+
+}  // namespace machdyn::test
