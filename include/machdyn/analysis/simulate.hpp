@@ -17,8 +17,8 @@ namespace machdyn {
 struct LinkSummary {
   double max = 0.0, min = 0.0;      ///< N·m or N
   double t_max = 0.0, t_min = 0.0;  ///< s
-  /// Quasi-static load at t_max: the particular solution (modes.hpp, static_link_loads) for the
-  /// loads acting at t_max — the load of rigid acceleration.
+  /// Quasi-static load at t_max: the particular solution (static_loads.hpp) for the loads acting
+  /// at t_max — the load of rigid acceleration.
   double static_load = 0.0;
   /// max / static_load; NaN when the static load is zero.
   double dynamic_factor = 0.0;
@@ -32,9 +32,9 @@ struct SimulationResult {
   std::string method_reason;                  ///< why this integrator (for `integrator: auto`)
 };
 
-/// The integrator `auto` picks: dopri5 unless the chain has a strongly damped mode so fast that
-/// an explicit method would spend > 2e4 steps on stability alone (|Re λ| · t_end > 2e4 with
-/// damping ratio ζ ≥ 0.5), then CVODE BDF. `reason` says which.
+/// The integrator `auto` picks, from O(n) Gershgorin bounds ρ_D ≥ |Re λ| of M⁻¹D and ω_K ≥ ω_max:
+/// CVODE BDF when the fastest motion is damping-dominated (ρ_D ≥ ω_K) and ρ_D · t_end > 2e4 (an
+/// explicit method would spend > 2e4 steps on stability alone), else dopri5. `reason` says which.
 Method choose_method(const Model& m, std::string* reason);
 
 /// Runs the model's simulation settings. Throws SolverError on numerical failure.

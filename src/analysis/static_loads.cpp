@@ -1,0 +1,119 @@
+#include "machdyn/analysis/static_loads.hpp"
+
+#include <cmath>
+#include <vector>
+#include <Eigen/Cholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+namespace machdyn {
+
+Eigen::MatrixXd rigid_motions(const Model& m) {
+  const int n = m.dof();
+  // Spring graph: adjacency with the factor that carries q across a link (q_b = q_a / i).
+  struct Edge {
+    int to;
+    double factor;
+  };
+  std::vector<std::vector<Edge>> adj(static_cast<size_t>(n));
+  std::vector<bool> grounded(static_cast<size_t>(n), false);
+  for (const auto& l : m.links) {
+    if (l.c <= 0.0) continue;
+    if (l.a < 0 || l.b < 0) {
+      grounded[static_cast<size_t>(l.a < 0 ? l.b : l.a)] = true;
+      continue;
+    }
+    adj[static_cast<size_t>(l.a)].push_back({l.b, 1.0 / l.ratio});
+    adj[static_cast<size_t>(l.b)].push_back({l.a, l.ratio});
+  }
+  std::vector<double> value(static_cast<size_t>(n), 0.0);
+  std::vector<int> group(static_cast<size_t>(n), -1);
+  std::vector<Eigen::VectorXd> columns;
+  for (int root = 0; root < n; ++root) {
+    if (group[static_cast<size_t>(root)] >= 0) continue;
+    const int g = static_cast<int>(columns.size());
+    bool free_group = true;
+    std::vector<int> stack{root}, members;
+    group[static_cast<size_t>(root)] = g;
+    value[static_cast<size_t>(root)] = 1.0;
+    while (!stack.empty()) {
+      const int a = stack.back();
+      stack.pop_back();
+      members.push_back(a);
+      if (grounded[static_cast<size_t>(a)]) free_group = false;
+      for (const auto& e : adj[static_cast<size_t>(a)]) {
+        const double v = value[static_cast<size_t>(a)] * e.factor;
+        if (group[static_cast<size_t>(e.to)] < 0) {
+          group[static_cast<size_t>(e.to)] = g;
+          value[static_cast<size_t>(e.to)] = v;
+          stack.push_back(e.to);
+        } else if (std::abs(value[static_cast<size_t>(e.to)] - v) > 1e-12 * std::abs(v)) {
+          free_group = false;  // a loop of gears with inconsistent ratios locks the group
+        }
+      }
+    }
+    Eigen::VectorXd col = Eigen::VectorXd::Zero(n);
+    if (free_group)
+      for (int i : members) col(i) = value[static_cast<size_t>(i)];
+    columns.push_back(col);
+  }
+  int r = 0;
+  for (const auto& c : columns) r += c.squaredNorm() > 0 ? 1 : 0;
+  Eigen::MatrixXd R(n, r);
+  int k = 0;
+  for (const auto& c : columns)
+    if (c.squaredNorm() > 0) R.col(k++) = c;
+  return R;
+}
+
+Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f) {
+  const int n = m.dof();
+  const Eigen::MatrixXd R = rigid_motions(m);
+  const auto r = R.cols();
+  Eigen::VectorXd M(n);
+  for (int i = 0; i < n; ++i) M(i) = m.bodies[static_cast<size_t>(i)].inertia;
+  const Eigen::MatrixXd MR = M.asDiagonal() * R;
+  Eigen::VectorXd fe = f;
+  if (r > 0) fe -= MR * (R.transpose() * MR).ldlt().solve(R.transpose() * f);
+
+  // Saddle-point system [K  MR; (MR)ᵀ 0] [q_e; μ] = [f_e; 0], K = Σ c_l b_l b_lᵀ assembled sparse.
+  std::vector<Eigen::Triplet<double>> trip;
+  for (const auto& l : m.links) {
+    if (l.c <= 0.0) continue;
+    const int idx[2] = {l.a, l.b};
+    const double w[2] = {1.0 / l.ratio, -1.0};
+    for (int s = 0; s < 2; ++s)
+      for (int t = 0; t < 2; ++t)
+        if (idx[s] >= 0 && idx[t] >= 0) trip.emplace_back(idx[s], idx[t], l.c * w[s] * w[t]);
+  }
+  for (Eigen::Index k = 0; k < r; ++k)
+    for (int i = 0; i < n; ++i)
+      if (MR(i, k) != 0.0) {
+        trip.emplace_back(i, n + k, MR(i, k));
+        trip.emplace_back(n + k, i, MR(i, k));
+      }
+  const auto N = n + r;
+  Eigen::SparseMatrix<double> A(N, N);
+  A.setFromTriplets(trip.begin(), trip.end());
+  // Damper-only or free bodies make K singular beyond R; a tiny diagonal shift keeps the solve defined
+  // there (those bodies carry no spring load either way).
+  double scale = 0.0;
+  for (const auto& t : trip) scale = std::max(scale, std::abs(t.value()));
+  for (int i = 0; i < n; ++i) A.coeffRef(i, i) += 1e-14 * (scale > 0 ? scale : 1.0);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(A);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N);
+  rhs.head(n) = fe;
+  const Eigen::VectorXd sol = lu.solve(rhs);
+  Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
+  for (size_t k = 0; k < m.links.size(); ++k) {
+    const Link& l = m.links[k];
+    double delta = 0;
+    if (l.a >= 0) delta += sol(l.a) / l.ratio;
+    if (l.b >= 0) delta -= sol(l.b);
+    F(static_cast<Eigen::Index>(k)) = l.c * delta;
+  }
+  return F;
+}
+
+}  // namespace machdyn
