@@ -2,11 +2,52 @@
 
 #include <fmt/format.h>
 
+#include "machdyn/analysis/modes.hpp"
+
 namespace machdyn {
+namespace {
+
+template <int N>
+void dense_rhs(const double* y, double* dydt, const double* Aq, const double* Av, const double* b) {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  using Mat = Eigen::Matrix<double, N, N>;
+  Eigen::Map<const Vec> q(y), v(y + N), bb(b);
+  Eigen::Map<Vec> qd(dydt), acc(dydt + N);
+  qd = v;
+  acc.noalias() = Eigen::Map<const Mat>(Aq) * q + Eigen::Map<const Mat>(Av) * v + bb;
+}
+
+using DenseFn = void (*)(const double*, double*, const double*, const double*, const double*);
+constexpr DenseFn kDense[] = {dense_rhs<1>, dense_rhs<2>, dense_rhs<3>, dense_rhs<4>,
+                              dense_rhs<5>, dense_rhs<6>, dense_rhs<7>, dense_rhs<8>};
+
+}  // namespace
 
 ChainSystem::ChainSystem(const Model& model) : m_(model), n_(model.dof()) {
   for (const auto& b : model.bodies) inv_mass_.push_back(1.0 / b.inertia);
-  for (const auto& l : model.links) links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d});
+  for (const auto& l : model.links) {
+    const FlatLink k{l.a, l.b, 1.0 / l.ratio, l.c, l.d};
+    links_.push_back(k);
+    if (l.a >= 0 && l.b >= 0) between_.push_back(k);
+    // A ground link's deflection is q_a/i (ground at b) or −q_b (ground at a): store the body in
+    // `a` with the signed factor, so F = c (s q) + d (s v) and the body gets −s F.
+    else if (l.a >= 0) grounded_.push_back({l.a, -1, 1.0 / l.ratio, l.c, l.d});
+    else if (l.b >= 0) grounded_.push_back({l.b, -1, -1.0, l.c, l.d});
+  }
+  f_const_.assign(static_cast<size_t>(n_), 0.0);
+  for (const auto& ld : model.loads) {
+    if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
+    else varying_.push_back(&ld);
+  }
+  if (n_ >= 1 && n_ <= 8) {
+    const Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(inv_mass_.data(), n_);
+    const Eigen::MatrixXd Aq = -(im.asDiagonal() * stiffness_matrix(model));
+    const Eigen::MatrixXd Av = -(im.asDiagonal() * damping_matrix(model));
+    Aq_.assign(Aq.data(), Aq.data() + Aq.size());
+    Av_.assign(Av.data(), Av.data() + Av.size());
+    for (int i = 0; i < n_; ++i) b_.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
+    dense_ = kDense[n_ - 1];
+  }
 }
 
 void ChainSystem::initial_state(double* y) const {
@@ -44,20 +85,39 @@ std::vector<double> ChainSystem::link_load_weights(int l) const {
   return w;
 }
 
-void ChainSystem::rhs(double t, const double* y, double* dydt) {
-  const double* v = y + n_;
-  double* acc = dydt + n_;
-  for (int i = 0; i < n_; ++i) dydt[i] = v[i];
-  generalized_loads(t, y, acc);
-  for (const auto& k : links_) {
-    double delta = 0, rate = 0;
-    if (k.a >= 0) delta += y[k.a] * k.inv_ratio, rate += v[k.a] * k.inv_ratio;
-    if (k.b >= 0) delta -= y[k.b], rate -= v[k.b];
-    const double F = k.c * delta + k.d * rate;
-    if (k.a >= 0) acc[k.a] -= F * k.inv_ratio;
-    if (k.b >= 0) acc[k.b] += F;
+// Small chains dominate: the vectorizer's prologues cost more than they save at n = 2…20.
+__attribute__((optimize("no-tree-vectorize"))) void ChainSystem::rhs(double t, const double* y, double* dydt) {
+  // Local, non-aliased pointers: the stores into acc must not force reloads of the model arrays.
+  if (dense_) {
+    dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());
+    for (const Load* ld : varying_)
+      dydt[n_ + ld->body] += ld->evaluate(t, y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
+    return;
   }
-  for (int i = 0; i < n_; ++i) acc[i] *= inv_mass_[static_cast<size_t>(i)];
+  const int n = n_;
+  const double* __restrict q = y;
+  const double* __restrict v = y + n;
+  double* __restrict acc = dydt + n;
+  const double* __restrict fc = f_const_.data();
+  const double* __restrict im = inv_mass_.data();
+  for (int i = 0; i < n; ++i) {
+    dydt[i] = v[i];
+    acc[i] = fc[i];
+  }
+  for (const Load* ld : varying_) acc[ld->body] += ld->evaluate(t, v[ld->body]);
+  const FlatLink* __restrict L = between_.data();
+  for (size_t j = 0, nl = between_.size(); j < nl; ++j) {
+    const FlatLink k = L[j];
+    const double F = k.c * (q[k.a] * k.inv_ratio - q[k.b]) + k.d * (v[k.a] * k.inv_ratio - v[k.b]);
+    acc[k.a] -= F * k.inv_ratio;
+    acc[k.b] += F;
+  }
+  const FlatLink* __restrict G = grounded_.data();
+  for (size_t j = 0, ng = grounded_.size(); j < ng; ++j) {
+    const FlatLink k = G[j];
+    acc[k.a] -= (k.c * q[k.a] + k.d * v[k.a]) * k.inv_ratio * k.inv_ratio;
+  }
+  for (int i = 0; i < n; ++i) acc[i] *= im[i];
 }
 
 void ChainSystem::jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) {

@@ -4,34 +4,42 @@
 
 namespace machdyn {
 
-PeakTracker::PeakTracker(const std::vector<double>& w) {
-  for (size_t i = 0; i < w.size(); ++i)
-    if (w[i] != 0.0) idx_.push_back(static_cast<int>(i)), w_.push_back(w[i]);
-  buf_.resize(w.size());
-  dbuf_.resize(w.size());
+PeakTracker::PeakTracker(const std::vector<std::vector<double>>& weights) {
+  for (const auto& w : weights) {
+    Signal g;
+    for (size_t i = 0; i < w.size(); ++i)
+      if (w[i] != 0.0) g.idx.push_back(static_cast<int>(i)), g.w.push_back(w[i]);
+    sig_.push_back(std::move(g));
+    y_.resize(w.size());
+    dy_.resize(w.size());
+  }
 }
 
-double PeakTracker::dot(const std::vector<double>& y) const {
+double PeakTracker::Signal::dot(const double* y) const {
   double s = 0;
-  for (size_t k = 0; k < idx_.size(); ++k) s += w_[k] * y[static_cast<size_t>(idx_[k])];
+  for (size_t k = 0; k < idx.size(); ++k) s += w[k] * y[idx[k]];
   return s;
 }
 
-void PeakTracker::consider(double t, const std::vector<double>& y) {
-  const double v = dot(y);
-  if (!started_ || v > max_) max_ = v, t_max_ = t, y_max_ = y;
-  if (!started_ || v < min_) min_ = v, t_min_ = t;
-  started_ = true;
+void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_new_max) {
+  Signal& g = sig_[static_cast<size_t>(j)];
+  const double v = g.dot(y);
+  if (!started_ || v > g.max) {
+    g.max = v, g.t_max = t;
+    if (on_new_max) on_new_max(j, t, y);
+  }
+  if (!started_ || v < g.min) g.min = v, g.t_min = t;
 }
 
-double PeakTracker::locate_extremum(const Stepper& s, double t0, double r0, double t1, double r1) {
+double PeakTracker::locate_extremum(const Stepper& s, const Signal& g, double t0, double r0, double t1, double r1) {
   // Illinois (modified regula falsi) on the rate; r0 and r1 have opposite signs.
+  std::vector<double> dy(dy_.size());
   int side = 0;
   for (int it = 0; it < 100 && t1 - t0 > 1e-15 * std::max(1.0, std::abs(t1)); ++it) {
     double t = (t0 * r1 - t1 * r0) / (r1 - r0);
     if (!(t > t0 && t < t1)) t = 0.5 * (t0 + t1);
-    s.derivative(t, dbuf_.data());
-    const double r = dot(dbuf_);
+    s.derivative(t, dy.data());
+    const double r = g.dot(dy.data());
     if (r == 0.0) return t;
     if ((r > 0) == (r0 > 0)) {
       t0 = t, r0 = r;
@@ -46,24 +54,30 @@ double PeakTracker::locate_extremum(const Stepper& s, double t0, double r0, doub
   return 0.5 * (t0 + t1);
 }
 
-void PeakTracker::on_step(const Stepper& s) {
+void PeakTracker::on_step(const Stepper& s, const NewMax& on_new_max) {
+  const int n = static_cast<int>(sig_.size());
   const double t0 = s.t_prev(), t1 = s.t();
   if (!started_) {
-    s.interpolate(t0, buf_.data());
-    consider(t0, buf_);
-    s.derivative(t0, dbuf_.data());
-    rate_prev_ = dot(dbuf_);
+    s.interpolate(t0, y_.data());
+    s.derivative(t0, dy_.data());
+    for (int j = 0; j < n; ++j) {
+      sig_[static_cast<size_t>(j)].rate_prev = sig_[static_cast<size_t>(j)].dot(dy_.data());
+      consider(j, t0, y_.data(), on_new_max);
+    }
+    started_ = true;
   }
-  s.derivative(t1, dbuf_.data());
-  const double r1 = dot(dbuf_);
-  if ((rate_prev_ > 0 && r1 < 0) || (rate_prev_ < 0 && r1 > 0)) {
-    const double te = locate_extremum(s, t0, rate_prev_, t1, r1);
-    s.interpolate(te, buf_.data());
-    consider(te, buf_);
+  const double* dy1 = s.dydt();
+  for (int j = 0; j < n; ++j) {
+    Signal& g = sig_[static_cast<size_t>(j)];
+    const double r1 = g.dot(dy1);
+    if ((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) {
+      const double te = locate_extremum(s, g, t0, g.rate_prev, t1, r1);
+      s.interpolate(te, y_.data());
+      consider(j, te, y_.data(), on_new_max);
+    }
+    consider(j, t1, s.y(), on_new_max);
+    g.rate_prev = r1;
   }
-  buf_.assign(s.y(), s.y() + buf_.size());
-  consider(t1, buf_);
-  rate_prev_ = r1;
 }
 
 }  // namespace machdyn

@@ -54,33 +54,35 @@ Method choose_method(const Model& m, std::string* reason) {
 
 namespace {
 
-/// Collects the output grid and the link-load peaks.
+/// Collects the output grid and the link-load peaks; at each new maximum of link l it keeps the
+/// values of the loads then (O(#loads)), for the quasi-static load at t_max.
 class Recorder final : public StepObserver {
  public:
-  Recorder(const Model& m, ChainSystem& sys, SimulationResult& out) : m_(m), sys_(sys), out_(out) {
-    const int n = m.dof();
-    out_.column_names.push_back("t_s");
+  Recorder(const Model& m, ChainSystem& sys, SimulationResult& out)
+      : m_(m), sys_(sys), out_(out), peaks_(weights(m, sys)),
+        loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)) {
     auto suffix = [](const char* unit) {
       std::string s(unit);
       for (auto& ch : s)
         if (ch == '*' || ch == '/') ch = '_';
       return s;
     };
+    out_.column_names.push_back("t_s");
     for (const auto& b : m.bodies) {
       out_.column_names.push_back(b.name + ".position_" + suffix(position_unit(b.kind)));
       out_.column_names.push_back(b.name + ".velocity_" + suffix(velocity_unit(b.kind)));
     }
-    for (size_t l = 0; l < m.links.size(); ++l) {
-      out_.column_names.push_back(m.links[l].name + ".load_" + suffix(link_load_unit(m, m.links[l])));
-      trackers_.emplace_back(sys.link_load_weights(static_cast<int>(l)));
-    }
+    for (const auto& l : m.links) out_.column_names.push_back(l.name + ".load_" + suffix(link_load_unit(m, l)));
     out_.columns.resize(out_.column_names.size());
-    (void)n;
+    const auto rows = static_cast<size_t>(m.simulation.t_end / m.simulation.dt_out) + 2;
+    for (auto& col : out_.columns) col.reserve(rows);
+    on_new_max_ = [this](int l, double t, const double* y) {
+      auto& vals = loads_at_max_[static_cast<size_t>(l)];
+      for (size_t k = 0; k < m_.loads.size(); ++k) vals[k] = m_.loads[k].evaluate(t, y[m_.dof() + m_.loads[k].body]);
+    };
   }
 
-  void on_step(const Stepper& s) override {
-    for (auto& tr : trackers_) tr.on_step(s);
-  }
+  void on_step(const Stepper& s) override { peaks_.on_step(s, on_new_max_); }
 
   void on_output(double t, const double* y) override {
     const int n = m_.dof();
@@ -93,13 +95,26 @@ class Recorder final : public StepObserver {
     for (size_t l = 0; l < m_.links.size(); ++l) out_.columns[c++].push_back(sys_.link_load(static_cast<int>(l), y));
   }
 
-  const std::vector<PeakTracker>& trackers() const { return trackers_; }
+  const PeakTracker& peaks() const { return peaks_; }
+  /// The generalized forces of the loads acting when link l had its maximum.
+  Eigen::VectorXd forces_at_max(size_t l) const {
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(m_.dof());
+    for (size_t k = 0; k < m_.loads.size(); ++k) f(m_.loads[k].body) += loads_at_max_[l][k];
+    return f;
+  }
 
  private:
+  static std::vector<std::vector<double>> weights(const Model& m, const ChainSystem& sys) {
+    std::vector<std::vector<double>> w;
+    for (size_t l = 0; l < m.links.size(); ++l) w.push_back(sys.link_load_weights(static_cast<int>(l)));
+    return w;
+  }
   const Model& m_;
   ChainSystem& sys_;
   SimulationResult& out_;
-  std::vector<PeakTracker> trackers_;
+  PeakTracker peaks_;
+  std::vector<std::vector<double>> loads_at_max_;
+  PeakTracker::NewMax on_new_max_;
 };
 
 }  // namespace
@@ -119,18 +134,15 @@ SimulationResult simulate(const Model& m) {
   out.stats = integrate(*stepper, 0.0, y0.data(), m.simulation.t_end, m.simulation.dt_out, rec);
 
   // Quasi-static loads at each link's peak time.
-  const int n = m.dof();
-  std::vector<double> f(static_cast<size_t>(n));
+  const ParticularSolver particular(m);
   for (size_t l = 0; l < m.links.size(); ++l) {
-    const PeakTracker& tr = rec.trackers()[l];
+    const int j = static_cast<int>(l);
     LinkSummary s;
-    s.max = tr.max();
-    s.min = tr.min();
-    s.t_max = tr.t_max();
-    s.t_min = tr.t_min();
-    sys.generalized_loads(s.t_max, tr.y_at_max().data(), f.data());
-    const Eigen::VectorXd F = particular_link_loads(m, Eigen::Map<const Eigen::VectorXd>(f.data(), n));
-    s.static_load = F(static_cast<Eigen::Index>(l));
+    s.max = rec.peaks().max(j);
+    s.min = rec.peaks().min(j);
+    s.t_max = rec.peaks().t_max(j);
+    s.t_min = rec.peaks().t_min(j);
+    s.static_load = particular.solve(rec.forces_at_max(l))(j);
     const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
     s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
                                                                : std::numeric_limits<double>::quiet_NaN();

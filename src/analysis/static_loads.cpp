@@ -66,15 +66,23 @@ Eigen::MatrixXd rigid_motions(const Model& m) {
   return R;
 }
 
-Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f) {
+struct ParticularSolver::Impl {
+  const Model& m;
+  Eigen::MatrixXd R, MR;
+  Eigen::LDLT<Eigen::MatrixXd> rigid;  // Rᵀ M R
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  explicit Impl(const Model& model) : m(model) {}
+};
+
+ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
   const int n = m.dof();
-  const Eigen::MatrixXd R = rigid_motions(m);
-  const auto r = R.cols();
+  Impl& s = *impl_;
+  s.R = rigid_motions(m);
+  const auto r = s.R.cols();
   Eigen::VectorXd M(n);
   for (int i = 0; i < n; ++i) M(i) = m.bodies[static_cast<size_t>(i)].inertia;
-  const Eigen::MatrixXd MR = M.asDiagonal() * R;
-  Eigen::VectorXd fe = f;
-  if (r > 0) fe -= MR * (R.transpose() * MR).ldlt().solve(R.transpose() * f);
+  s.MR = M.asDiagonal() * s.R;
+  if (r > 0) s.rigid.compute(s.R.transpose() * s.MR);
 
   // Saddle-point system [K  MR; (MR)ᵀ 0] [q_e; μ] = [f_e; 0], K = Σ c_l b_l b_lᵀ assembled sparse.
   std::vector<Eigen::Triplet<double>> trip;
@@ -82,29 +90,32 @@ Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f) 
     if (l.c <= 0.0) continue;
     const int idx[2] = {l.a, l.b};
     const double w[2] = {1.0 / l.ratio, -1.0};
-    for (int s = 0; s < 2; ++s)
-      for (int t = 0; t < 2; ++t)
-        if (idx[s] >= 0 && idx[t] >= 0) trip.emplace_back(idx[s], idx[t], l.c * w[s] * w[t]);
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        if (idx[a] >= 0 && idx[b] >= 0) trip.emplace_back(idx[a], idx[b], l.c * w[a] * w[b]);
   }
   for (Eigen::Index k = 0; k < r; ++k)
     for (int i = 0; i < n; ++i)
-      if (MR(i, k) != 0.0) {
-        trip.emplace_back(i, n + k, MR(i, k));
-        trip.emplace_back(n + k, i, MR(i, k));
+      if (s.MR(i, k) != 0.0) {
+        trip.emplace_back(i, n + k, s.MR(i, k));
+        trip.emplace_back(n + k, i, s.MR(i, k));
       }
   const auto N = n + r;
   Eigen::SparseMatrix<double> A(N, N);
   A.setFromTriplets(trip.begin(), trip.end());
-  // Damper-only or free bodies make K singular beyond R; a tiny diagonal shift keeps the solve defined
-  // there (those bodies carry no spring load either way).
-  double scale = 0.0;
-  for (const auto& t : trip) scale = std::max(scale, std::abs(t.value()));
-  for (int i = 0; i < n; ++i) A.coeffRef(i, i) += 1e-14 * (scale > 0 ? scale : 1.0);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(A);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N);
-  rhs.head(n) = fe;
-  const Eigen::VectorXd sol = lu.solve(rhs);
+  s.lu.compute(A);
+}
+
+ParticularSolver::~ParticularSolver() { delete impl_; }
+
+Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
+  const Impl& s = *impl_;
+  const Model& m = s.m;
+  const int n = m.dof();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + s.R.cols());
+  rhs.head(n) = f;
+  if (s.R.cols() > 0) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
+  const Eigen::VectorXd sol = s.lu.solve(rhs);
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t k = 0; k < m.links.size(); ++k) {
     const Link& l = m.links[k];
@@ -114,6 +125,10 @@ Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f) 
     F(static_cast<Eigen::Index>(k)) = l.c * delta;
   }
   return F;
+}
+
+Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f) {
+  return ParticularSolver(m).solve(f);
 }
 
 }  // namespace machdyn

@@ -53,7 +53,7 @@ int jac_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_V
 }  // namespace
 
 CvodeBdf::CvodeBdf(OdeSystem& system, const StepperOptions& options)
-    : impl_(new Impl), sys_(system), opt_(options), y_(static_cast<size_t>(system.size()), 0.0) {
+    : impl_(new Impl), sys_(system), opt_(options), y_(static_cast<size_t>(system.size()), 0.0), dy_(y_) {
   const auto n = static_cast<sunindextype>(system.size());
   impl_->sys = &system;
   if (SUNContext_Create(nullptr, &impl_->ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
@@ -78,6 +78,7 @@ CvodeBdf::~CvodeBdf() {
 void CvodeBdf::reset(double t0, const double* y0) {
   std::copy(y0, y0 + sys_.size(), N_VGetArrayPointer(impl_->y));
   std::copy(y0, y0 + sys_.size(), y_.begin());
+  sys_.rhs(t0, y_.data(), dy_.data());
   t_ = t_old_ = t0;
   if (!impl_->initialized) {
     CVodeInit(impl_->mem, rhs_cb, t0, impl_->y);
@@ -123,6 +124,7 @@ void CvodeBdf::step(double t_limit) {
   t_old_ = t_;
   t_ = tret;
   std::copy(N_VGetArrayPointer(impl_->y), N_VGetArrayPointer(impl_->y) + sys_.size(), y_.begin());
+  sys_.rhs(t_, y_.data(), dy_.data());
 }
 
 void CvodeBdf::interpolate(double t, double* y_out) const {

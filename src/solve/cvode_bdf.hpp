@@ -21,6 +21,7 @@ class CvodeBdf final : public Stepper {
   [[nodiscard]] double t() const override { return t_; }
   [[nodiscard]] double t_prev() const override { return t_old_; }
   [[nodiscard]] const double* y() const override { return y_.data(); }
+  [[nodiscard]] const double* dydt() const override { return dy_.data(); }
   void interpolate(double t, double* y_out) const override;
   void derivative(double t, double* dy_out) const override;
   [[nodiscard]] StepperStats stats() const override;
@@ -33,7 +34,7 @@ class CvodeBdf final : public Stepper {
   OdeSystem& sys_;
   StepperOptions opt_;
   double t_ = 0.0, t_old_ = 0.0;
-  std::vector<double> y_;
+  std::vector<double> y_, dy_;
 };
 
 }  // namespace machdyn

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "machdyn/common/diagnostics.hpp"
+#include <memory>
 
 namespace machdyn {
 namespace {
@@ -30,25 +31,31 @@ constexpr double safe = 0.9, facc1 = 5.0, facc2 = 0.1, beta = 0.04, expo1 = 0.2 
 constexpr double uround = std::numeric_limits<double>::epsilon();
 }  // namespace
 
-Dopri5::Dopri5(OdeSystem& system, const StepperOptions& options)
+template <int N>
+Dopri5<N>::Dopri5(OdeSystem& system, const StepperOptions& options)
     : sys_(system), opt_(options), n_(system.size()) {
-  for (auto* v : {&y_, &y1_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &ytmp_, &err_, &r1_, &r2_, &r3_,
-                  &r4_, &r5_})
-    v->assign(static_cast<size_t>(n_), 0.0);
+  if constexpr (N == 0) {
+    for (auto* v : {&y_, &y1_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &ytmp_, &err_, &r1_, &r2_, &r3_,
+                    &r4_, &r5_})
+      v->assign(static_cast<size_t>(n_), 0.0);
+  }
 }
 
-void Dopri5::fail(const char* what, int component) const {
+template <int N>
+void Dopri5<N>::fail(const char* what, int component) const {
   throw SolverError(component >= 0 ? sys_.state_name(component) : "integrator", t_, what);
 }
 
-void Dopri5::reset(double t0, const double* y0) {
+template <int N>
+void Dopri5<N>::reset(double t0, const double* y0) {
   t_ = t_old_ = t0;
-  std::copy(y0, y0 + n_, y_.begin());
+  std::copy(y0, y0 + n(), y_.begin());
   sys_.rhs(t_, y_.data(), k1_.data());
   ++stats_.rhs_evals;
-  for (int i = 0; i < n_; ++i)
+  for (int i = 0; i < n(); ++i)
     if (!std::isfinite(k1_[static_cast<size_t>(i)])) fail("the right-hand side is not finite at the start", i);
   r1_ = y_;
+  h_old_ = 0.0;
   std::fill(r2_.begin(), r2_.end(), 0.0);
   std::fill(r3_.begin(), r3_.end(), 0.0);
   std::fill(r4_.begin(), r4_.end(), 0.0);
@@ -58,9 +65,10 @@ void Dopri5::reset(double t0, const double* y0) {
   last_rejected_ = false;
 }
 
-double Dopri5::initial_step() {
+template <int N>
+double Dopri5<N>::initial_step() {
   // Hairer's HINIT: an explicit Euler step of size h0 estimates the second derivative.
-  const size_t n = static_cast<size_t>(n_);
+  const size_t n = static_cast<size_t>(this->n());
   double dnf = 0, dny = 0;
   for (size_t i = 0; i < n; ++i) {
     double sk = opt_.atol + opt_.rtol * std::abs(y_[i]);
@@ -86,8 +94,9 @@ double Dopri5::initial_step() {
   return h;
 }
 
-void Dopri5::step(double t_limit) {
-  const size_t n = static_cast<size_t>(n_);
+template <int N>
+void Dopri5<N>::step(double t_limit) {
+  const size_t n = static_cast<size_t>(this->n());
   double* y = y_.data();
   for (;;) {
     if (stats_.steps + stats_.rejected >= opt_.max_steps) fail("the maximum number of steps was reached", -1);
@@ -129,7 +138,7 @@ void Dopri5::step(double t_limit) {
       double r = err_[i] / sk;
       err += r * r;
     }
-    err = std::sqrt(err / static_cast<double>(n_));
+    err = std::sqrt(err / static_cast<double>(n));
     if (!std::isfinite(err)) {  // f blew up inside the step: shrink hard and retry
       for (size_t i = 0; i < n; ++i)
         if (!std::isfinite(y1_[i]) || !std::isfinite(k7_[i])) err_[i] = std::numeric_limits<double>::max();
@@ -172,13 +181,14 @@ void Dopri5::step(double t_limit) {
   }
 }
 
-void Dopri5::interpolate(double t, double* y_out) const {
+template <int N>
+void Dopri5<N>::interpolate(double t, double* y_out) const {
   if (h_old_ == 0.0) {
     std::copy(y_.begin(), y_.end(), y_out);
     return;
   }
   const double th = (t - t_old_) / h_old_, th1 = 1.0 - th;
-  for (int i = 0; i < n_; ++i) {
+  for (int i = 0; i < n(); ++i) {
     size_t k = static_cast<size_t>(i);
     y_out[i] = r1_[k] + th * (r2_[k] + th1 * (r3_[k] + th * (r4_[k] + th1 * r5_[k])));
   }
@@ -188,17 +198,38 @@ void Dopri5::interpolate(double t, double* y_out) const {
 
 namespace machdyn {
 
-void Dopri5::derivative(double t, double* dy_out) const {
+template <int N>
+void Dopri5<N>::derivative(double t, double* dy_out) const {
   if (h_old_ == 0.0) {
     std::copy(k1_.begin(), k1_.end(), dy_out);
     return;
   }
   // d/dθ of r1 + θ r2 + θ(1−θ) r3 + θ²(1−θ) r4 + θ²(1−θ)² r5, divided by h.
   const double th = (t - t_old_) / h_old_, th1 = 1.0 - th;
-  const double g3 = 1.0 - 2.0 * th, g4 = th * (2.0 - 3.0 * th), g5 = 2.0 * th * th1 * (1.0 - 2.0 * th);
-  for (int i = 0; i < n_; ++i) {
+  const double inv_h = 1.0 / h_old_;
+  const double g3 = (1.0 - 2.0 * th) * inv_h, g4 = th * (2.0 - 3.0 * th) * inv_h,
+               g5 = 2.0 * th * th1 * (1.0 - 2.0 * th) * inv_h;
+  for (int i = 0; i < n(); ++i) {
     size_t k = static_cast<size_t>(i);
-    dy_out[i] = (r2_[k] + g3 * r3_[k] + g4 * r4_[k] + g5 * r5_[k]) / h_old_;
+    dy_out[i] = r2_[k] * inv_h + g3 * r3_[k] + g4 * r4_[k] + g5 * r5_[k];
+  }
+}
+
+}  // namespace machdyn
+
+namespace machdyn {
+
+template class Dopri5<0>;
+
+std::unique_ptr<Stepper> make_dopri5(OdeSystem& system, const StepperOptions& options) {
+  switch (system.size()) {
+    case 2: return std::make_unique<Dopri5<2>>(system, options);
+    case 4: return std::make_unique<Dopri5<4>>(system, options);
+    case 6: return std::make_unique<Dopri5<6>>(system, options);
+    case 8: return std::make_unique<Dopri5<8>>(system, options);
+    case 10: return std::make_unique<Dopri5<10>>(system, options);
+    case 12: return std::make_unique<Dopri5<12>>(system, options);
+    default: return std::make_unique<Dopri5<0>>(system, options);
   }
 }
 

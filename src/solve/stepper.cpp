@@ -7,7 +7,7 @@ namespace machdyn {
 
 std::unique_ptr<Stepper> make_stepper(Method method, OdeSystem& system, const StepperOptions& options) {
   if (method == Method::bdf) return std::make_unique<CvodeBdf>(system, options);
-  return std::make_unique<Dopri5>(system, options);
+  return make_dopri5(system, options);
 }
 
 }  // namespace machdyn

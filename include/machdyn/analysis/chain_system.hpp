@@ -42,7 +42,16 @@ class ChainSystem final : public OdeSystem {
   const Model& m_;
   int n_;
   std::vector<double> inv_mass_;
-  std::vector<FlatLink> links_;
+  std::vector<FlatLink> links_;     // all links, in model order
+  std::vector<FlatLink> between_;   // links with two bodies (hot path without ground branches)
+  std::vector<FlatLink> grounded_;  // links to the ground, body index in `a`, inv_ratio = ±1
+  std::vector<double> f_const_;     // sum of the constant loads per body
+  std::vector<const Load*> varying_;  // loads that depend on t or v
+  // Small chains (n <= 8): a = Aq q + Av v + M⁻¹ f_const as fixed-size dense products, which beat
+  // the link loop there. Aq = −M⁻¹K, Av = −M⁻¹D, column-major n × n.
+  using DenseRhs = void (*)(const double* y, double* dydt, const double* Aq, const double* Av, const double* b);
+  DenseRhs dense_ = nullptr;
+  std::vector<double> Aq_, Av_, b_;
 };
 
 }  // namespace machdyn

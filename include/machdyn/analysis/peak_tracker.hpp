@@ -1,9 +1,11 @@
 #pragma once
 /// @file
-/// Tracks the extremes of a signal s = wᵀ y that is linear in the state (a link load), on the
-/// continuous solution: an interior extremum of a step is where the rate s' = wᵀ y' changes sign,
-/// located by the Illinois method on the stepper's dense output.
+/// Tracks the extremes of signals s_j = w_jᵀ y that are linear in the state (link loads), on the
+/// continuous solution: an interior extremum of a step is where the rate s_j' = w_jᵀ y' changes
+/// sign, located by the Illinois method on the stepper's dense output. One dense derivative per
+/// step serves all signals, so the cost per step is O(n + nonzeros of the weights).
 
+#include <functional>
 #include <vector>
 
 #include "machdyn/solve/stepper.hpp"
@@ -12,28 +14,32 @@ namespace machdyn {
 
 class PeakTracker {
  public:
-  explicit PeakTracker(const std::vector<double>& w);
-  /// After each accepted step.
-  void on_step(const Stepper& s);
+  /// `weights[j]` has the size of the state.
+  explicit PeakTracker(const std::vector<std::vector<double>>& weights);
 
-  [[nodiscard]] double max() const { return max_; }
-  [[nodiscard]] double min() const { return min_; }
-  [[nodiscard]] double t_max() const { return t_max_; }
-  [[nodiscard]] double t_min() const { return t_min_; }
-  /// The state at t_max.
-  [[nodiscard]] const std::vector<double>& y_at_max() const { return y_max_; }
+  /// Called when signal j reaches a new maximum at time t with state y.
+  using NewMax = std::function<void(int j, double t, const double* y)>;
+  /// After each accepted step.
+  void on_step(const Stepper& s, const NewMax& on_new_max);
+
+  [[nodiscard]] double max(int j) const { return sig_[static_cast<size_t>(j)].max; }
+  [[nodiscard]] double min(int j) const { return sig_[static_cast<size_t>(j)].min; }
+  [[nodiscard]] double t_max(int j) const { return sig_[static_cast<size_t>(j)].t_max; }
+  [[nodiscard]] double t_min(int j) const { return sig_[static_cast<size_t>(j)].t_min; }
 
  private:
-  [[nodiscard]] double dot(const std::vector<double>& y) const;
-  void consider(double t, const std::vector<double>& y);
-  double locate_extremum(const Stepper& s, double t0, double r0, double t1, double r1);
+  struct Signal {
+    std::vector<int> idx;
+    std::vector<double> w;
+    double rate_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
+    [[nodiscard]] double dot(const double* y) const;
+  };
+  void consider(int j, double t, const double* y, const NewMax& on_new_max);
+  double locate_extremum(const Stepper& s, const Signal& g, double t0, double r0, double t1, double r1);
 
-  std::vector<int> idx_;
-  std::vector<double> w_;
+  std::vector<Signal> sig_;
   bool started_ = false;
-  double rate_prev_ = 0.0;
-  double max_ = 0.0, min_ = 0.0, t_max_ = 0.0, t_min_ = 0.0;
-  std::vector<double> y_max_, buf_, dbuf_;
+  std::vector<double> y_, dy_;
 };
 
 }  // namespace machdyn

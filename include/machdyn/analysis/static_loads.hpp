@@ -18,7 +18,22 @@ namespace machdyn {
 /// Basis of ker K as columns (n × r), one column per free group of bodies.
 Eigen::MatrixXd rigid_motions(const Model& m);
 
-/// Link loads of the particular solution for constant generalized forces f (size n).
+/// Factors the saddle-point system once; solve() then costs O(n) per load vector.
+class ParticularSolver {
+ public:
+  explicit ParticularSolver(const Model& m);
+  ~ParticularSolver();
+  ParticularSolver(const ParticularSolver&) = delete;
+  ParticularSolver& operator=(const ParticularSolver&) = delete;
+  /// Link loads of the particular solution for constant generalized forces f (size n).
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& f) const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+/// One-off form of ParticularSolver(m).solve(f).
 Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f);
 
 }  // namespace machdyn

@@ -37,6 +37,8 @@ class Stepper {
   [[nodiscard]] virtual double t() const = 0;       ///< end of the last step
   [[nodiscard]] virtual double t_prev() const = 0;  ///< start of the last step
   [[nodiscard]] virtual const double* y() const = 0;
+  /// f(t(), y()), the derivative at the end of the last step.
+  [[nodiscard]] virtual const double* dydt() const = 0;
   /// The dense-output solution at t ∈ [t_prev(), t()].
   virtual void interpolate(double t, double* y_out) const = 0;
   /// The time derivative of the dense-output solution at t ∈ [t_prev(), t()]; at the step ends it

@@ -1,0 +1,72 @@
+#pragma once
+/// @file
+/// A small, safe expression language for ratio laws and travel laws written in spec files, e.g.
+/// `1.25248*(1 + 0.9375*cos(2*phi))`. It is evaluated on second-order jets, so the first and second
+/// derivatives with respect to the variable come out exactly (forward-mode differentiation) — the
+/// pitch-curve curvature needs i, di/dφ and d²i/dφ².
+///
+/// Grammar (usual precedence, `^` right-associative and above unary minus: `-2^2` = -4):
+///   expr := term (('+'|'-') term)*;  term := unary (('*'|'/') unary)*
+///   unary := ('+'|'-') unary | power;  power := primary ['^' unary]
+///   primary := number | 'pi' | variable | func '(' expr ')' | '(' expr ')'
+/// Functions: sin cos tan exp log sqrt abs. Numbers are plain (no units); angles are in radians.
+/// Nothing else is accepted: no assignment, no other names, no I/O.
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace machdyn::gears {
+
+/// Value and first two derivatives of a function of one variable x: (f, df/dx, d²f/dx²).
+struct Jet {
+  double v = 0.0, d = 0.0, dd = 0.0;
+  static Jet constant(double c) { return {c, 0.0, 0.0}; }
+  static Jet variable(double x) { return {x, 1.0, 0.0}; }
+};
+
+Jet operator+(const Jet& a, const Jet& b);
+Jet operator-(const Jet& a, const Jet& b);
+Jet operator-(const Jet& a);
+Jet operator*(const Jet& a, const Jet& b);
+Jet operator/(const Jet& a, const Jet& b);
+Jet operator*(double c, const Jet& a);
+/// Chain rule for g = f(a), given f, f', f'' at a.v.
+Jet chain(const Jet& a, double f, double f1, double f2);
+
+/// A syntax error: `column` is the 1-based character of the expression where it was found.
+class ExpressionError : public std::invalid_argument {
+ public:
+  ExpressionError(int column, const std::string& message);
+  [[nodiscard]] int column() const { return column_; }
+
+ private:
+  int column_;
+};
+
+/// A parsed expression of one variable. Immutable after parsing; evaluation does not throw
+/// (domain errors give NaN, which the callers check).
+class Expression {
+ public:
+  /// Parses `text` with variable name `variable`. Throws ExpressionError.
+  Expression(std::string_view text, std::string variable = "phi");
+  [[nodiscard]] Jet eval(const Jet& x) const;
+  [[nodiscard]] double operator()(double x) const { return eval(Jet::constant(x)).v; }
+  [[nodiscard]] const std::string& text() const { return text_; }
+
+ private:
+  enum class Op { Num, Var, Add, Sub, Mul, Div, Pow, Neg, Sin, Cos, Tan, Exp, Log, Sqrt, Abs };
+  struct Node {
+    Op op;
+    double value = 0.0;  ///< Op::Num
+    int a = -1, b = -1;  ///< operand node indices
+  };
+  friend class ExpressionParser;
+  [[nodiscard]] Jet eval_node(int i, const Jet& x) const;
+  std::string text_;
+  std::vector<Node> nodes_;
+  int root_ = -1;
+};
+
+}  // namespace machdyn::gears

@@ -1,0 +1,189 @@
+#include "machdyn/gears/expression.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+namespace machdyn::gears {
+
+Jet operator+(const Jet& a, const Jet& b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+Jet operator-(const Jet& a, const Jet& b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+Jet operator-(const Jet& a) { return {-a.v, -a.d, -a.dd}; }
+Jet operator*(const Jet& a, const Jet& b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2.0 * a.d * b.d + a.v * b.dd};
+}
+Jet operator*(double c, const Jet& a) { return {c * a.v, c * a.d, c * a.dd}; }
+Jet chain(const Jet& a, double f, double f1, double f2) {
+  return {f, f1 * a.d, f2 * a.d * a.d + f1 * a.dd};
+}
+Jet operator/(const Jet& a, const Jet& b) {
+  const double x = b.v;  // 1/x: f' = -1/x², f'' = 2/x³
+  return a * chain(b, 1.0 / x, -1.0 / (x * x), 2.0 / (x * x * x));
+}
+
+namespace {
+Jet jet_pow(const Jet& a, const Jet& b) {
+  if (b.d == 0.0 && b.dd == 0.0) {  // constant exponent n: f = x^n
+    const double n = b.v, x = a.v;
+    if (n == 0.0) return Jet::constant(1.0);
+    return chain(a, std::pow(x, n), n * std::pow(x, n - 1.0), n * (n - 1.0) * std::pow(x, n - 2.0));
+  }
+  // a^b = exp(b log a)
+  Jet l = chain(a, std::log(a.v), 1.0 / a.v, -1.0 / (a.v * a.v));
+  Jet e = b * l;
+  const double ex = std::exp(e.v);
+  return chain(e, ex, ex, ex);
+}
+}  // namespace
+
+ExpressionError::ExpressionError(int column, const std::string& message)
+    : std::invalid_argument("column " + std::to_string(column) + ": " + message), column_(column) {}
+
+/// Recursive descent over the grammar in the header; builds the node array of an Expression.
+class ExpressionParser {
+ public:
+  ExpressionParser(Expression& e, std::string_view s, const std::string& var) : e_(e), s_(s), var_(var) {}
+
+  int parse() {
+    int r = expr();
+    skip();
+    if (p_ < s_.size()) fail(std::string("unexpected '") + s_[p_] + "'");
+    return r;
+  }
+
+ private:
+  using Op = Expression::Op;
+  [[noreturn]] void fail(const std::string& m) const { throw ExpressionError(static_cast<int>(p_) + 1, m); }
+  void skip() {
+    while (p_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[p_]))) ++p_;
+  }
+  bool eat(char c) {
+    skip();
+    if (p_ < s_.size() && s_[p_] == c) {
+      ++p_;
+      return true;
+    }
+    return false;
+  }
+  int add(Op op, int a = -1, int b = -1, double v = 0.0) {
+    e_.nodes_.push_back({op, v, a, b});
+    return static_cast<int>(e_.nodes_.size()) - 1;
+  }
+  int expr() {
+    int l = term();
+    for (;;) {
+      if (eat('+')) l = add(Op::Add, l, term());
+      else if (eat('-')) l = add(Op::Sub, l, term());
+      else return l;
+    }
+  }
+  int term() {
+    int l = unary();
+    for (;;) {
+      if (eat('*')) l = add(Op::Mul, l, unary());
+      else if (eat('/')) l = add(Op::Div, l, unary());
+      else return l;
+    }
+  }
+  int unary() {
+    if (eat('-')) return add(Op::Neg, unary());
+    if (eat('+')) return unary();
+    return power();
+  }
+  int power() {
+    int b = primary();
+    if (eat('^')) return add(Op::Pow, b, unary());
+    return b;
+  }
+  int primary() {
+    skip();
+    if (p_ >= s_.size()) fail("expected a number, a name or '(' but the expression ended");
+    const char c = s_[p_];
+    if (c == '(') {
+      ++p_;
+      int r = expr();
+      if (!eat(')')) fail("expected ')'");
+      return r;
+    }
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+      std::string rest(s_.substr(p_));
+      char* end = nullptr;
+      double v = std::strtod(rest.c_str(), &end);
+      if (end == rest.c_str()) fail("bad number");
+      p_ += static_cast<std::size_t>(end - rest.c_str());
+      return add(Op::Num, -1, -1, v);
+    }
+    if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+      const std::size_t start = p_;
+      while (p_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[p_])) || s_[p_] == '_')) ++p_;
+      const std::string name(s_.substr(start, p_ - start));
+      if (name == var_) return add(Op::Var);
+      if (name == "pi") return add(Op::Num, -1, -1, std::numbers::pi);
+      static const std::pair<const char*, Op> funcs[] = {{"sin", Op::Sin},   {"cos", Op::Cos},   {"tan", Op::Tan},
+                                                         {"exp", Op::Exp},   {"log", Op::Log},   {"sqrt", Op::Sqrt},
+                                                         {"abs", Op::Abs}};
+      for (const auto& [fname, op] : funcs) {
+        if (name == fname) {
+          if (!eat('(')) fail("expected '(' after " + name);
+          int a = expr();
+          if (!eat(')')) fail("expected ')'");
+          return add(op, a);
+        }
+      }
+      p_ = start;
+      fail("unknown name '" + name + "'; known: " + var_ + ", pi, sin, cos, tan, exp, log, sqrt, abs");
+    }
+    fail(std::string("unexpected '") + c + "'");
+  }
+
+  Expression& e_;
+  std::string_view s_;
+  const std::string& var_;
+  std::size_t p_ = 0;
+};
+
+Expression::Expression(std::string_view text, std::string variable) : text_(text) {
+  ExpressionParser p(*this, text_, variable);
+  root_ = p.parse();
+}
+
+Jet Expression::eval(const Jet& x) const { return eval_node(root_, x); }
+
+Jet Expression::eval_node(int i, const Jet& x) const {
+  const Node& n = nodes_[static_cast<std::size_t>(i)];
+  switch (n.op) {
+    case Op::Num: return Jet::constant(n.value);
+    case Op::Var: return x;
+    case Op::Add: return eval_node(n.a, x) + eval_node(n.b, x);
+    case Op::Sub: return eval_node(n.a, x) - eval_node(n.b, x);
+    case Op::Mul: return eval_node(n.a, x) * eval_node(n.b, x);
+    case Op::Div: return eval_node(n.a, x) / eval_node(n.b, x);
+    case Op::Pow: return jet_pow(eval_node(n.a, x), eval_node(n.b, x));
+    case Op::Neg: return -eval_node(n.a, x);
+    default: break;
+  }
+  const Jet a = eval_node(n.a, x);
+  const double v = a.v;
+  switch (n.op) {
+    case Op::Sin: return chain(a, std::sin(v), std::cos(v), -std::sin(v));
+    case Op::Cos: return chain(a, std::cos(v), -std::sin(v), -std::cos(v));
+    case Op::Tan: {
+      const double t = std::tan(v);
+      return chain(a, t, 1.0 + t * t, 2.0 * t * (1.0 + t * t));
+    }
+    case Op::Exp: {
+      const double ex = std::exp(v);
+      return chain(a, ex, ex, ex);
+    }
+    case Op::Log: return chain(a, std::log(v), 1.0 / v, -1.0 / (v * v));
+    case Op::Sqrt: {
+      const double r = std::sqrt(v);
+      return chain(a, r, 0.5 / r, -0.25 / (r * v));
+    }
+    case Op::Abs: return chain(a, std::abs(v), v < 0.0 ? -1.0 : 1.0, 0.0);
+    default: return Jet::constant(std::nan(""));
+  }
+}
+
+}  // namespace machdyn::gears

@@ -1,0 +1,49 @@
+// The ratio-law expression language: values and exact first/second derivatives against closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "machdyn/gears/expression.hpp"
+
+namespace machdyn::gears {
+namespace {
+
+// f = u(1 + k cos 2φ): f' = −2uk sin 2φ, f'' = −4uk cos 2φ.
+TEST(Expression, WalkingLawAndItsDerivatives) {
+  const Expression e("1.25*(1 + 0.9375*cos(2*phi))");
+  for (double p : {-0.7, 0.0, 0.3}) {
+    const Jet j = e.eval(Jet::variable(p));
+    EXPECT_NEAR(j.v, 1.25 * (1 + 0.9375 * std::cos(2 * p)), 1e-15);
+    EXPECT_NEAR(j.d, -2 * 1.25 * 0.9375 * std::sin(2 * p), 1e-14);
+    EXPECT_NEAR(j.dd, -4 * 1.25 * 0.9375 * std::cos(2 * p), 1e-14);
+  }
+}
+
+// Precedence and the other functions: -2^2 = -4, 2^3^2 = 2^9, x/y*z = (x/y)*z; d/dx of sqrt, exp, x^x.
+TEST(Expression, PrecedenceAndFunctions) {
+  EXPECT_DOUBLE_EQ(Expression("-2^2")(0.0), -4.0);
+  EXPECT_DOUBLE_EQ(Expression("2^3^2")(0.0), 512.0);
+  EXPECT_DOUBLE_EQ(Expression("8/4*2")(0.0), 4.0);
+  EXPECT_NEAR(Expression("pi + abs(phi) + tan(0) + log(exp(1))")(-1.0), std::numbers::pi + 2.0, 1e-15);
+  const Jet s = Expression("sqrt(phi)").eval(Jet::variable(4.0));
+  EXPECT_NEAR(s.d, 0.25, 1e-15);
+  EXPECT_NEAR(s.dd, -1.0 / 32.0, 1e-15);
+  const Jet x = Expression("phi^phi").eval(Jet::variable(2.0));  // d/dx x^x = x^x (ln x + 1)
+  EXPECT_NEAR(x.d, 4.0 * (std::log(2.0) + 1.0), 1e-13);
+}
+
+TEST(Expression, RejectsUnknownNamesWithTheirColumn) {
+  try {
+    Expression("1 + system(1)");
+    FAIL();
+  } catch (const ExpressionError& e) {
+    EXPECT_EQ(e.column(), 5);
+  }
+  EXPECT_THROW(Expression("(1 + phi"), ExpressionError);
+  EXPECT_THROW(Expression("1 +"), ExpressionError);
+  EXPECT_THROW(Expression("1 2"), ExpressionError);
+}
+
+}  // namespace
+}  // namespace machdyn::gears
