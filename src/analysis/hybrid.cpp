@@ -242,7 +242,7 @@ class HybridRun {
   struct Peak {
     bool started = false;
     double max = 0, min = 0, t_max = 0, t_min = 0;
-    std::vector<double> f_at_max;  // external generalized forces at t_max
+    std::vector<double> f_at_max, f_at_min;  // external generalized forces at t_max, t_min
   };
 
   void consider(int l, double t, double F, const double* y) {
@@ -252,7 +252,11 @@ class HybridRun {
       p.f_at_max.assign(static_cast<size_t>(n_), 0.0);
       sys_.external_forces(t, y, p.f_at_max.data());
     }
-    if (!p.started || F < p.min) p.min = F, p.t_min = t;
+    if (!p.started || F < p.min) {
+      p.min = F, p.t_min = t;
+      p.f_at_min.assign(static_cast<size_t>(n_), 0.0);
+      sys_.external_forces(t, y, p.f_at_min.data());
+    }
     p.started = true;
     for (int k = 0; k < nc_; ++k) {
       const int ph = open_phase_[static_cast<size_t>(k)];
@@ -273,6 +277,8 @@ class HybridRun {
       const Eigen::VectorXd F =
           static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_max.data(), n_));
       s.static_load = F(l);
+      out_.hybrid.static_at_min.push_back(
+          static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_min.data(), n_))(l));
       const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
       s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
                                                                  : std::numeric_limits<double>::quiet_NaN();
