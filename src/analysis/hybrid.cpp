@@ -360,9 +360,14 @@ class HybridRun {
     ph = -1;
   }
 
+  /// |λ| within the static limit. A contact whose limit event just fired is judged strictly (the
+  /// event located the crossing on this very function); the others get a rounding allowance, so a
+  /// load exactly at the limit holds.
   bool stuck_ok(int k, double t) const {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
-    return std::abs(fc_[static_cast<size_t>(k)]) <= c.scale(t) * c.static_limit;
+    const double Fs = c.scale(t) * c.static_limit, F = std::abs(fc_[static_cast<size_t>(k)]);
+    if (std::find(strict_.begin(), strict_.end(), k) != strict_.end()) return F <= Fs;
+    return F <= Fs + 1e-12 * c.static_limit;
   }
   double sliding_accel(int k, double t) const {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
@@ -461,6 +466,7 @@ class HybridRun {
 
   void handle_event(double t, const std::vector<int>& fired) {
     std::vector<int> Z;
+    strict_.clear();
     const double V_before = sys_.elastic_energy(y_.data());
     bool gap_changed = false;
     for (int slot : fired) {
@@ -474,6 +480,8 @@ class HybridRun {
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
       } else if (sys_.contact_mode(e) != ContactMode::stuck) {
         Z.push_back(e);  // sliding speed reached zero
+      } else {
+        strict_.push_back(e);  // breakaway
       }
     }
     if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
@@ -484,6 +492,7 @@ class HybridRun {
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
     const std::vector<ContactMode> now = decide_contacts(t, Z);
+    strict_.clear();
     apply_contact_modes(t, old, now, false);
   }
 
@@ -505,6 +514,7 @@ class HybridRun {
   std::vector<int> open_phase_;
   std::vector<std::vector<double>> switches_;
   std::vector<Peak> peak_;
+  std::vector<int> strict_;  // stuck contacts whose limit event fired
   long n_out_ = 1, k_out_ = 1;
   double release_loss_ = 0.0;
 };

@@ -180,6 +180,21 @@ void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) 
     acc[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * lam;
     if (c.b >= 0) acc[c.b] += inv_mass_[static_cast<size_t>(c.b)] * lam;
   }
+  enforce_stuck(t, acc);
+}
+
+void HybridSystem::enforce_stuck(double t, double* acc) const {
+  // Remove the rounding of λ: stuck bodies get exactly equal accelerations (the momentum-weighted
+  // mean; the ground's is the surface acceleration), so u stays exactly zero along a stuck mode.
+  for (int k : stuck_) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    if (c.b < 0) {
+      acc[c.a] = c.surface_acceleration(t);
+    } else {
+      const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
+      acc[c.a] = acc[c.b] = (ma * acc[c.a] + mb * acc[c.b]) / (ma + mb);
+    }
+  }
 }
 
 void HybridSystem::rhs(double t, const double* y, double* dydt) {
@@ -202,6 +217,7 @@ void HybridSystem::rhs(double t, const double* y, double* dydt) {
       if (c.b >= 0) acc[c.b] += inv_mass_[static_cast<size_t>(c.b)] * lam;
       else src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
     }
+    enforce_stuck(t, acc);
   }
   dydt[2 * n_] = src;
   dydt[2 * n_ + 1] = fric;
@@ -289,10 +305,15 @@ void HybridSystem::project_velocities(double t, double* y) const {
     v[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * mu(static_cast<Eigen::Index>(j));
     if (c.b >= 0) v[c.b] += inv_mass_[static_cast<size_t>(c.b)] * mu(static_cast<Eigen::Index>(j));
   }
-  // A contact stuck to a body or the ground now has u exactly 0 where the constraint is simple.
+  // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations).
   for (int k : stuck_) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
-    if (c.b < 0) v[c.a] = c.surface_velocity(t);
+    if (c.b < 0) {
+      v[c.a] = c.surface_velocity(t);
+    } else {
+      const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
+      v[c.a] = v[c.b] = (ma * v[c.a] + mb * v[c.b]) / (ma + mb);
+    }
   }
 }
 

@@ -100,6 +100,7 @@ class HybridSystem final : public OdeSystem {
     double lo, hi;  // flanks δ₋, δ₊
   };
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
+  void enforce_stuck(double t, double* acc) const;
 
   const Model& m_;
   int n_, nl_, nc_;
