@@ -152,8 +152,10 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
         c.static_limit = f.positive("static", ld).value_or(1.0);
         if (!spec.find("kinetic")) diag.error(spec.loc, fmt::format("contact '{}': missing field 'kinetic'", name));
         read_level(f, "kinetic", ld, vd, c, 1.0);
-        for (const char* k : {"mu_s", "mu_k", "radius"})
+        for (const char* k : {"mu_s", "mu_k", "radius"}) {
           if (spec.find(k)) f.error_at(k, fmt::format("field '{}' needs 'normal_force'", k));
+          f.node(k);
+        }
       }
       if (const SpecNode* w = f.node("surface_velocity")) {
         if (c.b != kGround) {
