@@ -243,19 +243,31 @@ class HybridRun {
     bool started = false;
     double max = 0, min = 0, t_max = 0, t_min = 0;
     std::vector<double> f_at_max, f_at_min;  // external generalized forces at t_max, t_min
+    // The state and contact modes at t_max and t_min (forces are formed once, at the end).
+    std::vector<double> y_max, y_min;
+    std::vector<ContactMode> modes_max, modes_min;
   };
+
+  void forces_at(double t, const std::vector<double>& y, const std::vector<ContactMode>& modes, std::vector<double>& f) {
+    f.assign(static_cast<size_t>(n_), 0.0);
+    if (y.empty()) return;
+    const std::vector<ContactMode> keep = sys_.contact_modes();
+    sys_.set_contact_modes(modes);
+    sys_.external_forces(t, y.data(), f.data());
+    sys_.set_contact_modes(keep);
+  }
 
   void consider(int l, double t, double F, const double* y) {
     Peak& p = peak_[static_cast<size_t>(l)];
     if (!p.started || F > p.max) {
       p.max = F, p.t_max = t;
-      p.f_at_max.assign(static_cast<size_t>(n_), 0.0);
-      sys_.external_forces(t, y, p.f_at_max.data());
+      p.y_max.assign(y, y + N_);
+      p.modes_max = sys_.contact_modes();
     }
     if (!p.started || F < p.min) {
       p.min = F, p.t_min = t;
-      p.f_at_min.assign(static_cast<size_t>(n_), 0.0);
-      sys_.external_forces(t, y, p.f_at_min.data());
+      p.y_min.assign(y, y + N_);
+      p.modes_min = sys_.contact_modes();
     }
     p.started = true;
     for (int k = 0; k < nc_; ++k) {
@@ -271,7 +283,9 @@ class HybridRun {
   void summarize_links() {
     const Modes modes = compute_modes(m_);
     for (int l = 0; l < nl_; ++l) {
-      const Peak& p = peak_[static_cast<size_t>(l)];
+      Peak& p = peak_[static_cast<size_t>(l)];
+      forces_at(p.t_max, p.y_max, p.modes_max, p.f_at_max);
+      forces_at(p.t_min, p.y_min, p.modes_min, p.f_at_min);
       LinkSummary s;
       s.max = p.max, s.min = p.min, s.t_max = p.t_max, s.t_min = p.t_min;
       const Eigen::VectorXd F =
