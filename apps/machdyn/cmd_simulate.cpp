@@ -1,12 +1,16 @@
 // `machdyn simulate MODEL [-o DIR] [--json] [--set NAME.FIELD=VALUE ...]` and `machdyn modes MODEL`.
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/results.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn::cli {
@@ -17,6 +21,8 @@ struct SimulateArgs {
   std::string out_dir;
   bool json = false;
   std::vector<std::string> sets;
+  std::string load_case;  // --case
+  bool all_cases = false;  // --all-cases
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -31,13 +37,65 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
     os << fmt::format("{:<12} {:>14.6g} {:>12.6g} {:>14.6g} {:>14.6g} {:>10.4g}  {}\n", m.links[l].name, s.max,
                       s.t_max, s.min, s.static_load, s.dynamic_factor, link_load_unit(m, m.links[l]));
   }
+  if (r.hybrid.active) {
+    long events = 0;
+    for (const auto& e : r.hybrid.events) events += e.kind != "initial";
+    os << fmt::format("hybrid: {} mode events, {} slip phases; energy balance residual {:.3g} J of {:.6g} J source work\n",
+                      events, r.hybrid.slip_phases.size(), r.hybrid.energy.residual(), r.hybrid.energy.source_work);
+  }
+}
+
+/// `--all-cases`: every case of the file, outputs in OUT/CASE/, one table of peak link loads and
+/// dynamic factors.
+int run_all_cases(const std::string& model_path, const std::vector<std::string>& sets, std::string out_dir,
+                  bool json) {
+  const auto names = case_names(read_yaml_file(model_path));
+  if (names.empty()) throw InputError(Location{model_path, 0, 0}, "--all-cases: the model file has no 'cases:'");
+  if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(model_path).stem()).string();
+  // Compile every case first, so bad input stops the run before any result is written.
+  std::vector<Model> models;
+  for (const auto& name : names) models.push_back(load_model_case(model_path, sets, name));
+  nlohmann::json all = nlohmann::json::array();
+  // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
+  std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",
+                                  "link", "max", "min", "peak", "t_peak [s]", "static", "dyn.factor", "events", "", "unit");
+  for (size_t c = 0; c < names.size(); ++c) {
+    const Model& m = models[c];
+    const SimulationResult r = simulate_hybrid(m);  // event-driven for every case, smooth or not
+    const auto summary = simulation_summary(m, r);
+    const auto dir = std::filesystem::path(out_dir) / names[c];
+    write_file_atomic((dir / "timeseries.csv").string(), timeseries_csv(r));
+    write_file_atomic((dir / "summary.json").string(), summary.dump(2) + "\n");
+    all.push_back(summary);
+    long events = 0;
+    for (const auto& e : r.hybrid.events) events += e.kind != "initial";
+    for (size_t l = 0; l < m.links.size(); ++l) {
+      const auto& s = r.links[l];
+      const bool neg = std::abs(s.min) > std::abs(s.max);
+      const double peak = neg ? s.min : s.max, t_peak = neg ? s.t_min : s.t_max;
+      const double stat = neg ? r.hybrid.static_at_min[l] : s.static_load;
+      table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
+                           l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, peak, t_peak, stat,
+                           std::abs(stat) > 1e-9 * std::abs(peak) ? peak / stat : std::nan(""),
+                           l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+    }
+  }
+  write_file_atomic((std::filesystem::path(out_dir) / "cases.json").string(), all.dump(2) + "\n");
+  if (json) {
+    std::cout << all.dump(2) << '\n';
+  } else {
+    std::cout << fmt::format("model: {} ({}), {} cases\n", models[0].name.substr(0, models[0].name.rfind(" [")),
+                             model_path, names.size())
+              << table << fmt::format("wrote {0}/CASE/timeseries.csv, {0}/CASE/summary.json, {0}/cases.json\n", out_dir);
+  }
+  return 0;
 }
 
 }  // namespace
 
 int run_simulate(const std::string& model_path, const std::vector<std::string>& sets, std::string out_dir,
-                 bool json) {
-  const Model m = load_model(model_path, sets);
+                 bool json, const std::string& load_case) {
+  const Model m = load_model_case(model_path, sets, load_case);
   const SimulationResult r = simulate(m);
   if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(model_path).stem()).string();
   const auto summary = simulation_summary(m, r);
@@ -50,6 +108,11 @@ int run_simulate(const std::string& model_path, const std::vector<std::string>& 
     std::cout << fmt::format("wrote {0}/timeseries.csv and {0}/summary.json\n", out_dir);
   }
   return 0;
+}
+
+int run_simulate(const std::string& model_path, const std::vector<std::string>& sets, std::string out_dir,
+                 bool json) {
+  return run_simulate(model_path, sets, std::move(out_dir), json, "");
 }
 
 int run_modes(const std::string& model_path, const std::vector<std::string>& sets, bool json) {
@@ -83,8 +146,16 @@ void register_simulate(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--out", args->out_dir, "Output folder for timeseries.csv and summary.json (default out/MODEL)");
   cmd->add_flag("--json", args->json, "Print the summary as JSON to stdout");
   add_set_option(*cmd, args->sets);
+  cmd->add_option("--case", args->load_case, "Run one load case of the file's 'cases:' (e.g. a hoist operating mode)");
+  cmd->add_flag("--all-cases", args->all_cases,
+                "Run every load case: one table of peak link loads and dynamic factors, outputs in OUT/CASE/");
   cmd->callback([args, &exit_code] {
-    exit_code = guarded([&] { return run_simulate(args->model, args->sets, args->out_dir, args->json); });
+    exit_code = guarded([&] {
+      if (args->all_cases && !args->load_case.empty())
+        throw InputError(Location{"--case", 0, 0}, "give either --case NAME or --all-cases");
+      if (args->all_cases) return run_all_cases(args->model, args->sets, args->out_dir, args->json);
+      return run_simulate(args->model, args->sets, args->out_dir, args->json, args->load_case);
+    });
   });
 }
 

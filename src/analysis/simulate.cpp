@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/analysis/chain_system.hpp"
+#include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/static_loads.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 
@@ -120,6 +121,7 @@ class Recorder final : public StepObserver {
 }  // namespace
 
 SimulationResult simulate(const Model& m) {
+  if (m.is_hybrid()) return simulate_hybrid(m);
   SimulationResult out;
   const Method method = choose_method(m, &out.method_reason);
   ChainSystem sys(m);

@@ -35,12 +35,70 @@ const char* method_name(IntegratorChoice c) {
     default: return "auto";
   }
 }
+
+/// Events, slip phases with the link peaks inside each, per-contact stick–slip statistics and the
+/// energy balance (analysis/hybrid_report.hpp).
+void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::json& j) {
+  const HybridReport& h = r.hybrid;
+  nlohmann::json ev = nlohmann::json::array();
+  for (const auto& e : h.events)
+    ev.push_back({{"t", e.t}, {"kind", e.kind}, {"element", e.element}, {"from", e.from}, {"to", e.to}});
+  j["events"] = ev;
+  nlohmann::json phases = nlohmann::json::array();
+  for (const auto& p : h.slip_phases) {
+    nlohmann::json peaks = nlohmann::json::object();
+    for (size_t l = 0; l < m.links.size(); ++l)
+      peaks[m.links[l].name] = {{"max", p.link_max[l]}, {"t_max", p.link_t_max[l]}, {"min", p.link_min[l]}};
+    phases.push_back({{"contact", p.contact}, {"direction", p.direction}, {"t_start", p.t_start}, {"t_end", p.t_end},
+                      {"link_peaks", peaks}});
+  }
+  j["slip_phases"] = phases;
+  // Per link: the peak load in each slip phase, in order.
+  for (size_t l = 0; l < m.links.size(); ++l) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& p : h.slip_phases)
+      list.push_back({{"contact", p.contact}, {"t_start", p.t_start}, {"t_end", p.t_end}, {"max", p.link_max[l]},
+                      {"t_max", p.link_t_max[l]}, {"min", p.link_min[l]}});
+    j["links"][m.links[l].name]["slip_phase_peaks"] = list;
+  }
+  // Per contact: number of slips, the self-oscillation period (mean interval between the starts of
+  // the slips in the second half of the run) and the largest link loads as multiples of the
+  // contact's static limit.
+  nlohmann::json contacts = nlohmann::json::object();
+  for (const auto& c : m.contacts) {
+    std::vector<double> starts;
+    for (const auto& p : h.slip_phases)
+      if (p.contact == c.name) starts.push_back(p.t_start);
+    std::vector<double> late;
+    for (double t : starts)
+      if (t >= 0.5 * m.simulation.t_end) late.push_back(t);
+    nlohmann::json period;
+    if (late.size() >= 2) period = (late.back() - late.front()) / static_cast<double>(late.size() - 1);
+    nlohmann::json ratio = nlohmann::json::object();
+    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = r.links[l].max / c.static_limit;
+    contacts[c.name] = {{"kind", c.brake ? "brake" : "contact"},
+                        {"static_limit", c.static_limit},
+                        {"kinetic_at_rest", c.kinetic_level(0.0)},
+                        {"slips", starts.size()},
+                        {"period_s", period},
+                        {"link_max_over_static_limit", ratio},
+                        {"unit", load_unit(m.bodies[static_cast<size_t>(c.a)].kind)}};
+  }
+  j["contacts"] = contacts;
+  const EnergyBalance& E = h.energy;
+  j["energy"] = {{"source_work_J", E.source_work},     {"kinetic_start_J", E.kinetic_start},
+                 {"kinetic_end_J", E.kinetic_end},     {"elastic_start_J", E.elastic_start},
+                 {"elastic_end_J", E.elastic_end},     {"friction_loss_J", E.friction_loss},
+                 {"damping_loss_J", E.damping_loss},   {"gap_release_loss_J", E.release_loss},
+                 {"residual_J", E.residual()}};
+}
 }  // namespace
 
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   nlohmann::json j;
   j["model"] = m.name;
   j["source"] = m.source;
+  if (!m.load_case.empty()) j["case"] = m.load_case;
   const auto& s = m.simulation;
   j["settings"] = {{"t_end_s", s.t_end}, {"dt_out_s", s.dt_out}, {"rtol", s.rtol}, {"atol", s.atol},
                    {"integrator", method_name(s.integrator)}};
@@ -56,6 +114,7 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
                               {"unit", link_load_unit(m, m.links[l])}};
   }
   j["links"] = links;
+  if (r.hybrid.active) add_hybrid_summary(m, r, j);
   j["solver"] = {{"method", r.stats.method},
                  {"reason", r.method_reason},
                  {"steps", r.stats.stepper.steps},

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/io/yaml_reader.hpp"
+#include "compile_hybrid.hpp"
 
 namespace machdyn {
 namespace {
@@ -96,6 +97,7 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
       f.error_at("stiffness", fmt::format("a {} has no stiffness; use type spring-damper", *type));
     if (needs_d) l.d = f.positive("damping", ld / qd * dim::time, std::nullopt, true).value_or(0.0);
     else if (type && f.node("damping")) f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
+    detail::compile_link_gap(f, l, qd);
     f.finish();
     m.links.push_back(l);
   }
@@ -230,6 +232,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
                "the model has no body with mass or inertia: add at least one under 'bodies'");
   compile_links(top.node("links"), m, diag);
   compile_loads(top.node("loads"), m, diag);
+  detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
+  top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   top.finish();
   diag.throw_if_any();

@@ -63,3 +63,48 @@ const char* link_load_unit(const Model& m, const Link& l) {
 }
 
 }  // namespace machdyn
+
+namespace machdyn {
+
+namespace {
+/// Piecewise-linear interpolation through (x, y), held constant outside.
+double table_value(const std::vector<double>& x, const std::vector<double>& y, double at) {
+  if (y.empty()) return 0.0;
+  if (x.size() < 2 || at <= x.front()) return y.front();
+  if (at >= x.back()) return y.back();
+  auto it = std::upper_bound(x.begin(), x.end(), at);
+  size_t k = static_cast<size_t>(it - x.begin());
+  return y[k - 1] + (y[k] - y[k - 1]) * (at - x[k - 1]) / (x[k] - x[k - 1]);
+}
+}  // namespace
+
+double FrictionContact::scale(double t) const {
+  if (!brake) return 1.0;
+  if (t < t_apply) return 0.0;
+  if (t_ramp <= 0.0 || t >= t_apply + t_ramp) return 1.0;
+  return (t - t_apply) / t_ramp;
+}
+
+double FrictionContact::kinetic_level(double speed) const { return table_value(speeds, kinetic, speed); }
+
+double FrictionContact::surface_velocity(double t) const {
+  return table_value(surface_times, surface_velocities, t);
+}
+
+double FrictionContact::surface_acceleration(double t) const {
+  const auto& x = surface_times;
+  const auto& y = surface_velocities;
+  if (x.size() < 2 || t < x.front() || t >= x.back()) return 0.0;
+  auto it = std::upper_bound(x.begin(), x.end(), t);
+  size_t k = static_cast<size_t>(it - x.begin());
+  return (y[k] - y[k - 1]) / (x[k] - x[k - 1]);
+}
+
+bool Model::is_hybrid() const {
+  if (!contacts.empty()) return true;
+  for (const auto& l : links)
+    if (l.has_gap) return true;
+  return false;
+}
+
+}  // namespace machdyn

@@ -219,18 +219,39 @@ void Dopri5<N>::derivative(double t, double* dy_out) const {
 
 namespace machdyn {
 
+// Explicit instantiations: the general size and the fixed sizes make_dopri5() picks.
 template class Dopri5<0>;
+template class Dopri5<1>;
+template class Dopri5<2>;
+template class Dopri5<3>;
+template class Dopri5<4>;
+template class Dopri5<5>;
+template class Dopri5<6>;
+template class Dopri5<7>;
+template class Dopri5<8>;
+template class Dopri5<9>;
+template class Dopri5<10>;
+template class Dopri5<11>;
+template class Dopri5<12>;
+template class Dopri5<13>;
+template class Dopri5<14>;
+template class Dopri5<15>;
+template class Dopri5<16>;
+
+namespace {
+template <int... Ns>
+std::unique_ptr<Stepper> make_fixed(int n, OdeSystem& system, const StepperOptions& options,
+                                    std::integer_sequence<int, Ns...>) {
+  std::unique_ptr<Stepper> s;
+  ((n == Ns + 1 ? (s = std::make_unique<Dopri5<Ns + 1>>(system, options), 0) : 0), ...);
+  return s;
+}
+}  // namespace
 
 std::unique_ptr<Stepper> make_dopri5(OdeSystem& system, const StepperOptions& options) {
-  switch (system.size()) {
-    case 2: return std::make_unique<Dopri5<2>>(system, options);
-    case 4: return std::make_unique<Dopri5<4>>(system, options);
-    case 6: return std::make_unique<Dopri5<6>>(system, options);
-    case 8: return std::make_unique<Dopri5<8>>(system, options);
-    case 10: return std::make_unique<Dopri5<10>>(system, options);
-    case 12: return std::make_unique<Dopri5<12>>(system, options);
-    default: return std::make_unique<Dopri5<0>>(system, options);
-  }
+  // Fixed sizes up to 16 states: an 8-body chain, or a hybrid model with its energy states.
+  auto s = make_fixed(system.size(), system, options, std::make_integer_sequence<int, 16>{});
+  return s ? std::move(s) : std::make_unique<Dopri5<0>>(system, options);
 }
 
 }  // namespace machdyn

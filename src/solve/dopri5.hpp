@@ -1,7 +1,7 @@
 #pragma once
 // Dormand–Prince 5(4) (Dormand & Prince 1980) with Hairer's step-size control (PI, β = 0.04) and
 // the 4th-order continuous extension of Hairer, Nørsett & Wanner, "Solving ODE I", II.6.
-// N > 0 fixes the number of states at compile time (small drive chains: the loops unroll);
+// N > 0 fixes the number of states at compile time (1…16: small chains, hybrid models; loops unroll);
 // N = 0 is the general size. make_stepper() picks.
 #include <array>
 #include <type_traits>

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "machdyn/analysis/hybrid_report.hpp"
 #include "machdyn/model/model.hpp"
 #include "machdyn/solve/driver.hpp"
 #include "machdyn/solve/stepper.hpp"
@@ -30,6 +31,7 @@ struct SimulationResult {
   std::vector<LinkSummary> links;             ///< in Model::links order
   RunStats stats;
   std::string method_reason;                  ///< why this integrator (for `integrator: auto`)
+  HybridReport hybrid;                        ///< events, slip phases, energy (models with gaps or friction)
 };
 
 /// The integrator `auto` picks, from O(n) Gershgorin bounds ρ_D ≥ |Re λ| of M⁻¹D and ω_K ≥ ω_max:
@@ -37,7 +39,8 @@ struct SimulationResult {
 /// explicit method would spend > 2e4 steps on stability alone), else dopri5. `reason` says which.
 Method choose_method(const Model& m, std::string* reason);
 
-/// Runs the model's simulation settings. Throws SolverError on numerical failure.
+/// Runs the model's simulation settings. Throws SolverError on numerical failure. A model with a
+/// gap, a friction contact or a brake runs event-driven (analysis/hybrid.hpp).
 SimulationResult simulate(const Model& m);
 
 }  // namespace machdyn

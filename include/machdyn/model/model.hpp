@@ -43,6 +43,40 @@ struct Link {
   double ratio = 1.0;  ///< i, nonzero; dimension of q_a / q_b
   double c = 0.0;      ///< stiffness, N·m/rad or N/m (in b's coordinate), >= 0
   double d = 0.0;      ///< damping, N·m·s/rad or N·s/m, >= 0
+  /// Backlash (analysis/hybrid.hpp). With a gap the link transmits load only on a flank:
+  ///   δ ≥ δ₊: F = max(0, c (δ − δ₊) + d δ̇),  δ ≤ δ₋: F = min(0, c (δ − δ₋) + d δ̇),  else F = 0,
+  /// δ₋ = −gap_start, δ₊ = gap − gap_start. gap_start = 0: the link must take up the whole gap in
+  /// the positive direction before it pulls. Initial positions with δ(0) > δ₊ give a preload.
+  bool has_gap = false;
+  double gap = 0.0;        ///< total gap Δ, rad or m (in b's coordinate), >= 0
+  double gap_start = 0.0;  ///< position inside the gap at δ = 0, from the negative flank, in [0, Δ]
+};
+
+/// Friction between body a and body b (or the ground, which may move with a prescribed surface
+/// velocity w(t)) — wheel–rail adhesion, a clutch, the static resistance W, a brake.
+/// Sliding velocity u = v_a − v_b (v_b = w(t) for the ground). The friction load F acts on b with
+/// +F and on a with −F (as a link's load):
+///   stuck  (u ≡ 0):  F from the equations of motion, |F| ≤ F_s(t)
+///   sliding (u ≠ 0): F = sign(u) F_k(t, |u|)
+/// F_s(t) = r(t) F_s0 and F_k(t, s) = r(t) F_k0(s); r(t) = 1 for a contact, the application ramp
+/// of a brake (0 before `t_apply`, linear over `t_ramp`, then 1). F_s0 ≥ F_k0(0) ≥ 0.
+struct FrictionContact {
+  std::string name;
+  bool brake = false;
+  int a = 0;                         ///< body index
+  int b = kGround;                   ///< body index or kGround
+  double static_limit = 0.0;         ///< F_s0, N or N·m, > 0
+  std::vector<double> speeds;        ///< sliding speeds of the kinetic table (ascending from 0), or empty
+  std::vector<double> kinetic;       ///< F_k0: one value (constant) or one per speed
+  std::vector<double> surface_times; ///< prescribed ground velocity w(t): table times, or empty (w = const)
+  std::vector<double> surface_velocities;  ///< w values (one value if constant; empty: w = 0)
+  double t_apply = 0.0;              ///< brake: start of the application, s
+  double t_ramp = 0.0;               ///< brake: duration of the ramp, s (0: a step)
+
+  [[nodiscard]] double scale(double t) const;             ///< r(t)
+  [[nodiscard]] double kinetic_level(double speed) const;  ///< F_k0(|u|), held constant outside the table
+  [[nodiscard]] double surface_velocity(double t) const;   ///< w(t)
+  [[nodiscard]] double surface_acceleration(double t) const;  ///< dw/dt (piecewise constant)
 };
 
 enum class LoadKind { constant, step, ramp, table, motor_linear, motor_kloss };
@@ -91,11 +125,15 @@ struct Model {
   std::vector<Body> bodies;
   std::vector<Link> links;
   std::vector<Load> loads;
+  std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (analysis/hybrid.hpp)
+  std::string load_case;                  ///< the case applied from the file's `cases:`, or empty
   SimulationSettings simulation;
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
   /// Index of the body called `name`, kGround for "ground", or -2 if none.
   [[nodiscard]] int body_index(const std::string& name) const;
+  /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
+  [[nodiscard]] bool is_hybrid() const;
 };
 
 /// Unit suffixes for output columns: "rad" or "m", "rad/s" or "m/s", "N*m" or "N".

@@ -1,0 +1,165 @@
+// Travel start-up (paper 001), 2 s: machdyn's hybrid simulation against a hand-written event loop
+// with the same method (the same Dopri5 stepper, Illinois on the dense output, restart at events)
+// but the three-mass equations, modes and decisions written out for this one model.
+//   bench_travel_start EXAMPLES/travel-start.yaml [repeats]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "solve/dopri5.hpp"
+#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/model/compile.hpp"
+
+using namespace machdyn;
+
+namespace {
+
+struct Params {
+  double m1, mk, m2, c, Delta, P, Fsc, Fd, W;
+};
+
+// Modes: gap (0 open, 1 closed), adhesion (0 stuck, 1 slipping forward), W (0 stuck, 1 sliding).
+struct Hand final : OdeSystem {
+  Params p;
+  int gap = 0, adh = 0, res = 0;
+  explicit Hand(const Params& q) : p(q) {}
+  int size() const override { return 6; }
+  // y = [x1, xk, x2, v1, vk, v2]; returns the link force, adhesion force, resistance force.
+  void forces(const double* y, double* a, double* Fl, double* Fa, double* Fw) const {
+    const double F = gap ? p.c * (y[0] - y[1] - p.Delta) : 0.0;
+    a[0] = (p.P - F) / p.m1;
+    if (adh == 0 && res == 0) {  // mk, m2 locked to the ground
+      a[1] = a[2] = 0.0;
+      *Fa = F;
+      *Fw = F;
+    } else if (adh == 0) {  // mk + m2 together against W
+      const double acc = (F - p.W) / (p.mk + p.m2);
+      a[1] = a[2] = acc;
+      *Fa = F - p.mk * acc;
+      *Fw = p.W;
+    } else {
+      a[1] = (F - p.Fd) / p.mk;
+      if (res == 0) {
+        a[2] = 0.0;
+        *Fw = p.Fd;
+      } else {
+        a[2] = (p.Fd - p.W) / p.m2;
+        *Fw = p.W;
+      }
+      *Fa = p.Fd;
+    }
+    *Fl = F;
+  }
+  void rhs(double, const double* y, double* dy) override {
+    double Fl, Fa, Fw;
+    dy[0] = y[3], dy[1] = y[4], dy[2] = y[5];
+    forces(y, dy + 3, &Fl, &Fa, &Fw);
+  }
+  // Event functions, >= 0 while the mode holds.
+  void events(const double* y, double* g) const {
+    double a[3], Fl, Fa, Fw;
+    forces(y, a, &Fl, &Fa, &Fw);
+    g[0] = gap ? Fl : p.Delta - (y[0] - y[1]);
+    g[1] = adh ? y[4] - y[5] : p.Fsc - Fa;
+    g[2] = res ? y[5] : p.W - Fw;
+  }
+};
+
+long hand_loop(const Params& p, double t_end, double* Fmax) {
+  Hand sys(p);
+  StepperOptions opt;
+  opt.rtol = 1e-10, opt.atol = 1e-12;
+  Dopri5<6> st(sys, opt);
+  std::vector<double> y(6, 0.0), ym(6);
+  double g0[3], g1[3], gm[3];
+  double t = 0;
+  st.reset(0, y.data());
+  sys.events(y.data(), g0);
+  long events = 0;
+  *Fmax = 0;
+  while (t < t_end) {
+    st.step(t_end);
+    sys.events(st.y(), g1);
+    int first = -1;
+    double lo_b = 0, hi_b = 1e300;
+    for (int k = 0; k < 3; ++k) {
+      if (!(g0[k] >= 0 && g1[k] < 0)) continue;
+      double lo = st.t_prev(), hi = st.t(), a = g0[k], b = g1[k];
+      int side = 0;
+      while (hi - lo > 1e-13 * std::max(1.0, hi)) {
+        double tm = (lo * b - hi * a) / (b - a);
+        if (!(tm > lo && tm < hi)) tm = 0.5 * (lo + hi);
+        st.interpolate(tm, ym.data());
+        sys.events(ym.data(), gm);
+        if (gm[k] >= 0) { lo = tm, a = gm[k]; if (side == -1) b *= 0.5; side = -1; }
+        else { hi = tm, b = gm[k]; if (side == 1) a *= 0.5; side = 1; }
+      }
+      if (hi < hi_b) hi_b = hi, lo_b = lo, first = k;
+    }
+    if (first < 0) {
+      if (sys.gap) *Fmax = std::max(*Fmax, p.c * (st.y()[0] - st.y()[1] - p.Delta));
+      std::copy(g1, g1 + 3, g0);
+      t = st.t();
+      continue;
+    }
+    (void)lo_b;
+    t = hi_b;
+    st.interpolate(t, y.data());
+    ++events;
+    if (first == 0) sys.gap = !sys.gap;
+    if (first == 1) {
+      if (sys.adh) {  // re-stick if the locked pair can hold
+        sys.adh = 0;
+        y[4] = y[5] = (p.mk * y[4] + p.m2 * y[5]) / (p.mk + p.m2);
+        double a[3], Fl, Fa, Fw;
+        sys.forces(y.data(), a, &Fl, &Fa, &Fw);
+        if (Fa > p.Fsc) sys.adh = 1;
+      } else {
+        sys.adh = 1;
+      }
+    }
+    if (first == 2) {
+      if (sys.res) sys.res = 0, y[5] = 0;
+      else sys.res = 1;
+    }
+    st.reset(t, y.data());
+    sys.events(y.data(), g0);
+  }
+  return events;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_travel_start MODEL [repeats]\n");
+    return 2;
+  }
+  const Model m = load_model(argv[1], {"simulation.t_end=2"});
+  const int repeats = argc > 2 ? std::stoi(argv[2]) : 50;
+  const Params p{m.bodies[0].inertia, m.bodies[1].inertia, m.bodies[2].inertia, m.links[0].c, m.links[0].gap,
+                 m.loads[0].value, m.contacts[0].static_limit, m.contacts[0].kinetic[0], m.contacts[1].static_limit};
+  auto best = [&](auto&& f) {
+    double b = 1e300;
+    for (int i = 0; i < repeats; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      f();
+      b = std::min(b, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return b;
+  };
+  SimulationResult r;
+  const double t_md = best([&] { r = simulate_hybrid(m); });
+  long ev_md = 0;
+  for (const auto& e : r.hybrid.events) ev_md += e.kind != "initial";
+  double Fmax = 0;
+  long ev_hand = 0;
+  const double t_hand = best([&] { ev_hand = hand_loop(p, 2.0, &Fmax); });
+  std::printf("machdyn simulate_hybrid : %8.3f ms  %ld events  %ld steps  F_max %.6g N (incl. CSV rows every %g s)\n",
+              t_md * 1e3, ev_md, r.stats.stepper.steps, r.links[0].max, m.simulation.dt_out);
+  std::printf("hand-written event loop : %8.3f ms  %ld events  (F_max at step ends %.6g N)\n", t_hand * 1e3, ev_hand, Fmax);
+  std::printf("ratio machdyn / hand    : %8.2f\n", t_md / t_hand);
+  return 0;
+}

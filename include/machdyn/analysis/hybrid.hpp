@@ -1,0 +1,130 @@
+#pragma once
+/// @file
+/// Exact event-driven simulation of drives with gaps (backlash), friction contacts and brakes.
+///
+/// State y = [q; v; W_src; E_fric; E_damp] (n positions, n velocities, three energy quadratures).
+/// Every element is in a definite mode and the equations of a mode hold until an event:
+///   gap link     open (F = 0), closed+ on the positive flank, closed- on the negative one
+///   contact      stuck (u ≡ 0, a bilateral velocity constraint) or sliding in direction ±1
+/// In a mode:  M v' = f(t, v) − Bᵀ F_links − Gᵀ λ − Σ_sliding ĝ_k F_k,
+/// where row k of G is the sliding velocity u_k = v_a − v_b of stuck contact k and λ solves
+///   (G M⁻¹ Gᵀ) λ = G M⁻¹ f̃ − ẇ     (f̃: all forces but λ; ẇ: the prescribed surface acceleration).
+/// G M⁻¹ Gᵀ is singular when two stuck contacts lock one motion; λ is then the weighted least-norm
+/// solution (minimum Σ λ_k² / F_s0,k): the locked load is shared in proportion to the static limits,
+/// so the motion stays locked exactly while it is within their sum. The pseudo-inverse is formed once
+/// per mode (complete orthogonal decomposition, rank threshold 1e-12).
+///
+/// Events are sign changes of one function per element boundary (EventSlots), located on the
+/// stepper's dense output by the Illinois method to a bracket of 1e-13·max(1, t) s; the run restarts
+/// just after the event with the new modes. The new modes are decided together (decide_contacts):
+/// all contacts with zero sliding speed start stuck; while some stuck contact needs more than its
+/// static limit, the one with the largest |λ|/F_s is released in the direction of its λ; a released
+/// contact whose sliding would immediately reverse is not consistent, and then every combination is
+/// tried (fewest sliding first). Deterministic; no smoothing, no velocity threshold.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "machdyn/analysis/simulate.hpp"
+#include "machdyn/model/model.hpp"
+#include "machdyn/solve/ode_system.hpp"
+
+namespace machdyn {
+
+enum class ContactMode : int { slip_neg = -1, stuck = 0, slip_pos = 1 };
+enum class GapMode : int { closed_neg = -1, open = 0, closed_pos = 1 };
+
+const char* to_string(ContactMode m);
+const char* to_string(GapMode m);
+
+class HybridSystem final : public OdeSystem {
+ public:
+  /// Keeps a reference: `model` must outlive the system.
+  explicit HybridSystem(const Model& model);
+
+  [[nodiscard]] int size() const override { return 2 * n_ + 3; }
+  void rhs(double t, const double* y, double* dydt) override;
+  [[nodiscard]] std::string state_name(int i) const override;
+
+  [[nodiscard]] int dof() const { return n_; }
+  /// Index of the energy states in y: source work, friction loss, damping loss.
+  [[nodiscard]] int energy_index() const { return 2 * n_; }
+  /// y0 from the bodies' initial positions and velocities, zero energies.
+  void initial_state(double* y) const;
+
+  // Modes.
+  [[nodiscard]] GapMode gap_mode(int l) const { return gap_[static_cast<size_t>(l)]; }
+  [[nodiscard]] ContactMode contact_mode(int k) const { return mode_[static_cast<size_t>(k)]; }
+  void set_gap_mode(int l, GapMode g) { gap_[static_cast<size_t>(l)] = g; }
+  /// Sets all contact modes and forms the constraint solution of the stuck set.
+  void set_contact_modes(const std::vector<ContactMode>& modes);
+  [[nodiscard]] const std::vector<ContactMode>& contact_modes() const { return mode_; }
+  /// The gap mode a state implies on its own (initial state): closed on a flank it presses.
+  [[nodiscard]] GapMode natural_gap_mode(int l, const double* y) const;
+
+  // Quantities in the current modes.
+  [[nodiscard]] double deflection(int l, const double* y) const;       ///< δ
+  [[nodiscard]] double deflection_rate(int l, const double* y) const;  ///< δ̇
+  [[nodiscard]] double link_load(int l, const double* y) const;        ///< F of link l
+  /// The rate dF/dt of link l from the state derivative dy (a closed or gap-free link; 0 if open).
+  [[nodiscard]] double link_load_rate(int l, const double* dy) const;
+  [[nodiscard]] double sliding_velocity(int k, double t, const double* y) const;  ///< u = v_a − v_b
+  /// Accelerations (n) and contact forces F_k (stuck: λ; sliding: ±F_k; size = contacts).
+  void evaluate(double t, const double* y, double* acc, double* contact_force);
+  /// Generalized external forces f (n): loads plus friction forces (for quasi-static link loads).
+  void external_forces(double t, const double* y, double* f);
+  /// Kinetic and elastic energy, J.
+  [[nodiscard]] double kinetic_energy(const double* y) const;
+  [[nodiscard]] double elastic_energy(const double* y) const;
+
+  // Events.
+  /// Two slots per link, then two per contact. A slot is ≥ 0 while the mode holds.
+  [[nodiscard]] int event_slots() const { return 2 * (nl_ + nc_); }
+  void event_functions(double t, const double* y, double* g);
+  /// The element of a slot: link index (slot < 2·links) or contact index.
+  [[nodiscard]] bool slot_is_link(int slot) const { return slot < 2 * nl_; }
+  [[nodiscard]] int slot_element(int slot) const { return slot < 2 * nl_ ? slot / 2 : (slot - 2 * nl_) / 2; }
+
+  /// Projects the velocities onto the stuck constraints (M-orthogonally): u_k = 0 exactly.
+  void project_velocities(double t, double* y) const;
+
+  [[nodiscard]] const Model& model() const { return m_; }
+
+ private:
+  struct FlatLink {
+    int a, b;
+    double inv_ratio, c, d;
+    bool gap;
+    double lo, hi;  // flanks δ₋, δ₊
+  };
+  void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
+  void enforce_stuck(double t, double* acc) const;
+
+  const Model& m_;
+  int n_, nl_, nc_;
+  std::vector<double> inv_mass_;
+  std::vector<FlatLink> links_;
+  std::vector<GapMode> gap_;
+  std::vector<ContactMode> mode_;
+  std::vector<int> stuck_;    // indices of stuck contacts
+  Eigen::MatrixXd P_;         // λ = P_ r (weighted least norm)
+  Eigen::MatrixXd Pproj_;     // plain pseudo-inverse of G M⁻¹ Gᵀ (velocity projection)
+  std::vector<double> f_, fc_;
+  Eigen::VectorXd r_, lam_;
+};
+
+/// Hybrid settings beyond the model's simulation settings.
+struct HybridOptions {
+  long max_events = 1'000'000;  ///< SolverError when exceeded
+  int chatter_count = 50;       ///< switches of one element ...
+  double chatter_window = 1e-6; ///< ... within this fraction of t_end (or of 1 s) mean chattering
+};
+
+/// Event-driven simulation (see above). Fills SimulationResult like simulate() and its `hybrid`
+/// report. Throws SolverError on numerical failure, on chattering (naming the element, the time and
+/// the number of switches) and when no consistent contact mode exists.
+SimulationResult simulate_hybrid(const Model& m, const HybridOptions& options = {});
+
+}  // namespace machdyn

@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// Named load cases in a model file (paper 002's operating modes). A case is a patch of the spec:
+///   cases:
+///     NAME:
+///       description: text
+///       remove: [element, ...]                  # drop elements of any section (e.g. the motor)
+///       bodies|links|loads|contacts|brakes: {ELEMENT: {field: value, ...}, ...}
+///       simulation: {field: value, ...}
+/// An element that exists gets the case's fields (field by field); a new one is added. Changing an
+/// element's `type` keeps its other fields, so replace it (remove + a new name) instead.
+
+#include <string>
+#include <vector>
+
+#include "machdyn/common/spec.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn {
+
+/// The case names in file order (empty if the file has no `cases:`).
+std::vector<std::string> case_names(const SpecNode& root);
+
+/// Applies case `name` to the spec. Throws InputError if there is no such case or the case is
+/// malformed (with the place of each problem).
+void apply_case(SpecNode& root, const std::string& name);
+
+/// Reads `path`, applies case `case_name` (if not empty), then the `--set` overrides, compiles.
+/// The model's name gets " [case]" appended and Model::load_case is set.
+Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
+                      const std::string& case_name);
+
+}  // namespace machdyn

@@ -1,0 +1,545 @@
+// The event loop of the hybrid simulation: step, detect sign changes of the event functions, locate
+// the earliest on the dense output, decide the new modes of all elements together, restart.
+#include "machdyn/analysis/hybrid.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <fmt/format.h>
+
+#include "machdyn/analysis/modes.hpp"
+#include "machdyn/common/diagnostics.hpp"
+
+namespace machdyn {
+namespace {
+
+std::string unit_suffix(const char* unit) {
+  std::string s(unit);
+  for (auto& ch : s)
+    if (ch == '*' || ch == '/') ch = '_';
+  return s;
+}
+
+/// Times in (0, t_end) where a load, a brake or a surface-velocity table has a kink or a jump.
+std::vector<double> breakpoints(const Model& m) {
+  std::vector<double> t;
+  for (const auto& ld : m.loads) {
+    if (ld.kind == LoadKind::step) t.push_back(ld.t0);
+    if (ld.kind == LoadKind::ramp) t.push_back(ld.t0), t.push_back(ld.t1);
+    if (ld.kind == LoadKind::table) t.insert(t.end(), ld.times.begin(), ld.times.end());
+  }
+  for (const auto& c : m.contacts) {
+    if (c.brake) t.push_back(c.t_apply), t.push_back(c.t_apply + c.t_ramp);
+    t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  std::erase_if(t, [&](double x) { return !(x > 0.0 && x < m.simulation.t_end); });
+  return t;
+}
+
+class HybridRun {
+ public:
+  HybridRun(const Model& m, const HybridOptions& opt, SimulationResult& out)
+      : m_(m), opt_(opt), out_(out), sys_(m), n_(m.dof()), N_(sys_.size()), nl_(static_cast<int>(m.links.size())),
+        nc_(static_cast<int>(m.contacts.size())) {
+    y_.assign(static_cast<size_t>(N_), 0.0);
+    ytmp_ = dtmp_ = ya_ = yb_ = da_ = db_ = y_;
+    g_prev_.assign(static_cast<size_t>(sys_.event_slots()), 0.0);
+    g_new_ = g_tmp_ = g_prev_;
+    acc_.assign(static_cast<size_t>(n_), 0.0);
+    fc_.assign(static_cast<size_t>(nc_), 0.0);
+    open_phase_.assign(static_cast<size_t>(nc_), -1);
+    switches_.resize(static_cast<size_t>(nl_ + nc_));
+    peak_.resize(static_cast<size_t>(nl_));
+    setup_columns();
+  }
+
+  void run() {
+    const auto start = std::chrono::steady_clock::now();
+    const auto& s = m_.simulation;
+    out_.hybrid.active = true;
+    out_.hybrid.breakpoints = breakpoints(m_);
+    const Method method = choose_method(m_, &out_.method_reason);
+    sys_.initial_state(y_.data());
+    initial_modes();
+    auto& E = out_.hybrid.energy;
+    E.kinetic_start = sys_.kinetic_energy(y_.data());
+    E.elastic_start = sys_.elastic_energy(y_.data());
+
+    StepperOptions so;
+    so.rtol = s.rtol;
+    so.atol = s.atol;
+    so.max_steps = s.max_steps;
+    auto stepper = make_stepper(method, sys_, so);
+    Stepper& st = *stepper;
+
+    const double t_end = s.t_end;
+    n_out_ = std::max(1L, std::lround(std::ceil(t_end / s.dt_out - 1e-9)));
+    double t = 0.0;
+    st.reset(t, y_.data());
+    sys_.event_functions(t, y_.data(), g_prev_.data());
+    output(0.0, y_.data());
+    k_out_ = 1;
+    size_t next_bp = 0;
+    const auto& bps = out_.hybrid.breakpoints;
+    while (t < t_end) {
+      while (next_bp < bps.size() && bps[next_bp] <= t) ++next_bp;
+      const bool to_bp = next_bp < bps.size();
+      const double t_limit = to_bp ? bps[next_bp] : t_end;
+      st.step(t_limit);
+      const double t0 = st.t_prev(), t1 = st.t();
+      const bool at_bp = to_bp && t1 == t_limit;
+      // Left limit at a breakpoint: the loads there already jumped.
+      const double tg = at_bp ? std::nextafter(t1, -1.0) : t1;
+      sys_.event_functions(tg, st.y(), g_new_.data());
+      int first = -1;
+      double lo_best = 0, hi_best = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < sys_.event_slots(); ++k) {
+        if (!(g_prev_[static_cast<size_t>(k)] >= 0.0 && g_new_[static_cast<size_t>(k)] < 0.0)) continue;
+        double lo = t0, hi = tg;
+        locate(st, k, g_prev_[static_cast<size_t>(k)], g_new_[static_cast<size_t>(k)], lo, hi);
+        if (hi < hi_best) hi_best = hi, lo_best = lo, first = k;
+      }
+      if (first < 0) {
+        segment(st, t0, t1);
+        g_prev_.swap(g_new_);
+        t = t1;
+        if (at_bp && t1 < t_end) {
+          std::copy(st.y(), st.y() + N_, y_.begin());
+          time_event(t1);
+          st.reset(t1, y_.data());
+          sys_.event_functions(t1, y_.data(), g_prev_.data());
+        }
+        continue;
+      }
+      (void)lo_best;
+      // An event at hi_best: the solution up to it belongs to the old modes.
+      const double te = hi_best;
+      segment(st, t0, te);
+      st.interpolate(te, y_.data());
+      sys_.event_functions(te, y_.data(), g_tmp_.data());
+      std::vector<int> fired;
+      for (int k = 0; k < sys_.event_slots(); ++k)
+        if (g_prev_[static_cast<size_t>(k)] >= 0.0 && g_tmp_[static_cast<size_t>(k)] < 0.0) fired.push_back(k);
+      if (std::find(fired.begin(), fired.end(), first) == fired.end()) fired.push_back(first);
+      handle_event(te, fired);
+      st.reset(te, y_.data());
+      sys_.event_functions(te, y_.data(), g_prev_.data());
+      t = te;
+    }
+    // Close the books.
+    std::copy(st.y(), st.y() + N_, y_.begin());
+    for (int k = 0; k < nc_; ++k) close_phase(k, t_end);
+    E.kinetic_end = sys_.kinetic_energy(y_.data());
+    E.elastic_end = sys_.elastic_energy(y_.data());
+    E.source_work = y_[static_cast<size_t>(2 * n_)];
+    E.friction_loss = y_[static_cast<size_t>(2 * n_ + 1)];
+    E.damping_loss = y_[static_cast<size_t>(2 * n_ + 2)];
+    E.release_loss = release_loss_;
+    summarize_links();
+    out_.stats.stepper = st.stats();
+    out_.stats.method = st.name();
+    out_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+ private:
+  // ---- output ----
+  void setup_columns() {
+    auto& names = out_.column_names;
+    names.push_back("t_s");
+    for (const auto& b : m_.bodies) {
+      names.push_back(b.name + ".position_" + unit_suffix(position_unit(b.kind)));
+      names.push_back(b.name + ".velocity_" + unit_suffix(velocity_unit(b.kind)));
+    }
+    for (const auto& l : m_.links) names.push_back(l.name + ".load_" + unit_suffix(link_load_unit(m_, l)));
+    for (const auto& c : m_.contacts) {
+      const BodyKind k = m_.bodies[static_cast<size_t>(c.a)].kind;
+      names.push_back(c.name + ".force_" + unit_suffix(load_unit(k)));
+      names.push_back(c.name + ".sliding_velocity_" + unit_suffix(velocity_unit(k)));
+      names.push_back(c.name + ".mode");
+    }
+    for (const auto& l : m_.links)
+      if (l.has_gap) names.push_back(l.name + ".gap_mode");
+    out_.columns.resize(names.size());
+  }
+
+  double out_time(long k) const {
+    return k >= n_out_ ? m_.simulation.t_end : static_cast<double>(k) * m_.simulation.dt_out;
+  }
+
+  void output(double t, const double* y) {
+    size_t c = 0;
+    auto& cols = out_.columns;
+    cols[c++].push_back(t);
+    for (int i = 0; i < n_; ++i) {
+      cols[c++].push_back(y[i]);
+      cols[c++].push_back(y[n_ + i]);
+    }
+    for (int l = 0; l < nl_; ++l) cols[c++].push_back(sys_.link_load(l, y));
+    if (nc_ > 0) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    for (int k = 0; k < nc_; ++k) {
+      cols[c++].push_back(fc_[static_cast<size_t>(k)]);
+      cols[c++].push_back(sys_.sliding_velocity(k, t, y));
+      cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
+    }
+    for (int l = 0; l < nl_; ++l)
+      if (m_.links[static_cast<size_t>(l)].has_gap)
+        cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+  }
+
+  // ---- the solution on [ta, tb] inside the last step, in the current modes ----
+  void segment(const Stepper& st, double ta, double tb) {
+    for (; k_out_ <= n_out_ && out_time(k_out_) <= tb; ++k_out_) {
+      const double tk = out_time(k_out_);
+      if (tk == st.t()) {
+        output(tk, st.y());
+      } else {
+        st.interpolate(tk, ytmp_.data());
+        output(tk, ytmp_.data());
+      }
+    }
+    if (nl_ == 0) return;
+    st.interpolate(ta, ya_.data());
+    st.derivative(ta, da_.data());
+    if (tb == st.t()) std::copy(st.y(), st.y() + N_, yb_.begin());
+    else st.interpolate(tb, yb_.data());
+    st.derivative(tb, db_.data());
+    for (int l = 0; l < nl_; ++l) {
+      consider(l, ta, sys_.link_load(l, ya_.data()), ya_.data());
+      consider(l, tb, sys_.link_load(l, yb_.data()), yb_.data());
+      double r0 = sys_.link_load_rate(l, da_.data()), r1 = sys_.link_load_rate(l, db_.data());
+      if (!((r0 > 0 && r1 < 0) || (r0 < 0 && r1 > 0))) continue;
+      // Illinois on the load rate for the interior extremum.
+      double a = ta, b = tb;
+      int side = 0;
+      for (int it = 0; it < 100 && b - a > 1e-15 * std::max(1.0, std::abs(b)); ++it) {
+        double tm = (a * r1 - b * r0) / (r1 - r0);
+        if (!(tm > a && tm < b)) tm = 0.5 * (a + b);
+        st.derivative(tm, dtmp_.data());
+        const double r = sys_.link_load_rate(l, dtmp_.data());
+        if (r == 0.0) {
+          a = b = tm;
+          break;
+        }
+        if ((r > 0) == (r0 > 0)) {
+          a = tm, r0 = r;
+          if (side == -1) r1 *= 0.5;
+          side = -1;
+        } else {
+          b = tm, r1 = r;
+          if (side == 1) r0 *= 0.5;
+          side = 1;
+        }
+      }
+      const double te = 0.5 * (a + b);
+      st.interpolate(te, ytmp_.data());
+      consider(l, te, sys_.link_load(l, ytmp_.data()), ytmp_.data());
+    }
+  }
+
+  struct Peak {
+    bool started = false;
+    double max = 0, min = 0, t_max = 0, t_min = 0;
+    std::vector<double> f_at_max, f_at_min;  // external generalized forces at t_max, t_min
+    // The state and contact modes at t_max and t_min (forces are formed once, at the end).
+    std::vector<double> y_max, y_min;
+    std::vector<ContactMode> modes_max, modes_min;
+  };
+
+  void forces_at(double t, const std::vector<double>& y, const std::vector<ContactMode>& modes, std::vector<double>& f) {
+    f.assign(static_cast<size_t>(n_), 0.0);
+    if (y.empty()) return;
+    const std::vector<ContactMode> keep = sys_.contact_modes();
+    sys_.set_contact_modes(modes);
+    sys_.external_forces(t, y.data(), f.data());
+    sys_.set_contact_modes(keep);
+  }
+
+  void consider(int l, double t, double F, const double* y) {
+    Peak& p = peak_[static_cast<size_t>(l)];
+    if (!p.started || F > p.max) {
+      p.max = F, p.t_max = t;
+      p.y_max.assign(y, y + N_);
+      p.modes_max = sys_.contact_modes();
+    }
+    if (!p.started || F < p.min) {
+      p.min = F, p.t_min = t;
+      p.y_min.assign(y, y + N_);
+      p.modes_min = sys_.contact_modes();
+    }
+    p.started = true;
+    for (int k = 0; k < nc_; ++k) {
+      const int ph = open_phase_[static_cast<size_t>(k)];
+      if (ph < 0) continue;
+      SlipPhase& s = out_.hybrid.slip_phases[static_cast<size_t>(ph)];
+      const size_t li = static_cast<size_t>(l);
+      if (F > s.link_max[li]) s.link_max[li] = F, s.link_t_max[li] = t;
+      s.link_min[li] = std::min(s.link_min[li], F);
+    }
+  }
+
+  void summarize_links() {
+    const Modes modes = compute_modes(m_);
+    for (int l = 0; l < nl_; ++l) {
+      Peak& p = peak_[static_cast<size_t>(l)];
+      forces_at(p.t_max, p.y_max, p.modes_max, p.f_at_max);
+      forces_at(p.t_min, p.y_min, p.modes_min, p.f_at_min);
+      LinkSummary s;
+      s.max = p.max, s.min = p.min, s.t_max = p.t_max, s.t_min = p.t_min;
+      const Eigen::VectorXd F =
+          static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_max.data(), n_));
+      s.static_load = F(l);
+      out_.hybrid.static_at_min.push_back(
+          static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_min.data(), n_))(l));
+      const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
+      s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
+                                                                 : std::numeric_limits<double>::quiet_NaN();
+      out_.links.push_back(s);
+    }
+  }
+
+  // ---- events ----
+  /// Illinois on slot k over [lo, hi] (g(lo) = g0 ≥ 0 > g1 = g(hi)); returns the final bracket.
+  void locate(const Stepper& st, int k, double g0, double g1, double& lo, double& hi) {
+    const double tol = 1e-13 * std::max(1.0, std::abs(hi));
+    int side = 0;
+    for (int it = 0; it < 200 && hi - lo > tol; ++it) {
+      double tm = g0 - g1 > 0 ? (lo * g1 - hi * g0) / (g1 - g0) : 0.5 * (lo + hi);
+      if (!(tm > lo && tm < hi) || it % 8 == 7) tm = 0.5 * (lo + hi);  // keep shrinking on discontinuities
+      st.interpolate(tm, ytmp_.data());
+      sys_.event_functions(tm, ytmp_.data(), g_tmp_.data());
+      const double g = g_tmp_[static_cast<size_t>(k)];
+      if (g >= 0.0) {
+        lo = tm, g0 = g;
+        if (side == -1) g1 *= 0.5;
+        side = -1;
+      } else {
+        hi = tm, g1 = g;
+        if (side == 1) g0 *= 0.5;
+        side = 1;
+      }
+    }
+  }
+
+  const std::string& element_name(int e) const {
+    return e < nl_ ? m_.links[static_cast<size_t>(e)].name : m_.contacts[static_cast<size_t>(e - nl_)].name;
+  }
+
+  void record(double t, const char* kind, int element, const char* from, const char* to) {
+    out_.hybrid.events.push_back({t, kind, element_name(element), from, to});
+    if (std::string_view(kind) == "initial") return;
+    if (static_cast<long>(out_.hybrid.events.size()) > opt_.max_events)
+      throw SolverError(element_name(element), t,
+                        fmt::format("more than {} mode events; raise max_events or check the model", opt_.max_events));
+    auto& sw = switches_[static_cast<size_t>(element)];
+    sw.push_back(t);
+    const size_t K = static_cast<size_t>(opt_.chatter_count);
+    if (sw.size() >= K) {
+      const double window = opt_.chatter_window * std::max(1.0, m_.simulation.t_end);
+      const double span = t - sw[sw.size() - K];
+      if (span < window)
+        throw SolverError(element_name(element), t,
+                          fmt::format("chattering: {} mode switches within {:.3g} s (last: {} -> {})", K, span, from, to));
+      if (sw.size() > 4 * K) sw.erase(sw.begin(), sw.end() - static_cast<long>(K));
+    }
+  }
+
+  void open_phase(int k, double t, ContactMode md) {
+    SlipPhase p;
+    p.contact = m_.contacts[static_cast<size_t>(k)].name;
+    p.direction = static_cast<int>(md);
+    p.t_start = p.t_end = t;
+    p.link_max.assign(static_cast<size_t>(nl_), -std::numeric_limits<double>::infinity());
+    p.link_t_max.assign(static_cast<size_t>(nl_), t);
+    p.link_min.assign(static_cast<size_t>(nl_), std::numeric_limits<double>::infinity());
+    out_.hybrid.slip_phases.push_back(p);
+    open_phase_[static_cast<size_t>(k)] = static_cast<int>(out_.hybrid.slip_phases.size()) - 1;
+  }
+
+  void close_phase(int k, double t) {
+    int& ph = open_phase_[static_cast<size_t>(k)];
+    if (ph < 0) return;
+    SlipPhase& p = out_.hybrid.slip_phases[static_cast<size_t>(ph)];
+    p.t_end = t;
+    // A phase of zero length saw no solution: report the loads at its instant.
+    for (int l = 0; l < nl_; ++l) {
+      const size_t li = static_cast<size_t>(l);
+      if (!std::isfinite(p.link_max[li])) {
+        p.link_max[li] = p.link_min[li] = sys_.link_load(l, y_.data());
+        p.link_t_max[li] = t;
+      }
+    }
+    ph = -1;
+  }
+
+  /// |λ| within the static limit. A contact whose limit event just fired is judged strictly (the
+  /// event located the crossing on this very function); the others get a rounding allowance, so a
+  /// load exactly at the limit holds.
+  bool stuck_ok(int k, double t) const {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    const double Fs = c.scale(t) * c.static_limit, F = std::abs(fc_[static_cast<size_t>(k)]);
+    if (std::find(strict_.begin(), strict_.end(), k) != strict_.end()) return F <= Fs;
+    return F <= Fs + 1e-12 * c.static_limit;
+  }
+  double sliding_accel(int k, double t) const {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    return acc_[static_cast<size_t>(c.a)] - (c.b >= 0 ? acc_[static_cast<size_t>(c.b)] : c.surface_acceleration(t));
+  }
+  bool consistent(const std::vector<ContactMode>& modes, const std::vector<int>& Z, double t) {
+    sys_.set_contact_modes(modes);
+    sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
+    for (int k : Z) {
+      const ContactMode md = modes[static_cast<size_t>(k)];
+      if (md == ContactMode::stuck ? !stuck_ok(k, t)
+                                   : static_cast<double>(static_cast<int>(md)) * sliding_accel(k, t) < 0.0)
+        return false;
+    }
+    return true;
+  }
+
+  /// The modes of the contacts in Z (zero sliding speed) at (t, y_), decided together.
+  std::vector<ContactMode> decide_contacts(double t, const std::vector<int>& Z) {
+    std::vector<ContactMode> modes = sys_.contact_modes();
+    for (int k : Z) modes[static_cast<size_t>(k)] = ContactMode::stuck;
+    // Release the most overloaded stuck contact until the stuck set holds.
+    for (size_t round = 0; round <= Z.size(); ++round) {
+      sys_.set_contact_modes(modes);
+      sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
+      int worst = -1;
+      double worst_ratio = 1.0;
+      for (int k : Z) {
+        if (modes[static_cast<size_t>(k)] != ContactMode::stuck || stuck_ok(k, t)) continue;
+        const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+        const double Fs = c.scale(t) * c.static_limit;
+        const double ratio = Fs > 0 ? std::abs(fc_[static_cast<size_t>(k)]) / Fs : std::numeric_limits<double>::infinity();
+        if (worst < 0 || ratio > worst_ratio) worst = k, worst_ratio = ratio;
+      }
+      if (worst < 0) break;
+      modes[static_cast<size_t>(worst)] = fc_[static_cast<size_t>(worst)] > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+    }
+    if (consistent(modes, Z, t)) return modes;
+    // Every combination, fewest sliding contacts first, then in index order.
+    if (Z.size() > 10)
+      throw SolverError(m_.contacts[static_cast<size_t>(Z[0])].name, t,
+                        "no consistent stick/slip modes found for more than 10 contacts at rest at once");
+    long total = 1;
+    for (size_t i = 0; i < Z.size(); ++i) total *= 3;
+    std::vector<long> codes(static_cast<size_t>(total));
+    for (long c = 0; c < total; ++c) codes[static_cast<size_t>(c)] = c;
+    auto sliding = [&](long c) {
+      int s = 0;
+      for (size_t i = 0; i < Z.size(); ++i, c /= 3) s += c % 3 != 0;
+      return s;
+    };
+    std::stable_sort(codes.begin(), codes.end(), [&](long x, long y) { return sliding(x) < sliding(y); });
+    for (long code : codes) {
+      long c = code;
+      for (size_t i = 0; i < Z.size(); ++i, c /= 3)
+        modes[static_cast<size_t>(Z[i])] = c % 3 == 0 ? ContactMode::stuck : c % 3 == 1 ? ContactMode::slip_pos : ContactMode::slip_neg;
+      if (consistent(modes, Z, t)) return modes;
+    }
+    std::string names;
+    for (int k : Z) names += (names.empty() ? "" : "', '") + m_.contacts[static_cast<size_t>(k)].name;
+    throw SolverError(names, t, "no consistent stick/slip modes (the contacts' static limits contradict)");
+  }
+
+  void apply_contact_modes(double t, const std::vector<ContactMode>& old_modes, const std::vector<ContactMode>& modes,
+                           bool initial) {
+    sys_.set_contact_modes(modes);
+    for (int k = 0; k < nc_; ++k) {
+      const ContactMode a = old_modes[static_cast<size_t>(k)], b = modes[static_cast<size_t>(k)];
+      if (!initial && a == b) continue;
+      const char* kind = initial ? "initial" : b == ContactMode::stuck ? "stick" : a == ContactMode::stuck ? "slip" : "reversal";
+      record(t, kind, nl_ + k, initial ? "" : to_string(a), to_string(b));
+      close_phase(k, t);
+      if (b != ContactMode::stuck) open_phase(k, t, b);
+    }
+    sys_.project_velocities(t, y_.data());
+  }
+
+  void initial_modes() {
+    for (int l = 0; l < nl_; ++l) {
+      if (!m_.links[static_cast<size_t>(l)].has_gap) continue;
+      const GapMode g = sys_.natural_gap_mode(l, y_.data());
+      sys_.set_gap_mode(l, g);
+      record(0.0, "initial", l, "", to_string(g));
+    }
+    std::vector<ContactMode> modes(static_cast<size_t>(nc_), ContactMode::stuck);
+    std::vector<int> Z;
+    for (int k = 0; k < nc_; ++k) {
+      const double u = sys_.sliding_velocity(k, 0.0, y_.data());
+      if (u == 0.0) Z.push_back(k);
+      else modes[static_cast<size_t>(k)] = u > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+    }
+    sys_.set_contact_modes(modes);
+    if (!Z.empty()) modes = decide_contacts(0.0, Z);
+    apply_contact_modes(0.0, modes, modes, true);
+  }
+
+  void handle_event(double t, const std::vector<int>& fired) {
+    std::vector<int> Z;
+    strict_.clear();
+    const double V_before = sys_.elastic_energy(y_.data());
+    bool gap_changed = false;
+    for (int slot : fired) {
+      const int e = sys_.slot_element(slot);
+      if (sys_.slot_is_link(slot)) {
+        const GapMode old = sys_.gap_mode(e);
+        GapMode now = old != GapMode::open ? GapMode::open : (slot % 2 == 0 ? GapMode::closed_pos : GapMode::closed_neg);
+        if (now == old) continue;
+        sys_.set_gap_mode(e, now);
+        gap_changed = true;
+        record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
+      } else if (sys_.contact_mode(e) != ContactMode::stuck) {
+        Z.push_back(e);  // sliding speed reached zero
+      } else {
+        strict_.push_back(e);  // breakaway
+      }
+    }
+    if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
+    for (int k = 0; k < nc_; ++k)
+      if (sys_.contact_mode(k) == ContactMode::stuck) Z.push_back(k);
+    std::sort(Z.begin(), Z.end());
+    Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
+    if (Z.empty()) return;
+    const std::vector<ContactMode> old = sys_.contact_modes();
+    const std::vector<ContactMode> now = decide_contacts(t, Z);
+    strict_.clear();
+    apply_contact_modes(t, old, now, false);
+  }
+
+  void time_event(double t) {
+    std::vector<int> Z;
+    for (int k = 0; k < nc_; ++k)
+      if (sys_.contact_mode(k) == ContactMode::stuck) Z.push_back(k);
+    if (Z.empty()) return;
+    const std::vector<ContactMode> old = sys_.contact_modes();
+    apply_contact_modes(t, old, decide_contacts(t, Z), false);
+  }
+
+  const Model& m_;
+  const HybridOptions& opt_;
+  SimulationResult& out_;
+  HybridSystem sys_;
+  int n_, N_, nl_, nc_;
+  std::vector<double> y_, ytmp_, dtmp_, ya_, yb_, da_, db_, g_prev_, g_new_, g_tmp_, acc_, fc_;
+  std::vector<int> open_phase_;
+  std::vector<std::vector<double>> switches_;
+  std::vector<Peak> peak_;
+  std::vector<int> strict_;  // stuck contacts whose limit event fired
+  long n_out_ = 1, k_out_ = 1;
+  double release_loss_ = 0.0;
+};
+
+}  // namespace
+
+SimulationResult simulate_hybrid(const Model& m, const HybridOptions& options) {
+  SimulationResult out;
+  HybridRun run(m, options, out);
+  run.run();
+  return out;
+}
+
+}  // namespace machdyn

@@ -1,0 +1,327 @@
+#include "machdyn/analysis/hybrid.hpp"
+
+#include <cmath>
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+namespace machdyn {
+
+const char* to_string(ContactMode m) {
+  switch (m) {
+    case ContactMode::stuck: return "stuck";
+    case ContactMode::slip_pos: return "slip+";
+    case ContactMode::slip_neg: return "slip-";
+  }
+  return "?";
+}
+
+const char* to_string(GapMode m) {
+  switch (m) {
+    case GapMode::open: return "open";
+    case GapMode::closed_pos: return "closed+";
+    case GapMode::closed_neg: return "closed-";
+  }
+  return "?";
+}
+
+HybridSystem::HybridSystem(const Model& model)
+    : m_(model), n_(model.dof()), nl_(static_cast<int>(model.links.size())),
+      nc_(static_cast<int>(model.contacts.size())) {
+  for (const auto& b : model.bodies) inv_mass_.push_back(1.0 / b.inertia);
+  for (const auto& l : model.links)
+    links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, -l.gap_start, l.gap - l.gap_start});
+  gap_.assign(static_cast<size_t>(nl_), GapMode::open);
+  f_.assign(static_cast<size_t>(n_), 0.0);
+  fc_.assign(static_cast<size_t>(nc_), 0.0);
+  set_contact_modes(std::vector<ContactMode>(static_cast<size_t>(nc_), ContactMode::stuck));
+}
+
+void HybridSystem::initial_state(double* y) const {
+  for (int i = 0; i < n_; ++i) {
+    y[i] = m_.bodies[static_cast<size_t>(i)].q0;
+    y[n_ + i] = m_.bodies[static_cast<size_t>(i)].v0;
+  }
+  y[2 * n_] = y[2 * n_ + 1] = y[2 * n_ + 2] = 0.0;
+}
+
+double HybridSystem::deflection(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  double d = 0;
+  if (k.a >= 0) d += y[k.a] * k.inv_ratio;
+  if (k.b >= 0) d -= y[k.b];
+  return d;
+}
+
+double HybridSystem::deflection_rate(int l, const double* y) const { return deflection(l, y + n_); }
+
+double HybridSystem::link_load(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  const double delta = deflection(l, y), rate = deflection_rate(l, y);
+  if (!k.gap) return k.c * delta + k.d * rate;
+  switch (gap_[static_cast<size_t>(l)]) {
+    case GapMode::open: return 0.0;
+    case GapMode::closed_pos: return k.c * (delta - k.hi) + k.d * rate;
+    case GapMode::closed_neg: return k.c * (delta - k.lo) + k.d * rate;
+  }
+  return 0.0;
+}
+
+double HybridSystem::link_load_rate(int l, const double* dy) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  if (k.gap && gap_[static_cast<size_t>(l)] == GapMode::open) return 0.0;
+  return k.c * deflection(l, dy) + k.d * deflection(l, dy + n_);
+}
+
+double HybridSystem::sliding_velocity(int k, double t, const double* y) const {
+  const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+  return y[n_ + c.a] - (c.b >= 0 ? y[n_ + c.b] : c.surface_velocity(t));
+}
+
+GapMode HybridSystem::natural_gap_mode(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  if (!k.gap) return GapMode::open;
+  const double delta = deflection(l, y), rate = deflection_rate(l, y);
+  const double Fp = k.c * (delta - k.hi) + k.d * rate, Fn = k.c * (delta - k.lo) + k.d * rate;
+  if ((delta > k.hi && Fp > 0) || (delta == k.hi && rate > 0)) return GapMode::closed_pos;
+  if ((delta < k.lo && Fn < 0) || (delta == k.lo && rate < 0)) return GapMode::closed_neg;
+  return GapMode::open;
+}
+
+void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
+  mode_ = modes;
+  stuck_.clear();
+  for (int k = 0; k < nc_; ++k)
+    if (mode_[static_cast<size_t>(k)] == ContactMode::stuck) stuck_.push_back(k);
+  const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
+  r_.resize(ns);
+  lam_.resize(ns);
+  if (ns == 0) return;
+  // A = G M⁻¹ Gᵀ; row j of G has +1 at body a and −1 at body b of stuck contact j.
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(ns, ns);
+  Eigen::VectorXd w(ns);
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    const auto& ci = m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(i)])];
+    w(i) = std::sqrt(ci.static_limit);
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      const auto& cj = m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
+      const int ei[2] = {ci.a, ci.b}, ej[2] = {cj.a, cj.b};
+      const double si[2] = {1.0, -1.0};
+      for (int p = 0; p < 2; ++p)
+        for (int q = 0; q < 2; ++q)
+          if (ei[p] >= 0 && ei[p] == ej[q]) A(i, j) += si[p] * si[q] * inv_mass_[static_cast<size_t>(ei[p])];
+    }
+  }
+  // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s0).
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-12);
+  cod.compute(A * w.asDiagonal());
+  P_ = w.asDiagonal() * cod.pseudoInverse();
+  cod.compute(A);
+  Pproj_ = cod.pseudoInverse();
+}
+
+void HybridSystem::forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric,
+                          double* p_damp) {
+  const double* v = y + n_;
+  for (int i = 0; i < n_; ++i) f[i] = 0.0;
+  double src = 0, fric = 0, damp = 0;
+  for (const auto& ld : m_.loads) {
+    const double val = ld.evaluate(t, v[ld.body]);
+    f[ld.body] += val;
+    src += val * v[ld.body];
+  }
+  for (size_t l = 0; l < links_.size(); ++l) {
+    const FlatLink& k = links_[l];
+    double delta = 0, rate = 0;
+    if (k.a >= 0) delta += y[k.a] * k.inv_ratio, rate += v[k.a] * k.inv_ratio;
+    if (k.b >= 0) delta -= y[k.b], rate -= v[k.b];
+    double F;
+    if (!k.gap) {
+      F = k.c * delta + k.d * rate;
+    } else {
+      const GapMode g = gap_[l];
+      if (g == GapMode::open) continue;
+      F = k.c * (delta - (g == GapMode::closed_pos ? k.hi : k.lo)) + k.d * rate;
+    }
+    damp += k.d * rate * rate;
+    if (k.a >= 0) f[k.a] -= F * k.inv_ratio;
+    if (k.b >= 0) f[k.b] += F;
+  }
+  for (int k = 0; k < nc_; ++k) {
+    const ContactMode md = mode_[static_cast<size_t>(k)];
+    if (md == ContactMode::stuck) continue;
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    const double w = c.b >= 0 ? v[c.b] : c.surface_velocity(t);
+    const double u = v[c.a] - w;
+    const double F = static_cast<double>(static_cast<int>(md)) * c.scale(t) * c.kinetic_level(std::abs(u));
+    fc[k] = F;
+    f[c.a] -= F;
+    if (c.b >= 0) f[c.b] += F;
+    else src -= F * w;
+    fric += F * u;
+  }
+  if (p_src) *p_src = src, *p_fric = fric, *p_damp = damp;
+}
+
+void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) {
+  double src, fric, damp;
+  forces(t, y, acc, fc, &src, &fric, &damp);
+  for (int i = 0; i < n_; ++i) acc[i] *= inv_mass_[static_cast<size_t>(i)];
+  if (stuck_.empty()) return;
+  for (size_t j = 0; j < stuck_.size(); ++j) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+    r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
+  }
+  lam_.noalias() = P_ * r_;
+  for (size_t j = 0; j < stuck_.size(); ++j) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+    const double lam = lam_(static_cast<Eigen::Index>(j));
+    fc[stuck_[j]] = lam;
+    acc[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * lam;
+    if (c.b >= 0) acc[c.b] += inv_mass_[static_cast<size_t>(c.b)] * lam;
+  }
+  enforce_stuck(t, acc);
+}
+
+void HybridSystem::enforce_stuck(double t, double* acc) const {
+  // Remove the rounding of λ: stuck bodies get exactly equal accelerations (the momentum-weighted
+  // mean; the ground's is the surface acceleration), so u stays exactly zero along a stuck mode.
+  for (int k : stuck_) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    if (c.b < 0) {
+      acc[c.a] = c.surface_acceleration(t);
+    } else {
+      const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
+      acc[c.a] = acc[c.b] = (ma * acc[c.a] + mb * acc[c.b]) / (ma + mb);
+    }
+  }
+}
+
+void HybridSystem::rhs(double t, const double* y, double* dydt) {
+  const double* v = y + n_;
+  double* acc = dydt + n_;
+  for (int i = 0; i < n_; ++i) dydt[i] = v[i];
+  double src, fric, damp;
+  forces(t, y, acc, fc_.data(), &src, &fric, &damp);
+  for (int i = 0; i < n_; ++i) acc[i] *= inv_mass_[static_cast<size_t>(i)];
+  if (!stuck_.empty()) {
+    for (size_t j = 0; j < stuck_.size(); ++j) {
+      const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+      r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
+    }
+    lam_.noalias() = P_ * r_;
+    for (size_t j = 0; j < stuck_.size(); ++j) {
+      const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+      const double lam = lam_(static_cast<Eigen::Index>(j));
+      acc[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * lam;
+      if (c.b >= 0) acc[c.b] += inv_mass_[static_cast<size_t>(c.b)] * lam;
+      else src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
+    }
+    enforce_stuck(t, acc);
+  }
+  dydt[2 * n_] = src;
+  dydt[2 * n_ + 1] = fric;
+  dydt[2 * n_ + 2] = damp;
+}
+
+void HybridSystem::external_forces(double t, const double* y, double* f) {
+  std::vector<double> acc(static_cast<size_t>(n_)), fc(static_cast<size_t>(nc_));
+  evaluate(t, y, acc.data(), fc.data());
+  for (int i = 0; i < n_; ++i) f[i] = 0.0;
+  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+  for (int k = 0; k < nc_; ++k) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    f[c.a] -= fc[static_cast<size_t>(k)];
+    if (c.b >= 0) f[c.b] += fc[static_cast<size_t>(k)];
+  }
+}
+
+double HybridSystem::kinetic_energy(const double* y) const {
+  double T = 0;
+  for (int i = 0; i < n_; ++i) T += 0.5 * m_.bodies[static_cast<size_t>(i)].inertia * y[n_ + i] * y[n_ + i];
+  return T;
+}
+
+double HybridSystem::elastic_energy(const double* y) const {
+  double V = 0;
+  for (int l = 0; l < nl_; ++l) {
+    const FlatLink& k = links_[static_cast<size_t>(l)];
+    double e = deflection(l, y);
+    if (k.gap) {
+      const GapMode g = gap_[static_cast<size_t>(l)];
+      if (g == GapMode::open) continue;
+      e -= g == GapMode::closed_pos ? k.hi : k.lo;
+    }
+    V += 0.5 * k.c * e * e;
+  }
+  return V;
+}
+
+void HybridSystem::event_functions(double t, const double* y, double* g) {
+  if (!stuck_.empty()) {
+    // λ of the stuck contacts, into fc_.
+    std::vector<double>& acc = f_;
+    evaluate(t, y, acc.data(), fc_.data());
+  }
+  for (int l = 0; l < nl_; ++l) {
+    const FlatLink& k = links_[static_cast<size_t>(l)];
+    double* gl = g + 2 * l;
+    gl[0] = gl[1] = 1.0;
+    if (!k.gap) continue;
+    const double delta = deflection(l, y), rate = deflection_rate(l, y);
+    const double Fp = k.c * (delta - k.hi) + k.d * rate, Fn = k.c * (delta - k.lo) + k.d * rate;
+    switch (gap_[static_cast<size_t>(l)]) {
+      case GapMode::closed_pos: gl[0] = Fp; break;
+      case GapMode::closed_neg: gl[1] = -Fn; break;
+      case GapMode::open:
+        gl[0] = delta < k.hi ? k.hi - delta : -Fp;  // reaches the positive flank, pressing
+        gl[1] = delta > k.lo ? delta - k.lo : Fn;   // reaches the negative flank, pressing
+        break;
+    }
+  }
+  for (int k = 0; k < nc_; ++k) {
+    double* gc = g + 2 * nl_ + 2 * k;
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    const ContactMode md = mode_[static_cast<size_t>(k)];
+    if (md == ContactMode::stuck) {
+      const double Fs = c.scale(t) * c.static_limit, lam = fc_[static_cast<size_t>(k)];
+      gc[0] = Fs - lam;
+      gc[1] = Fs + lam;
+    } else {
+      gc[0] = static_cast<double>(static_cast<int>(md)) * sliding_velocity(k, t, y);
+      gc[1] = 1.0;
+    }
+  }
+}
+
+void HybridSystem::project_velocities(double t, double* y) const {
+  if (stuck_.empty()) return;
+  Eigen::VectorXd r(static_cast<Eigen::Index>(stuck_.size()));
+  for (size_t j = 0; j < stuck_.size(); ++j) r(static_cast<Eigen::Index>(j)) = sliding_velocity(stuck_[j], t, y);
+  const Eigen::VectorXd mu = Pproj_ * r;
+  double* v = y + n_;
+  for (size_t j = 0; j < stuck_.size(); ++j) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+    v[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * mu(static_cast<Eigen::Index>(j));
+    if (c.b >= 0) v[c.b] += inv_mass_[static_cast<size_t>(c.b)] * mu(static_cast<Eigen::Index>(j));
+  }
+  // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations).
+  for (int k : stuck_) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    if (c.b < 0) {
+      v[c.a] = c.surface_velocity(t);
+    } else {
+      const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
+      v[c.a] = v[c.b] = (ma * v[c.a] + mb * v[c.b]) / (ma + mb);
+    }
+  }
+}
+
+std::string HybridSystem::state_name(int i) const {
+  if (i >= 2 * n_) return "energy quadrature";
+  const bool vel = i >= n_;
+  const auto& b = m_.bodies[static_cast<size_t>(vel ? i - n_ : i)];
+  return fmt::format("body '{}' ({})", b.name, vel ? "velocity" : "position");
+}
+
+}  // namespace machdyn

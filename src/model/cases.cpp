@@ -1,0 +1,103 @@
+#include "machdyn/model/cases.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/compile.hpp"
+
+namespace machdyn {
+namespace {
+const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes"};
+}
+
+std::vector<std::string> case_names(const SpecNode& root) {
+  std::vector<std::string> out;
+  const SpecNode* cases = root.is_map() ? root.find("cases") : nullptr;
+  if (cases && cases->is_map())
+    for (const auto& [k, v] : cases->fields) out.push_back(k);
+  return out;
+}
+
+void apply_case(SpecNode& root, const std::string& name) {
+  const Location cli{fmt::format("--case {}", name), 0, 0};
+  SpecNode* cases = root.is_map() ? root.find("cases") : nullptr;
+  if (!cases || !cases->is_map()) throw InputError(cli, "the model file has no 'cases:' section");
+  const SpecNode* c = cases->find(name);
+  if (!c)
+    throw InputError(cli, fmt::format("no case named '{}'; the file has: {}", name, fmt::join(case_names(root), ", ")));
+  const SpecNode patch = *c;  // copy: root is edited below
+  Diagnostics diag;
+  if (!patch.is_map()) {
+    diag.error(patch.loc, fmt::format("case '{}': expected a map of sections", name));
+    diag.throw_if_any();
+  }
+  for (const auto& [section, body] : patch.fields) {
+    if (section == "description") continue;
+    if (section == "remove") {
+      if (!body.is_seq()) {
+        diag.error(body.loc, fmt::format("case '{}': 'remove' expected a list of element names", name));
+        continue;
+      }
+      for (const auto& item : body.items) {
+        bool found = false;
+        for (const auto& sec : kSections) {
+          SpecNode* s = root.find(sec);
+          if (!s || !s->is_map()) continue;
+          auto it = std::find_if(s->fields.begin(), s->fields.end(), [&](const auto& kv) { return kv.first == item.scalar; });
+          if (it != s->fields.end()) s->fields.erase(it), found = true;
+        }
+        if (!found) diag.error(item.loc, fmt::format("case '{}': cannot remove '{}': no such element", name, item.scalar));
+      }
+      continue;
+    }
+    const bool is_sim = section == "simulation";
+    if (!is_sim && std::find(kSections.begin(), kSections.end(), section) == kSections.end()) {
+      diag.error(body.key_loc, fmt::format("case '{}': unknown section '{}'; known: description, remove, {}, simulation",
+                                           name, section, fmt::join(kSections, ", ")));
+      continue;
+    }
+    if (!body.is_map()) {
+      diag.error(body.loc, fmt::format("case '{}': '{}' expected a map", name, section));
+      continue;
+    }
+    SpecNode* target = root.find(section);
+    if (!target) {
+      SpecNode empty;
+      empty.kind = SpecNode::Kind::Map;
+      empty.loc = empty.key_loc = body.loc;
+      root.set(section, empty);
+      target = root.find(section);
+    }
+    if (!target->is_map()) continue;  // the compiler reports it
+    if (is_sim) {
+      for (const auto& [k, v] : body.fields) target->set(k, v);
+      continue;
+    }
+    for (const auto& [elem, fields] : body.fields) {
+      SpecNode* e = target->find(elem);
+      if (!e || !e->is_map() || !fields.is_map()) {
+        target->set(elem, fields);
+        continue;
+      }
+      for (const auto& [k, v] : fields.fields) e->set(k, v);
+    }
+  }
+  diag.throw_if_any();
+}
+
+Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
+                      const std::string& case_name) {
+  SpecNode root = read_yaml_file(path);
+  if (!case_name.empty()) apply_case(root, case_name);
+  for (const auto& o : overrides) apply_set(root, o);
+  Model m = compile_model(root, path);
+  if (!case_name.empty()) {
+    m.load_case = case_name;
+    m.name += " [" + case_name + "]";
+  }
+  return m;
+}
+
+}  // namespace machdyn

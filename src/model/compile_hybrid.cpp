@@ -1,0 +1,214 @@
+#include "compile_hybrid.hpp"
+
+#include <fmt/format.h>
+
+namespace machdyn::detail {
+namespace {
+
+Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
+Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
+
+/// A list of [x, y] pairs with x strictly increasing (and >= x_min). False if reported bad.
+bool read_pairs(const SpecNode& n, const std::string& what, const std::string& key, const Dim& dx, const Dim& dy,
+                double x_min, std::vector<double>& xs, std::vector<double>& ys, Diagnostics& diag) {
+  if (!n.is_seq() || n.items.empty()) {
+    diag.error(n.loc, fmt::format("{}: '{}' expected a number or a list of [x, y] pairs", what, key));
+    return false;
+  }
+  bool ok = true;
+  for (const auto& p : n.items) {
+    if (!p.is_seq() || p.items.size() != 2 || !p.items[0].is_scalar() || !p.items[1].is_scalar()) {
+      diag.error(p.loc, fmt::format("{}: '{}' expected a pair [x, y]", what, key));
+      ok = false;
+      continue;
+    }
+    std::string e1, e2;
+    auto x = parse_as(p.items[0].scalar, dx, &e1);
+    auto y = parse_as(p.items[1].scalar, dy, &e2);
+    if (!x) diag.error(p.items[0].loc, fmt::format("{}: '{}': {}", what, key, e1));
+    if (!y) diag.error(p.items[1].loc, fmt::format("{}: '{}': {}", what, key, e2));
+    if (!x || !y) {
+      ok = false;
+      continue;
+    }
+    if ((!xs.empty() && *x <= xs.back()) || *x < x_min) {
+      diag.error(p.items[0].loc, fmt::format("{}: '{}': the first entries must increase{}", what, key,
+                                             x_min == 0.0 ? " from 0" : ""));
+      ok = false;
+    }
+    xs.push_back(*x);
+    ys.push_back(*y);
+  }
+  return ok;
+}
+
+/// A scalar quantity or a table against sliding speed.
+void read_level(FieldReader& f, const std::string& key, const Dim& dy, const Dim& dspeed, FrictionContact& c,
+                double factor) {
+  const SpecNode* n = f.node(key);
+  if (!n) return;
+  if (n->is_scalar()) {
+    auto v = f.positive(key, dy, std::nullopt, true);
+    c.kinetic = {v.value_or(0.0) * factor};
+    c.speeds.clear();
+    return;
+  }
+  std::vector<double> xs, ys;
+  if (read_pairs(*n, f.what(), key, dspeed, dy, 0.0, xs, ys, f.diagnostics())) {
+    for (size_t i = 0; i < ys.size(); ++i)
+      if (ys[i] < 0) f.error_at(key, fmt::format("field '{}': levels must not be negative", key));
+    for (auto& y : ys) y *= factor;
+    c.speeds = xs;
+    c.kinetic = ys;
+  }
+}
+
+int resolve_body(FieldReader& f, const SpecNode& item, const Model& m, bool allow_ground) {
+  int i = m.body_index(item.scalar);
+  if (i == -2 || (i == kGround && !allow_ground)) {
+    f.diagnostics().error(item.loc, fmt::format("{}: unknown body '{}'", f.what(), item.scalar));
+    return -2;
+  }
+  return i;
+}
+
+}  // namespace
+
+void compile_link_gap(FieldReader& f, Link& l, const Dim& qd) {
+  if (!f.map().is_map() || !f.map().find("gap")) {
+    if (f.map().is_map() && f.map().find("gap_start")) f.error_at("gap_start", "field 'gap_start' needs a 'gap'");
+    f.node("gap_start");
+    f.node("gap");
+    return;
+  }
+  auto gap = f.positive("gap", qd, std::nullopt, true);
+  auto start = f.quantity("gap_start", qd, 0.0);
+  if (l.kind == LinkKind::damper) f.error_at("gap", "a damper cannot have a gap; use type spring-damper");
+  if (!gap) return;
+  l.has_gap = true;
+  l.gap = *gap;
+  l.gap_start = start.value_or(0.0);
+  if (start && (*start < 0.0 || *start > *gap))
+    f.error_at("gap_start", fmt::format("field 'gap_start' must lie in [0, gap] = [0, {}], got {}", *gap, *start));
+}
+
+void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m, Diagnostics& diag) {
+  if (contacts && !contacts->is_map()) diag.error(contacts->loc, "'contacts' must be a map of NAME: {fields}");
+  if (brakes && !brakes->is_map()) diag.error(brakes->loc, "'brakes' must be a map of NAME: {fields}");
+  if (contacts && contacts->is_map()) {
+    for (const auto& [name, spec] : contacts->fields) {
+      FieldReader f(spec, fmt::format("contact '{}'", name), diag);
+      FrictionContact c;
+      c.name = name;
+      const SpecNode* between = f.node("between");
+      bool ends_ok = false;
+      if (!between) {
+        diag.error(spec.loc, fmt::format("contact '{}': missing field 'between' (a body and a body or 'ground')", name));
+      } else if (!between->is_seq() || between->items.size() != 2 || !between->items[0].is_scalar() ||
+                 !between->items[1].is_scalar()) {
+        diag.error(between->loc, fmt::format("contact '{}': 'between' expected two names, e.g. [mk, m2]", name));
+      } else {
+        const int a = resolve_body(f, between->items[0], m, true), b = resolve_body(f, between->items[1], m, true);
+        ends_ok = a != -2 && b != -2;
+        if (ends_ok && a == kGround && b == kGround) {
+          diag.error(between->loc, fmt::format("contact '{}': needs at least one body", name));
+          ends_ok = false;
+        } else if (ends_ok && a == b) {
+          diag.error(between->loc, fmt::format("contact '{}': joins '{}' to itself", name, between->items[0].scalar));
+          ends_ok = false;
+        } else if (ends_ok && a != kGround && b != kGround &&
+                   m.bodies[static_cast<size_t>(a)].kind != m.bodies[static_cast<size_t>(b)].kind) {
+          diag.error(between->loc, fmt::format("contact '{}': joins a rotational and a translational body", name));
+          ends_ok = false;
+        }
+        if (ends_ok) {
+          // Keep the ground on side b: u = v_a − w.
+          c.a = a == kGround ? b : a;
+          c.b = a == kGround ? kGround : b;
+          if (a == kGround) diag.error(between->items[0].loc,
+                                       fmt::format("contact '{}': write the body first: [{}, ground]", name,
+                                                   between->items[1].scalar));
+        }
+      }
+      if (!ends_ok) {
+        for (const auto& [k, v] : spec.fields) f.node(k);
+        continue;
+      }
+      const BodyKind kind = m.bodies[static_cast<size_t>(c.a)].kind;
+      const Dim ld = load_dim(kind), vd = velocity_dim(kind);
+      const bool by_mu = spec.find("normal_force") != nullptr;
+      if (by_mu) {
+        auto N = f.positive("normal_force", dim::force);
+        double radius = 1.0;
+        if (kind == BodyKind::rotational) radius = f.positive("radius", dim::length).value_or(1.0);
+        else if (spec.find("radius")) f.error_at("radius", "a translational contact has no radius");
+        const double scale = N.value_or(1.0) * radius;
+        c.static_limit = f.positive("mu_s", dim::none).value_or(1.0) * scale;
+        if (!spec.find("mu_k")) diag.error(spec.loc, fmt::format("contact '{}': missing field 'mu_k'", name));
+        read_level(f, "mu_k", dim::none, vd, c, scale);
+        for (const char* k : {"static", "kinetic"})
+          if (spec.find(k)) f.error_at(k, fmt::format("give either 'normal_force' with mu_s, mu_k or '{}', not both", k));
+      } else {
+        c.static_limit = f.positive("static", ld).value_or(1.0);
+        if (!spec.find("kinetic")) diag.error(spec.loc, fmt::format("contact '{}': missing field 'kinetic'", name));
+        read_level(f, "kinetic", ld, vd, c, 1.0);
+        for (const char* k : {"mu_s", "mu_k", "radius"}) {
+          if (spec.find(k)) f.error_at(k, fmt::format("field '{}' needs 'normal_force'", k));
+          f.node(k);
+        }
+      }
+      if (const SpecNode* w = f.node("surface_velocity")) {
+        if (c.b != kGround) {
+          f.error_at("surface_velocity", "only a contact with the ground has a surface velocity");
+        } else if (w->is_scalar()) {
+          c.surface_velocities = {f.quantity("surface_velocity", vd).value_or(0.0)};
+        } else {
+          read_pairs(*w, f.what(), "surface_velocity", dim::time, vd, -1e300, c.surface_times, c.surface_velocities, diag);
+        }
+      }
+      if (!c.kinetic.empty() && c.kinetic_level(0.0) > c.static_limit)
+        f.error_at(by_mu ? "mu_k" : "kinetic",
+                   fmt::format("the kinetic level at zero sliding speed ({}) exceeds the static limit ({})",
+                               c.kinetic_level(0.0), c.static_limit));
+      if (c.kinetic.empty()) c.kinetic = {0.0};
+      f.finish();
+      m.contacts.push_back(c);
+    }
+  }
+  if (brakes && brakes->is_map()) {
+    for (const auto& [name, spec] : brakes->fields) {
+      FieldReader f(spec, fmt::format("brake '{}'", name), diag);
+      FrictionContact c;
+      c.name = name;
+      c.brake = true;
+      auto body = f.text("body");
+      int i = -2;
+      if (body) {
+        i = m.body_index(*body);
+        if (i < 0) f.error_at("body", fmt::format("unknown body '{}'", *body));
+      }
+      if (i < 0) {
+        for (const auto& [k, v] : spec.fields) f.node(k);
+        continue;
+      }
+      c.a = i;
+      c.b = kGround;
+      const Dim ld = load_dim(m.bodies[static_cast<size_t>(i)].kind);
+      c.static_limit = f.positive("holding", ld).value_or(1.0);
+      c.kinetic = {f.positive("braking", ld, c.static_limit).value_or(c.static_limit)};
+      if (c.kinetic[0] > c.static_limit)
+        f.error_at("braking", fmt::format("the braking level ({}) exceeds the holding level ({})", c.kinetic[0],
+                                          c.static_limit));
+      c.t_apply = f.positive("time", dim::time, 0.0, true).value_or(0.0);
+      c.t_ramp = f.positive("ramp", dim::time, 0.0, true).value_or(0.0);
+      f.finish();
+      m.contacts.push_back(c);
+    }
+  }
+  for (size_t k = 0; k < m.contacts.size(); ++k)
+    for (size_t j = 0; j < m.links.size(); ++j)
+      if (m.contacts[k].name == m.links[j].name)
+        diag.error(Location{m.source, 0, 0}, fmt::format("contact or brake '{}' has the name of a link", m.contacts[k].name));
+}
+
+}  // namespace machdyn::detail

@@ -1,0 +1,15 @@
+#pragma once
+// Compiler parts for the hybrid elements (issue 3): link gaps, friction contacts, brakes.
+// Called from compile.cpp; the checks and messages follow its conventions.
+#include "machdyn/common/spec.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn::detail {
+
+/// Reads the optional `gap` and `gap_start` fields of a link (qd: the dimension of b's position).
+void compile_link_gap(FieldReader& f, Link& l, const Dim& qd);
+
+/// Reads the `contacts:` and `brakes:` sections (either may be null) into m.contacts.
+void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m, Diagnostics& diag);
+
+}  // namespace machdyn::detail
