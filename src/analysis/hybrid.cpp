@@ -53,6 +53,7 @@ class HybridRun {
     open_phase_.assign(static_cast<size_t>(nc_), -1);
     switches_.resize(static_cast<size_t>(nl_ + nc_));
     peak_.resize(static_cast<size_t>(nl_));
+    rate_end_.assign(static_cast<size_t>(nl_), 0.0);
     setup_columns();
   }
 
@@ -110,6 +111,7 @@ class HybridRun {
           std::copy(st.y(), st.y() + N_, y_.begin());
           time_event(t1);
           st.reset(t1, y_.data());
+          seg_end_ = -1.0;  // loads may jump at a breakpoint: no reuse across a restart
           sys_.event_functions(t1, y_.data(), g_prev_.data());
         }
         continue;
@@ -126,6 +128,7 @@ class HybridRun {
       if (std::find(fired.begin(), fired.end(), first) == fired.end()) fired.push_back(first);
       handle_event(te, fired);
       st.reset(te, y_.data());
+      seg_end_ = -1.0;
       sys_.event_functions(te, y_.data(), g_prev_.data());
       t = te;
     }
@@ -201,15 +204,25 @@ class HybridRun {
       }
     }
     if (nl_ == 0) return;
-    st.interpolate(ta, ya_.data());
-    st.derivative(ta, da_.data());
-    if (tb == st.t()) std::copy(st.y(), st.y() + N_, yb_.begin());
-    else st.interpolate(tb, yb_.data());
-    st.derivative(tb, db_.data());
+    // The start of a step that continues the last one was already seen: reuse its state and rate.
+    const bool continued = ta == seg_end_;
+    if (!continued) {
+      st.interpolate(ta, ya_.data());
+      st.derivative(ta, da_.data());
+    }
+    const double* yb = st.y();
+    const double* db = st.dydt();
+    if (tb != st.t()) {
+      st.interpolate(tb, yb_.data());
+      st.derivative(tb, db_.data());
+      yb = yb_.data(), db = db_.data();
+    }
     for (int l = 0; l < nl_; ++l) {
-      consider(l, ta, sys_.link_load(l, ya_.data()), ya_.data());
-      consider(l, tb, sys_.link_load(l, yb_.data()), yb_.data());
-      double r0 = sys_.link_load_rate(l, da_.data()), r1 = sys_.link_load_rate(l, db_.data());
+      if (!continued) consider(l, ta, sys_.link_load(l, ya_.data()), ya_.data());
+      consider(l, tb, sys_.link_load(l, yb), yb);
+      double r0 = continued ? rate_end_[static_cast<size_t>(l)] : sys_.link_load_rate(l, da_.data());
+      double r1 = sys_.link_load_rate(l, db);
+      rate_end_[static_cast<size_t>(l)] = r1;
       if (!((r0 > 0 && r1 < 0) || (r0 < 0 && r1 > 0))) continue;
       // Illinois on the load rate for the interior extremum.
       double a = ta, b = tb;
@@ -237,6 +250,8 @@ class HybridRun {
       st.interpolate(te, ytmp_.data());
       consider(l, te, sys_.link_load(l, ytmp_.data()), ytmp_.data());
     }
+    // Only a segment that ends a whole step can be continued by the next step.
+    seg_end_ = tb == st.t() ? tb : -1.0;
   }
 
   struct Peak {
@@ -525,6 +540,8 @@ class HybridRun {
   HybridSystem sys_;
   int n_, N_, nl_, nc_;
   std::vector<double> y_, ytmp_, dtmp_, ya_, yb_, da_, db_, g_prev_, g_new_, g_tmp_, acc_, fc_;
+  double seg_end_ = -1.0;          // end of the last segment if the next step continues it, else −1
+  std::vector<double> rate_end_;   // link-load rates there
   std::vector<int> open_phase_;
   std::vector<std::vector<double>> switches_;
   std::vector<Peak> peak_;

@@ -5,6 +5,17 @@
 #include <fmt/format.h>
 
 namespace machdyn {
+namespace {
+// y = A x for the few stuck contacts (1–3): a plain loop beats Eigen's dynamic GEMV set-up here.
+void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const Eigen::Index n = A.rows(), m = A.cols();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (Eigen::Index j = 0; j < m; ++j) s += A(i, j) * x(j);
+    y(i) = s;
+  }
+}
+}  // namespace
 
 const char* to_string(ContactMode m) {
   switch (m) {
@@ -30,6 +41,19 @@ HybridSystem::HybridSystem(const Model& model)
   for (const auto& b : model.bodies) inv_mass_.push_back(1.0 / b.inertia);
   for (const auto& l : model.links)
     links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, -l.gap_start, l.gap - l.gap_start});
+  for (const auto& c : model.contacts) {
+    FlatContact k{c.a, c.b, c.kinetic.size() > 1, c.surface_times.size() > 1, c.brake,
+                  c.kinetic.empty() ? 0.0 : c.kinetic.front(),
+                  c.surface_velocities.empty() ? 0.0 : c.surface_velocities.front()};
+    contacts_.push_back(k);
+    const double ma = model.bodies[static_cast<size_t>(c.a)].inertia;
+    stuck_share_.push_back(c.b >= 0 ? ma / (ma + model.bodies[static_cast<size_t>(c.b)].inertia) : 1.0);
+  }
+  f_const_.assign(static_cast<size_t>(n_), 0.0);
+  for (const auto& ld : model.loads) {
+    if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
+    else varying_.push_back(&ld);
+  }
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
   f_.assign(static_cast<size_t>(n_), 0.0);
   fc_.assign(static_cast<size_t>(nc_), 0.0);
@@ -96,6 +120,16 @@ void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   r_.resize(ns);
   lam_.resize(ns);
   if (ns == 0) return;
+  uint64_t key = 0;
+  const bool cacheable = nc_ <= 64;
+  if (cacheable) {
+    for (int k : stuck_) key |= uint64_t{1} << k;
+    if (auto it = projector_cache_.find(key); it != projector_cache_.end()) {
+      P_ = it->second.P;
+      Pproj_ = it->second.Pproj;
+      return;
+    }
+  }
   // A = G M⁻¹ Gᵀ; row j of G has +1 at body a and −1 at body b of stuck contact j.
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(ns, ns);
   Eigen::VectorXd w(ns);
@@ -118,17 +152,23 @@ void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   P_ = w.asDiagonal() * cod.pseudoInverse();
   cod.compute(A);
   Pproj_ = cod.pseudoInverse();
+  if (cacheable) projector_cache_[key] = {P_, Pproj_};
 }
 
-void HybridSystem::forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric,
+// Few bodies: the vectorizer's prologues cost more than they save (as in ChainSystem::rhs).
+__attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double t, const double* y, double* f,
+                                                                         double* fc, double* p_src, double* p_fric,
                           double* p_damp) {
   const double* v = y + n_;
-  for (int i = 0; i < n_; ++i) f[i] = 0.0;
   double src = 0, fric = 0, damp = 0;
-  for (const auto& ld : m_.loads) {
-    const double val = ld.evaluate(t, v[ld.body]);
-    f[ld.body] += val;
-    src += val * v[ld.body];
+  for (int i = 0; i < n_; ++i) {
+    f[i] = f_const_[static_cast<size_t>(i)];
+    src += f[i] * v[i];
+  }
+  for (const Load* ld : varying_) {
+    const double val = ld->evaluate(t, v[ld->body]);
+    f[ld->body] += val;
+    src += val * v[ld->body];
   }
   for (size_t l = 0; l < links_.size(); ++l) {
     const FlatLink& k = links_[l];
@@ -150,10 +190,12 @@ void HybridSystem::forces(double t, const double* y, double* f, double* fc, doub
   for (int k = 0; k < nc_; ++k) {
     const ContactMode md = mode_[static_cast<size_t>(k)];
     if (md == ContactMode::stuck) continue;
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
-    const double w = c.b >= 0 ? v[c.b] : c.surface_velocity(t);
+    const FlatContact& c = contacts_[static_cast<size_t>(k)];
+    const FrictionContact& full = m_.contacts[static_cast<size_t>(k)];
+    const double w = c.b >= 0 ? v[c.b] : c.moving_surface ? full.surface_velocity(t) : c.surface0;
     const double u = v[c.a] - w;
-    const double F = static_cast<double>(static_cast<int>(md)) * c.scale(t) * c.kinetic_level(std::abs(u));
+    const double level = c.kinetic_table ? full.kinetic_level(std::abs(u)) : c.kinetic0;
+    const double F = static_cast<double>(static_cast<int>(md)) * (c.brake ? full.scale(t) : 1.0) * level;
     fc[k] = F;
     f[c.a] -= F;
     if (c.b >= 0) f[c.b] += F;
@@ -172,7 +214,7 @@ void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) 
     const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
     r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
   }
-  lam_.noalias() = P_ * r_;
+  mat_vec(P_, r_, lam_);
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));
@@ -187,12 +229,12 @@ void HybridSystem::enforce_stuck(double t, double* acc) const {
   // Remove the rounding of λ: stuck bodies get exactly equal accelerations (the momentum-weighted
   // mean; the ground's is the surface acceleration), so u stays exactly zero along a stuck mode.
   for (int k : stuck_) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    const FlatContact& c = contacts_[static_cast<size_t>(k)];
     if (c.b < 0) {
-      acc[c.a] = c.surface_acceleration(t);
+      acc[c.a] = c.moving_surface ? m_.contacts[static_cast<size_t>(k)].surface_acceleration(t) : 0.0;
     } else {
-      const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
-      acc[c.a] = acc[c.b] = (ma * acc[c.a] + mb * acc[c.b]) / (ma + mb);
+      const double s = stuck_share_[static_cast<size_t>(k)];
+      acc[c.a] = acc[c.b] = s * acc[c.a] + (1.0 - s) * acc[c.b];
     }
   }
 }
@@ -209,7 +251,7 @@ void HybridSystem::rhs(double t, const double* y, double* dydt) {
       const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
       r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
     }
-    lam_.noalias() = P_ * r_;
+    mat_vec(P_, r_, lam_);
     for (size_t j = 0; j < stuck_.size(); ++j) {
       const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
       const double lam = lam_(static_cast<Eigen::Index>(j));

@@ -23,6 +23,8 @@
 /// tried (fewest sliding first). Deterministic; no smoothing, no velocity threshold.
 
 #include <string>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -99,6 +101,13 @@ class HybridSystem final : public OdeSystem {
     bool gap;
     double lo, hi;  // flanks δ₋, δ₊
   };
+  // What the hot path needs of a contact, decided once: most contacts have a constant kinetic
+  // level, no surface motion and no brake ramp.
+  struct FlatContact {
+    int a, b;
+    bool kinetic_table, moving_surface, brake;
+    double kinetic0, surface0;  // the constant kinetic level and ground velocity when not tabulated
+  };
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
   void enforce_stuck(double t, double* acc) const;
 
@@ -106,9 +115,19 @@ class HybridSystem final : public OdeSystem {
   int n_, nl_, nc_;
   std::vector<double> inv_mass_;
   std::vector<FlatLink> links_;
+  std::vector<FlatContact> contacts_;
+  std::vector<double> f_const_;        // sum of the constant loads per body
+  std::vector<const Load*> varying_;   // loads that depend on t or v
+  std::vector<double> stuck_share_;    // m_a/(m_a + m_b) per contact, for enforce_stuck
   std::vector<GapMode> gap_;
   std::vector<ContactMode> mode_;
   std::vector<int> stuck_;    // indices of stuck contacts
+  // Pseudo-inverses per set of stuck contacts (bit k = contact k stuck), computed once: the same
+  // few mode combinations recur at every stick–slip cycle.
+  struct Projectors {
+    Eigen::MatrixXd P, Pproj;
+  };
+  std::unordered_map<uint64_t, Projectors> projector_cache_;
   Eigen::MatrixXd P_;         // λ = P_ r (weighted least norm)
   Eigen::MatrixXd Pproj_;     // plain pseudo-inverse of G M⁻¹ Gᵀ (velocity projection)
   std::vector<double> f_, fc_;
