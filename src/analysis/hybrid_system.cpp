@@ -54,6 +54,9 @@ HybridSystem::HybridSystem(const Model& model)
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
     else varying_.push_back(&ld);
   }
+  affine_eligible_ = varying_.empty();
+  for (const auto& l : model.links) affine_eligible_ = affine_eligible_ && l.d == 0.0;
+  for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.brake;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
   f_.assign(static_cast<size_t>(n_), 0.0);
   fc_.assign(static_cast<size_t>(nc_), 0.0);
@@ -113,6 +116,7 @@ GapMode HybridSystem::natural_gap_mode(int l, const double* y) const {
 
 void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   mode_ = modes;
+  affine_ = nullptr;
   stuck_.clear();
   for (int k = 0; k < nc_; ++k)
     if (mode_[static_cast<size_t>(k)] == ContactMode::stuck) stuck_.push_back(k);
@@ -239,7 +243,50 @@ void HybridSystem::enforce_stuck(double t, double* acc) const {
   }
 }
 
+const HybridSystem::AffineMode& HybridSystem::compile_affine() {
+  std::string key;
+  for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
+  key += '/';
+  for (auto md : mode_) key += static_cast<char>('0' + static_cast<int>(md));
+  if (auto it = affine_cache_.find(key); it != affine_cache_.end()) return it->second;
+  const int N = size();
+  AffineMode a;
+  a.c.resize(N);
+  Eigen::MatrixXd J(N, N);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(N), d(N);
+  rhs_general(0.0, y.data(), a.c.data());
+  for (int j = 0; j < N; ++j) {
+    y(j) = 1.0;
+    rhs_general(0.0, y.data(), d.data());
+    J.col(j) = d - a.c;
+    y(j) = 0.0;
+  }
+  for (int i = 0; i < N; ++i) {
+    a.row_start.push_back(static_cast<int>(a.col.size()));
+    for (int j = 0; j < N; ++j)
+      if (J(i, j) != 0.0) a.col.push_back(j), a.val.push_back(J(i, j));
+  }
+  a.row_start.push_back(static_cast<int>(a.col.size()));
+  return affine_cache_.emplace(std::move(key), std::move(a)).first->second;
+}
+
 void HybridSystem::rhs(double t, const double* y, double* dydt) {
+  if (!affine_eligible_) return rhs_general(t, y, dydt);
+  if (!affine_) affine_ = &compile_affine();
+  const int N = size();
+  const AffineMode& a = *affine_;
+  const int* rs = a.row_start.data();
+  const int* col = a.col.data();
+  const double* val = a.val.data();
+  const double* c = a.c.data();
+  for (int i = 0; i < N; ++i) {
+    double s = c[i];
+    for (int k = rs[i]; k < rs[i + 1]; ++k) s += val[k] * y[col[k]];
+    dydt[i] = s;
+  }
+}
+
+void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
   const double* v = y + n_;
   double* acc = dydt + n_;
   for (int i = 0; i < n_; ++i) dydt[i] = v[i];

@@ -59,7 +59,10 @@ class HybridSystem final : public OdeSystem {
   // Modes.
   [[nodiscard]] GapMode gap_mode(int l) const { return gap_[static_cast<size_t>(l)]; }
   [[nodiscard]] ContactMode contact_mode(int k) const { return mode_[static_cast<size_t>(k)]; }
-  void set_gap_mode(int l, GapMode g) { gap_[static_cast<size_t>(l)] = g; }
+  void set_gap_mode(int l, GapMode g) {
+    gap_[static_cast<size_t>(l)] = g;
+    affine_ = nullptr;
+  }
   /// Sets all contact modes and forms the constraint solution of the stuck set.
   void set_contact_modes(const std::vector<ContactMode>& modes);
   [[nodiscard]] const std::vector<ContactMode>& contact_modes() const { return mode_; }
@@ -109,6 +112,21 @@ class HybridSystem final : public OdeSystem {
     double kinetic0, surface0;  // the constant kinetic level and ground velocity when not tabulated
   };
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
+  void rhs_general(double t, const double* y, double* dydt);
+
+  // Within one mode, with constant loads and friction levels, no brake ramp, no moving surface and no
+  // dampers, the whole right-hand side (work and losses included) is affine in y: dy = J y + c. Each
+  // mode is compiled once, by probing rhs_general at 0 and at the unit vectors (exact for an affine
+  // map up to rounding), and cached by its modes.
+  struct AffineMode {
+    Eigen::VectorXd c;
+    std::vector<int> row_start, col;  // J in compressed rows: a handful of nonzeros per row
+    std::vector<double> val;
+  };
+  bool affine_eligible_ = false;
+  const AffineMode* affine_ = nullptr;  // the current mode's, or null until compiled
+  std::unordered_map<std::string, AffineMode> affine_cache_;
+  const AffineMode& compile_affine();
   void enforce_stuck(double t, double* acc) const;
 
   const Model& m_;
