@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/analysis/chain_system.hpp"
+#include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 
@@ -126,6 +127,7 @@ SimulationResult simulate(const Model& m) {
                                                                : std::numeric_limits<double>::quiet_NaN();
     out.links.push_back(s);
   }
+  append_machine_outputs(m, sys, out);  // variable-inertia series (analysis/machine_outputs.hpp)
   return out;
 }
 

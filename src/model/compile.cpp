@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/io/yaml_reader.hpp"
+#include "model/compile_machine.hpp"
 
 namespace machdyn {
 namespace {
@@ -20,6 +21,10 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
     return;
   }
   for (const auto& [name, spec] : section->fields) {
+    if (is_machine_type(spec)) {  // variable inertia: model/compile_machine.cpp
+      m.bodies.push_back(compile_machine_body(name, spec, diag));
+      continue;
+    }
     FieldReader f(spec, fmt::format("body '{}'", name), diag);
     if (name == "ground") diag.error(spec.loc, "'ground' is reserved for the fixed frame; name the body otherwise");
     Body b;
@@ -57,14 +62,18 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     } else {
       ends_ok = true;
       int idx[2];
+      bool point[2];
       for (int k = 0; k < 2; ++k) {
         const auto& item = between->items[static_cast<size_t>(k)];
-        idx[k] = m.body_index(item.scalar);
+        std::string why;
+        idx[k] = resolve_link_end(m, item.scalar, &point[k], &why);  // "BODY" or "BODY.piston"
         if (idx[k] == -2) {
-          diag.error(item.loc, fmt::format("link '{}': unknown body '{}'", name, item.scalar));
+          diag.error(item.loc, fmt::format("link '{}': {}", name, why));
           ends_ok = false;
         }
       }
+      l.a_point = point[0];
+      l.b_point = point[1];
       l.a = idx[0];
       l.b = idx[1];
       if (ends_ok && l.a == l.b) {
@@ -77,6 +86,8 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     if (ends_ok) {
       ka = l.a != kGround ? m.bodies[static_cast<size_t>(l.a)].kind : (l.b != kGround ? m.bodies[static_cast<size_t>(l.b)].kind : ka);
       kb = l.b != kGround ? m.bodies[static_cast<size_t>(l.b)].kind : ka;
+      if (l.a_point) ka = BodyKind::translational;  // a machine's output point moves in m
+      if (l.b_point || (l.b == kGround && l.a_point)) kb = BodyKind::translational;
     }
     BodyKind side = kb;
     if (ends_ok && (l.a == kGround || l.b == kGround)) {
