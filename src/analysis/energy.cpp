@@ -40,6 +40,13 @@ void gk15(const std::function<double(double)>& f, double a, double b, double* k,
   *err = std::abs((rk - rg) * h);
 }
 
+double integrate_abs15(const std::function<double(double)>& f, double a, double b) {
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  double r = std::abs(f(c)) * kWgk[7];
+  for (int j = 0; j < 7; ++j) r += kWgk[j] * (std::abs(f(c - h * kXgk[j])) + std::abs(f(c + h * kXgk[j])));
+  return r * h;
+}
+
 /// Globally adaptive: bisect the panel with the largest error estimate until the total error is
 /// within tolerance, the panels reach round-off, or 4000 panels (QUADPACK's QAG strategy).
 double adapt(const std::function<double(double)>& f, double a, double b, double rel, double abs_tol) {
@@ -52,8 +59,11 @@ double adapt(const std::function<double(double)>& f, double a, double b, double 
   gk15(f, a, b, &p.k, &p.err);
   heap.push_back(p);
   double total = p.k, err = p.err;
-  for (int it = 0; it < 4000; ++it) {
-    if (err <= std::max(abs_tol, rel * std::abs(total))) break;
+  // Scale of the integrand: ∫|f| by the 15-point rule, so a nearly cancelling integral (a balanced
+  // cycle) is judged against the size of its parts, not against its small sum.
+  const double scale = std::abs(integrate_abs15(f, a, b));
+  for (int it = 0; it < 20000; ++it) {
+    if (err <= std::max(abs_tol, rel * std::max(std::abs(total), scale))) break;
     std::pop_heap(heap.begin(), heap.end());
     const Panel w = heap.back();
     const double c = 0.5 * (w.a + w.b);
@@ -128,7 +138,16 @@ double EnergyIntegral::work_s(double s_a, double s_b) const {
     if (mach) (void)mach->q_of_s(s, &dq);
     return force_s(s) * dq;
   };
-  return integrate_gk15(integrand, s_a, s_b);
+  // Split at the kinks of piecewise-linear force tables (s = q for such machines), so that every
+  // panel is smooth and Gauss–Kronrod converges fast.
+  std::vector<double> cuts = mach && mach->s_name() == "q" ? mach->kinks(s_a, s_b) : std::vector<double>{};
+  if (s_b < s_a) std::reverse(cuts.begin(), cuts.end());
+  double sum = 0, from = s_a;
+  for (double c : cuts) {
+    sum += integrate_gk15(integrand, from, c);
+    from = c;
+  }
+  return sum + integrate_gk15(integrand, from, s_b);
 }
 
 double EnergyIntegral::work(double q) const { return work_s(s0_, s_of_q(q)); }
@@ -372,6 +391,7 @@ SteadyResult steady_running(const Model& m, double omega_mean, double delta_targ
 
   const int n = 720;
   std::vector<double> s(n + 1), A(n + 1);
+  double w_start = omega_mean;
   auto analyse = [&](double J, double* wmax, double* wmin) {
     const EnergyIntegral E(m, J, r.balancing_torque);
     if (J == 0.0) {
@@ -391,6 +411,7 @@ SteadyResult steady_running(const Model& m, double omega_mean, double delta_targ
     }
     *wmax = x.wmax;
     *wmin = x.wmin;
+    w_start = w_s;
     return (x.wmax - x.wmin) / omega_mean;
   };
   r.delta = analyse(0.0, &r.omega_max, &r.omega_min);
@@ -404,6 +425,7 @@ SteadyResult steady_running(const Model& m, double omega_mean, double delta_targ
     r.delta_with_flywheel = r.delta;
     r.omega_max_fw = r.omega_max;
     r.omega_min_fw = r.omega_min;
+    r.omega_start_fw = w_start;
     return r;
   }
   // 1/δ grows nearly linearly with the total inertia: secant iteration on g(J) = 1/δ(J) − 1/δ_target.
@@ -420,6 +442,7 @@ SteadyResult steady_running(const Model& m, double omega_mean, double delta_targ
   }
   r.flywheel_inertia = J1;
   r.delta_with_flywheel = analyse(J1, &r.omega_max_fw, &r.omega_min_fw);
+  r.omega_start_fw = w_start;
   return r;
 }
 

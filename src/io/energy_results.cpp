@@ -81,7 +81,8 @@ nlohmann::json steady_json(const SteadyResult& s) {
           {"flywheel_estimate", s.flywheel_estimate},
           {"delta_with_flywheel", s.delta_with_flywheel},
           {"omega_max_with_flywheel", s.omega_max_fw},
-          {"omega_min_with_flywheel", s.omega_min_fw}};
+          {"omega_min_with_flywheel", s.omega_min_fw},
+          {"omega_start_with_flywheel", s.omega_start_fw}};
 }
 
 }  // namespace machdyn

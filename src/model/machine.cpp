@@ -219,6 +219,43 @@ double CrankSlider::force(double q) const {
   return piston_force(q) * ds;
 }
 
+std::vector<double> CrankSlider::kinks(double q_a, double q_b) const {
+  std::vector<double> out;
+  if (against_ == ForceAgainst::none || force_.x.empty()) return out;
+  const double lo = std::min(q_a, q_b), hi = std::max(q_a, q_b);
+  // Angles of the table's points within one period, then repeated over [lo, hi].
+  std::vector<double> base;
+  if (against_ == ForceAgainst::angle) {
+    base = force_.x;
+    base.push_back(force_.x.front() + force_.period);
+  } else {
+    // s(φ) rises monotonically on [0, π] and s(−φ) = s(φ): each table position s_j in (0, 2r) is
+    // reached at ±φ_j, found by bisection.
+    for (double sj : force_.x) {
+      double a = 0, b = std::numbers::pi, p, dp, ddp;
+      point(b, &p, &dp, &ddp);
+      if (!(sj > 0 && sj < p)) continue;
+      for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
+        const double c = 0.5 * (a + b);
+        point(c, &p, &dp, &ddp);
+        (p < sj ? a : b) = c;
+      }
+      base.push_back(0.5 * (a + b));
+      base.push_back(2 * std::numbers::pi - 0.5 * (a + b));
+    }
+  }
+  const double P = period();
+  for (double x0 : base) {
+    const double k0 = std::floor((lo - x0) / P);
+    for (double k = k0; x0 + k * P < hi; k += 1.0) {
+      const double x = x0 + k * P;
+      if (x > lo && x < hi) out.push_back(x);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 double CrankSlider::period() const {
   return against_ == ForceAgainst::angle && force_.period > 0 ? force_.period : 2.0 * std::numbers::pi;
 }

@@ -89,6 +89,7 @@ struct SteadyResult {
   double delta = 0, omega_max = 0, omega_min = 0;           ///< without flywheel
   double delta_target = 0, flywheel_inertia = 0;            ///< kg·m²
   double delta_with_flywheel = 0, omega_max_fw = 0, omega_min_fw = 0;
+  double omega_start_fw = 0;  ///< speed at q0 on the periodic solution with the flywheel
   double mean_inertia = 0;                                  ///< mean of I(q) over the period
   double flywheel_estimate = 0;  ///< classic estimate ΔA_max/(δ ω_m²) − mean I (constant-inertia theory)
 };

@@ -47,6 +47,9 @@ class Machine {
   /// Extra output series of the state (the wheel's thread angle β): names (with unit suffix) and values.
   [[nodiscard]] virtual std::vector<std::string> extra_names() const { return {}; }
   virtual void extras(double /*q*/, double* /*out*/) const {}
+  /// Positions in (q_a, q_b) where Q(q) has a kink (points of a piecewise-linear force table), so
+  /// that quadrature can split there. Empty by default.
+  [[nodiscard]] virtual std::vector<double> kinks(double /*q_a*/, double /*q_b*/) const { return {}; }
   /// Period of I and Q in q (2π for a crank), 0 if not periodic.
   [[nodiscard]] virtual double period() const { return 0.0; }
 
@@ -128,6 +131,7 @@ class CrankSlider final : public Machine {
   [[nodiscard]] std::string point_name() const override { return "piston"; }
   void point(double q, double* p, double* dp, double* ddp) const override;
   [[nodiscard]] double period() const override;
+  [[nodiscard]] std::vector<double> kinks(double q_a, double q_b) const override;
   [[nodiscard]] const Params& params() const { return p_; }
   /// The piston force F (N) at crank angle φ.
   [[nodiscard]] double piston_force(double phi) const;
