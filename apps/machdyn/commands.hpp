@@ -25,6 +25,7 @@ void write_file_atomic(const std::string& path, const std::string& content);
 void register_simulate(CLI::App& app, int& exit_code);
 void register_modes(CLI::App& app, int& exit_code);
 void register_examples(CLI::App& app, int& exit_code);
+void register_energy(CLI::App& app, int& exit_code);
 void register_gears(CLI::App& app, int& exit_code);
 
 }  // namespace machdyn::cli

@@ -1,8 +1,10 @@
 #include "machdyn/analysis/chain_system.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/modes.hpp"
+#include "machdyn/model/machine.hpp"
 
 namespace machdyn {
 namespace {
@@ -24,15 +26,25 @@ constexpr DenseFn kDense[] = {dense_rhs<1>, dense_rhs<2>, dense_rhs<3>, dense_rh
 }  // namespace
 
 ChainSystem::ChainSystem(const Model& model) : m_(model), n_(model.dof()) {
-  for (const auto& b : model.bodies) inv_mass_.push_back(1.0 / b.inertia);
+  for (const auto& b : model.bodies) {
+    inv_mass_.push_back(1.0 / b.inertia);
+    machine_.push_back(b.machine.get());
+    nonlinear_ = nonlinear_ || b.machine;
+  }
   for (const auto& l : model.links) {
-    const FlatLink k{l.a, l.b, 1.0 / l.ratio, l.c, l.d};
+    FlatLink k{l.a, l.b, 1.0 / l.ratio, l.c, l.d};
+    if (l.a_point) k.pa = machine_[static_cast<size_t>(l.a)];
+    if (l.b_point) k.pb = machine_[static_cast<size_t>(l.b)];
+    nonlinear_ = nonlinear_ || k.pa || k.pb;
     links_.push_back(k);
-    if (l.a >= 0 && l.b >= 0) between_.push_back(k);
+  }
+  if (nonlinear_) return;
+  for (const auto& k : links_) {
+    if (k.a >= 0 && k.b >= 0) between_.push_back(k);
     // A ground link's deflection is q_a/i (ground at b) or −q_b (ground at a): store the body in
     // `a` with the signed factor, so F = c (s q) + d (s v) and the body gets −s F.
-    else if (l.a >= 0) grounded_.push_back({l.a, -1, 1.0 / l.ratio, l.c, l.d});
-    else if (l.b >= 0) grounded_.push_back({l.b, -1, -1.0, l.c, l.d});
+    else if (k.a >= 0) grounded_.push_back({k.a, -1, k.inv_ratio, k.c, k.d});
+    else if (k.b >= 0) grounded_.push_back({k.b, -1, -1.0, k.c, k.d});
   }
   f_const_.assign(static_cast<size_t>(n_), 0.0);
   for (const auto& ld : model.loads) {
@@ -50,6 +62,33 @@ ChainSystem::ChainSystem(const Model& model) : m_(model), n_(model.dof()) {
   }
 }
 
+ChainSystem::LinkState ChainSystem::link_state(const FlatLink& k, const double* y) const {
+  const double* v = y + n_;
+  LinkState s{0.0, 0.0, k.inv_ratio, 1.0};
+  double p, dp, ddp;
+  if (k.a >= 0) {
+    if (k.pa) {
+      k.pa->point(y[k.a], &p, &dp, &ddp);
+      s.ja = dp * k.inv_ratio;
+      s.delta += p * k.inv_ratio;
+    } else {
+      s.delta += y[k.a] * k.inv_ratio;
+    }
+    s.rate += v[k.a] * s.ja;
+  }
+  if (k.b >= 0) {
+    if (k.pb) {
+      k.pb->point(y[k.b], &p, &dp, &ddp);
+      s.jb = dp;
+      s.delta -= p;
+    } else {
+      s.delta -= y[k.b];
+    }
+    s.rate -= v[k.b] * s.jb;
+  }
+  return s;
+}
+
 void ChainSystem::initial_state(double* y) const {
   for (int i = 0; i < n_; ++i) {
     y[i] = m_.bodies[static_cast<size_t>(i)].q0;
@@ -58,17 +97,14 @@ void ChainSystem::initial_state(double* y) const {
 }
 
 void ChainSystem::generalized_loads(double t, const double* y, double* f) const {
-  for (int i = 0; i < n_; ++i) f[i] = 0.0;
+  for (int i = 0; i < n_; ++i) f[i] = machine_[static_cast<size_t>(i)] ? machine_[static_cast<size_t>(i)]->force(y[i]) : 0.0;
   for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
 }
 
 double ChainSystem::link_load(int l, const double* y) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
-  const double* v = y + n_;
-  double delta = 0, rate = 0;
-  if (k.a >= 0) delta += y[k.a] * k.inv_ratio, rate += v[k.a] * k.inv_ratio;
-  if (k.b >= 0) delta -= y[k.b], rate -= v[k.b];
-  return k.c * delta + k.d * rate;
+  const LinkState s = link_state(k, y);
+  return k.c * s.delta + k.d * s.rate;
 }
 
 std::vector<double> ChainSystem::link_load_weights(int l) const {
@@ -87,13 +123,14 @@ std::vector<double> ChainSystem::link_load_weights(int l) const {
 
 // Small chains dominate: the vectorizer's prologues cost more than they save at n = 2…20.
 __attribute__((optimize("no-tree-vectorize"))) void ChainSystem::rhs(double t, const double* y, double* dydt) {
-  // Local, non-aliased pointers: the stores into acc must not force reloads of the model arrays.
+  if (nonlinear_) return rhs_nonlinear(t, y, dydt);
   if (dense_) {
     dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());
     for (const Load* ld : varying_)
       dydt[n_ + ld->body] += ld->evaluate(t, y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
     return;
   }
+  // Local, non-aliased pointers: the stores into acc must not force reloads of the model arrays.
   const int n = n_;
   const double* __restrict q = y;
   const double* __restrict v = y + n;
@@ -107,20 +144,62 @@ __attribute__((optimize("no-tree-vectorize"))) void ChainSystem::rhs(double t, c
   for (const Load* ld : varying_) acc[ld->body] += ld->evaluate(t, v[ld->body]);
   const FlatLink* __restrict L = between_.data();
   for (size_t j = 0, nl = between_.size(); j < nl; ++j) {
-    const FlatLink k = L[j];
+    const FlatLink& k = L[j];
     const double F = k.c * (q[k.a] * k.inv_ratio - q[k.b]) + k.d * (v[k.a] * k.inv_ratio - v[k.b]);
     acc[k.a] -= F * k.inv_ratio;
     acc[k.b] += F;
   }
   const FlatLink* __restrict G = grounded_.data();
   for (size_t j = 0, ng = grounded_.size(); j < ng; ++j) {
-    const FlatLink k = G[j];
+    const FlatLink& k = G[j];
     acc[k.a] -= (k.c * q[k.a] + k.d * v[k.a]) * k.inv_ratio * k.inv_ratio;
   }
   for (int i = 0; i < n; ++i) acc[i] *= im[i];
 }
 
+void ChainSystem::rhs_nonlinear(double t, const double* y, double* dydt) {
+  const double* v = y + n_;
+  double* acc = dydt + n_;
+  for (int i = 0; i < n_; ++i) dydt[i] = v[i];
+  generalized_loads(t, y, acc);
+  for (const auto& k : links_) {
+    const LinkState s = link_state(k, y);
+    const double F = k.c * s.delta + k.d * s.rate;
+    if (k.a >= 0) acc[k.a] -= F * s.ja;
+    if (k.b >= 0) acc[k.b] += F * s.jb;
+  }
+  for (int i = 0; i < n_; ++i) {
+    if (const Machine* mach = machine_[static_cast<size_t>(i)]) {
+      // I q'' + ½ I′ q'² = Q (model/machine.hpp).
+      double I, dI;
+      mach->inertia(y[i], &I, &dI);
+      acc[i] = (acc[i] - 0.5 * dI * v[i] * v[i]) / I;
+    } else {
+      acc[i] *= inv_mass_[static_cast<size_t>(i)];
+    }
+  }
+}
+
+void ChainSystem::numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) {
+  // Central differences, step √ε-scaled per state (fourth root of ε for the 2nd-order scheme).
+  const int n = size();
+  std::vector<double> yp(y, y + n), fp(static_cast<size_t>(n)), fm(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    const double h = 6e-6 * std::max(1.0, std::abs(y[j]));
+    yp[static_cast<size_t>(j)] = y[j] + h;
+    rhs(t, yp.data(), fp.data());
+    yp[static_cast<size_t>(j)] = y[j] - h;
+    rhs(t, yp.data(), fm.data());
+    yp[static_cast<size_t>(j)] = y[j];
+    for (int i = 0; i < n; ++i) J(i, j) = (fp[static_cast<size_t>(i)] - fm[static_cast<size_t>(i)]) / (2 * h);
+  }
+}
+
 void ChainSystem::jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) {
+  if (nonlinear_) {
+    numeric_jacobian(t, y, J);
+    return;
+  }
   J.setZero();
   for (int i = 0; i < n_; ++i) J(i, n_ + i) = 1.0;
   // ∂(M⁻¹ f)/∂v from the motors.

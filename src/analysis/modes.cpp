@@ -2,7 +2,22 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "machdyn/model/machine.hpp"
+
 namespace machdyn {
+
+namespace {
+/// dp/dq and d²p/dq² of a link end at the initial position: 1 and 0 for q itself, p′(q0) and
+/// p″(q0) for a machine's output point. The model is linearized at the initial position.
+void end_slope(const Model& m, int body, bool point, double* dp, double* ddp) {
+  *dp = 1.0;
+  *ddp = 0.0;
+  if (!point) return;
+  const Body& b = m.bodies[static_cast<size_t>(body)];
+  double p;
+  b.machine->point(b.q0, &p, dp, ddp);
+}
+}  // namespace
 
 Eigen::VectorXd mass_diagonal(const Model& m) {
   Eigen::VectorXd M(m.dof());
@@ -15,8 +30,9 @@ Eigen::MatrixXd deflection_matrix(const Model& m) {
   for (size_t l = 0; l < m.links.size(); ++l) {
     const Link& k = m.links[l];
     const auto r = static_cast<Eigen::Index>(l);
-    if (k.a >= 0) B(r, k.a) += 1.0 / k.ratio;
-    if (k.b >= 0) B(r, k.b) -= 1.0;
+    double dp, ddp;
+    if (k.a >= 0) end_slope(m, k.a, k.a_point, &dp, &ddp), B(r, k.a) += dp / k.ratio;
+    if (k.b >= 0) end_slope(m, k.b, k.b_point, &dp, &ddp), B(r, k.b) -= dp;
   }
   return B;
 }
@@ -31,7 +47,30 @@ Eigen::MatrixXd weighted_gram(const Model& m, bool stiffness) {
 }
 }  // namespace
 
-Eigen::MatrixXd stiffness_matrix(const Model& m) { return weighted_gram(m, true); }
+Eigen::MatrixXd stiffness_matrix(const Model& m) {
+  Eigen::MatrixXd K = weighted_gram(m, true);
+  // A link to a machine's output point: V = ½ c δ(q)², so ∂²V/∂q² = c ∇δ ∇δᵀ + c δ ∇²δ; the
+  // second (geometric) term is c δ0 p″(q0) on the diagonal, with δ0 the initial deflection.
+  for (const Link& k : m.links) {
+    if (!k.a_point && !k.b_point) continue;
+    double delta0 = 0.0, pa = 0.0, pb = 0.0, d1, d2a = 0.0, d2b = 0.0;
+    if (k.a >= 0) {
+      const Body& b = m.bodies[static_cast<size_t>(k.a)];
+      if (k.a_point) b.machine->point(b.q0, &pa, &d1, &d2a);
+      else pa = b.q0;
+      delta0 += pa / k.ratio;
+    }
+    if (k.b >= 0) {
+      const Body& b = m.bodies[static_cast<size_t>(k.b)];
+      if (k.b_point) b.machine->point(b.q0, &pb, &d1, &d2b);
+      else pb = b.q0;
+      delta0 -= pb;
+    }
+    if (k.a >= 0) K(k.a, k.a) += k.c * delta0 * d2a / k.ratio;
+    if (k.b >= 0) K(k.b, k.b) -= k.c * delta0 * d2b;
+  }
+  return K;
+}
 Eigen::MatrixXd damping_matrix(const Model& m) { return weighted_gram(m, false); }
 
 Modes compute_modes(const Model& m) {

@@ -10,7 +10,7 @@ PeakTracker::PeakTracker(const std::vector<std::vector<double>>& weights) {
     for (size_t i = 0; i < w.size(); ++i)
       if (w[i] != 0.0) g.idx.push_back(static_cast<int>(i)), g.w.push_back(w[i]);
     sig_.push_back(std::move(g));
-    y_.resize(w.size());
+    y_.resize(w.size());  // every weight vector has the size of the state
     dy_.resize(w.size());
   }
 }
@@ -56,6 +56,7 @@ double PeakTracker::locate_extremum(const Stepper& s, const Signal& g, double t0
 
 void PeakTracker::on_step(const Stepper& s, const NewMax& on_new_max) {
   const int n = static_cast<int>(sig_.size());
+  if (n == 0) return;  // a model without links has nothing to track
   const double t0 = s.t_prev(), t1 = s.t();
   if (!started_) {
     s.interpolate(t0, y_.data());

@@ -7,6 +7,8 @@
 #include "machdyn/analysis/chain_system.hpp"
 #include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/static_loads.hpp"
+#include "machdyn/analysis/machine_outputs.hpp"
+#include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 
 namespace machdyn {
@@ -150,6 +152,7 @@ SimulationResult simulate(const Model& m) {
                                                                : std::numeric_limits<double>::quiet_NaN();
     out.links.push_back(s);
   }
+  append_machine_outputs(m, sys, out);  // variable-inertia series (analysis/machine_outputs.hpp)
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include "machdyn/io/yaml_reader.hpp"
 #include "compile_hybrid.hpp"
+#include "model/compile_machine.hpp"
 
 namespace machdyn {
 namespace {
@@ -21,6 +22,10 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
     return;
   }
   for (const auto& [name, spec] : section->fields) {
+    if (is_machine_type(spec)) {  // variable inertia: model/compile_machine.cpp
+      m.bodies.push_back(compile_machine_body(name, spec, diag));
+      continue;
+    }
     FieldReader f(spec, fmt::format("body '{}'", name), diag);
     if (name == "ground") diag.error(spec.loc, "'ground' is reserved for the fixed frame; name the body otherwise");
     Body b;
@@ -58,14 +63,18 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     } else {
       ends_ok = true;
       int idx[2];
+      bool point[2];
       for (int k = 0; k < 2; ++k) {
         const auto& item = between->items[static_cast<size_t>(k)];
-        idx[k] = m.body_index(item.scalar);
+        std::string why;
+        idx[k] = resolve_link_end(m, item.scalar, &point[k], &why);  // "BODY" or "BODY.piston"
         if (idx[k] == -2) {
-          diag.error(item.loc, fmt::format("link '{}': unknown body '{}'", name, item.scalar));
+          diag.error(item.loc, fmt::format("link '{}': {}", name, why));
           ends_ok = false;
         }
       }
+      l.a_point = point[0];
+      l.b_point = point[1];
       l.a = idx[0];
       l.b = idx[1];
       if (ends_ok && l.a == l.b) {
@@ -78,6 +87,8 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     if (ends_ok) {
       ka = l.a != kGround ? m.bodies[static_cast<size_t>(l.a)].kind : (l.b != kGround ? m.bodies[static_cast<size_t>(l.b)].kind : ka);
       kb = l.b != kGround ? m.bodies[static_cast<size_t>(l.b)].kind : ka;
+      if (l.a_point) ka = BodyKind::translational;  // a machine's output point moves in m
+      if (l.b_point || (l.b == kGround && l.a_point)) kb = BodyKind::translational;
     }
     BodyKind side = kb;
     if (ends_ok && (l.a == kGround || l.b == kGround)) {
@@ -236,6 +247,14 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   top.finish();
+  // The event-driven solver (gaps, friction, brakes) does not know position-dependent inertia yet:
+  // say so instead of simulating the machine with a constant inertia.
+  if (diag.empty() && m.is_hybrid())
+    for (const auto& b : m.bodies)
+      if (b.machine)
+        diag.error(bodies ? bodies->loc : Location{source, 1, 1},
+                   fmt::format("body '{}' has a position-dependent inertia, which cannot be combined with gaps, "
+                               "contacts or brakes yet", b.name));
   diag.throw_if_any();
   return m;
 }

@@ -59,6 +59,7 @@ const char* load_unit(BodyKind k) { return k == BodyKind::rotational ? "N*m" : "
 
 const char* link_load_unit(const Model& m, const Link& l) {
   int side = l.b != kGround ? l.b : l.a;
+  if (l.b != kGround ? l.b_point : l.a_point) return "N";  // a machine's output point (piston) moves in m
   return load_unit(m.bodies[static_cast<size_t>(side)].kind);
 }
 

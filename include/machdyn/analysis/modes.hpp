@@ -5,6 +5,11 @@
 /// Elastic modes have ω > 0; rigid-body modes (K φ = 0: the drive turns as a whole) are counted
 /// apart. Shapes are mass-normalized, φᵀ M φ = 1, with the largest-magnitude entry positive.
 /// Dampers and loads do not enter (undamped natural frequencies).
+///
+/// Bodies with variable inertia (model/machine.hpp) are linearized at the initial position:
+/// M = diag(I(q0)), a link to a machine's output point has B entries p′(q0) and adds the geometric
+/// stiffness c δ0 p″(q0). The machines' own forces Q(q) and the velocity terms ½ I′ q'² are not
+/// included (they vanish at rest in an equilibrium).
 
 #include <Eigen/Core>
 

@@ -15,10 +15,13 @@
 /// A gear stage with ratio i = ω_a/ω_b and an elastic output shaft, or a rope drum (i in rad/m, the
 /// drum's 1/R) are links with a ratio. A link to the ground has i = 1.
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace machdyn {
+
+class Machine;  // model/machine.hpp: a body with position-dependent reduced inertia
 
 enum class BodyKind { rotational, translational };
 
@@ -28,6 +31,9 @@ struct Body {
   double inertia = 0.0;  ///< I in kg·m² (rotational) or m in kg (translational); > 0
   double q0 = 0.0;       ///< initial position, rad or m
   double v0 = 0.0;       ///< initial velocity, rad/s or m/s
+  /// Variable inertia I(q) (crank-slider, rolling wheel, table, expression; model/machine.hpp), or
+  /// null for a constant one. When set, `inertia` holds I(q0) (used where the model is linearized).
+  std::shared_ptr<const Machine> machine;
 };
 
 /// Index of the ground in Link::a / Link::b.
@@ -50,6 +56,9 @@ struct Link {
   bool has_gap = false;
   double gap = 0.0;        ///< total gap Δ, rad or m (in b's coordinate), >= 0
   double gap_start = 0.0;  ///< position inside the gap at δ = 0, from the negative flank, in [0, Δ]
+  /// The end is the machine's output point p(q) (e.g. `crank.piston`) instead of q itself:
+  /// δ = p_a(q_a)/i − p_b(q_b); the load acts on a with −F p_a′/i and on b with +F p_b′.
+  bool a_point = false, b_point = false;
 };
 
 /// Friction between body a and body b (or the ground, which may move with a prescribed surface

@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// Output series of bodies with variable inertia (model/machine.hpp), appended to a simulation's
+/// columns after the run, for each machine body NAME:
+///   NAME.inertia_kg_m2          I(q)
+///   NAME.acceleration_rad_s2    ε = q''
+///   NAME.M_PART_N_m             inertia moment of each part, M_k = −I_k ε − ½ I_k′ ω² (paper 004 eq. 5)
+///   NAME.POINT_m                the output point: piston displacement from TDC, wheel centre travel x
+///   NAME.beta_rad               the rolling wheel's thread angle β
+/// Links attached to a machine's output point are nonlinear in the state, so their extremes in
+/// the summary are taken from the output grid (not located between output points).
+
+#include "machdyn/analysis/chain_system.hpp"
+#include "machdyn/analysis/simulate.hpp"
+
+namespace machdyn {
+
+/// Whether the model has a body with variable inertia or a link to a machine's output point.
+bool has_machines(const Model& m);
+
+/// Appends the series above to `r` (which holds the standard columns) and corrects link extremes.
+void append_machine_outputs(const Model& m, ChainSystem& sys, SimulationResult& r);
+
+}  // namespace machdyn
