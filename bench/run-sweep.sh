@@ -17,7 +17,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-echo "== sweep throughput: $(basename "$model"), --vary $vary1 --vary $vary2 ($(nproc) cores)"
+echo "== sweep throughput: $(basename "$model"), --vary $vary1 --vary $vary2 ($(nproc) cores, load average $(cut -d" " -f1-3 /proc/loadavg))"
 rate() { awk -v n="$1" -v a="$2" -v b="$3" 'BEGIN{printf "%6d runs %9.3f s %10.1f runs/s\n", n, b-a, n/(b-a)}'; }
 now() { date +%s.%N; }
 
