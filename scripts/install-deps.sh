@@ -4,6 +4,11 @@ set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
           libeigen3-dev libsundials-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev)
+# MPI sweeps (`mpirun -np N machdyn sweep`) are optional: OpenMPI pulls in ~150 MB (gfortran, UCX,
+# libfabric). Opt in with MACHDYN_WITH_MPI=1; without it the MPI test skips with a message.
+if [ "${MACHDYN_WITH_MPI:-0}" = 1 ]; then
+  packages+=(libopenmpi-dev openmpi-bin)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,19 @@
+#pragma once
+// The few messages of a sweep under MPI (private to src/sweep). Without MPI in the build these are
+// never called (MpiSession::active() is false).
+#include <string>
+#include <vector>
+
+namespace machdyn::mpi_detail {
+
+/// Rank 0's value of `v` on every rank.
+void broadcast(int& v);
+/// Rank 0's bytes on every rank (`bytes` must have the same size everywhere).
+void broadcast(std::vector<char>& bytes);
+/// Sends journal records (concatenated lines) to rank 0; an empty string says "this rank is done".
+void send_rows(const std::string& records);
+/// Rank 0: receives every message waiting now. Appends the records to `records` and returns the
+/// number of "done" messages among them.
+int poll_rows(std::string& records);
+
+}  // namespace machdyn::mpi_detail

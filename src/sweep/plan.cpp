@@ -1,0 +1,219 @@
+#include "machdyn/sweep/plan.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/compile.hpp"
+
+namespace machdyn {
+namespace {
+
+constexpr long kMaxRuns = 100'000'000;
+
+std::uint64_t fnv1a(std::string_view s, std::uint64_t h = 0xcbf29ce484222325ULL) {
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+const char* method_name(SweepMethod m) {
+  switch (m) {
+    case SweepMethod::grid: return "grid";
+    case SweepMethod::random: return "random";
+    case SweepMethod::lhs: return "lhs";
+  }
+  return "?";
+}
+
+/// Checks one axis against the field it varies, by compiling the base with each written value
+/// (end points or list items). Adds diagnostics for an input error of the axis as a whole.
+void probe_axis(const SweepPlan& plan, const VaryAxis& axis, Diagnostics& diag) {
+  const Location where{"--vary " + axis.target, 0, 0};
+  std::vector<Diagnostic> first_failure;
+  int failures = 0;
+  const auto written = axis.spec.written();
+  for (const auto& text : written) {
+    SpecNode s = plan.base;
+    try {
+      apply_set(s, axis.target + "=" + text);  // unknown element: an error of the axis
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics()) diag.error(where, d.message);
+      return;
+    }
+    try {
+      (void)compile_model(s, plan.request.model_path);
+      continue;
+    } catch (const InputError& e) {
+      ++failures;
+      if (first_failure.empty()) first_failure = e.diagnostics();
+      // A unit that does not fit the field: the same number in SI compiles.
+      std::string err;
+      const auto q = parse_quantity(text, &err);
+      if (q && q->has_unit) {
+        SpecNode plain = plan.base;
+        apply_set(plain, fmt::format("{}={:.17g}", axis.target, q->value));
+        bool plain_ok = true;
+        try {
+          (void)compile_model(plain, plan.request.model_path);
+        } catch (const InputError&) {
+          plain_ok = false;
+        }
+        if (plain_ok) {
+          diag.error(where, fmt::format("the unit of '{}' does not fit {}", text, axis.target));
+          for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
+          return;
+        }
+      }
+    }
+  }
+  if (failures == static_cast<int>(written.size())) {
+    diag.error(where, fmt::format("every value given ({}) is rejected; the first:", fmt::join(written, ", ")));
+    for (const auto& d : first_failure) diag.error(d.where, d.message);
+  }
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+SweepPlan make_sweep_plan(const SweepRequest& request) {
+  SweepPlan plan;
+  plan.request = request;
+
+  // The base: file and --set; it must compile on its own.
+  plan.base = read_yaml_file(request.model_path);
+  for (const auto& o : request.sets) apply_set(plan.base, o);
+  plan.base_model = compile_model(plan.base, request.model_path);
+
+  // Parse the axes; check each against its field.
+  Diagnostics diag;
+  const Location cli{"--vary", 0, 0};
+  if (request.vary.empty()) diag.error(cli, "give at least one --vary NAME.FIELD=SPEC");
+  for (const auto& v : request.vary) {
+    const auto eq = v.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      diag.error({"--vary " + v, 0, 0}, "expected NAME.FIELD=SPEC");
+      continue;
+    }
+    VaryAxis axis;
+    axis.target = v.substr(0, eq);
+    for (const auto& other : plan.axes)
+      if (other.target == axis.target) diag.error({"--vary " + v, 0, 0}, "this field is already varied");
+    try {
+      axis.spec = parse_sample_spec(std::string_view(v).substr(eq + 1), "--vary " + axis.target);
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
+      continue;
+    }
+    const Location where{"--vary " + axis.target, 0, 0};
+    const bool range = axis.spec.kind == SampleSpec::Kind::range;
+    if (request.method == SweepMethod::grid && range && axis.spec.n == 0)
+      diag.error(where, "a grid needs the number of points: a:b:n (or a list v1,v2,...)");
+    if (request.method != SweepMethod::grid && range && axis.spec.n != 0)
+      diag.error(where, fmt::format("--method {} samples the range a:b (or a:b:log) with --samples points; "
+                                    "drop the n of a:b:n",
+                                    method_name(request.method)));
+    plan.axes.push_back(std::move(axis));
+  }
+  if (request.method == SweepMethod::grid && request.samples != 0)
+    diag.error({"--samples", 0, 0}, "--samples is for --method random or lhs; a grid has n1·n2·… runs");
+  if (request.method != SweepMethod::grid && request.samples <= 0)
+    diag.error({"--samples", 0, 0}, fmt::format("--method {} needs --samples N (N >= 1)", method_name(request.method)));
+  if (!request.cases.empty() && !request.apply_case)
+    diag.error({"--case", 0, 0}, "this model format has no named cases");
+  diag.throw_if_any();
+  for (const auto& axis : plan.axes) probe_axis(plan, axis, diag);
+  if (!request.cases.empty()) {
+    for (const auto& c : request.cases) {
+      try {
+        SpecNode s = plan.base;
+        request.apply_case(s, c);
+        (void)compile_model(s, request.model_path);
+      } catch (const InputError& e) {
+        for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
+      }
+    }
+  }
+  diag.throw_if_any();
+
+  // The points, in run order.
+  const int dims = static_cast<int>(plan.axes.size());
+  std::vector<std::vector<AxisValue>> points;
+  if (request.method == SweepMethod::grid) {
+    std::vector<std::vector<AxisValue>> values;
+    std::vector<int> sizes;
+    long total = 1;
+    for (const auto& a : plan.axes) {
+      values.push_back(grid_values(a.spec));
+      sizes.push_back(static_cast<int>(values.back().size()));
+      total *= sizes.back();
+      if (total > kMaxRuns) throw InputError(cli, fmt::format("more than {} runs; split the sweep", kMaxRuns));
+    }
+    for (const auto& idx : grid_indices(sizes)) {
+      std::vector<AxisValue> p;
+      for (int d = 0; d < dims; ++d) p.push_back(values[static_cast<size_t>(d)][static_cast<size_t>(idx[static_cast<size_t>(d)])]);
+      points.push_back(std::move(p));
+    }
+    plan.description = fmt::format("grid {} = {} runs", fmt::join(sizes, " × "), total);
+  } else {
+    if (request.samples > kMaxRuns) throw InputError({"--samples", 0, 0}, fmt::format("more than {} runs", kMaxRuns));
+    const auto unit = request.method == SweepMethod::lhs ? latin_hypercube_unit(request.samples, dims, request.seed)
+                                                         : random_unit(request.samples, dims, request.seed);
+    for (const auto& u : unit) {
+      std::vector<AxisValue> p;
+      for (int d = 0; d < dims; ++d) p.push_back(value_at(plan.axes[static_cast<size_t>(d)].spec, u[static_cast<size_t>(d)]));
+      points.push_back(std::move(p));
+    }
+    plan.description = fmt::format("{}, {} samples, seed {}", method_name(request.method), request.samples, request.seed);
+  }
+
+  // Runs: cases outermost.
+  const int n_cases = request.cases.empty() ? 1 : static_cast<int>(request.cases.size());
+  if (static_cast<long>(points.size()) * n_cases > kMaxRuns)
+    throw InputError(cli, fmt::format("more than {} runs; split the sweep", kMaxRuns));
+  plan.runs.reserve(points.size() * static_cast<size_t>(n_cases));
+  for (int c = 0; c < n_cases; ++c) {
+    for (const auto& p : points) {
+      SweepRun r;
+      r.index = static_cast<long>(plan.runs.size());
+      r.case_index = request.cases.empty() ? -1 : c;
+      r.values = p;
+      plan.runs.push_back(std::move(r));
+    }
+  }
+  if (!request.cases.empty()) plan.description += fmt::format(" × {} cases = {} runs", n_cases, plan.runs.size());
+
+  // Fingerprint: what decides the table (model text, options), so --resume refuses another sweep.
+  std::uint64_t h = fnv1a("machdyn-sweep-v1");
+  auto add = [&](std::string_view s) { h = fnv1a(s, fnv1a("\x1f", h)); };
+  add(read_text(request.model_path));
+  for (const auto& s : request.sets) add(s);
+  add("vary");
+  for (const auto& v : request.vary) add(v);
+  add(method_name(request.method));
+  add(std::to_string(request.samples));
+  add(std::to_string(request.seed));
+  for (const auto& c : request.cases) add(c);
+  plan.fingerprint = fmt::format("{:016x}", h);
+  return plan;
+}
+
+SpecNode run_spec(const SweepPlan& plan, const SweepRun& run) {
+  SpecNode s = plan.base;
+  if (run.case_index >= 0) plan.request.apply_case(s, plan.request.cases[static_cast<size_t>(run.case_index)]);
+  for (size_t d = 0; d < plan.axes.size(); ++d) apply_set(s, plan.axes[d].target + "=" + run.values[d].text);
+  return s;
+}
+
+}  // namespace machdyn

@@ -1,0 +1,152 @@
+#include "machdyn/sweep/table.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "machdyn/common/diagnostics.hpp"
+#include "machdyn/model/compile.hpp"
+
+namespace machdyn {
+namespace {
+
+std::string unit_suffix(const char* unit) {
+  std::string s(unit);
+  for (auto& ch : s)
+    if (ch == '*' || ch == '/') ch = '_';
+  return s;
+}
+
+std::string number(double v) {
+  if (std::isnan(v)) return "nan";
+  return fmt::format("{}", v);  // shortest text that reads back to the same double
+}
+
+}  // namespace
+
+std::vector<SummaryColumns> standard_summary_columns() {
+  SummaryColumns peaks;
+  peaks.header = [](const Model& m) {
+    std::vector<std::string> h;
+    for (const auto& l : m.links) {
+      const auto u = unit_suffix(link_load_unit(m, l));
+      for (const auto& f : {"max_" + u, "min_" + u, std::string("t_max_s"), "static_" + u, std::string("dynamic_factor")})
+        h.push_back(l.name + "." + f);
+    }
+    return h;
+  };
+  peaks.values = [](const Model&, const SimulationResult& r, std::vector<double>& v) {
+    for (const auto& s : r.links) {
+      v.push_back(s.max);
+      v.push_back(s.min);
+      v.push_back(s.t_max);
+      v.push_back(s.static_load);
+      v.push_back(s.dynamic_factor);
+    }
+  };
+  SummaryColumns solver;
+  solver.header = [](const Model&) { return std::vector<std::string>{"steps", "rejected_steps", "rhs_evals"}; };
+  solver.values = [](const Model&, const SimulationResult& r, std::vector<double>& v) {
+    v.push_back(static_cast<double>(r.stats.stepper.steps));
+    v.push_back(static_cast<double>(r.stats.stepper.rejected));
+    v.push_back(static_cast<double>(r.stats.stepper.rhs_evals));
+  };
+  return {peaks, solver};
+}
+
+std::string csv_field(const std::string& text) {
+  std::string t = text;
+  for (auto& ch : t)
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  const bool quote = t.find_first_of(",\"") != std::string::npos || (!t.empty() && (t.front() == ' ' || t.back() == ' '));
+  if (!quote) return t;
+  std::string q = "\"";
+  for (char ch : t) {
+    if (ch == '"') q += '"';
+    q += ch;
+  }
+  return q + '"';
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted) {
+      if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        out.back() += '"';
+        ++i;
+      } else if (ch == '"') {
+        quoted = false;
+      } else {
+        out.back() += ch;
+      }
+    } else if (ch == '"') {
+      quoted = true;
+    } else if (ch == ',') {
+      out.emplace_back();
+    } else {
+      out.back() += ch;
+    }
+  }
+  return out;
+}
+
+std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns>& columns) {
+  std::string h = "run";
+  if (!plan.request.cases.empty()) h += ",case";
+  for (const auto& a : plan.axes) {
+    h += ',';
+    h += csv_field(a.target);
+  }
+  for (const auto& g : columns)
+    for (const auto& name : g.header(plan.base_model)) {
+      h += ',';
+      h += csv_field(name);
+    }
+  return h + ",status,message";
+}
+
+std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns) {
+  // The run's key: index, case, varied values.
+  std::string row = std::to_string(run.index);
+  if (run.case_index >= 0) {
+    row += ',';
+    row += csv_field(plan.request.cases[static_cast<size_t>(run.case_index)]);
+  }
+  for (const auto& v : run.values) {
+    row += ',';
+    row += std::isnan(v.si) ? csv_field(v.text) : number(v.si);
+  }
+
+  size_t n_summary = 0;
+  for (const auto& g : columns) n_summary += g.header(plan.base_model).size();
+  std::string message;
+  try {
+    const Model m = compile_model(run_spec(plan, run), plan.request.model_path);
+    const SimulationResult r = simulate(m);
+    std::vector<double> values;
+    values.reserve(n_summary);
+    for (const auto& g : columns) g.values(m, r, values);
+    if (values.size() != n_summary)
+      throw std::runtime_error(fmt::format("the run gave {} summary values, the header has {}", values.size(), n_summary));
+    for (double v : values) {
+      row += ',';
+      row += number(v);
+    }
+    return row + ",ok,";
+  } catch (const InputError& e) {
+    for (const auto& d : e.diagnostics()) {
+      if (!message.empty()) message += "; ";
+      message += d.str();
+    }
+  } catch (const std::exception& e) {
+    message = e.what();
+  }
+  row += std::string(n_summary, ',');
+  row += ",error,";
+  row += csv_field(message);
+  return row;
+}
+
+}  // namespace machdyn
