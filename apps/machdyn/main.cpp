@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   machdyn::cli::register_modes(app, exit_code);
   machdyn::cli::register_examples(app, exit_code);
   machdyn::cli::register_gears(app, exit_code);
+  machdyn::cli::register_report(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
