@@ -88,7 +88,11 @@ constexpr const char* kPageScript = R"js(
         ctx.lineWidth = 1.5 * dpr; ctx.setLineDash([8 * dpr, 5 * dpr]);
         ctx.beginPath(); ctx.moveTo(u.bbox.left, y); ctx.lineTo(u.bbox.left + u.bbox.width, y); ctx.stroke();
         ctx.font = (12 * dpr) + "px sans-serif"; ctx.textAlign = "right"; ctx.textBaseline = "bottom";
-        ctx.fillText(r.label, u.bbox.left + u.bbox.width - 6 * dpr, y - 3 * dpr);
+        var tx = u.bbox.left + u.bbox.width - 6 * dpr, tw = ctx.measureText(r.label).width;
+        ctx.fillStyle = "rgba(255,255,255,0.85)";
+        ctx.fillRect(tx - tw - 3 * dpr, y - 17 * dpr, tw + 6 * dpr, 15 * dpr);
+        ctx.fillStyle = r.color;
+        ctx.fillText(r.label, tx, y - 3 * dpr);
         ctx.restore();
       });
       if (spec.zero_line) {
@@ -232,7 +236,7 @@ table { border-collapse: collapse; margin: 6px 0 4px; font-size: 14px; }
 caption { text-align: left; font-weight: bold; padding: 4px 0; }
 th, td { border-bottom: 1px solid #ddd; padding: 4px 12px 4px 0; text-align: right; white-space: nowrap; }
 th { border-bottom: 2px solid #888; } th:first-child, td:first-child { text-align: left; }
-td.text { text-align: left; white-space: normal; } .note { color: #555; font-size: 13px; margin: 2px 0 12px; }
+td.text, table.text th { text-align: left; white-space: normal; } .note { color: #555; font-size: 13px; margin: 2px 0 12px; }
 .figure { margin: 18px 0 26px; } .hint { color: #666; font-size: 12px; margin: 2px 0; }
 .uplot .u-legend { font-size: 13px; text-align: left; } .uplot .u-legend th { border: 0; font-weight: normal; }
 .uplot .u-legend td, .uplot .u-legend th { border: 0; padding: 1px 8px 1px 0; }
@@ -243,7 +247,7 @@ footer { color: #777; font-size: 12px; margin-top: 40px; }
 std::string section_anchor(std::size_t k) { return fmt::format("sec-{}", k + 1); }
 
 void write_table(std::string& o, const Table& t) {
-  o += "<table>";
+  o += t.text_values ? "<table class=\"text\">" : "<table>";
   if (!t.caption.empty()) o += "<caption>" + escape_html(t.caption) + "</caption>";
   o += "<thead><tr>";
   for (const auto& h : t.header) o += "<th>" + escape_html(h) + "</th>";
