@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/report.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 
@@ -70,6 +71,7 @@ TEST(PlotCli, MissingGnuplotWritesNothing) {
 
 // Claim: report writes one HTML file; bad input exits 2 with file:line:col and writes no file.
 TEST(PlotCli, ReportWritesHtmlAndRefusesBadInput) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
   const auto html = test::temp_dir() / "rep" / "r.html";
   auto r = test::run_cli("report '" + test::example("hoist-3mass.yaml") + "' -o '" + html.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "machdyn/io/report.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -40,6 +41,7 @@ std::string chromium(const std::string& exe, const std::string& url, const std::
 // every plot drew every series (pixels of each series' colour on its canvas), each plot holds all
 // 100001 points, and drawing takes less than 5 s. A screenshot is saved for people to look at.
 TEST(ReportBrowser, OpensOfflineAndDrawsEverySeries) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
   const std::string exe = find_chromium();
   if (exe.empty())
     GTEST_SKIP() << "chromium is not installed: the HTML report was NOT checked in a browser "
