@@ -5,10 +5,14 @@ BUILD_RELEASE := build/release
 BUILD_TEST    := build/test
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test deps build-release build-test bench clean
+.PHONY: demo test deps deps-browser build-release build-test bench clean
 
 deps:
 	@bash scripts/install-deps.sh
+
+# Chromium for the browser test of the HTML report (large; without it that test is skipped).
+deps-browser:
+	@MACHDYN_WITH_CHROMIUM=1 bash scripts/install-deps.sh
 
 build-release: deps
 	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -23,6 +27,7 @@ demo: build-release
 
 test: build-test
 	@cd $(BUILD_TEST) && ctest --output-on-failure -j $(JOBS)
+	@command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed, so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"
 
 bench: build-release
 	@bash bench/run.sh $(BUILD_RELEASE)

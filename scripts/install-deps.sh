@@ -1,14 +1,22 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages machdyn builds with, when any is missing. Safe to run again.
+#   gnuplot-nox, fonts-dejavu-core: the static figures of --plot (SVG, PNG)
+#   nodejs, npm: CMake installs the report's charting library (uPlot, report/package-lock.json) with
+#                `npm ci` at configure time; installed only when no npm is on PATH already
+#   chromium:    only with MACHDYN_WITH_CHROMIUM=1 (large); without it the browser test of the HTML
+#                report is skipped, and says so
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
           libeigen3-dev libsundials-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev)
-# MPI sweeps (`mpirun -np N machdyn sweep`) are optional: OpenMPI pulls in ~150 MB (gfortran, UCX,
-# libfabric). Opt in with MACHDYN_WITH_MPI=1; without it the MPI test skips with a message.
-if [ "${MACHDYN_WITH_MPI:-0}" = 1 ]; then
+          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core)
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
+# MPI sweeps (`mpirun -np N machdyn sweep`): OpenMPI is installed unless MACHDYN_WITH_MPI=0 (it pulls
+# in ~150 MB: gfortran, UCX, libfabric); without it the MPI test skips with a message.
+if [ "${MACHDYN_WITH_MPI:-1}" = 1 ]; then
   packages+=(libopenmpi-dev openmpi-bin)
 fi
+# The report's browser test needs Chromium (large): opt in with MACHDYN_WITH_CHROMIUM=1.
+[ "${MACHDYN_WITH_CHROMIUM:-0}" = 1 ] && ! command -v chromium >/dev/null 2>&1 && packages+=(chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -47,4 +47,21 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   fs::rename(tmp, p);
 }
 
+std::vector<std::string> write_figures(const std::filesystem::path& dir, const std::vector<plot::Figure>& figures) {
+  std::vector<plot::Rendered> rendered;
+  for (const auto& f : figures) rendered.push_back(plot::render(f));
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < figures.size(); ++k) {
+    write_file_atomic((dir / (figures[k].id + ".svg")).string(), rendered[k].svg);
+    write_file_atomic((dir / (figures[k].id + ".png")).string(), rendered[k].png);
+    names.push_back(figures[k].id + ".svg");
+    names.push_back(figures[k].id + ".png");
+  }
+  return names;
+}
+
+std::filesystem::path default_out_dir(const std::string& model_path) {
+  return std::filesystem::path("out") / std::filesystem::path(model_path).stem();
+}
+
 }  // namespace machdyn::cli

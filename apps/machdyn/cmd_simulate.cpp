@@ -1,12 +1,15 @@
-// `machdyn simulate MODEL [-o DIR] [--json] [--set NAME.FIELD=VALUE ...]` and `machdyn modes MODEL`.
+// `machdyn simulate MODEL [-o DIR] [--json] [--plot] [--quiet] [--case NAME | --all-cases]
+// [--set NAME.FIELD=VALUE ...]` and `machdyn modes MODEL [--json] [--plot] [-o DIR]`.
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/modes.hpp"
+#include "machdyn/io/figures.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -20,9 +23,11 @@ struct SimulateArgs {
   std::string model;
   std::string out_dir;
   bool json = false;
+  bool plot = false;   ///< also write the figures (SVG + PNG, gnuplot)
+  bool quiet = false;  ///< no progress bar
   std::vector<std::string> sets;
-  std::string load_case;  // --case
-  bool all_cases = false;  // --all-cases
+  std::string load_case;   ///< --case
+  bool all_cases = false;  ///< --all-cases
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -91,33 +96,47 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
   return 0;
 }
 
-}  // namespace
-
-int run_simulate(const std::string& model_path, const std::vector<std::string>& sets, std::string out_dir,
-                 bool json, const std::string& load_case) {
-  const Model m = load_model_case(model_path, sets, load_case);
-  const SimulationResult r = simulate(m);
-  if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(model_path).stem()).string();
+int run_simulate(const SimulateArgs& a) {
+  const Model m = load_model_case(a.model, a.sets, a.load_case);
+  if (a.plot) plot::find_gnuplot();  // say it before a long run, not after
+  ProgressBar bar(a.quiet);
+  SimulateOptions options;
+  options.progress = bar.callback();
+  const SimulationResult r = simulate(m, options);
+  bar.clear();
+  const std::string out_dir = a.out_dir.empty() ? default_out_dir(a.model).string() : a.out_dir;
   const auto summary = simulation_summary(m, r);
+  std::vector<std::string> figures;
+  if (a.plot) figures = write_figures(out_dir, simulation_figures(m, r));
   write_file_atomic((std::filesystem::path(out_dir) / "timeseries.csv").string(), timeseries_csv(r));
   write_file_atomic((std::filesystem::path(out_dir) / "summary.json").string(), summary.dump(2) + "\n");
-  if (json) {
+  if (a.json) {
     std::cout << summary.dump(2) << '\n';
   } else {
     print_simulation_table(m, r, std::cout);
     std::cout << fmt::format("wrote {0}/timeseries.csv and {0}/summary.json\n", out_dir);
+    if (!figures.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", out_dir, fmt::join(figures, ","));
   }
   return 0;
 }
 
+}  // namespace
+
 int run_simulate(const std::string& model_path, const std::vector<std::string>& sets, std::string out_dir,
                  bool json) {
-  return run_simulate(model_path, sets, std::move(out_dir), json, "");
+  SimulateArgs a;
+  a.model = model_path, a.out_dir = std::move(out_dir), a.json = json, a.sets = sets;
+  return run_simulate(a);
 }
 
-int run_modes(const std::string& model_path, const std::vector<std::string>& sets, bool json) {
+int run_modes(const std::string& model_path, const std::vector<std::string>& sets, bool json,
+              const std::string& plot_dir) {
   const Model m = load_model(model_path, sets);
   const Modes modes = compute_modes(m);
+  if (!plot_dir.empty() && modes.shapes.cols() > 0) {
+    const auto files = write_figures(plot_dir, {mode_shapes_figure(m, modes)});
+    if (!json) std::cout << fmt::format("figures: {}/{{{}}}\n", plot_dir, fmt::join(files, ","));
+  }
   const auto j = modes_summary(m, modes);
   if (json) {
     std::cout << j.dump(2) << '\n';
@@ -139,12 +158,20 @@ int run_modes(const std::string& model_path, const std::vector<std::string>& set
   return 0;
 }
 
+int run_modes(const std::string& model_path, const std::vector<std::string>& sets, bool json) {
+  return run_modes(model_path, sets, json, "");
+}
+
 void register_simulate(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SimulateArgs>();
   auto* cmd = app.add_subcommand("simulate", "Simulate a model: time series, link-load peaks, dynamic factors");
   cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
   cmd->add_option("-o,--out", args->out_dir, "Output folder for timeseries.csv and summary.json (default out/MODEL)");
   cmd->add_flag("--json", args->json, "Print the summary as JSON to stdout");
+  cmd->add_flag("--plot", args->plot,
+                "Also write link_loads.svg/.png (link loads against time, static values dashed) and "
+                "body_speeds.svg/.png (needs gnuplot)");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar on stderr (it shows only on a terminal, after 1 s)");
   add_set_option(*cmd, args->sets);
   cmd->add_option("--case", args->load_case, "Run one load case of the file's 'cases:' (e.g. a hoist operating mode)");
   cmd->add_flag("--all-cases", args->all_cases,
@@ -154,7 +181,7 @@ void register_simulate(CLI::App& app, int& exit_code) {
       if (args->all_cases && !args->load_case.empty())
         throw InputError(Location{"--case", 0, 0}, "give either --case NAME or --all-cases");
       if (args->all_cases) return run_all_cases(args->model, args->sets, args->out_dir, args->json);
-      return run_simulate(args->model, args->sets, args->out_dir, args->json, args->load_case);
+      return run_simulate(*args);
     });
   });
 }
@@ -164,9 +191,15 @@ void register_modes(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("modes", "Natural frequencies and mass-normalized mode shapes");
   cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
   cmd->add_flag("--json", args->json, "Print JSON to stdout");
+  cmd->add_flag("--plot", args->plot, "Write mode_shapes.svg/.png (one curve per elastic mode; needs gnuplot)");
+  cmd->add_option("-o,--out", args->out_dir, "Folder for the --plot figures (default out/MODEL)");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
-    exit_code = guarded([&] { return run_modes(args->model, args->sets, args->json); });
+    exit_code = guarded([&] {
+      if (args->plot) plot::find_gnuplot();
+      const std::string dir = !args->plot ? "" : args->out_dir.empty() ? default_out_dir(args->model).string() : args->out_dir;
+      return run_modes(args->model, args->sets, args->json, dir);
+    });
   });
 }
 

@@ -3,11 +3,14 @@
 // and calls the library. register_* adds the subcommand to `app`; its callback stores the exit code
 // (0 ok, 1 internal error, 2 input error, 3 numerical failure) in `exit_code`.
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "machdyn/io/plot.hpp"
 
 namespace machdyn::cli {
 
@@ -22,7 +25,15 @@ void add_set_option(CLI::App& cmd, std::vector<std::string>& sets);
 /// half-written result. Creates parent folders. Throws std::runtime_error on failure.
 void write_file_atomic(const std::string& path, const std::string& content);
 
+/// Renders every figure with gnuplot (plot::render) and only then writes DIR/ID.svg and DIR/ID.png
+/// for each (atomically), so a failure leaves no figure behind. Returns the file names written.
+std::vector<std::string> write_figures(const std::filesystem::path& dir, const std::vector<plot::Figure>& figures);
+
+/// The default output folder of a command: out/<model file stem>.
+std::filesystem::path default_out_dir(const std::string& model_path);
+
 void register_simulate(CLI::App& app, int& exit_code);
+void register_report(CLI::App& app, int& exit_code);
 void register_modes(CLI::App& app, int& exit_code);
 void register_examples(CLI::App& app, int& exit_code);
 void register_energy(CLI::App& app, int& exit_code);

@@ -1,5 +1,6 @@
 #include "machdyn/analysis/simulate.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <fmt/format.h>
@@ -61,8 +62,8 @@ namespace {
 /// values of the loads then (O(#loads)), for the quasi-static load at t_max.
 class Recorder final : public StepObserver {
  public:
-  Recorder(const Model& m, ChainSystem& sys, SimulationResult& out)
-      : m_(m), sys_(sys), out_(out), peaks_(weights(m, sys)),
+  Recorder(const Model& m, ChainSystem& sys, SimulationResult& out, const SimulateOptions& opt)
+      : m_(m), sys_(sys), out_(out), opt_(opt), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
         loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)) {
     auto suffix = [](const char* unit) {
       std::string s(unit);
@@ -85,7 +86,35 @@ class Recorder final : public StepObserver {
     };
   }
 
-  void on_step(const Stepper& s) override { peaks_.on_step(s, on_new_max_); }
+  void on_step(const Stepper& s) override {
+    peaks_.on_step(s, on_new_max_);
+    // Progress: look at the clock every 32 steps only, report every progress_interval_s.
+    if (opt_.progress && (++steps_ & 31) == 0) {
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      if (wall >= next_report_) {
+        next_report_ = wall + opt_.progress_interval_s;
+        opt_.progress(progress(s.t(), wall, false));
+      }
+    }
+  }
+
+  SimulationProgress progress(double t, double wall, bool finished) const {
+    SimulationProgress p;
+    p.t = t;
+    p.t_end = m_.simulation.t_end;
+    p.steps = steps_;
+    p.events = 0;  // no events in a linear chain yet
+    p.wall_s = wall;
+    p.finished = finished;
+    return p;
+  }
+
+  /// The last progress report, at the end of the run.
+  void finish() const {
+    if (!opt_.progress) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    opt_.progress(progress(m_.simulation.t_end, wall, true));
+  }
 
   void on_output(double t, const double* y) override {
     const int n = m_.dof();
@@ -115,6 +144,10 @@ class Recorder final : public StepObserver {
   const Model& m_;
   ChainSystem& sys_;
   SimulationResult& out_;
+  const SimulateOptions& opt_;
+  std::chrono::steady_clock::time_point start_;
+  long steps_ = 0;
+  double next_report_ = 0.0;
   PeakTracker peaks_;
   std::vector<std::vector<double>> loads_at_max_;
   PeakTracker::NewMax on_new_max_;
@@ -122,7 +155,9 @@ class Recorder final : public StepObserver {
 
 }  // namespace
 
-SimulationResult simulate(const Model& m) {
+SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
+
+SimulationResult simulate(const Model& m, const SimulateOptions& options) {
   if (m.is_hybrid()) return simulate_hybrid(m);
   SimulationResult out;
   const Method method = choose_method(m, &out.method_reason);
@@ -134,8 +169,9 @@ SimulationResult simulate(const Model& m) {
   opt.atol = m.simulation.atol;
   opt.max_steps = m.simulation.max_steps;
   auto stepper = make_stepper(method, sys, opt);
-  Recorder rec(m, sys, out);
+  Recorder rec(m, sys, out, options);
   out.stats = integrate(*stepper, 0.0, y0.data(), m.simulation.t_end, m.simulation.dt_out, rec);
+  rec.finish();
 
   // Quasi-static loads at each link's peak time.
   const ParticularSolver particular(m);

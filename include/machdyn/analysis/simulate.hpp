@@ -3,6 +3,7 @@
 /// Time simulation of a drive chain: the time series on the output grid, the peaks of every link
 /// load located on the continuous solution, the quasi-static loads and dynamic factors.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,28 @@ struct SimulationResult {
 /// explicit method would spend > 2e4 steps on stability alone), else dopri5. `reason` says which.
 Method choose_method(const Model& m, std::string* reason);
 
+/// Where a running simulation is, for a progress display (the CLI draws a bar; the library only
+/// reports). Wall time counts from the start of the integration.
+struct SimulationProgress {
+  double t = 0.0;        ///< simulated time reached, s
+  double t_end = 0.0;    ///< s
+  long steps = 0;        ///< accepted steps so far
+  long events = 0;       ///< events located so far (gaps closing, stops, ...)
+  double wall_s = 0.0;   ///< wall time since the start, s
+  bool finished = false; ///< the last call, at t_end
+};
+using ProgressCallback = std::function<void(const SimulationProgress&)>;
+
+/// Optional observers of a run. The progress callback is called at most every `progress_interval_s`
+/// of wall time (checked every few steps, so it costs nothing measurable) and once at the end.
+struct SimulateOptions {
+  ProgressCallback progress;
+  double progress_interval_s = 0.1;
+};
+
 /// Runs the model's simulation settings. Throws SolverError on numerical failure. A model with a
 /// gap, a friction contact or a brake runs event-driven (analysis/hybrid.hpp).
 SimulationResult simulate(const Model& m);
+SimulationResult simulate(const Model& m, const SimulateOptions& options);
 
 }  // namespace machdyn

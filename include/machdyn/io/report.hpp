@@ -1,0 +1,75 @@
+#pragma once
+/// @file
+/// The report an engineer sends to a colleague: one self-contained HTML file (no network: the uPlot
+/// charting library, its CSS, the data and the page's script are all inside it) with the model as
+/// tables with units, the run settings, the results and interactive plots (zoom by dragging, pan
+/// with Shift+drag or the wheel, hover read-out, series toggled from the legend).
+///
+/// A Document is generic — sections of tables, paragraphs and plot::Figures — so any command can
+/// build one; simulation_report() builds the one of `machdyn report`. The page writes a status into
+/// `<pre id="machdyn-status">` when it has drawn: `{"done": true, "errors": [...], "plots": [{"id",
+/// "series", "drawn": [pixels of each series' colour], "points": [...], "ms"}]}` for browser tests.
+
+#include <string>
+#include <vector>
+
+#include "machdyn/analysis/modes.hpp"
+#include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/plot.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn::report {
+
+struct Table {
+  std::string caption;
+  std::vector<std::string> header;                ///< column titles, with the unit: "max, N·m"
+  std::vector<std::vector<std::string>> rows;     ///< cells as text (already formatted)
+  std::string note;                               ///< a line under the table
+  bool text_values = false;                       ///< left-align every cell (settings), not only words
+};
+
+struct Section {
+  std::string title;
+  std::vector<std::string> paragraphs;            ///< plain text, escaped when written
+  std::vector<Table> tables;
+  std::vector<plot::Figure> figures;              ///< each series' x must be non-decreasing
+};
+
+struct Document {
+  std::string title, subtitle;
+  std::vector<Section> sections;
+};
+
+/// True when this build embeds uPlot (CMake option MACHDYN_REPORT, on by default).
+bool assets_available();
+/// The embedded uPlot version, e.g. "1.6.32" (empty when !assets_available()).
+std::string uplot_version();
+
+/// The HTML page. Throws std::runtime_error when !assets_available(), std::invalid_argument for a
+/// figure the charts cannot draw (see plot::validate; x must be non-decreasing in each series).
+std::string to_html(const Document& doc);
+
+/// The data of one figure as the page's chart script reads it (JSON text: labels, colours,
+/// reference lines and the columns [x, y_1, ..., y_n] on one shared x grid, NaN → null).
+/// `dom_id` replaces fig.id as the chart's id in the page (unique per page); empty: fig.id.
+std::string figure_json(const plot::Figure& fig, const std::string& dom_id = "");
+
+/// The model as tables: bodies, links and loads, each quantity with its unit.
+std::vector<Table> model_tables(const Model& m);
+
+/// One run in a report. `name` is empty for the model as written; a named case (issue 3's
+/// `--case NAME`, `--all-cases`) gets its own section of settings, results and plots.
+struct Case {
+  std::string name;
+  const Model* model = nullptr;
+  const SimulationResult* result = nullptr;
+  const Modes* modes = nullptr;   ///< optional: natural frequencies and the mode-shape plot
+};
+
+/// The document of `machdyn report`: the model (of the first case), then for each case its run
+/// settings and solver statistics, the results table (peaks, static values, dynamic factors,
+/// events), the natural frequencies, and the plots (link loads with the static values marked, body
+/// speeds, mode shapes). `command` is the command line, printed under the title.
+Document simulation_report(const std::vector<Case>& cases, const std::string& command);
+
+}  // namespace machdyn::report

@@ -1,0 +1,285 @@
+// Static figures through gnuplot: the data file, the script, and the subprocess that runs it.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "machdyn/io/plot.hpp"
+
+extern char** environ;
+
+namespace machdyn::plot {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A gnuplot single-quoted string: only ' needs doubling; no escapes, no enhanced-text markup.
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (const char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return q + "'";
+}
+
+/// Characters, not bytes, of a UTF-8 string (for margins).
+std::size_t utf8_length(const std::string& s) {
+  return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+bool finite_point(const Series& s, std::size_t k) { return std::isfinite(s.x[k]) && std::isfinite(s.y[k]); }
+
+bool has_points(const Series& s) {
+  for (std::size_t k = 0; k < s.x.size(); ++k)
+    if (finite_point(s, k)) return true;
+  return false;
+}
+
+struct Range {
+  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  [[nodiscard]] bool valid() const { return lo <= hi; }
+};
+
+/// The range gnuplot draws for an axis: the fixed one, else the data (and reference lines) with a
+/// margin of `pad` of the span on each side (none on x for time series: the run starts and ends there).
+std::string range_cmd(const char* axis, const Axis& a, Range r, double pad) {
+  if (a.min) r.lo = *a.min;
+  if (a.max) r.hi = *a.max;
+  if (!r.valid()) return fmt::format("set autoscale {}\n", axis);
+  double span = r.hi - r.lo;
+  if (span <= 0) span = std::max(std::abs(r.hi), 1.0);
+  const double lo = a.min ? *a.min : r.lo - pad * span, hi = a.max ? *a.max : r.hi + pad * span;
+  if (lo == hi) return fmt::format("set {}range [{:.9g}:{:.9g}]\n", axis, lo - 0.5, hi + 0.5);
+  return fmt::format("set {}range [{:.9g}:{:.9g}]\n", axis, lo, hi);
+}
+
+std::string ticks_cmd(const char* axis, const Axis& a) {
+  if (a.ticks.empty()) return "";
+  std::string s = fmt::format("set {}tics (", axis);
+  for (std::size_t k = 0; k < a.ticks.size(); ++k)
+    s += fmt::format("{}{} {:.9g}", k ? ", " : "", quote(a.ticks[k].second), a.ticks[k].first);
+  return s + ")\n";
+}
+
+const char* key_position(Figure::Legend l) {
+  switch (l) {
+    case Figure::Legend::top_left: return "inside top left";
+    case Figure::Legend::bottom_right: return "inside bottom right";
+    case Figure::Legend::bottom_left: return "inside bottom left";
+    case Figure::Legend::below: return "outside below center horizontal";
+    default: return "inside top right";
+  }
+}
+
+/// Runs `exe args...` with stdout and stderr into `log`; returns the exit status (-1 if not run).
+int run_process(const fs::path& exe, const std::vector<std::string>& args, const fs::path& log) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  std::vector<std::string> argv_s{exe.string()};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// A fresh private folder under the temp dir, removed when this goes out of scope.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::string tmpl = (fs::temp_directory_path() / "machdyn-plot-XXXXXX").string();
+    if (!::mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary folder for gnuplot");
+    path = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
+
+}  // namespace
+
+std::string gnuplot_data(const Figure& fig) {
+  std::string d;
+  for (const auto& s : fig.series) {
+    if (!has_points(s)) continue;
+    d += "# " + s.name + "\n";
+    bool broken = true;  // no blank line at the start of a block or twice in a row
+    for (std::size_t k = 0; k < s.x.size(); ++k) {
+      if (!finite_point(s, k)) {
+        if (!broken) d += '\n';
+        broken = true;
+        continue;
+      }
+      fmt::format_to(std::back_inserter(d), "{:.10g} {:.10g}\n", s.x[k], s.y[k]);
+      broken = false;
+    }
+    d += "\n\n";
+  }
+  return d;
+}
+
+std::string gnuplot_script(const Figure& fig, Format format, const std::string& data_path,
+                           const std::string& output_path) {
+  validate(fig);
+  std::string g = "reset\nset encoding utf8\n";
+  // 16 cm × 10 cm: SVG at 12 pt, PNG at twice the pixels and font (≈ 250 dpi at print size).
+  if (format == Format::svg)
+    g += "set terminal svg size 800,500 dynamic noenhanced font 'DejaVu Sans,12' background '#ffffff' linewidth 1\n";
+  else
+    g += "set terminal pngcairo size 1600,1000 noenhanced font 'DejaVu Sans,24' background '#ffffff' linewidth 2\n";
+  g += "set output " + quote(output_path) + "\n";
+  if (!fig.title.empty()) g += "set title " + quote(fig.title) + "\n";
+  g += "set border 3 lw 1\nset tics nomirror out\n";
+  g += "set grid xtics ytics lc rgb '#d0d0d0' lw 1 dt 1\n";
+  g += "set xlabel " + quote(fig.x.label()) + "\n";
+  g += "set ylabel " + quote(fig.y.label()) + "\n";
+  const bool y2 = std::any_of(fig.series.begin(), fig.series.end(), [](const Series& s) { return s.y_axis == 2; });
+  if (y2) {
+    g += "set border 11 lw 1\nset y2tics nomirror out\nset y2label " + quote(fig.y2.label()) + "\n";
+  }
+  g += ticks_cmd("x", fig.x) + ticks_cmd("y", fig.y);
+  g += fmt::format("set key {} noautotitle samplen 2.5 spacing 1.15 width 1\n", key_position(fig.legend));
+
+  Range rx, ry, ry2;
+  for (const auto& s : fig.series)
+    for (std::size_t k = 0; k < s.x.size(); ++k)
+      if (finite_point(s, k)) rx.add(s.x[k]), (s.y_axis == 2 ? ry2 : ry).add(s.y[k]);
+  for (const auto& r : fig.ref_lines) (r.y_axis == 2 ? ry2 : ry).add(r.value);
+  if (fig.zero_line) ry.add(0.0);
+  if (fig.equal_aspect) {
+    g += "set size ratio -1\n";
+    g += range_cmd("x", fig.x, rx, 0.04) + range_cmd("y", fig.y, ry, 0.04);
+  } else {
+    g += range_cmd("x", fig.x, rx, fig.x.ticks.empty() ? 0.0 : 0.08);
+    // Room above the data for the labels of reference lines and an inside legend.
+    g += range_cmd("y", fig.y, ry, 0.08);
+    if (y2) g += range_cmd("y2", fig.y2, ry2, 0.08);
+  }
+  if (fig.zero_line) g += "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#777777' lw 1 dt 1\n";
+  // Reference lines: labels in the right margin (clear of the curves) unless y2 needs that margin;
+  // then inside, on an opaque box.
+  std::size_t label_chars = 0;
+  for (const auto& r : fig.ref_lines) label_chars = std::max(label_chars, utf8_length(r.label));
+  if (!y2 && label_chars > 0) g += fmt::format("set rmargin {}\n", label_chars + 2);
+  if (y2) g += "set style textbox opaque noborder\n";
+  for (const auto& r : fig.ref_lines) {
+    const std::string color = r.series >= 0 ? series_color(static_cast<std::size_t>(r.series)) : "#000000";
+    const char* coord = r.y_axis == 2 ? "second" : "first";
+    g += fmt::format("set arrow from graph 0, {2} {0:.10g} to graph 1, {2} {0:.10g} nohead lc rgb '{1}' lw 1.5 dt 2 front\n",
+                     r.value, color, coord);
+    if (r.label.empty()) continue;
+    if (!y2)
+      g += fmt::format("set label {} at graph 1, {} {:.10g} left offset 0.8,0 tc rgb '{}' front\n", quote(r.label), coord,
+                       r.value, color);
+    else
+      g += fmt::format("set label {} at graph 0.99, {} {:.10g} right offset 0,0.8 tc rgb '{}' boxed front\n",
+                       quote(r.label), coord, r.value, color);
+  }
+
+  std::vector<std::string> items;
+  int index = 0;
+  for (std::size_t k = 0; k < fig.series.size(); ++k) {
+    const Series& s = fig.series[k];
+    if (!has_points(s)) continue;
+    std::string item = fmt::format("{} index {} using 1:2", quote(data_path), index++);
+    const std::string axes = s.y_axis == 2 ? " axes x1y2" : " axes x1y1";
+    const std::string dash = s.dashed ? " dt 2" : " dt 1";
+    const std::string title = s.in_legend ? "title " + quote(s.name) : std::string("notitle");
+    switch (s.style) {
+      case Style::thin:
+        item += " with lines lc rgb '#b4b4b4' lw 0.6 dt 1 notitle" + axes;
+        break;
+      case Style::steps:
+        item += fmt::format(" with steps lc rgb '{}' lw 2{} {}{}", series_color(k), dash, title, axes);
+        break;
+      case Style::linepoints:
+        item += fmt::format(" with linespoints lc rgb '{}' lw 2{} pt 7 ps 1.2 {}{}", series_color(k), dash, title,
+                            axes);
+        break;
+      case Style::line:
+        item += fmt::format(" with lines lc rgb '{}' lw 2{} {}{}", series_color(k), dash, title, axes);
+        break;
+    }
+    items.push_back(item);
+  }
+  if (items.empty()) {
+    g += "set label 'no data' at graph 0.5, graph 0.5 center\nplot NaN notitle\n";
+  } else {
+    g += "plot ";
+    for (std::size_t k = 0; k < items.size(); ++k) g += (k ? ", \\\n     " : "") + items[k];
+    g += "\n";
+  }
+  g += "unset output\n";
+  return g;
+}
+
+fs::path find_gnuplot() {
+  const std::string hint = "install it with `apt-get install gnuplot-nox` (scripts/install-deps.sh does)";
+  if (const char* env = std::getenv("MACHDYN_GNUPLOT"); env && *env) {
+    if (::access(env, X_OK) == 0) return env;
+    throw std::runtime_error(fmt::format("MACHDYN_GNUPLOT={} is not an executable; the static figures need gnuplot: {}",
+                                         env, hint));
+  }
+  if (const char* path = std::getenv("PATH")) {
+    std::stringstream ss(path);
+    for (std::string dir; std::getline(ss, dir, ':');) {
+      if (dir.empty()) continue;
+      const fs::path p = fs::path(dir) / "gnuplot";
+      if (::access(p.c_str(), X_OK) == 0) return p;
+    }
+  }
+  throw std::runtime_error("the static figures (--plot) need gnuplot, which is not on PATH: " + hint);
+}
+
+Rendered render(const Figure& fig) {
+  validate(fig);
+  const fs::path gnuplot = find_gnuplot();
+  TempDir tmp;
+  const fs::path data = tmp.path / "data.dat", svg = tmp.path / "figure.svg", png = tmp.path / "figure.png",
+                 script = tmp.path / "figure.gp", log = tmp.path / "gnuplot.log";
+  std::ofstream(data, std::ios::binary) << gnuplot_data(fig);
+  std::ofstream(script, std::ios::binary) << gnuplot_script(fig, Format::svg, data.string(), svg.string())
+                                          << gnuplot_script(fig, Format::png, data.string(), png.string());
+  const int rc = run_process(gnuplot, {script.string()}, log);
+  if (rc != 0)
+    throw std::runtime_error(fmt::format("gnuplot ({}) failed drawing figure '{}' (exit {}): {}", gnuplot.string(),
+                                         fig.id, rc, slurp(log)));
+  Rendered r{slurp(svg), slurp(png)};
+  if (r.svg.empty() || r.png.empty())
+    throw std::runtime_error(fmt::format("gnuplot wrote no figure '{}': {}", fig.id, slurp(log)));
+  return r;
+}
+
+}  // namespace machdyn::plot

@@ -1,0 +1,199 @@
+// The content of `machdyn report`: the model as tables with units, run settings, results, plots.
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "machdyn/io/figures.hpp"
+#include "machdyn/io/report.hpp"
+
+namespace machdyn::report {
+
+namespace {
+
+using plot::pretty_unit;
+
+Table table(std::string caption, std::vector<std::string> header) {
+  Table t;
+  t.caption = std::move(caption);
+  t.header = std::move(header);
+  return t;
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "–";
+  return fmt::format("{:.6g}", v);
+}
+
+std::string body_name(const Model& m, int b) {
+  return b == kGround ? std::string("ground") : m.bodies[static_cast<std::size_t>(b)].name;
+}
+
+const char* link_kind(LinkKind k) {
+  switch (k) {
+    case LinkKind::damper: return "damper";
+    case LinkKind::spring_damper: return "spring-damper";
+    default: return "spring";
+  }
+}
+
+/// The coordinate a link's load and stiffness are measured in: body b, or a for a link to the ground.
+BodyKind link_kind_body(const Model& m, const Link& l) {
+  const int b = l.b != kGround ? l.b : l.a;
+  return b == kGround ? BodyKind::rotational : m.bodies[static_cast<std::size_t>(b)].kind;
+}
+
+std::string ratio_unit(const Model& m, const Link& l) {
+  if (l.a == kGround || l.b == kGround) return "";
+  const auto ka = m.bodies[static_cast<std::size_t>(l.a)].kind, kb = m.bodies[static_cast<std::size_t>(l.b)].kind;
+  if (ka == kb) return "";
+  return std::string(position_unit(ka)) + "/" + position_unit(kb);
+}
+
+std::string load_description(const Model& m, const Load& L) {
+  const auto kind = m.bodies[static_cast<std::size_t>(L.body)].kind;
+  const std::string u = pretty_unit(load_unit(kind)), vu = pretty_unit(velocity_unit(kind));
+  switch (L.kind) {
+    case LoadKind::constant: return fmt::format("M = {} {}", num(L.value), u);
+    case LoadKind::step: return fmt::format("{} {} before t0 = {} s, {} {} after", num(L.before), u, num(L.t0), num(L.value), u);
+    case LoadKind::ramp:
+      return fmt::format("{} {} until t0 = {} s, linear to {} {} at t1 = {} s", num(L.before), u, num(L.t0), num(L.value), u,
+                         num(L.t1));
+    case LoadKind::table: {
+      std::string s = "piecewise linear (t [s], M [" + u + "]):";
+      for (std::size_t k = 0; k < L.times.size() && k < 8; ++k) s += fmt::format(" ({}, {})", num(L.times[k]), num(L.values[k]));
+      if (L.times.size() > 8) s += fmt::format(" … {} points", L.times.size());
+      return s;
+    }
+    case LoadKind::motor_linear:
+      return fmt::format("linear motor: stall {} {}, no-load speed ω0 = {} {}", num(L.value), u, num(L.omega0), vu);
+    case LoadKind::motor_kloss:
+      return fmt::format("Kloss motor: breakdown {} {}, slip s_k = {}, synchronous ω0 = {} {}", num(L.value), u, num(L.s_k),
+                         num(L.omega0), vu);
+  }
+  return "";
+}
+
+const char* load_kind(LoadKind k) {
+  switch (k) {
+    case LoadKind::constant: return "constant";
+    case LoadKind::step: return "step";
+    case LoadKind::ramp: return "ramp";
+    case LoadKind::table: return "table";
+    case LoadKind::motor_linear: return "motor_linear";
+    case LoadKind::motor_kloss: return "motor_kloss";
+  }
+  return "";
+}
+
+const char* integrator_setting(IntegratorChoice c) {
+  switch (c) {
+    case IntegratorChoice::dopri5: return "dopri5";
+    case IntegratorChoice::bdf: return "bdf";
+    default: return "auto";
+  }
+}
+
+Table settings_table(const Model& m, const SimulationResult& r) {
+  const auto& s = m.simulation;
+  Table t = table("Run settings and solver", {"setting", "value"});
+  t.text_values = true;
+  t.rows = {{"end time t_end", num(s.t_end) + " s"},
+            {"output step dt_out", num(s.dt_out) + " s"},
+            {"tolerances rtol / atol", num(s.rtol) + " / " + num(s.atol)},
+            {"integrator (setting)", integrator_setting(s.integrator)},
+            {"integrator used", r.stats.method + " — " + r.method_reason},
+            {"steps (rejected)", fmt::format("{} ({})", r.stats.stepper.steps, r.stats.stepper.rejected)},
+            {"right-hand-side evaluations", fmt::format("{}", r.stats.stepper.rhs_evals)},
+            {"output rows", fmt::format("{}", r.columns.empty() ? 0 : r.columns[0].size())},
+            {"wall time", fmt::format("{:.3g} ms", r.stats.wall_time_s * 1e3)}};
+  return t;
+}
+
+Table results_table(const Model& m, const SimulationResult& r) {
+  Table t = table("Link loads: peaks, quasi-static loads, dynamic factors", {"link", "between", "max", "t_max, s", "min", "t_min, s", "static", "dynamic factor", "unit"});
+  for (std::size_t l = 0; l < m.links.size() && l < r.links.size(); ++l) {
+    const auto& L = m.links[l];
+    const auto& s = r.links[l];
+    t.rows.push_back({L.name, body_name(m, L.a) + " – " + body_name(m, L.b), num(s.max), num(s.t_max), num(s.min),
+                      num(s.t_min), num(s.static_load), num(s.dynamic_factor), pretty_unit(link_load_unit(m, L))});
+  }
+  t.note = "Peaks are located on the continuous solution. static: the load of rigid acceleration (the particular "
+           "solution, paper 002 eq. 22) with the loads acting at t_max; dynamic factor = max / static.";
+  return t;
+}
+
+Table modes_table(const Model& m, const Modes& modes) {
+  Table t = table("Natural frequencies and mass-normalized mode shapes", {"mode", "ω, rad/s", "f, Hz"});
+  for (const auto& b : m.bodies) t.header.push_back("φ(" + b.name + ")");
+  for (Eigen::Index k = 0; k < modes.omega.size(); ++k) {
+    std::vector<std::string> row{fmt::format("{}", k + 1), num(modes.omega(k)), num(modes.omega(k) / (2 * std::numbers::pi))};
+    for (Eigen::Index i = 0; i < modes.shapes.rows(); ++i) row.push_back(fmt::format("{:+.4f}", modes.shapes(i, k)));
+    t.rows.push_back(std::move(row));
+  }
+  t.note = fmt::format("{} rigid-body mode(s). Shapes: φᵀ M φ = 1, largest entry positive; units 1/√(kg·m²) "
+                       "(rotational) or 1/√kg (translational).", modes.rigid_body_modes);
+  return t;
+}
+
+}  // namespace
+
+std::vector<Table> model_tables(const Model& m) {
+  Table bodies = table("Bodies", {"body", "type", "inertia / mass", "unit", "initial position", "initial velocity"});
+  for (const auto& b : m.bodies) {
+    const bool rot = b.kind == BodyKind::rotational;
+    bodies.rows.push_back({b.name, rot ? "rotational" : "translational", num(b.inertia), rot ? "kg·m²" : "kg",
+                           num(b.q0) + " " + position_unit(b.kind), num(b.v0) + " " + velocity_unit(b.kind)});
+  }
+  Table links = table("Links", {"link", "type", "between", "ratio i", "stiffness c", "damping d"});
+  for (const auto& l : m.links) {
+    const auto kind = link_kind_body(m, l);
+    const std::string load = pretty_unit(load_unit(kind)), pos = position_unit(kind);
+    const std::string ru = ratio_unit(m, l);
+    links.rows.push_back({l.name, link_kind(l.kind), body_name(m, l.a) + " – " + body_name(m, l.b),
+                          num(l.ratio) + (ru.empty() ? "" : " " + ru),
+                          l.kind == LinkKind::damper ? "–" : num(l.c) + " " + load + "/" + pos,
+                          l.kind == LinkKind::spring ? "–" : num(l.d) + " " + load + "·s/" + pos});
+  }
+  links.note = "Deflection δ = q_a / i − q_b, load F = c δ + d δ̇ (positive: tension), in the coordinate of the second body.";
+  Table loads = table("Loads", {"load", "type", "body", "definition"});
+  for (const auto& L : m.loads)
+    loads.rows.push_back({L.name, load_kind(L.kind), body_name(m, L.body), load_description(m, L)});
+  std::vector<Table> t{std::move(bodies)};
+  if (!m.links.empty()) t.push_back(std::move(links));
+  if (!m.loads.empty()) t.push_back(std::move(loads));
+  return t;
+}
+
+Document simulation_report(const std::vector<Case>& cases, const std::string& command) {
+  Document d;
+  if (cases.empty() || !cases[0].model || !cases[0].result) throw std::invalid_argument("simulation_report: no case");
+  const Model& m0 = *cases[0].model;
+  d.title = m0.name;
+  d.subtitle = fmt::format("{} · {}", m0.source, command);
+  Section model;
+  model.title = "Model";
+  if (!m0.description.empty()) model.paragraphs.push_back(m0.description);
+  model.tables = model_tables(m0);
+  d.sections.push_back(std::move(model));
+  for (const auto& c : cases) {
+    const Model& m = *c.model;
+    const SimulationResult& r = *c.result;
+    const std::string suffix = c.name.empty() ? "" : " — case " + c.name;
+    Section run;
+  run.title = "Run" + suffix;
+    run.tables.push_back(settings_table(m, r));
+    run.tables.push_back(results_table(m, r));
+    // Events (gaps closing, stops, ...) get a table here when the simulation records them.
+    if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
+    d.sections.push_back(std::move(run));
+    Section plots;
+  plots.title = "Plots" + suffix;
+    plots.figures = simulation_figures(m, r);
+    if (c.modes && c.modes->shapes.cols() > 0) plots.figures.push_back(mode_shapes_figure(m, *c.modes));
+    d.sections.push_back(std::move(plots));
+  }
+  return d;
+}
+
+}  // namespace machdyn::report

@@ -1,0 +1,73 @@
+// The HTML report: self-contained (nothing loaded from the network), the model and results as
+// tables, every figure's data as one JSON block the page's charts read.
+#include "machdyn/io/report.hpp"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "machdyn/analysis/modes.hpp"
+#include "machdyn/analysis/simulate.hpp"
+#include "machdyn/model/compile.hpp"
+#include "support/support.hpp"
+
+namespace machdyn {
+namespace {
+
+std::string hoist_report_html() {
+  const Model m = load_model(test::example("hoist-3mass.yaml"), {"simulation.t_end=0.05"});
+  const SimulationResult r = simulate(m);
+  const Modes modes = compute_modes(m);
+  report::Case c;
+  c.model = &m, c.result = &r, c.modes = &modes;
+  return report::to_html(report::simulation_report({c}, "machdyn report hoist-3mass.yaml"));
+}
+
+// Claim: the page embeds uPlot and loads nothing: no external script, stylesheet, image or import.
+TEST(Report, SelfContainedNoNetwork) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
+  EXPECT_EQ(report::uplot_version(), "1.6.32");
+  const std::string h = hoist_report_html();
+  EXPECT_NE(h.find("uPlot"), std::string::npos);
+  for (const char* bad : {"<script src", "<link ", "@import", "url(http", "<img src=\"http", "<iframe"})
+    EXPECT_EQ(h.find(bad), std::string::npos) << bad;
+}
+
+// Claim: the model, settings and results appear as tables with units; there is one data block per
+// figure (link loads, body speeds, mode shapes) and a status element for tests.
+TEST(Report, HasTablesWithUnitsAndFigures) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
+  const std::string h = hoist_report_html();
+  for (const char* s : {"<caption>Bodies</caption>", "kg·m²", "24000 N·m/rad", "M = 450 N·m", "<caption>Run settings",
+                        "dopri5", "dynamic factor", "<td>354</td>", "185.102", "id=\"machdyn-status\""})
+    EXPECT_NE(h.find(s), std::string::npos) << s;
+  for (const char* id : {"data-figure=\"link_loads-1\"", "data-figure=\"body_speeds-2\"", "data-figure=\"mode_shapes-3\""})
+    EXPECT_NE(h.find(id), std::string::npos) << id;
+}
+
+// Claim: a figure's JSON has the columns [x, y1, ...] on one grid: shared when the series share x,
+// else the sorted union with null where a series has no point; NaN is null; "</" cannot end the
+// script element.
+TEST(Report, FigureJsonColumns) {
+  plot::Figure f;
+  f.id = "f";
+  f.x = plot::make_axis("t", "s");
+  f.y = plot::make_axis("M", "N·m");
+  f.series.push_back(plot::make_series("a</script>", {0, 1, 2}, {1, NAN, 3}));
+  f.series.push_back(plot::make_series("b", {0, 1, 2}, {4, 5, 6}));
+  f.ref_lines.push_back(plot::make_ref_line(2.5, "a*", 0));
+  auto j = nlohmann::json::parse(report::figure_json(f));
+  EXPECT_EQ(j["data"].dump(), "[[0,1,2],[1,null,3],[4,5,6]]");
+  EXPECT_FALSE(j["union"].get<bool>());
+  EXPECT_EQ(j["refs"][0]["value"].get<double>(), 2.5);
+  EXPECT_EQ(j["series"][0]["color"], plot::series_color(0));
+  f.series[1] = plot::make_series("b", {0.5, 2}, {7, 8});
+  j = nlohmann::json::parse(report::figure_json(f));
+  EXPECT_EQ(j["data"].dump(), "[[0,0.5,1,2],[1,null,null,3],[null,7,null,8]]");
+  EXPECT_TRUE(j["union"].get<bool>());
+  f.series[1] = plot::make_series("b", {2, 1}, {7, 8});
+  EXPECT_THROW(report::figure_json(f), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace machdyn
