@@ -4,215 +4,207 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
-#include <stdexcept>
-#include <fmt/format.h>
 
 namespace machdyn {
 
-/// A value with its derivative: the arithmetic of forward-mode automatic differentiation.
-struct Dual {
-  double v, d;
-};
-
-struct Expression::Node {
-  enum class Op { constant, variable, add, sub, mul, div, pow, neg, func };
-  Op op = Op::constant;
-  double value = 0.0;
-  std::string func;
-  std::shared_ptr<const Node> a, b;
-
-  [[nodiscard]] Dual eval(double x) const {
-    switch (op) {
-      case Op::constant: return {value, 0.0};
-      case Op::variable: return {x, 1.0};
-      case Op::neg: {
-        Dual u = a->eval(x);
-        return {-u.v, -u.d};
-      }
-      case Op::add: {
-        Dual u = a->eval(x), w = b->eval(x);
-        return {u.v + w.v, u.d + w.d};
-      }
-      case Op::sub: {
-        Dual u = a->eval(x), w = b->eval(x);
-        return {u.v - w.v, u.d - w.d};
-      }
-      case Op::mul: {
-        Dual u = a->eval(x), w = b->eval(x);
-        return {u.v * w.v, u.d * w.v + u.v * w.d};
-      }
-      case Op::div: {
-        Dual u = a->eval(x), w = b->eval(x);
-        return {u.v / w.v, (u.d * w.v - u.v * w.d) / (w.v * w.v)};
-      }
-      case Op::pow: {
-        Dual u = a->eval(x), w = b->eval(x);
-        const double p = std::pow(u.v, w.v);
-        // d(u^w) = w u^(w-1) u' + u^w ln(u) w'; the second term only when the exponent varies.
-        double d = w.v == 0.0 ? 0.0 : w.v * std::pow(u.v, w.v - 1.0) * u.d;
-        if (w.d != 0.0) d += p * std::log(u.v) * w.d;
-        return {p, d};
-      }
-      case Op::func: {
-        Dual u = a->eval(x);
-        const double s = u.v;
-        if (func == "sin") return {std::sin(s), std::cos(s) * u.d};
-        if (func == "cos") return {std::cos(s), -std::sin(s) * u.d};
-        if (func == "tan") {
-          const double c = std::cos(s);
-          return {std::tan(s), u.d / (c * c)};
-        }
-        if (func == "asin") return {std::asin(s), u.d / std::sqrt(1 - s * s)};
-        if (func == "acos") return {std::acos(s), -u.d / std::sqrt(1 - s * s)};
-        if (func == "atan") return {std::atan(s), u.d / (1 + s * s)};
-        if (func == "sinh") return {std::sinh(s), std::cosh(s) * u.d};
-        if (func == "cosh") return {std::cosh(s), std::sinh(s) * u.d};
-        if (func == "tanh") {
-          const double t = std::tanh(s);
-          return {t, (1 - t * t) * u.d};
-        }
-        if (func == "exp") {
-          const double e = std::exp(s);
-          return {e, e * u.d};
-        }
-        if (func == "log") return {std::log(s), u.d / s};
-        if (func == "sqrt") {
-          const double r = std::sqrt(s);
-          return {r, u.d / (2 * r)};
-        }
-        if (func == "abs") return {std::abs(s), s < 0 ? -u.d : u.d};
-        return {std::nan(""), 0.0};
-      }
-    }
-    return {0.0, 0.0};
-  }
-};
+Jet operator+(const Jet& a, const Jet& b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+Jet operator-(const Jet& a, const Jet& b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+Jet operator-(const Jet& a) { return {-a.v, -a.d, -a.dd}; }
+Jet operator*(const Jet& a, const Jet& b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2.0 * a.d * b.d + a.v * b.dd};
+}
+Jet operator*(double c, const Jet& a) { return {c * a.v, c * a.d, c * a.dd}; }
+Jet chain(const Jet& a, double f, double f1, double f2) {
+  return {f, f1 * a.d, f2 * a.d * a.d + f1 * a.dd};
+}
+Jet operator/(const Jet& a, const Jet& b) {
+  const double x = b.v;  // 1/x: f' = -1/x², f'' = 2/x³
+  return a * chain(b, 1.0 / x, -1.0 / (x * x), 2.0 / (x * x * x));
+}
 
 namespace {
+Jet jet_pow(const Jet& a, const Jet& b) {
+  if (b.d == 0.0 && b.dd == 0.0) {  // constant exponent n: f = x^n
+    const double n = b.v, x = a.v;
+    if (n == 0.0) return Jet::constant(1.0);
+    return chain(a, std::pow(x, n), n * std::pow(x, n - 1.0), n * (n - 1.0) * std::pow(x, n - 2.0));
+  }
+  // a^b = exp(b log a)
+  Jet l = chain(a, std::log(a.v), 1.0 / a.v, -1.0 / (a.v * a.v));
+  Jet e = b * l;
+  const double ex = std::exp(e.v);
+  return chain(e, ex, ex, ex);
+}
+}  // namespace
 
-using NodeP = std::shared_ptr<const Expression::Node>;
-using Op = Expression::Node::Op;
+ExpressionError::ExpressionError(int column, const std::string& message)
+    : std::invalid_argument("at character " + std::to_string(column) + ": " + message), column_(column) {}
 
-class Parser {
+/// Recursive descent over the grammar in the header; builds the node array of an Expression.
+class ExpressionParser {
  public:
-  Parser(std::string_view s, const std::string& var) : s_(s), var_(var) {}
+  ExpressionParser(Expression& e, std::string_view s, const std::string& var) : e_(e), s_(s), var_(var) {}
 
-  NodeP parse() {
-    NodeP n = expr();
+  int parse() {
+    int r = expr();
     skip();
-    if (i_ < s_.size()) fail(fmt::format("unexpected '{}'", s_[i_]));
-    return n;
+    if (p_ < s_.size()) fail(std::string("unexpected '") + s_[p_] + "'");
+    return r;
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::invalid_argument(fmt::format("at character {}: {}", i_ + 1, what));
-  }
+  using Op = Expression::Op;
+  [[noreturn]] void fail(const std::string& m) const { throw ExpressionError(static_cast<int>(p_) + 1, m); }
   void skip() {
-    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
+    while (p_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[p_]))) ++p_;
   }
   bool eat(char c) {
     skip();
-    if (i_ < s_.size() && s_[i_] == c) {
-      ++i_;
+    if (p_ < s_.size() && s_[p_] == c) {
+      ++p_;
       return true;
     }
     return false;
   }
-  static NodeP make(Op op, NodeP a = nullptr, NodeP b = nullptr, double v = 0.0, std::string f = {}) {
-    auto n = std::make_shared<Expression::Node>();
-    n->op = op;
-    n->a = std::move(a);
-    n->b = std::move(b);
-    n->value = v;
-    n->func = std::move(f);
-    return n;
+  int add(Op op, int a = -1, int b = -1, double v = 0.0) {
+    e_.nodes_.push_back({op, v, a, b});
+    return static_cast<int>(e_.nodes_.size()) - 1;
   }
-
-  NodeP expr() {
-    NodeP n = term();
+  int expr() {
+    int l = term();
     for (;;) {
-      if (eat('+')) n = make(Op::add, n, term());
-      else if (eat('-')) n = make(Op::sub, n, term());
-      else return n;
+      if (eat('+')) l = add(Op::Add, l, term());
+      else if (eat('-')) l = add(Op::Sub, l, term());
+      else return l;
     }
   }
-  NodeP term() {
-    NodeP n = unary();
+  int term() {
+    int l = unary();
     for (;;) {
-      if (eat('*')) n = make(Op::mul, n, unary());
-      else if (eat('/')) n = make(Op::div, n, unary());
-      else return n;
+      if (eat('*')) l = add(Op::Mul, l, unary());
+      else if (eat('/')) l = add(Op::Div, l, unary());
+      else return l;
     }
   }
-  NodeP unary() {
-    if (eat('-')) return make(Op::neg, unary());
+  int unary() {
+    if (eat('-')) return add(Op::Neg, unary());
     if (eat('+')) return unary();
     return power();
   }
-  NodeP power() {
-    NodeP n = atom();
-    if (eat('^')) return make(Op::pow, n, unary());
-    return n;
+  int power() {
+    int b = primary();
+    if (eat('^')) return add(Op::Pow, b, unary());
+    return b;
   }
-  NodeP atom() {
+  int primary() {
     skip();
-    if (i_ >= s_.size()) fail("expected a number, a name or '(' but the text ended");
-    const char c = s_[i_];
-    if (eat('(')) {
-      NodeP n = expr();
+    if (p_ >= s_.size()) fail("expected a number, a name or '(' but the expression ended");
+    const char c = s_[p_];
+    if (c == '(') {
+      ++p_;
+      int r = expr();
       if (!eat(')')) fail("expected ')'");
-      return n;
+      return r;
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
-      const std::string rest(s_.substr(i_));
+      std::string rest(s_.substr(p_));
       char* end = nullptr;
-      const double v = std::strtod(rest.c_str(), &end);
-      if (end == rest.c_str()) fail("expected a number");
-      i_ += static_cast<size_t>(end - rest.c_str());
-      return make(Op::constant, nullptr, nullptr, v);
+      double v = std::strtod(rest.c_str(), &end);
+      if (end == rest.c_str()) fail("bad number");
+      p_ += static_cast<std::size_t>(end - rest.c_str());
+      return add(Op::Num, -1, -1, v);
     }
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
-      const size_t start = i_;
-      while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_')) ++i_;
-      const std::string name(s_.substr(start, i_ - start));
-      if (name == var_) return make(Op::variable);
-      if (name == "pi") return make(Op::constant, nullptr, nullptr, std::numbers::pi);
-      if (name == "e") return make(Op::constant, nullptr, nullptr, std::numbers::e);
-      static const char* kFuncs[] = {"sin", "cos", "tan", "asin", "acos", "atan", "sinh",
-                                     "cosh", "tanh", "exp", "log", "sqrt", "abs"};
-      for (const char* f : kFuncs)
-        if (name == f) {
-          if (!eat('(')) fail(fmt::format("expected '(' after function '{}'", name));
-          NodeP arg = expr();
+      const std::size_t start = p_;
+      while (p_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[p_])) || s_[p_] == '_')) ++p_;
+      const std::string name(s_.substr(start, p_ - start));
+      if (name == var_) return add(Op::Var);
+      if (name == "pi") return add(Op::Num, -1, -1, std::numbers::pi);
+      if (name == "e") return add(Op::Num, -1, -1, std::numbers::e);
+      static const std::pair<const char*, Op> funcs[] = {
+          {"sin", Op::Sin},   {"cos", Op::Cos},   {"tan", Op::Tan},   {"asin", Op::Asin}, {"acos", Op::Acos},
+          {"atan", Op::Atan}, {"sinh", Op::Sinh}, {"cosh", Op::Cosh}, {"tanh", Op::Tanh}, {"exp", Op::Exp},
+          {"log", Op::Log},   {"sqrt", Op::Sqrt}, {"abs", Op::Abs}};
+      for (const auto& [fname, op] : funcs) {
+        if (name == fname) {
+          if (!eat('(')) fail("expected '(' after " + name);
+          int a = expr();
           if (!eat(')')) fail("expected ')'");
-          return make(Op::func, arg, nullptr, 0.0, name);
+          return add(op, a);
         }
-      i_ = start;
-      fail(fmt::format("unknown name '{}'; the variable is '{}', constants pi and e, functions sin cos tan "
-                       "asin acos atan sinh cosh tanh exp log sqrt abs",
-                       name, var_));
+      }
+      p_ = start;
+      fail("unknown name '" + name + "'; known: " + var_ +
+           ", pi, e, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, exp, log, sqrt, abs");
     }
-    fail(fmt::format("unexpected '{}'", c));
+    fail(std::string("unexpected '") + c + "'");
   }
 
+  Expression& e_;
   std::string_view s_;
   const std::string& var_;
-  size_t i_ = 0;
+  std::size_t p_ = 0;
 };
 
-}  // namespace
-
 Expression::Expression(std::string_view text, std::string variable) : text_(text) {
-  root_ = Parser(text, variable).parse();
+  ExpressionParser p(*this, text_, variable);
+  root_ = p.parse();
 }
 
-double Expression::operator()(double x) const { return root_->eval(x).v; }
+Jet Expression::eval(const Jet& x) const { return eval_node(root_, x); }
 
-void Expression::evaluate(double x, double* f, double* df) const {
-  const Dual r = root_->eval(x);
-  *f = r.v;
-  *df = r.d;
+Jet Expression::eval_node(int i, const Jet& x) const {
+  const Node& n = nodes_[static_cast<std::size_t>(i)];
+  switch (n.op) {
+    case Op::Num: return Jet::constant(n.value);
+    case Op::Var: return x;
+    case Op::Add: return eval_node(n.a, x) + eval_node(n.b, x);
+    case Op::Sub: return eval_node(n.a, x) - eval_node(n.b, x);
+    case Op::Mul: return eval_node(n.a, x) * eval_node(n.b, x);
+    case Op::Div: return eval_node(n.a, x) / eval_node(n.b, x);
+    case Op::Pow: return jet_pow(eval_node(n.a, x), eval_node(n.b, x));
+    case Op::Neg: return -eval_node(n.a, x);
+    default: break;
+  }
+  const Jet a = eval_node(n.a, x);
+  const double v = a.v;
+  switch (n.op) {
+    case Op::Sin: return chain(a, std::sin(v), std::cos(v), -std::sin(v));
+    case Op::Cos: return chain(a, std::cos(v), -std::sin(v), -std::cos(v));
+    case Op::Tan: {
+      const double t = std::tan(v);
+      return chain(a, t, 1.0 + t * t, 2.0 * t * (1.0 + t * t));
+    }
+    case Op::Exp: {
+      const double ex = std::exp(v);
+      return chain(a, ex, ex, ex);
+    }
+    case Op::Log: return chain(a, std::log(v), 1.0 / v, -1.0 / (v * v));
+    case Op::Asin: {  // (1 − v²)^(−1/2), v (1 − v²)^(−3/2)
+      const double s = 1.0 - v * v;
+      return chain(a, std::asin(v), 1.0 / std::sqrt(s), v / (s * std::sqrt(s)));
+    }
+    case Op::Acos: {
+      const double s = 1.0 - v * v;
+      return chain(a, std::acos(v), -1.0 / std::sqrt(s), -v / (s * std::sqrt(s)));
+    }
+    case Op::Atan: {  // 1/(1 + v²), −2v/(1 + v²)²
+      const double s = 1.0 + v * v;
+      return chain(a, std::atan(v), 1.0 / s, -2.0 * v / (s * s));
+    }
+    case Op::Sinh: return chain(a, std::sinh(v), std::cosh(v), std::sinh(v));
+    case Op::Cosh: return chain(a, std::cosh(v), std::sinh(v), std::cosh(v));
+    case Op::Tanh: {  // sech² v, −2 tanh v sech² v
+      const double th = std::tanh(v), s2 = 1.0 - th * th;
+      return chain(a, th, s2, -2.0 * th * s2);
+    }
+    case Op::Sqrt: {
+      const double r = std::sqrt(v);
+      return chain(a, r, 0.5 / r, -0.25 / (r * v));
+    }
+    case Op::Abs: return chain(a, std::abs(v), v < 0.0 ? -1.0 : 1.0, 0.0);
+    default: return Jet::constant(std::nan(""));
+  }
 }
 
 }  // namespace machdyn

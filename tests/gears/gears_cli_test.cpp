@@ -125,7 +125,7 @@ TEST(GearsCli, BadInputsExitWith2AndTheirPlace) {
       {"not_positive", "law: expression\nnormalize: true\nratio: \"1 + 2*cos(4*phi)\"\nL: 90 mm\nz: 20\nzH: 40\n",
        "", ":3:8: error: gears: the ratio i(φ) must be finite and positive"},
       {"bad_expression", "law: expression\nratio: \"2 + foo(phi)\"\nL: 90 mm\nz: 20\nzH: 40\n", "",
-       ":2:8: error: gears: field 'ratio': column 5: unknown name 'foo'"},
+       ":2:8: error: gears: field 'ratio': at character 5: unknown name 'foo'"},
       {"teeth_not_divisible", "law: expression\nratio: \"2\"\nL: 90 mm\nz: 21\nzH: 42\n", "",
        ":5:5: error: gears: zH = 42 must be a multiple"},
       // a 2-tooth circular pinion: r = L/3, module = r, dedendum 1.25 m > r

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "machdyn/gears/expression.hpp"
+#include "machdyn/common/expression.hpp"
 
 namespace machdyn::gears {
 
