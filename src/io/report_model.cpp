@@ -138,6 +138,68 @@ Table modes_table(const Model& m, const Modes& modes) {
 
 }  // namespace
 
+Table events_table(const SimulationResult& r) {
+  Table t = table("Mode events (gaps, stick and slip)", {"t, s", "kind", "element", "from", "to"});
+  const auto& ev = r.hybrid.events;
+  for (std::size_t k = 0; k < ev.size() && k < kMaxEventRows; ++k)
+    t.rows.push_back({fmt::format("{:.9g}", ev[k].t), ev[k].kind, ev[k].element, ev[k].from.empty() ? "–" : ev[k].from,
+                      ev[k].to});
+  long changes = 0;
+  for (const auto& e : ev) changes += e.kind != "initial";
+  t.note = fmt::format("{} mode events (the `initial` rows give the modes at t = 0), located to ~1e-13 s.", changes);
+  if (ev.size() > kMaxEventRows)
+    t.note += fmt::format(" The first {} of {} rows are shown; all are in summary.json.", kMaxEventRows, ev.size());
+  return t;
+}
+
+Table slip_phases_table(const Model& m, const SimulationResult& r) {
+  Table t = table("Slip phases with the link loads at breakaway and inside the phase",
+                  {"#", "contact", "direction", "t_start, s", "t_end, s", "duration, s"});
+  for (const auto& L : m.links) {
+    const std::string u = pretty_unit(link_load_unit(m, L));
+    t.header.push_back(fmt::format("{} at breakaway, {}", L.name, u));
+    t.header.push_back(fmt::format("{} max, {}", L.name, u));
+    t.header.push_back(fmt::format("t of {} max, s", L.name));
+  }
+  const auto& ph = r.hybrid.slip_phases;
+  for (std::size_t k = 0; k < ph.size() && k < kMaxEventRows; ++k) {
+    const auto& p = ph[k];
+    std::vector<std::string> row{fmt::format("{}", k + 1), p.contact, p.direction > 0 ? "u > 0" : "u < 0",
+                                 fmt::format("{:.6g}", p.t_start), fmt::format("{:.6g}", p.t_end),
+                                 fmt::format("{:.4g}", p.t_end - p.t_start)};
+    for (std::size_t l = 0; l < m.links.size(); ++l) {
+      row.push_back(l < p.link_start.size() ? num(p.link_start[l]) : "–");
+      row.push_back(l < p.link_max.size() ? num(p.link_max[l]) : "–");
+      row.push_back(l < p.link_t_max.size() ? num(p.link_t_max[l]) : "–");
+    }
+    t.rows.push_back(std::move(row));
+  }
+  t.note = "Breakaway: the link load at the located start of the phase (the exact slip limit). ";
+  if (ph.size() > kMaxEventRows) t.note += fmt::format("The first {} of {} phases are shown.", kMaxEventRows, ph.size());
+  return t;
+}
+
+Table cases_table(const std::vector<Case>& cases) {
+  Table t = table("Load cases compared: peak link loads and dynamic factors",
+                  {"case", "link", "max", "min", "peak", "t_peak, s", "static", "dynamic factor", "unit", "events"});
+  for (const auto& c : cases) {
+    const Model& m = *c.model;
+    const SimulationResult& r = *c.result;
+    long events = 0;
+    for (const auto& e : r.hybrid.events) events += e.kind != "initial";
+    for (std::size_t l = 0; l < m.links.size() && l < r.links.size(); ++l) {
+      const LinkPeak p = link_peak(r, l);
+      t.rows.push_back({l == 0 ? c.name : "", m.links[l].name, num(r.links[l].max), num(r.links[l].min), num(p.peak),
+                        num(p.t_peak), num(p.static_load), p.dynamic_factor == p.dynamic_factor ? fmt::format("{:.3g}", p.dynamic_factor) : "–",
+                        pretty_unit(link_load_unit(m, m.links[l])), l == 0 ? fmt::format("{}", events) : ""});
+    }
+  }
+  t.note = "peak: the extreme of larger magnitude; static: the quasi-static load (particular solution) with the "
+           "loads acting at that time; dynamic factor = peak / static (large but harmless where the static load is "
+           "small). events: mode changes of gaps, contacts and brakes.";
+  return t;
+}
+
 std::vector<Table> model_tables(const Model& m) {
   Table bodies = table("Bodies", {"body", "type", "inertia / mass", "unit", "initial position", "initial velocity"});
   for (const auto& b : m.bodies) {
@@ -169,29 +231,48 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
   Document d;
   if (cases.empty() || !cases[0].model || !cases[0].result) throw std::invalid_argument("simulation_report: no case");
   const Model& m0 = *cases[0].model;
-  d.title = m0.name;
+  // Several cases: the title is the file's model name, without the first case's " [case]".
+  d.title = cases.size() > 1 && !m0.load_case.empty() ? m0.name.substr(0, m0.name.rfind(" [")) : m0.name;
   d.subtitle = fmt::format("{} · {}", m0.source, command);
   Section model;
   model.title = "Model";
   if (!m0.description.empty()) model.paragraphs.push_back(m0.description);
   model.tables = model_tables(m0);
   d.sections.push_back(std::move(model));
+  if (cases.size() > 1) {
+    Section cmp;
+    cmp.title = "Cases compared";
+    cmp.tables.push_back(cases_table(cases));
+    d.sections.push_back(std::move(cmp));
+  }
+  const bool many = cases.size() > 1;
   for (const auto& c : cases) {
     const Model& m = *c.model;
     const SimulationResult& r = *c.result;
-    const std::string suffix = c.name.empty() ? "" : " — case " + c.name;
+    // One case: a run section and a plots section. Several: one section per case, tables then plots.
     Section run;
-  run.title = "Run" + suffix;
+    run.title = c.name.empty() ? "Run" : "Case " + c.name;
+    if (!c.description.empty()) run.paragraphs.push_back(c.description);
     run.tables.push_back(settings_table(m, r));
-    run.tables.push_back(results_table(m, r));
-    // Events (gaps closing, stops, ...) get a table here when the simulation records them.
+    if (!m.links.empty()) run.tables.push_back(results_table(m, r));
+    if (r.hybrid.active) {
+      run.tables.push_back(events_table(r));
+      if (!r.hybrid.slip_phases.empty()) run.tables.push_back(slip_phases_table(m, r));
+    }
     if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
-    d.sections.push_back(std::move(run));
     Section plots;
-  plots.title = "Plots" + suffix;
+    plots.title = c.name.empty() ? "Plots" : "Plots — case " + c.name;
     plots.figures = simulation_figures(m, r);
     if (c.modes && c.modes->shapes.cols() > 0) plots.figures.push_back(mode_shapes_figure(m, *c.modes));
-    d.sections.push_back(std::move(plots));
+    if (c.energy)
+      for (auto& f : energy_figures(m, *c.energy)) plots.figures.push_back(std::move(f));
+    if (many) {
+      for (auto& f : plots.figures) run.figures.push_back(std::move(f));
+      d.sections.push_back(std::move(run));
+    } else {
+      d.sections.push_back(std::move(run));
+      d.sections.push_back(std::move(plots));
+    }
   }
   return d;
 }

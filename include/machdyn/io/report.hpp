@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/plot.hpp"
@@ -64,12 +65,30 @@ struct Case {
   const Model* model = nullptr;
   const SimulationResult* result = nullptr;
   const Modes* modes = nullptr;   ///< optional: natural frequencies and the mode-shape plot
+  std::string description;        ///< the case's description (cases: NAME: description:)
+  /// Optional, for a 1-DOF machine: the energy integral, drawn as ω against distance or angle (and
+  /// the crank's inertia moments), io/figures.hpp energy_figures().
+  const EnergyResult* energy = nullptr;
 };
+
+/// Rows of the events table at most; a longer run says how many were left out.
+inline constexpr std::size_t kMaxEventRows = 400;
+
+/// The mode events of a hybrid run: t, kind, element, from, to (the `initial` modes first).
+Table events_table(const SimulationResult& r);
+/// The slip phases: contact, direction, start, end, and per link the load at breakaway and the
+/// extremes inside the phase.
+Table slip_phases_table(const Model& m, const SimulationResult& r);
+/// One table over several cases: per case and link the maximum, minimum, peak (extreme of larger
+/// magnitude) with its time, the quasi-static load there, the dynamic factor and the mode events.
+Table cases_table(const std::vector<Case>& cases);
 
 /// The document of `machdyn report`: the model (of the first case), then for each case its run
 /// settings and solver statistics, the results table (peaks, static values, dynamic factors,
 /// events), the natural frequencies, and the plots (link loads with the static values marked, body
-/// speeds, mode shapes). `command` is the command line, printed under the title.
+/// speeds, mode shapes; the load cyclogram and contacts of a hybrid run; ω against distance or
+/// angle of a machine). With more than one case a comparison table (cases_table) follows the model.
+/// `command` is the command line, printed under the title.
 Document simulation_report(const std::vector<Case>& cases, const std::string& command);
 
 }  // namespace machdyn::report
