@@ -113,7 +113,6 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
     throw std::invalid_argument("load cyclogram: needs the hybrid (event-driven) result of a model with links");
   plot::Figure f = link_loads_figure(m, r);
   f.id = "load_cyclogram";
-  f.title = "Load cyclogram: link load; dashed: static limit F_sc; shaded: slip; dots: load at breakaway";
   f.ref_lines.clear();  // the cyclogram compares with the adhesion limit, not the quasi-static load
   const auto ks = slipping_contacts(m);
   const std::string y_unit = link_load_unit(m, m.links[0]);
@@ -124,6 +123,8 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
         c.static_limit, fmt::format("F_sc = {} {}", number(c.static_limit), plot::pretty_unit(y_unit)), -1));
   }
   add_slip_bands(m, r, ks, f);
+  f.title = fmt::format("Load cyclogram: link load{}{}; dots: load at breakaway",
+                        f.ref_lines.empty() ? "" : "; dashed: static limit F_sc", f.bands.empty() ? "" : "; shaded: slip");
   // The breakaway loads: the link load at the start of every slip phase of these contacts.
   const std::size_t n_links = m.links.size();
   for (std::size_t l = 0; l < n_links; ++l) {
@@ -196,7 +197,7 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
   for (const auto& b : m.bodies) name_chars += b.name.size() + 2;
   const int every = std::max(1, static_cast<int>((name_chars + 59) / 60));
   for (int i = 0; i < m.dof(); i += every) f.x.ticks.push_back({i + 1.0, m.bodies[static_cast<std::size_t>(i)].name});
-  if (every > 1 && (m.dof() - 1) % every != 0)
+  if (every > 1 && (m.dof() - 1) % every >= 2)  // the last body too, unless its neighbour is named
     f.x.ticks.push_back({static_cast<double>(m.dof()), m.bodies.back().name});
   f.y = plot::make_axis("relative amplitude φ / max|φ|", "");
   for (Eigen::Index k = 0; k < shown; ++k) {
@@ -293,21 +294,39 @@ plot::Figure speed_distance_figure(const Model& m, const EnergyResult& r) {
   f.y = plot::make_axis("angular velocity ω", "rad/s");
   plot::Series w = plot::make_series("ω, energy integral", {}, {});
   const double limit = r.omega_limit && std::isfinite(*r.omega_limit) ? *r.omega_limit : kNaN;
-  for (const auto& row : r.table) {
-    double p = row.q * 180.0 / kPi, dp = 0, ddp = 0;
-    if (distance) mach->point(row.q, &p, &dp, &ddp);
-    if (!std::isfinite(p) || !std::isfinite(row.omega)) continue;
-    w.x.push_back(p);
-    w.y.push_back(row.omega);
-    // x grows without bound as β → π: stop once ω has (nearly) reached its limit.
-    if (std::isfinite(limit) && w.x.size() > 10 && std::abs(row.omega - limit) <= 2e-3 * std::abs(limit)) break;
-  }
   if (distance) {
+    // The wheel's travel is linear in q (x = R_r φ) but not in β, the table's coordinate, whose rows
+    // crowd at the start and thin out as x grows without bound near β → π. So resample uniformly in q
+    // up to where ω is within 1 % of a finite limit, or, with no limit, up to 90 % of the β range.
+    const auto& rows = r.table;
+    std::size_t end = rows.size() - 1;
+    for (std::size_t k = 10; k < rows.size(); ++k)
+      if (std::isfinite(limit) ? std::abs(rows[k].omega - limit) <= 1e-2 * std::abs(limit)
+                               : r.limit_kind == "unbounded" &&
+                                     std::abs(rows[k].s - rows[0].s) >= 0.9 * std::abs(rows.back().s - rows[0].s)) {
+        end = k;
+        break;
+      }
+    const EnergyIntegral integral(m);
+    constexpr int kPoints = 400;
+    for (int i = 0; i <= kPoints; ++i) {
+      const double q = rows[0].q + (rows[end].q - rows[0].q) * i / kPoints;
+      double p = 0, dp = 0, ddp = 0;
+      mach->point(q, &p, &dp, &ddp);
+      const double omega = i == kPoints ? rows[end].omega : integral.omega(q);  // the end may be a turning point
+      if (!std::isfinite(p) || !std::isfinite(omega)) continue;
+      w.x.push_back(p);
+      w.y.push_back(omega);
+    }
     f.x = plot::make_axis(fmt::format("distance travelled {}", r.point_name), "m");
-    f.title = fmt::format("Speed against distance ({})", r.machine);
+    f.title = fmt::format("Speed against distance: {}", m.name);
   } else {
+    for (const auto& row : r.table) {
+      w.x.push_back(row.q * 180.0 / kPi);
+      w.y.push_back(row.omega);
+    }
     f.x = plot::make_axis(fmt::format("angle {}", r.s_name == "q" ? "φ" : r.s_name), "deg");
-    f.title = fmt::format("Speed against angle ({})", r.machine);
+    f.title = fmt::format("Speed against angle: {}", m.name);
   }
   // A scan backwards (ω0 < 0) runs to decreasing x; the charts want x ascending.
   if (w.x.size() > 1 && w.x.back() < w.x.front()) {
@@ -327,7 +346,7 @@ plot::Figure inertia_moments_figure(const Model& m, const EnergyResult& r) {
   const EnergyIntegral integral(m);
   plot::Figure f;
   f.id = "inertia_moments";
-  f.title = fmt::format("Inertia moments M_k = −I_k ε − ½ I_k′ ω² ({})", r.machine);
+  f.title = fmt::format("Inertia moments M_k = −I_k ε − ½ I_k′ ω²: {}", m.name);
   f.x = plot::make_axis("angle φ", "deg");
   f.y = plot::make_axis("inertia moment M", "N·m");
   const int parts = mach->parts();

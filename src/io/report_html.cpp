@@ -254,6 +254,7 @@ caption { text-align: left; font-weight: bold; padding: 4px 0; }
 th, td { border-bottom: 1px solid #ddd; padding: 4px 12px 4px 0; text-align: right; white-space: nowrap; }
 th { border-bottom: 2px solid #888; } th:first-child, td:first-child { text-align: left; }
 td.text, table.text th { text-align: left; white-space: normal; } .note { color: #555; font-size: 13px; margin: 2px 0 12px; }
+details { margin: 8px 0; } summary { font-weight: bold; cursor: pointer; padding: 4px 0; }
 .figure { margin: 18px 0 26px; } .key { font-size: 13px; margin: 2px 0; }
 .swatch { display: inline-block; width: 22px; height: 12px; margin-right: 6px; vertical-align: -1px; border: 1px solid #bbb; } .hint { color: #666; font-size: 12px; margin: 2px 0; }
 .uplot .u-legend { font-size: 13px; text-align: left; } .uplot .u-legend th { border: 0; font-weight: normal; }
@@ -265,8 +266,10 @@ footer { color: #777; font-size: 12px; margin-top: 40px; }
 std::string section_anchor(std::size_t k) { return fmt::format("sec-{}", k + 1); }
 
 void write_table(std::string& o, const Table& t) {
+  if (t.collapsed)
+    o += fmt::format("<details><summary>{} ({} rows; click to show)</summary>\n", escape_html(t.caption), t.rows.size());
   o += t.text_values ? "<table class=\"text\">" : "<table>";
-  if (!t.caption.empty()) o += "<caption>" + escape_html(t.caption) + "</caption>";
+  if (!t.caption.empty() && !t.collapsed) o += "<caption>" + escape_html(t.caption) + "</caption>";
   o += "<thead><tr>";
   for (const auto& h : t.header) o += "<th>" + escape_html(h) + "</th>";
   o += "</tr></thead><tbody>\n";
@@ -282,6 +285,7 @@ void write_table(std::string& o, const Table& t) {
   }
   o += "</tbody></table>\n";
   if (!t.note.empty()) o += "<p class=\"note\">" + escape_html(t.note) + "</p>\n";
+  if (t.collapsed) o += "</details>\n";
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // The content of `machdyn report`: the model as tables with units, run settings, results, plots.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -53,14 +54,15 @@ std::string ratio_unit(const Model& m, const Link& l) {
 std::string load_description(const Model& m, const Load& L) {
   const auto kind = m.bodies[static_cast<std::size_t>(L.body)].kind;
   const std::string u = pretty_unit(load_unit(kind)), vu = pretty_unit(velocity_unit(kind));
+  const char* sym = kind == BodyKind::translational ? "F" : "M";
   switch (L.kind) {
-    case LoadKind::constant: return fmt::format("M = {} {}", num(L.value), u);
+    case LoadKind::constant: return fmt::format("{} = {} {}", sym, num(L.value), u);
     case LoadKind::step: return fmt::format("{} {} before t0 = {} s, {} {} after", num(L.before), u, num(L.t0), num(L.value), u);
     case LoadKind::ramp:
       return fmt::format("{} {} until t0 = {} s, linear to {} {} at t1 = {} s", num(L.before), u, num(L.t0), num(L.value), u,
                          num(L.t1));
     case LoadKind::table: {
-      std::string s = "piecewise linear (t [s], M [" + u + "]):";
+      std::string s = fmt::format("piecewise linear (t [s], {} [{}]):", sym, u);
       for (std::size_t k = 0; k < L.times.size() && k < 8; ++k) s += fmt::format(" ({}, {})", num(L.times[k]), num(L.values[k]));
       if (L.times.size() > 8) s += fmt::format(" … {} points", L.times.size());
       return s;
@@ -149,17 +151,17 @@ Table events_table(const SimulationResult& r) {
   t.note = fmt::format("{} mode events (the `initial` rows give the modes at t = 0), located to ~1e-13 s.", changes);
   if (ev.size() > kMaxEventRows)
     t.note += fmt::format(" The first {} of {} rows are shown; all are in summary.json.", kMaxEventRows, ev.size());
+  t.collapsed = t.rows.size() > 12;
   return t;
 }
 
 Table slip_phases_table(const Model& m, const SimulationResult& r) {
-  Table t = table("Slip phases with the link loads at breakaway and inside the phase",
+  Table t = table("Slip phases with the link loads at breakaway and their maxima",
                   {"#", "contact", "direction", "t_start, s", "t_end, s", "duration, s"});
   for (const auto& L : m.links) {
     const std::string u = pretty_unit(link_load_unit(m, L));
     t.header.push_back(fmt::format("{} at breakaway, {}", L.name, u));
     t.header.push_back(fmt::format("{} max, {}", L.name, u));
-    t.header.push_back(fmt::format("t of {} max, s", L.name));
   }
   const auto& ph = r.hybrid.slip_phases;
   for (std::size_t k = 0; k < ph.size() && k < kMaxEventRows; ++k) {
@@ -170,12 +172,13 @@ Table slip_phases_table(const Model& m, const SimulationResult& r) {
     for (std::size_t l = 0; l < m.links.size(); ++l) {
       row.push_back(l < p.link_start.size() ? num(p.link_start[l]) : "–");
       row.push_back(l < p.link_max.size() ? num(p.link_max[l]) : "–");
-      row.push_back(l < p.link_t_max.size() ? num(p.link_t_max[l]) : "–");
     }
     t.rows.push_back(std::move(row));
   }
-  t.note = "Breakaway: the link load at the located start of the phase (the exact slip limit). ";
+  t.note = "Breakaway: the link load at the located start of the phase (the exact slip limit); max: the largest "
+           "link load inside the phase (its time is in summary.json, slip_phases). ";
   if (ph.size() > kMaxEventRows) t.note += fmt::format("The first {} of {} phases are shown.", kMaxEventRows, ph.size());
+  t.collapsed = t.rows.size() > 12;
   return t;
 }
 
@@ -217,12 +220,39 @@ std::vector<Table> model_tables(const Model& m) {
                           l.kind == LinkKind::damper ? "–" : num(l.c) + " " + load + "/" + pos,
                           l.kind == LinkKind::spring ? "–" : num(l.d) + " " + load + "·s/" + pos});
   }
+  const bool gaps = std::any_of(m.links.begin(), m.links.end(), [](const Link& l) { return l.has_gap; });
+  if (gaps) {
+    links.header.push_back("gap Δ (start)");
+    for (std::size_t k = 0; k < m.links.size(); ++k) {
+      const auto& l = m.links[k];
+      const std::string pos = position_unit(link_kind_body(m, l));
+      links.rows[k].push_back(l.has_gap ? fmt::format("{} {} ({} {})", num(l.gap), pos, num(l.gap_start), pos) : "–");
+    }
+  }
   links.note = "Deflection δ = q_a / i − q_b, load F = c δ + d δ̇ (positive: tension), in the coordinate of the second body.";
+  if (gaps) links.note += " Gap: the link carries load only on a flank; start: the position inside the gap at δ = 0.";
+  Table contacts = table("Friction contacts and brakes", {"contact", "type", "between", "static limit F_s", "kinetic F_k", "details"});
+  for (const auto& c : m.contacts) {
+    const std::string u = pretty_unit(load_unit(m.bodies[static_cast<std::size_t>(c.a)].kind));
+    std::string kinetic = c.kinetic.size() == 1 ? num(c.kinetic[0]) + " " + u
+                                                 : fmt::format("table of {} speeds, {} … {} {}", c.kinetic.size(),
+                                                               num(c.kinetic.front()), num(c.kinetic.back()), u);
+    std::string details;
+    if (c.brake) details = fmt::format("applied at {} s, ramp {} s", num(c.t_apply), num(c.t_ramp));
+    if (!c.surface_velocities.empty() && c.b == kGround)
+      details = c.surface_times.empty() ? fmt::format("ground surface moves at {}", num(c.surface_velocities[0]))
+                                        : "ground surface velocity: a table in t";
+    contacts.rows.push_back({c.name, c.brake ? "brake" : "friction", body_name(m, c.a) + " – " + body_name(m, c.b),
+                             num(c.static_limit) + " " + u, kinetic, details.empty() ? "–" : details});
+  }
+  contacts.note = "Stuck while the transmitted force stays within F_s; sliding with F_k against the sliding velocity "
+                  "u = v_a − v_b (docs/hybrid.md).";
   Table loads = table("Loads", {"load", "type", "body", "definition"});
   for (const auto& L : m.loads)
     loads.rows.push_back({L.name, load_kind(L.kind), body_name(m, L.body), load_description(m, L)});
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
+  if (!m.contacts.empty()) t.push_back(std::move(contacts));
   if (!m.loads.empty()) t.push_back(std::move(loads));
   return t;
 }

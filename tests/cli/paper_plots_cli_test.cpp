@@ -113,7 +113,7 @@ TEST(PaperPlotsCli, ReportOfMachineAndHybridModels) {
   r = test::run_cli("report '" + test::example("travel-start.yaml") + "' --quiet -o '" + travel.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string t = slurp(travel);
-  for (const char* s : {"data-figure=\"load_cyclogram-", "Slip phases with the link loads at breakaway", "Mode events",
+  for (const char* s : {"data-figure=\"load_cyclogram-", "Slip phases with the link loads at breakaway and their maxima", "Mode events",
                         "adhesion slips"})
     EXPECT_NE(t.find(s), std::string::npos) << s;
 }

@@ -50,8 +50,9 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
 /// point (the rolling wheel's centre travel x, m), from the energy integral (`machdyn energy`), with
 /// the limit speed ω_limit (EnergyResult::omega_limit, as β → π) as a dashed line. A machine without
 /// an output point other than a piston is drawn against its angle q in degrees instead
-/// (id "speed_angle"). The x range ends where ω is within 0.2 % of a finite limit, or at the end of
-/// the scan, whichever is first (x grows without bound as β → π).
+/// (id "speed_angle"). The x range ends where ω is within 1 % of a finite limit, at 90 % of the β
+/// range when ω is unbounded, else at the end of the scan (x grows without bound as β → π); the
+/// distance curve is the energy integral on 401 points uniform in x.
 plot::Figure speed_distance_figure(const Model& m, const EnergyResult& r);
 
 /// Paper 004: the inertia moments M_k = −I_k ε − ½ I_k′ ω² of the machine's parts (crank, rod,

@@ -27,6 +27,9 @@ struct Table {
   std::vector<std::vector<std::string>> rows;     ///< cells as text (already formatted)
   std::string note;                               ///< a line under the table
   bool text_values = false;                       ///< left-align every cell (settings), not only words
+  /// Long tables (events, slip phases): shown folded under their caption and row count, opened by a
+  /// click, so that the plots after them stay near the top.
+  bool collapsed = false;
 };
 
 struct Section {
@@ -55,7 +58,8 @@ std::string to_html(const Document& doc);
 /// `dom_id` replaces fig.id as the chart's id in the page (unique per page); empty: fig.id.
 std::string figure_json(const plot::Figure& fig, const std::string& dom_id = "");
 
-/// The model as tables: bodies, links and loads, each quantity with its unit.
+/// The model as tables: bodies, links (with their gaps), friction contacts and brakes, and loads,
+/// each quantity with its unit.
 std::vector<Table> model_tables(const Model& m);
 
 /// One run in a report. `name` is empty for the model as written; a named case (issue 3's
