@@ -167,7 +167,7 @@ void register_simulate(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "Print the summary as JSON to stdout");
   cmd->add_flag("--plot", args->plot,
                 "Also write link_loads.svg/.png (link loads against time, static values dashed) and "
-                "body_speeds.svg/.png (needs gnuplot)");
+                "body_speeds.svg/.png; with friction contacts load_cyclogram and contacts too (needs gnuplot)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar on stderr (it shows only on a terminal, after 1 s)");
   add_set_option(*cmd, args->sets);
   cmd->add_option("--case", args->load_case, "Run one load case of the file's 'cases:' (e.g. a hoist operating mode)");
