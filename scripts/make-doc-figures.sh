@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the figures of docs/figures.md (docs/img/*.png) with the commands shown there.
 # Usage: scripts/make-doc-figures.sh [path/to/machdyn]   (default build/release/apps/machdyn/machdyn)
+# The PNGs are scaled to 1200 px wide and reduced to a palette when ImageMagick and pngquant are
+# installed (apt-get install imagemagick pngquant), which keeps docs/img near 1 MB.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 machdyn=${1:-build/release/apps/machdyn/machdyn}
@@ -8,13 +10,37 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$machdyn" simulate examples/hoist-3mass.yaml --plot -o "$tmp/hoist" >/dev/null
 "$machdyn" modes examples/hoist-3mass.yaml --plot -o "$tmp/hoist" >/dev/null
+"$machdyn" modes examples/chain-20.yaml --plot -o "$tmp/chain" >/dev/null
 "$machdyn" gears examples/walking-drive-gears.yaml --plot -o "$tmp/gears" >/dev/null
-"$machdyn" report examples/hoist-3mass.yaml -o "$tmp/report.html" >/dev/null
+"$machdyn" simulate examples/travel-start.yaml --plot -o "$tmp/travel" >/dev/null
+for k in 1 2 3; do
+  "$machdyn" energy examples/rolling-wheel-$k.yaml --plot --plot-dir "$tmp/wheel-$k" >/dev/null
+done
+"$machdyn" energy examples/crank-slider.yaml --plot --plot-dir "$tmp/crank" >/dev/null
+"$machdyn" report examples/travel-start.yaml --quiet -o "$tmp/report.html" >/dev/null
+"$machdyn" report examples/hoist-modes.yaml --all-cases --quiet -o "$tmp/cases.html" >/dev/null
 mkdir -p docs/img
-cp "$tmp"/hoist/{link_loads,body_speeds,mode_shapes}.png "$tmp"/gears/{pitch_curves,ratio}.png docs/img/
-if command -v chromium >/dev/null; then
+rm -f docs/img/*.png
+cp "$tmp"/hoist/{link_loads,mode_shapes}.png "$tmp"/gears/{pitch_curves,ratio}.png docs/img/
+cp "$tmp"/travel/load_cyclogram.png docs/img/load_cyclogram.png
+cp "$tmp"/travel/contacts.png docs/img/contacts.png
+cp "$tmp"/chain/mode_shapes.png docs/img/mode_shapes_chain20.png
+for k in 1 2 3; do cp "$tmp/wheel-$k/speed_distance.png" "docs/img/speed_distance_$k.png"; done
+cp "$tmp"/crank/{speed_angle,inertia_moments}.png docs/img/
+shot() {  # shot HTML PNG HEIGHT: a screenshot of the top of a report
   chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking \
-    --disable-component-update --disable-sync --user-data-dir="$tmp/profile" --virtual-time-budget=5000 \
-    --hide-scrollbars --window-size=1100,2750 --screenshot="$PWD/docs/img/report.png" "file://$tmp/report.html" 2>/dev/null
+    --disable-component-update --disable-sync --user-data-dir="$tmp/profile-$(basename "$2")" --virtual-time-budget=8000 \
+    --hide-scrollbars --window-size=1100,"$3" --screenshot="$PWD/$2" "file://$1" 2>/dev/null
+}
+if command -v chromium >/dev/null; then
+  shot "$tmp/report.html" docs/img/report.png 2600
+  shot "$tmp/cases.html" docs/img/report_cases.png 1500
+fi
+if command -v convert >/dev/null && convert -version 2>/dev/null | grep -q ImageMagick; then
+  for f in docs/img/*.png; do convert "$f" -resize '1200x>' -strip "$f"; done
+fi
+if command -v pngquant >/dev/null; then
+  for f in docs/img/*.png; do pngquant --force --skip-if-larger --quality 70-95 --output "$f" "$f" || true; done
 fi
 ls -la docs/img
+du -sh docs/img

@@ -1,4 +1,5 @@
-// `machdyn energy MODEL [--json] [--to S] [--points N] [-o table.csv] [--delta D [--mean-speed W]]`:
+// `machdyn energy MODEL [--json] [--to S] [--points N] [-o table.csv] [--delta D [--mean-speed W]]
+// [--plot [--plot-dir DIR]]`:
 // the energy integral ω(q) of a 1-DOF machine (analysis/energy.hpp) and, with --delta, steady
 // running of a periodic machine with the flywheel that brings the speed fluctuation to D.
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
 #include "machdyn/io/energy_results.hpp"
+#include "machdyn/io/figures.hpp"
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn::cli {
@@ -17,6 +19,8 @@ namespace {
 
 struct EnergyArgs {
   std::string model, to, mean_speed, out;
+  bool plot = false;     ///< write the figures (SVG + PNG, gnuplot)
+  std::string plot_dir;  ///< their folder (default out/MODEL)
   int points = 201;
   double delta = 0.0;
   bool json = false;
@@ -46,6 +50,7 @@ std::string table_csv(const nlohmann::json& t) {
 
 int run_energy(const EnergyArgs& a) {
   const Model m = load_model(a.model, a.sets);
+  if (a.plot) plot::find_gnuplot();  // before the work, not after
   EnergyOptions opt;
   opt.points = a.points;
   if (!a.to.empty()) opt.s_to = quantity_arg("--to", a.to, dim::none);
@@ -56,7 +61,18 @@ int run_energy(const EnergyArgs& a) {
                                            : quantity_arg("--mean-speed", a.mean_speed, dim::angular_velocity);
     j["steady"] = steady_json(steady_running(m, wm, a.delta));
   }
+  // Render the figures before anything is written: a failing gnuplot leaves no partial results.
+  std::vector<plot::Rendered> rendered;
+  const auto figures = a.plot ? energy_figures(m, r) : std::vector<plot::Figure>{};
+  for (const auto& f : figures) rendered.push_back(plot::render(f));
   if (!a.out.empty()) write_file_atomic(a.out, table_csv(j["table"]));
+  const std::filesystem::path plot_dir = a.plot_dir.empty() ? default_out_dir(a.model) : std::filesystem::path(a.plot_dir);
+  std::vector<std::string> files;
+  for (std::size_t k = 0; k < figures.size(); ++k) {
+    write_file_atomic((plot_dir / (figures[k].id + ".svg")).string(), rendered[k].svg);
+    write_file_atomic((plot_dir / (figures[k].id + ".png")).string(), rendered[k].png);
+    files.push_back(figures[k].id + ".svg"), files.push_back(figures[k].id + ".png");
+  }
   if (a.json) {
     std::cout << j.dump(2) << '\n';
     return 0;
@@ -95,6 +111,7 @@ int run_energy(const EnergyArgs& a) {
     std::cout << fmt::format("{:>16.9g} {:>16.9g} {:>16.9g}\n", t["q"][i].get<double>(), t["omega"][i].get<double>(),
                              t["I"][i].get<double>());
   if (!a.out.empty()) std::cout << fmt::format("wrote {}\n", a.out);
+  if (!files.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", plot_dir.string(), fmt::join(files, ","));
   return 0;
 }
 
@@ -113,6 +130,10 @@ void register_energy(CLI::App& app, int& exit_code) {
   cmd->add_option("--delta", a->delta, "Target coefficient of speed fluctuation (ωmax−ωmin)/ωmean: size a flywheel")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--mean-speed", a->mean_speed, "Mean speed for --delta (default: the body's initial velocity)");
+  cmd->add_flag("--plot", a->plot,
+                "Write speed_distance.svg/.png (rolling wheel: omega against distance, limit speed dashed) or "
+                "speed_angle.svg/.png, and for a crank inertia_moments.svg/.png (needs gnuplot)");
+  cmd->add_option("--plot-dir", a->plot_dir, "Folder for the --plot figures (default out/MODEL)");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_energy(*a); }); });
 }

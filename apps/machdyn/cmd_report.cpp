@@ -1,14 +1,24 @@
-// `machdyn report MODEL [-o FILE.html] [--set NAME.FIELD=VALUE ...] [--quiet]`: simulate, compute the
-// modes, and write one self-contained HTML report (io/report.hpp) that opens offline.
+// `machdyn report MODEL [-o FILE.html] [--case NAME | --all-cases] [--set NAME.FIELD=VALUE ...] [--quiet]`:
+// simulate, compute the modes, and write one self-contained HTML report (io/report.hpp) that opens
+// offline. With --all-cases every load case of the file gets its own section, and one table compares
+// the peak link loads and dynamic factors of all cases.
+#include <deque>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "machdyn/analysis/energy.hpp"
+#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/report.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn::cli {
@@ -20,29 +30,87 @@ struct ReportArgs {
   std::string out;    ///< the HTML file (default out/MODEL/report.html)
   bool quiet = false;
   std::vector<std::string> sets;
+  std::string load_case;   ///< --case
+  bool all_cases = false;  ///< --all-cases
   std::string command_line;
 };
+
+/// The `description:` of case `name` in the file, or "".
+std::string case_description(const SpecNode& root, const std::string& name) {
+  const SpecNode* cases = root.is_map() ? root.find("cases") : nullptr;
+  const SpecNode* c = cases && cases->is_map() ? cases->find(name) : nullptr;
+  const SpecNode* d = c && c->is_map() ? c->find("description") : nullptr;
+  return d && d->is_scalar() ? d->scalar : std::string();
+}
+
+/// Everything one case of the report holds (kept alive while the document is built).
+struct CaseRun {
+  std::string name, description;
+  Model model;
+  SimulationResult result;
+  Modes modes;
+  std::optional<EnergyResult> energy;
+};
+
+/// The energy integral of a 1-DOF machine without links, or nothing when the model has none
+/// (e.g. a load that depends on time).
+std::optional<EnergyResult> machine_energy(const Model& m) {
+  if (m.dof() != 1 || !m.links.empty() || !has_machines(m) || m.is_hybrid()) return std::nullopt;
+  try {
+    return energy_analysis(m);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
 
 int run_report(const ReportArgs& a) {
   if (!report::assets_available())
     throw std::runtime_error("this machdyn was built without the report's charting library (MACHDYN_REPORT=OFF)");
-  // One case today: the model as written, with --set. Issue 3's --case NAME / --all-cases adds a
-  // loop here that fills `cases` with one entry per case (name, model, result, modes).
-  const Model m = load_model(a.model, a.sets);
-  ProgressBar bar(a.quiet);
-  SimulateOptions options;
-  options.progress = bar.callback();
-  const SimulationResult r = simulate(m, options);
-  bar.clear();
-  const Modes modes = compute_modes(m);
-  report::Case run;
-  run.model = &m, run.result = &r, run.modes = &modes;
-  const std::vector<report::Case> cases{run};
+  if (a.all_cases && !a.load_case.empty()) throw InputError(Location{"--case", 0, 0}, "give either --case NAME or --all-cases");
+  // Compile every case first, so bad input stops before anything runs or is written.
+  std::vector<std::string> names;
+  if (a.all_cases) {
+    const SpecNode root = read_yaml_file(a.model);
+    names = case_names(root);
+    if (names.empty()) throw InputError(Location{a.model, 0, 0}, "--all-cases: the model file has no 'cases:'");
+  } else {
+    names.push_back(a.load_case);  // "" = the model as written
+  }
+  const SpecNode root = names.size() > 1 || !names[0].empty() ? read_yaml_file(a.model) : SpecNode{};
+  std::deque<CaseRun> runs;  // stable addresses for report::Case
+  for (const auto& name : names)
+    runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
+                           {}, {}, std::nullopt});
+  for (auto& run : runs) {
+    ProgressBar bar(a.quiet);
+    if (a.all_cases) {
+      // Event-driven for every case, as `simulate --all-cases`: the same peaks and static loads.
+      HybridOptions options;
+      options.progress = bar.callback();
+      run.result = simulate_hybrid(run.model, options);
+    } else {
+      SimulateOptions options;
+      options.progress = bar.callback();
+      run.result = simulate(run.model, options);
+    }
+    bar.clear();
+    run.modes = compute_modes(run.model);
+    run.energy = machine_energy(run.model);
+  }
+  std::vector<report::Case> cases;
+  for (const auto& run : runs) {
+    report::Case c;
+    c.name = run.name, c.description = run.description;
+    c.model = &run.model, c.result = &run.result, c.modes = &run.modes;
+    c.energy = run.energy ? &*run.energy : nullptr;
+    cases.push_back(c);
+  }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
   const std::string out = a.out.empty() ? (default_out_dir(a.model) / "report.html").string() : a.out;
   write_file_atomic(out, html);
-  std::cout << fmt::format("wrote {} ({:.1f} kB); open it in any browser, it needs no network\n", out,
-                           static_cast<double>(html.size()) / 1e3);
+  std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
+                           static_cast<double>(html.size()) / 1e3,
+                           names.size() > 1 ? fmt::format(", {} cases", names.size()) : "");
   return 0;
 }
 
@@ -55,10 +123,15 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
   cmd->add_option("-o,--out", args->out, "The HTML file to write (default out/MODEL/report.html)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar on stderr");
+  cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
+  cmd->add_flag("--all-cases", args->all_cases,
+                "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
       args->command_line = "machdyn report " + std::filesystem::path(args->model).filename().string();
+      if (!args->load_case.empty()) args->command_line += " --case " + args->load_case;
+      if (args->all_cases) args->command_line += " --all-cases";
       for (const auto& s : args->sets) args->command_line += " --set " + s;
       return run_report(*args);
     });

@@ -76,13 +76,10 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
     for (const auto& e : r.hybrid.events) events += e.kind != "initial";
     for (size_t l = 0; l < m.links.size(); ++l) {
       const auto& s = r.links[l];
-      const bool neg = std::abs(s.min) > std::abs(s.max);
-      const double peak = neg ? s.min : s.max, t_peak = neg ? s.t_min : s.t_max;
-      const double stat = neg ? r.hybrid.static_at_min[l] : s.static_load;
+      const LinkPeak p = link_peak(r, l);
       table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
-                           l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, peak, t_peak, stat,
-                           std::abs(stat) > 1e-9 * std::abs(peak) ? peak / stat : std::nan(""),
-                           l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+                           l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, p.peak, p.t_peak, p.static_load,
+                           p.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
     }
   }
   write_file_atomic((std::filesystem::path(out_dir) / "cases.json").string(), all.dump(2) + "\n");
@@ -170,7 +167,7 @@ void register_simulate(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "Print the summary as JSON to stdout");
   cmd->add_flag("--plot", args->plot,
                 "Also write link_loads.svg/.png (link loads against time, static values dashed) and "
-                "body_speeds.svg/.png (needs gnuplot)");
+                "body_speeds.svg/.png; with friction contacts load_cyclogram and contacts too (needs gnuplot)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar on stderr (it shows only on a terminal, after 1 s)");
   add_set_option(*cmd, args->sets);
   cmd->add_option("--case", args->load_case, "Run one load case of the file's 'cases:' (e.g. a hoist operating mode)");

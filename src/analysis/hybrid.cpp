@@ -65,6 +65,7 @@ class HybridRun {
     const Method method = choose_method(m_, &out_.method_reason);
     sys_.initial_state(y_.data());
     initial_modes();
+    initial_events_ = static_cast<long>(out_.hybrid.events.size());
     auto& E = out_.hybrid.energy;
     E.kinetic_start = sys_.kinetic_energy(y_.data());
     E.elastic_start = sys_.elastic_energy(y_.data());
@@ -90,6 +91,7 @@ class HybridRun {
       const bool to_bp = next_bp < bps.size();
       const double t_limit = to_bp ? bps[next_bp] : t_end;
       st.step(t_limit);
+      report_progress(st, start, false);
       const double t0 = st.t_prev(), t1 = st.t();
       const bool at_bp = to_bp && t1 == t_limit;
       // Left limit at a breakpoint: the loads there already jumped.
@@ -145,6 +147,7 @@ class HybridRun {
     out_.stats.stepper = st.stats();
     out_.stats.method = st.name();
     out_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report_progress(st, start, true);
   }
 
  private:
@@ -338,6 +341,24 @@ class HybridRun {
     }
   }
 
+  /// Progress: the clock is read every 32 steps only; a report at most every progress_interval_s.
+  void report_progress(const Stepper& st, std::chrono::steady_clock::time_point start, bool finished) {
+    if (!opt_.progress) return;
+    ++progress_steps_;
+    if (!finished && (progress_steps_ & 31) != 0) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!finished && wall < next_progress_) return;
+    next_progress_ = wall + opt_.progress_interval_s;
+    SimulationProgress p;
+    p.t = finished ? m_.simulation.t_end : st.t();
+    p.t_end = m_.simulation.t_end;
+    p.steps = st.stats().steps;
+    p.events = static_cast<long>(out_.hybrid.events.size()) - initial_events_;
+    p.wall_s = wall;
+    p.finished = finished;
+    opt_.progress(p);
+  }
+
   const std::string& element_name(int e) const {
     return e < nl_ ? m_.links[static_cast<size_t>(e)].name : m_.contacts[static_cast<size_t>(e - nl_)].name;
   }
@@ -369,6 +390,7 @@ class HybridRun {
     p.link_max.assign(static_cast<size_t>(nl_), -std::numeric_limits<double>::infinity());
     p.link_t_max.assign(static_cast<size_t>(nl_), t);
     p.link_min.assign(static_cast<size_t>(nl_), std::numeric_limits<double>::infinity());
+    for (int l = 0; l < nl_; ++l) p.link_start.push_back(sys_.link_load(l, y_.data()));
     out_.hybrid.slip_phases.push_back(p);
     open_phase_[static_cast<size_t>(k)] = static_cast<int>(out_.hybrid.slip_phases.size()) - 1;
   }
@@ -547,6 +569,8 @@ class HybridRun {
   std::vector<Peak> peak_;
   std::vector<int> strict_;  // stuck contacts whose limit event fired
   long n_out_ = 1, k_out_ = 1;
+  long progress_steps_ = 0, initial_events_ = 0;
+  double next_progress_ = 0.0;
   double release_loss_ = 0.0;
 };
 

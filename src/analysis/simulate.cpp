@@ -155,10 +155,29 @@ class Recorder final : public StepObserver {
 
 }  // namespace
 
+LinkPeak link_peak(const SimulationResult& r, std::size_t l) {
+  const LinkSummary& s = r.links.at(l);
+  const bool neg = std::abs(s.min) > std::abs(s.max);
+  LinkPeak p;
+  p.peak = neg ? s.min : s.max;
+  p.t_peak = neg ? s.t_min : s.t_max;
+  p.static_load = !neg ? s.static_load
+                       : l < r.hybrid.static_at_min.size() ? r.hybrid.static_at_min[l]
+                                                           : std::numeric_limits<double>::quiet_NaN();
+  p.dynamic_factor = std::abs(p.static_load) > 1e-9 * std::abs(p.peak) ? p.peak / p.static_load
+                                                                       : std::numeric_limits<double>::quiet_NaN();
+  return p;
+}
+
 SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
 
 SimulationResult simulate(const Model& m, const SimulateOptions& options) {
-  if (m.is_hybrid()) return simulate_hybrid(m);
+  if (m.is_hybrid()) {
+    HybridOptions hybrid;
+    hybrid.progress = options.progress;
+    hybrid.progress_interval_s = options.progress_interval_s;
+    return simulate_hybrid(m, hybrid);
+  }
   SimulationResult out;
   const Method method = choose_method(m, &out.method_reason);
   ChainSystem sys(m);

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "machdyn/model/machine.hpp"
+
 namespace machdyn {
 
 namespace {
@@ -77,21 +79,128 @@ plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) {
   return f;
 }
 
+namespace {
+
+/// The contacts whose slipping the cyclogram shows: those between two bodies (adhesion, clutches),
+/// or every contact when all act against the ground (brakes, resistances).
+std::vector<std::size_t> slipping_contacts(const Model& m) {
+  std::vector<std::size_t> ks;
+  for (std::size_t k = 0; k < m.contacts.size(); ++k)
+    if (m.contacts[k].b != kGround && !m.contacts[k].brake) ks.push_back(k);
+  if (ks.empty())
+    for (std::size_t k = 0; k < m.contacts.size(); ++k) ks.push_back(k);
+  return ks;
+}
+
+/// The slip phases of the contacts `ks` as shaded bands, and their legend entry.
+void add_slip_bands(const Model& m, const SimulationResult& r, const std::vector<std::size_t>& ks, plot::Figure& f) {
+  std::vector<std::string> names;
+  for (const std::size_t k : ks) names.push_back(m.contacts[k].name);
+  for (const auto& p : r.hybrid.slip_phases)
+    if (std::find(names.begin(), names.end(), p.contact) != names.end() && p.t_end > p.t_start)
+      f.bands.push_back({p.t_start, p.t_end});
+  if (!names.empty()) f.bands_label = fmt::format("{} slip{}", fmt::join(names, ", "), names.size() == 1 ? "s" : "");
+}
+
+const char* contact_unit(const Model& m, const FrictionContact& c) {
+  return load_unit(m.bodies[static_cast<std::size_t>(c.a)].kind);
+}
+
+}  // namespace
+
+plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
+  if (m.links.empty() || !r.hybrid.active)
+    throw std::invalid_argument("load cyclogram: needs the hybrid (event-driven) result of a model with links");
+  plot::Figure f = link_loads_figure(m, r);
+  f.id = "load_cyclogram";
+  f.ref_lines.clear();  // the cyclogram compares with the adhesion limit, not the quasi-static load
+  const auto ks = slipping_contacts(m);
+  const std::string y_unit = link_load_unit(m, m.links[0]);
+  for (const std::size_t k : ks) {
+    const auto& c = m.contacts[k];
+    if (c.brake || std::string(contact_unit(m, c)) != y_unit) continue;
+    f.ref_lines.push_back(plot::make_ref_line(
+        c.static_limit, fmt::format("F_sc = {} {}", number(c.static_limit), plot::pretty_unit(y_unit)), -1));
+  }
+  add_slip_bands(m, r, ks, f);
+  f.title = fmt::format("Load cyclogram: link load{}{}; dots: load at breakaway",
+                        f.ref_lines.empty() ? "" : "; dashed: static limit F_sc", f.bands.empty() ? "" : "; shaded: slip");
+  // The breakaway loads: the link load at the start of every slip phase of these contacts.
+  const std::size_t n_links = m.links.size();
+  for (std::size_t l = 0; l < n_links; ++l) {
+    plot::Series s = plot::make_series(fmt::format("{} at breakaway", m.links[l].name), {}, {}, plot::Style::points,
+                                       f.series[l].y_axis);
+    for (const auto& p : r.hybrid.slip_phases) {
+      const bool shown = std::any_of(ks.begin(), ks.end(), [&](std::size_t k) { return m.contacts[k].name == p.contact; });
+      if (!shown || l >= p.link_start.size()) continue;
+      s.x.push_back(p.t_start);
+      s.y.push_back(p.link_start[l]);
+    }
+    if (!s.x.empty()) {
+      const double lo = *std::min_element(s.y.begin(), s.y.end()), hi = *std::max_element(s.y.begin(), s.y.end());
+      s.name += hi - lo <= 5e-4 * std::max(std::abs(hi), 1.0)
+                    ? fmt::format(" ({} {})", number(hi), plot::pretty_unit(link_load_unit(m, m.links[l])))
+                    : fmt::format(" ({} … {} {})", number(lo), number(hi), plot::pretty_unit(link_load_unit(m, m.links[l])));
+      f.series.push_back(std::move(s));
+    }
+  }
+  return f;
+}
+
+plot::Figure contacts_figure(const Model& m, const SimulationResult& r) {
+  if (m.contacts.empty() || !r.hybrid.active)
+    throw std::invalid_argument("contacts figure: needs the hybrid (event-driven) result of a model with contacts");
+  plot::Figure f;
+  f.id = "contacts";
+  f.title = "Friction contacts: force (solid, left) and sliding velocity (dashed, right); shaded: slip";
+  f.x = plot::make_axis("time t", "s");
+  const auto kind = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
+  const bool rot = kind == BodyKind::rotational;
+  f.y = rot ? plot::make_axis("contact torque M", "N·m") : plot::make_axis("contact force F", "N");
+  f.y2 = rot ? plot::make_axis("sliding velocity u", "rad/s") : plot::make_axis("sliding velocity u", "m/s");
+  const auto& t = column(r, "t_s");
+  for (const auto& c : m.contacts) {
+    if (m.bodies[static_cast<std::size_t>(c.a)].kind != kind) continue;  // one kind of unit per figure
+    f.series.push_back(plot::make_series(c.name + ": force", t, column(r, c.name + ".force_")));
+    plot::Series u = plot::make_series(c.name + ": sliding velocity", t, column(r, c.name + ".sliding_velocity_"),
+                                       plot::Style::line, 2);
+    u.dashed = true;
+    f.series.push_back(std::move(u));
+  }
+  add_slip_bands(m, r, slipping_contacts(m), f);
+  f.zero_line = true;
+  f.legend = plot::Figure::Legend::below;
+  return f;
+}
+
 std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r) {
   std::vector<plot::Figure> figs;
+  const bool hybrid = r.hybrid.active && !m.contacts.empty();
+  if (hybrid && !m.links.empty()) figs.push_back(load_cyclogram_figure(m, r));
   if (!m.links.empty()) figs.push_back(link_loads_figure(m, r));
   figs.push_back(body_speeds_figure(m, r));
+  if (hybrid) figs.push_back(contacts_figure(m, r));
   return figs;
 }
 
-plot::Figure mode_shapes_figure(const Model& m, const Modes& modes) {
+plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_modes) {
   plot::Figure f;
   f.id = "mode_shapes";
-  f.title = "Elastic mode shapes (each scaled to max |φ| = 1)";
+  const Eigen::Index shown = std::min<Eigen::Index>(modes.shapes.cols(), std::max(1, max_modes));
+  f.title = shown < modes.shapes.cols()
+                ? fmt::format("The {} lowest of {} elastic mode shapes (each scaled to max |φ| = 1)", shown,
+                              modes.shapes.cols())
+                : std::string("Elastic mode shapes (each scaled to max |φ| = 1)");
   f.x = plot::make_axis("body", "");
-  for (int i = 0; i < m.dof(); ++i) f.x.ticks.push_back({i + 1.0, m.bodies[static_cast<std::size_t>(i)].name});
+  // Every body named while the names fit; a long chain names every k-th body.
+  std::size_t name_chars = 0;
+  for (const auto& b : m.bodies) name_chars += b.name.size() + 2;
+  const int every = std::max(1, static_cast<int>((name_chars + 59) / 60));
+  for (int i = 0; i < m.dof(); i += every) f.x.ticks.push_back({i + 1.0, m.bodies[static_cast<std::size_t>(i)].name});
+  if (every > 1 && (m.dof() - 1) % every >= 2)  // the last body too, unless its neighbour is named
+    f.x.ticks.push_back({static_cast<double>(m.dof()), m.bodies.back().name});
   f.y = plot::make_axis("relative amplitude φ / max|φ|", "");
-  for (Eigen::Index k = 0; k < modes.shapes.cols(); ++k) {
+  for (Eigen::Index k = 0; k < shown; ++k) {
     const double scale = modes.shapes.col(k).cwiseAbs().maxCoeff();
     plot::Series s = plot::make_series(fmt::format("mode {}: {:.4g} Hz ({:.4g} rad/s)", k + 1,
                                                    modes.omega(k) / (2 * kPi), modes.omega(k)),
@@ -100,6 +209,7 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes) {
       s.x.push_back(i + 1.0);
       s.y.push_back(scale > 0 ? modes.shapes(i, k) / scale : 0.0);
     }
+    if (m.dof() > 12) s.style = plot::Style::line;  // markers would crowd a long chain
     f.series.push_back(std::move(s));
   }
   f.y.min = -1.1, f.y.max = 1.1;
@@ -173,6 +283,110 @@ plot::Figure gears_ratio_figure(const io::GearReport& r) {
   f.series.push_back(std::move(step));
   f.legend = plot::Figure::Legend::below;
   return f;
+}
+
+plot::Figure speed_distance_figure(const Model& m, const EnergyResult& r) {
+  if (m.bodies.empty() || r.table.empty()) throw std::invalid_argument("speed figure: empty energy result");
+  const Machine* mach = m.bodies[0].machine.get();
+  const bool distance = mach && !r.point_name.empty() && r.point_name != "piston";
+  plot::Figure f;
+  f.id = distance ? "speed_distance" : "speed_angle";
+  f.y = plot::make_axis("angular velocity ω", "rad/s");
+  plot::Series w = plot::make_series("ω, energy integral", {}, {});
+  const double limit = r.omega_limit && std::isfinite(*r.omega_limit) ? *r.omega_limit : kNaN;
+  if (distance) {
+    // The wheel's travel is linear in q (x = R_r φ) but not in β, the table's coordinate, whose rows
+    // crowd at the start and thin out as x grows without bound near β → π. So resample uniformly in q
+    // up to where ω is within 1 % of a finite limit, or, with no limit, up to 90 % of the β range.
+    const auto& rows = r.table;
+    std::size_t end = rows.size() - 1;
+    for (std::size_t k = 10; k < rows.size(); ++k)
+      if (std::isfinite(limit) ? std::abs(rows[k].omega - limit) <= 1e-2 * std::abs(limit)
+                               : r.limit_kind == "unbounded" &&
+                                     std::abs(rows[k].s - rows[0].s) >= 0.9 * std::abs(rows.back().s - rows[0].s)) {
+        end = k;
+        break;
+      }
+    const EnergyIntegral integral(m);
+    constexpr int kPoints = 400;
+    for (int i = 0; i <= kPoints; ++i) {
+      const double q = rows[0].q + (rows[end].q - rows[0].q) * i / kPoints;
+      double p = 0, dp = 0, ddp = 0;
+      mach->point(q, &p, &dp, &ddp);
+      const double omega = i == kPoints ? rows[end].omega : integral.omega(q);  // the end may be a turning point
+      if (!std::isfinite(p) || !std::isfinite(omega)) continue;
+      w.x.push_back(p);
+      w.y.push_back(omega);
+    }
+    f.x = plot::make_axis(fmt::format("distance travelled {}", r.point_name), "m");
+    f.title = fmt::format("Speed against distance: {}", m.name);
+  } else {
+    for (const auto& row : r.table) {
+      w.x.push_back(row.q * 180.0 / kPi);
+      w.y.push_back(row.omega);
+    }
+    f.x = plot::make_axis(fmt::format("angle {}", r.s_name == "q" ? "φ" : r.s_name), "deg");
+    f.title = fmt::format("Speed against angle: {}", m.name);
+  }
+  // A scan backwards (ω0 < 0) runs to decreasing x; the charts want x ascending.
+  if (w.x.size() > 1 && w.x.back() < w.x.front()) {
+    std::reverse(w.x.begin(), w.x.end());
+    std::reverse(w.y.begin(), w.y.end());
+  }
+  f.series.push_back(std::move(w));
+  if (std::isfinite(limit))
+    f.ref_lines.push_back(plot::make_ref_line(limit, fmt::format("ω_lim = {} rad/s", number(limit)), -1));
+  f.legend = plot::Figure::Legend::bottom_right;
+  return f;
+}
+
+plot::Figure inertia_moments_figure(const Model& m, const EnergyResult& r) {
+  const Machine* mach = m.bodies.empty() ? nullptr : m.bodies[0].machine.get();
+  if (!mach || r.table.empty()) throw std::invalid_argument("inertia moments: needs the energy result of a machine");
+  const EnergyIntegral integral(m);
+  plot::Figure f;
+  f.id = "inertia_moments";
+  f.title = fmt::format("Inertia moments M_k = −I_k ε − ½ I_k′ ω²: {}", m.name);
+  f.x = plot::make_axis("angle φ", "deg");
+  f.y = plot::make_axis("inertia moment M", "N·m");
+  const int parts = mach->parts();
+  std::vector<plot::Series> series;
+  for (int k = 0; k < parts; ++k) series.push_back(plot::make_series(mach->part_name(k), {}, {}));
+  plot::Series total = plot::make_series("sum Σ M_k", {}, {});
+  total.dashed = true;
+  std::vector<double> I(static_cast<std::size_t>(parts)), dI(I.size());
+  for (const auto& row : r.table) {
+    double I_sum = 0, dI_sum = 0;
+    for (int k = 0; k < parts; ++k) {
+      mach->part_inertia(k, row.q, &I[static_cast<std::size_t>(k)], &dI[static_cast<std::size_t>(k)]);
+      I_sum += I[static_cast<std::size_t>(k)], dI_sum += dI[static_cast<std::size_t>(k)];
+    }
+    I_sum += integral.added_inertia();
+    const double w = row.omega * r.direction;
+    const double eps = (integral.force_s(row.s) - 0.5 * dI_sum * w * w) / I_sum;  // paper 004 eq. 4
+    const double x = row.q * 180.0 / kPi;
+    double sum = 0;
+    for (int k = 0; k < parts; ++k) {
+      const double Mk = -I[static_cast<std::size_t>(k)] * eps - 0.5 * dI[static_cast<std::size_t>(k)] * w * w;
+      series[static_cast<std::size_t>(k)].x.push_back(x);
+      series[static_cast<std::size_t>(k)].y.push_back(Mk);
+      sum += Mk;
+    }
+    total.x.push_back(x);
+    total.y.push_back(sum);
+  }
+  for (auto& s : series) f.series.push_back(std::move(s));
+  f.series.push_back(std::move(total));
+  f.zero_line = true;
+  f.legend = plot::Figure::Legend::below;
+  return f;
+}
+
+std::vector<plot::Figure> energy_figures(const Model& m, const EnergyResult& r) {
+  std::vector<plot::Figure> figs{speed_distance_figure(m, r)};
+  const Machine* mach = m.bodies.empty() ? nullptr : m.bodies[0].machine.get();
+  if (mach && mach->parts() > 1 && r.point_name == "piston") figs.push_back(inertia_moments_figure(m, r));
+  return figs;
 }
 
 }  // namespace machdyn

@@ -187,6 +187,9 @@ std::string gnuplot_script(const Figure& fig, Format format, const std::string& 
     g += range_cmd("y", fig.y, ry, 0.08);
     if (y2) g += range_cmd("y2", fig.y2, ry2, 0.08);
   }
+  for (std::size_t k = 0; k < fig.bands.size(); ++k)
+    g += fmt::format("set object {} rect from first {:.10g}, graph 0 to first {:.10g}, graph 1 behind fc rgb '{}' "
+                     "fs solid 1.0 noborder\n", k + 1, fig.bands[k].x0, fig.bands[k].x1, kBandColor);
   if (fig.zero_line) g += "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#777777' lw 1 dt 1\n";
   // Reference lines: labels in the right margin (clear of the curves) unless y2 needs that margin;
   // then inside, on an opaque box.
@@ -228,12 +231,18 @@ std::string gnuplot_script(const Figure& fig, Format format, const std::string& 
         item += fmt::format(" with linespoints lc rgb '{}' lw 2{} pt 7 ps 1.2 {}{}", series_color(k), dash, title,
                             axes);
         break;
+      case Style::points:
+        item += fmt::format(" with points lc rgb '{}' pt 7 ps 1.1 {}{}", series_color(k), title, axes);
+        break;
       case Style::line:
         item += fmt::format(" with lines lc rgb '{}' lw 2{} {}{}", series_color(k), dash, title, axes);
         break;
     }
     items.push_back(item);
   }
+  if (!fig.bands.empty() && !fig.bands_label.empty() && !items.empty())
+    items.push_back(fmt::format("NaN with boxes fs solid 1.0 noborder fc rgb '{}' title {}", kBandColor,
+                                quote(fig.bands_label)));
   if (items.empty()) {
     g += "set label 'no data' at graph 0.5, graph 0.5 center\nplot NaN notitle\n";
   } else {

@@ -51,6 +51,7 @@ const char* style_name(plot::Style s) {
     case plot::Style::steps: return "steps";
     case plot::Style::linepoints: return "linepoints";
     case plot::Style::thin: return "thin";
+    case plot::Style::points: return "points";
     default: return "line";
   }
 }
@@ -103,6 +104,21 @@ constexpr const char* kPageScript = R"js(
           ctx.restore();
         }
       }
+    }] } };
+  }
+
+  // Shaded x intervals (slip phases), behind the grid and the series.
+  function bandsPlugin(spec) {
+    return { hooks: { drawClear: [function (u) {
+      if (!spec.bands.length) return;
+      var ctx = u.ctx;
+      ctx.save(); ctx.fillStyle = spec.band_color;
+      spec.bands.forEach(function (b) {
+        var x0 = Math.max(u.bbox.left, u.valToPos(b[0], "x", true));
+        var x1 = Math.min(u.bbox.left + u.bbox.width, u.valToPos(b[1], "x", true));
+        if (x1 > x0) ctx.fillRect(x0, u.bbox.top, x1 - x0, u.bbox.height);
+      });
+      ctx.restore();
     }] } };
   }
 
@@ -165,8 +181,9 @@ constexpr const char* kPageScript = R"js(
       var o = {
         label: s.name, stroke: s.color, width: s.style === "thin" ? 1 : 2, scale: s.axis === 2 ? "y2" : "y",
         spanGaps: spec.union, value: function (u, v) { return fmtNum(v); },
-        points: { show: s.style === "linepoints", size: 8, fill: s.color }
+        points: { show: s.style === "linepoints" || s.style === "points", size: s.style === "points" ? 9 : 8, fill: s.color }
       };
+      if (s.style === "points") { o.paths = function () { return null; }; o.spanGaps = false; }
       if (s.dashed) o.dash = [8, 5];
       if (s.style === "steps") o.paths = uPlot.paths.stepped({ align: 1 });
       series.push(o);
@@ -201,7 +218,7 @@ constexpr const char* kPageScript = R"js(
       cursor: { drag: { x: true, y: true, uni: 40 }, focus: { prox: 24 } },
       focus: { alpha: 0.35 },
       legend: { live: true },
-      plugins: [refLinesPlugin(spec), wheelPanPlugin(), { hooks: { draw: [firstDraw] } }]
+      plugins: [bandsPlugin(spec), refLinesPlugin(spec), wheelPanPlugin(), { hooks: { draw: [firstDraw] } }]
     }, spec.data, host);
     window.addEventListener("resize", function () { u.setSize({ width: Math.max(480, host.clientWidth), height: 400 }); });
     // uPlot draws in a microtask after construction: record what was drawn at the first draw.
@@ -237,7 +254,9 @@ caption { text-align: left; font-weight: bold; padding: 4px 0; }
 th, td { border-bottom: 1px solid #ddd; padding: 4px 12px 4px 0; text-align: right; white-space: nowrap; }
 th { border-bottom: 2px solid #888; } th:first-child, td:first-child { text-align: left; }
 td.text, table.text th { text-align: left; white-space: normal; } .note { color: #555; font-size: 13px; margin: 2px 0 12px; }
-.figure { margin: 18px 0 26px; } .hint { color: #666; font-size: 12px; margin: 2px 0; }
+details { margin: 8px 0; } summary { font-weight: bold; cursor: pointer; padding: 4px 0; }
+.figure { margin: 18px 0 26px; } .key { font-size: 13px; margin: 2px 0; }
+.swatch { display: inline-block; width: 22px; height: 12px; margin-right: 6px; vertical-align: -1px; border: 1px solid #bbb; } .hint { color: #666; font-size: 12px; margin: 2px 0; }
 .uplot .u-legend { font-size: 13px; text-align: left; } .uplot .u-legend th { border: 0; font-weight: normal; }
 .uplot .u-legend td, .uplot .u-legend th { border: 0; padding: 1px 8px 1px 0; }
 nav { font-size: 14px; margin: 10px 0 0; } nav a { margin-right: 14px; color: #0072B2; }
@@ -247,8 +266,10 @@ footer { color: #777; font-size: 12px; margin-top: 40px; }
 std::string section_anchor(std::size_t k) { return fmt::format("sec-{}", k + 1); }
 
 void write_table(std::string& o, const Table& t) {
+  if (t.collapsed)
+    o += fmt::format("<details><summary>{} ({} rows; click to show)</summary>\n", escape_html(t.caption), t.rows.size());
   o += t.text_values ? "<table class=\"text\">" : "<table>";
-  if (!t.caption.empty()) o += "<caption>" + escape_html(t.caption) + "</caption>";
+  if (!t.caption.empty() && !t.collapsed) o += "<caption>" + escape_html(t.caption) + "</caption>";
   o += "<thead><tr>";
   for (const auto& h : t.header) o += "<th>" + escape_html(h) + "</th>";
   o += "</tr></thead><tbody>\n";
@@ -264,6 +285,7 @@ void write_table(std::string& o, const Table& t) {
   }
   o += "</tbody></table>\n";
   if (!t.note.empty()) o += "<p class=\"note\">" + escape_html(t.note) + "</p>\n";
+  if (t.collapsed) o += "</details>\n";
 }
 
 }  // namespace
@@ -313,6 +335,11 @@ std::string figure_json(const plot::Figure& fig, const std::string& dom_id) {
                     {"axis", r.y_axis},
                     {"color", r.series >= 0 ? plot::series_color(static_cast<std::size_t>(r.series)) : "#000000"}});
   j["refs"] = refs;
+  nlohmann::ordered_json bands = nlohmann::ordered_json::array();
+  for (const auto& b : fig.bands) bands.push_back({b.x0, b.x1});
+  j["bands"] = bands;
+  j["bands_label"] = fig.bands_label;
+  j["band_color"] = plot::kBandColor;
 
   // Columns on one x grid: shared when every series has the same x, else the union with nulls.
   std::vector<double> xs;
@@ -383,6 +410,9 @@ std::string to_html(const Document& doc) {
       const std::string dom_id = fmt::format("{}-{}", f.id, ++figure_no);  // unique when cases repeat a figure
       o += fmt::format("<div class=\"figure\">\n<h3>{}</h3>\n<div class=\"chart\" id=\"chart-{}\"></div>\n",
                        escape_html(f.title), dom_id);
+      if (!f.bands.empty() && !f.bands_label.empty())
+        o += fmt::format("<p class=\"key\"><span class=\"swatch\" style=\"background:{}\"></span>{}</p>\n", plot::kBandColor,
+                         escape_html(f.bands_label));
       o += "<p class=\"hint\">Drag: zoom (x, y or box) · double-click: reset · wheel: zoom time · Shift+drag: pan · "
            "click a legend entry: hide/show the series · hover: values</p>\n</div>\n";
       data_blocks += fmt::format("<script type=\"application/json\" data-figure=\"{}\">", dom_id) +

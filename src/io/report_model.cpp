@@ -1,4 +1,5 @@
 // The content of `machdyn report`: the model as tables with units, run settings, results, plots.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -53,14 +54,15 @@ std::string ratio_unit(const Model& m, const Link& l) {
 std::string load_description(const Model& m, const Load& L) {
   const auto kind = m.bodies[static_cast<std::size_t>(L.body)].kind;
   const std::string u = pretty_unit(load_unit(kind)), vu = pretty_unit(velocity_unit(kind));
+  const char* sym = kind == BodyKind::translational ? "F" : "M";
   switch (L.kind) {
-    case LoadKind::constant: return fmt::format("M = {} {}", num(L.value), u);
+    case LoadKind::constant: return fmt::format("{} = {} {}", sym, num(L.value), u);
     case LoadKind::step: return fmt::format("{} {} before t0 = {} s, {} {} after", num(L.before), u, num(L.t0), num(L.value), u);
     case LoadKind::ramp:
       return fmt::format("{} {} until t0 = {} s, linear to {} {} at t1 = {} s", num(L.before), u, num(L.t0), num(L.value), u,
                          num(L.t1));
     case LoadKind::table: {
-      std::string s = "piecewise linear (t [s], M [" + u + "]):";
+      std::string s = fmt::format("piecewise linear (t [s], {} [{}]):", sym, u);
       for (std::size_t k = 0; k < L.times.size() && k < 8; ++k) s += fmt::format(" ({}, {})", num(L.times[k]), num(L.values[k]));
       if (L.times.size() > 8) s += fmt::format(" … {} points", L.times.size());
       return s;
@@ -138,6 +140,69 @@ Table modes_table(const Model& m, const Modes& modes) {
 
 }  // namespace
 
+Table events_table(const SimulationResult& r) {
+  Table t = table("Mode events (gaps, stick and slip)", {"t, s", "kind", "element", "from", "to"});
+  const auto& ev = r.hybrid.events;
+  for (std::size_t k = 0; k < ev.size() && k < kMaxEventRows; ++k)
+    t.rows.push_back({fmt::format("{:.9g}", ev[k].t), ev[k].kind, ev[k].element, ev[k].from.empty() ? "–" : ev[k].from,
+                      ev[k].to});
+  long changes = 0;
+  for (const auto& e : ev) changes += e.kind != "initial";
+  t.note = fmt::format("{} mode events (the `initial` rows give the modes at t = 0), located to ~1e-13 s.", changes);
+  if (ev.size() > kMaxEventRows)
+    t.note += fmt::format(" The first {} of {} rows are shown; all are in summary.json.", kMaxEventRows, ev.size());
+  t.collapsed = t.rows.size() > 12;
+  return t;
+}
+
+Table slip_phases_table(const Model& m, const SimulationResult& r) {
+  Table t = table("Slip phases with the link loads at breakaway and their maxima",
+                  {"#", "contact", "direction", "t_start, s", "t_end, s", "duration, s"});
+  for (const auto& L : m.links) {
+    const std::string u = pretty_unit(link_load_unit(m, L));
+    t.header.push_back(fmt::format("{} at breakaway, {}", L.name, u));
+    t.header.push_back(fmt::format("{} max, {}", L.name, u));
+  }
+  const auto& ph = r.hybrid.slip_phases;
+  for (std::size_t k = 0; k < ph.size() && k < kMaxEventRows; ++k) {
+    const auto& p = ph[k];
+    std::vector<std::string> row{fmt::format("{}", k + 1), p.contact, p.direction > 0 ? "u > 0" : "u < 0",
+                                 fmt::format("{:.6g}", p.t_start), fmt::format("{:.6g}", p.t_end),
+                                 fmt::format("{:.4g}", p.t_end - p.t_start)};
+    for (std::size_t l = 0; l < m.links.size(); ++l) {
+      row.push_back(l < p.link_start.size() ? num(p.link_start[l]) : "–");
+      row.push_back(l < p.link_max.size() ? num(p.link_max[l]) : "–");
+    }
+    t.rows.push_back(std::move(row));
+  }
+  t.note = "Breakaway: the link load at the located start of the phase (the exact slip limit); max: the largest "
+           "link load inside the phase (its time is in summary.json, slip_phases). ";
+  if (ph.size() > kMaxEventRows) t.note += fmt::format("The first {} of {} phases are shown.", kMaxEventRows, ph.size());
+  t.collapsed = t.rows.size() > 12;
+  return t;
+}
+
+Table cases_table(const std::vector<Case>& cases) {
+  Table t = table("Load cases compared: peak link loads and dynamic factors",
+                  {"case", "link", "max", "min", "peak", "t_peak, s", "static", "dynamic factor", "unit", "events"});
+  for (const auto& c : cases) {
+    const Model& m = *c.model;
+    const SimulationResult& r = *c.result;
+    long events = 0;
+    for (const auto& e : r.hybrid.events) events += e.kind != "initial";
+    for (std::size_t l = 0; l < m.links.size() && l < r.links.size(); ++l) {
+      const LinkPeak p = link_peak(r, l);
+      t.rows.push_back({l == 0 ? c.name : "", m.links[l].name, num(r.links[l].max), num(r.links[l].min), num(p.peak),
+                        num(p.t_peak), num(p.static_load), p.dynamic_factor == p.dynamic_factor ? fmt::format("{:.3g}", p.dynamic_factor) : "–",
+                        pretty_unit(link_load_unit(m, m.links[l])), l == 0 ? fmt::format("{}", events) : ""});
+    }
+  }
+  t.note = "peak: the extreme of larger magnitude; static: the quasi-static load (particular solution) with the "
+           "loads acting at that time; dynamic factor = peak / static (large but harmless where the static load is "
+           "small). events: mode changes of gaps, contacts and brakes.";
+  return t;
+}
+
 std::vector<Table> model_tables(const Model& m) {
   Table bodies = table("Bodies", {"body", "type", "inertia / mass", "unit", "initial position", "initial velocity"});
   for (const auto& b : m.bodies) {
@@ -155,12 +220,39 @@ std::vector<Table> model_tables(const Model& m) {
                           l.kind == LinkKind::damper ? "–" : num(l.c) + " " + load + "/" + pos,
                           l.kind == LinkKind::spring ? "–" : num(l.d) + " " + load + "·s/" + pos});
   }
+  const bool gaps = std::any_of(m.links.begin(), m.links.end(), [](const Link& l) { return l.has_gap; });
+  if (gaps) {
+    links.header.push_back("gap Δ (start)");
+    for (std::size_t k = 0; k < m.links.size(); ++k) {
+      const auto& l = m.links[k];
+      const std::string pos = position_unit(link_kind_body(m, l));
+      links.rows[k].push_back(l.has_gap ? fmt::format("{} {} ({} {})", num(l.gap), pos, num(l.gap_start), pos) : "–");
+    }
+  }
   links.note = "Deflection δ = q_a / i − q_b, load F = c δ + d δ̇ (positive: tension), in the coordinate of the second body.";
+  if (gaps) links.note += " Gap: the link carries load only on a flank; start: the position inside the gap at δ = 0.";
+  Table contacts = table("Friction contacts and brakes", {"contact", "type", "between", "static limit F_s", "kinetic F_k", "details"});
+  for (const auto& c : m.contacts) {
+    const std::string u = pretty_unit(load_unit(m.bodies[static_cast<std::size_t>(c.a)].kind));
+    std::string kinetic = c.kinetic.size() == 1 ? num(c.kinetic[0]) + " " + u
+                                                 : fmt::format("table of {} speeds, {} … {} {}", c.kinetic.size(),
+                                                               num(c.kinetic.front()), num(c.kinetic.back()), u);
+    std::string details;
+    if (c.brake) details = fmt::format("applied at {} s, ramp {} s", num(c.t_apply), num(c.t_ramp));
+    if (!c.surface_velocities.empty() && c.b == kGround)
+      details = c.surface_times.empty() ? fmt::format("ground surface moves at {}", num(c.surface_velocities[0]))
+                                        : "ground surface velocity: a table in t";
+    contacts.rows.push_back({c.name, c.brake ? "brake" : "friction", body_name(m, c.a) + " – " + body_name(m, c.b),
+                             num(c.static_limit) + " " + u, kinetic, details.empty() ? "–" : details});
+  }
+  contacts.note = "Stuck while the transmitted force stays within F_s; sliding with F_k against the sliding velocity "
+                  "u = v_a − v_b (docs/hybrid.md).";
   Table loads = table("Loads", {"load", "type", "body", "definition"});
   for (const auto& L : m.loads)
     loads.rows.push_back({L.name, load_kind(L.kind), body_name(m, L.body), load_description(m, L)});
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
+  if (!m.contacts.empty()) t.push_back(std::move(contacts));
   if (!m.loads.empty()) t.push_back(std::move(loads));
   return t;
 }
@@ -169,29 +261,48 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
   Document d;
   if (cases.empty() || !cases[0].model || !cases[0].result) throw std::invalid_argument("simulation_report: no case");
   const Model& m0 = *cases[0].model;
-  d.title = m0.name;
+  // Several cases: the title is the file's model name, without the first case's " [case]".
+  d.title = cases.size() > 1 && !m0.load_case.empty() ? m0.name.substr(0, m0.name.rfind(" [")) : m0.name;
   d.subtitle = fmt::format("{} · {}", m0.source, command);
   Section model;
   model.title = "Model";
   if (!m0.description.empty()) model.paragraphs.push_back(m0.description);
   model.tables = model_tables(m0);
   d.sections.push_back(std::move(model));
+  if (cases.size() > 1) {
+    Section cmp;
+    cmp.title = "Cases compared";
+    cmp.tables.push_back(cases_table(cases));
+    d.sections.push_back(std::move(cmp));
+  }
+  const bool many = cases.size() > 1;
   for (const auto& c : cases) {
     const Model& m = *c.model;
     const SimulationResult& r = *c.result;
-    const std::string suffix = c.name.empty() ? "" : " — case " + c.name;
+    // One case: a run section and a plots section. Several: one section per case, tables then plots.
     Section run;
-  run.title = "Run" + suffix;
+    run.title = c.name.empty() ? "Run" : "Case " + c.name;
+    if (!c.description.empty()) run.paragraphs.push_back(c.description);
     run.tables.push_back(settings_table(m, r));
-    run.tables.push_back(results_table(m, r));
-    // Events (gaps closing, stops, ...) get a table here when the simulation records them.
+    if (!m.links.empty()) run.tables.push_back(results_table(m, r));
+    if (r.hybrid.active) {
+      run.tables.push_back(events_table(r));
+      if (!r.hybrid.slip_phases.empty()) run.tables.push_back(slip_phases_table(m, r));
+    }
     if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
-    d.sections.push_back(std::move(run));
     Section plots;
-  plots.title = "Plots" + suffix;
+    plots.title = c.name.empty() ? "Plots" : "Plots — case " + c.name;
     plots.figures = simulation_figures(m, r);
     if (c.modes && c.modes->shapes.cols() > 0) plots.figures.push_back(mode_shapes_figure(m, *c.modes));
-    d.sections.push_back(std::move(plots));
+    if (c.energy)
+      for (auto& f : energy_figures(m, *c.energy)) plots.figures.push_back(std::move(f));
+    if (many) {
+      for (auto& f : plots.figures) run.figures.push_back(std::move(f));
+      d.sections.push_back(std::move(run));
+    } else {
+      d.sections.push_back(std::move(run));
+      d.sections.push_back(std::move(plots));
+    }
   }
   return d;
 }

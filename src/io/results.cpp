@@ -48,7 +48,7 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
   for (const auto& p : h.slip_phases) {
     nlohmann::json peaks = nlohmann::json::object();
     for (size_t l = 0; l < m.links.size(); ++l)
-      peaks[m.links[l].name] = {{"max", p.link_max[l]}, {"t_max", p.link_t_max[l]}, {"min", p.link_min[l]}};
+      peaks[m.links[l].name] = {{"max", p.link_max[l]}, {"t_max", p.link_t_max[l]}, {"min", p.link_min[l]}, {"at_start", p.link_start[l]}};
     phases.push_back({{"contact", p.contact}, {"direction", p.direction}, {"t_start", p.t_start}, {"t_end", p.t_end},
                       {"link_peaks", peaks}});
   }

@@ -157,6 +157,10 @@ struct HybridOptions {
   long max_events = 1'000'000;  ///< SolverError when exceeded
   int chatter_count = 50;       ///< switches of one element ...
   double chatter_window = 1e-6; ///< ... within this fraction of t_end (or of 1 s) mean chattering
+  /// Progress observer (SimulationProgress::events counts the mode events so far); called at most
+  /// every progress_interval_s of wall time and once at the end.
+  ProgressCallback progress;
+  double progress_interval_s = 0.1;
 };
 
 /// Event-driven simulation (see above). Fills SimulationResult like simulate() and its `hybrid`

@@ -24,6 +24,8 @@ struct SlipPhase {
   int direction = 0;                 ///< +1: u = v_a − v_b > 0
   double t_start = 0.0, t_end = 0.0; ///< s
   std::vector<double> link_max, link_t_max, link_min;
+  /// Link loads at t_start: the load at which the contact broke away (exact, at the located event).
+  std::vector<double> link_start;
 };
 
 /// Energy balance over the run, J: work of the sources (loads and moving surfaces) equals the change

@@ -35,6 +35,15 @@ struct SimulationResult {
   HybridReport hybrid;                        ///< events, slip phases, energy (models with gaps or friction)
 };
 
+/// The peak of link l for a table over runs or load cases: the extreme of larger magnitude, its time,
+/// the quasi-static load then (LinkSummary::static_load at t_max; HybridReport::static_at_min at
+/// t_min when the hybrid run recorded it, else NaN) and the dynamic factor peak / static (NaN when
+/// |static| <= 1e-9 |peak|).
+struct LinkPeak {
+  double peak = 0.0, t_peak = 0.0, static_load = 0.0, dynamic_factor = 0.0;
+};
+LinkPeak link_peak(const SimulationResult& r, std::size_t l);
+
 /// The integrator `auto` picks, from O(n) Gershgorin bounds ρ_D ≥ |Re λ| of M⁻¹D and ω_K ≥ ω_max:
 /// CVODE BDF when the fastest motion is damping-dominated (ρ_D ≥ ω_K) and ρ_D · t_end > 2e4 (an
 /// explicit method would spend > 2e4 steps on stability alone), else dopri5. `reason` says which.

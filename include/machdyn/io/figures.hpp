@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/gears_output.hpp"
@@ -23,12 +24,45 @@ plot::Figure link_loads_figure(const Model& m, const SimulationResult& r);
 /// Body velocities against time (rad/s on the left axis, m/s on the right when both occur).
 plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r);
 
-/// The figures `simulate --plot` writes: link loads (when the model has links), body speeds.
+/// Paper 001: the load cyclogram of a start-up with wheel slip — link loads against time, the static
+/// limit F_sc of every slipping contact (= ΔG·μ_s for wheel–rail adhesion: FrictionContact::
+/// static_limit) as a dashed black line, the slip phases of those contacts shaded, and the link load
+/// at each breakaway marked (the exact slip limit, located at the event; for the travel drive
+/// F_slip = [F_sc (mk + m2) − mk W]/m2, not F_sc). The slipping contacts are those between two
+/// bodies (adhesion, clutches); a model with only ground contacts (brakes, resistances) uses those.
+/// Needs a hybrid result (r.hybrid.active) and at least one link.
+plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r);
+
+/// Contact forces (left axis) and sliding velocities u = v_a − v_b (right axis) of the friction
+/// contacts and brakes against time, slip phases shaded as in the cyclogram.
+plot::Figure contacts_figure(const Model& m, const SimulationResult& r);
+
+/// The figures `simulate --plot` writes: link loads (when the model has links), body speeds; for a
+/// hybrid model with links and contacts the load cyclogram and the contacts figure in addition.
 std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r);
 
 /// Elastic mode shapes: amplitude per body (x: the bodies in model order, named), one curve per
-/// mode, each scaled to max |φ_i| = 1 and labelled with its natural frequency.
-plot::Figure mode_shapes_figure(const Model& m, const Modes& modes);
+/// mode, each scaled to max |φ_i| = 1 and labelled with its natural frequency. At most `max_modes`
+/// (the lowest) are drawn, so that a long chain's figure stays readable; the title says so.
+plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_modes = 6);
+
+/// Paper 000, Figs. 2–4: the speed ω of a machine against the distance travelled by its output
+/// point (the rolling wheel's centre travel x, m), from the energy integral (`machdyn energy`), with
+/// the limit speed ω_limit (EnergyResult::omega_limit, as β → π) as a dashed line. A machine without
+/// an output point other than a piston is drawn against its angle q in degrees instead
+/// (id "speed_angle"). The x range ends where ω is within 1 % of a finite limit, at 90 % of the β
+/// range when ω is unbounded, else at the end of the scan (x grows without bound as β → π); the
+/// distance curve is the energy integral on 401 points uniform in x.
+plot::Figure speed_distance_figure(const Model& m, const EnergyResult& r);
+
+/// Paper 004: the inertia moments M_k = −I_k ε − ½ I_k′ ω² of the machine's parts (crank, rod,
+/// piston) and their sum against the angle q in degrees over the scan of the energy integral, with
+/// ε = (Q − ½ I′ ω²)/I from the equation of motion (so Σ M_k + Q = 0, d'Alembert).
+plot::Figure inertia_moments_figure(const Model& m, const EnergyResult& r);
+
+/// The figures `energy --plot` writes: ω against distance (rolling wheel) or angle, and for a
+/// machine with more than one inertia part the inertia moments.
+std::vector<plot::Figure> energy_figures(const Model& m, const EnergyResult& r);
 
 /// Paper 003 Fig. 1: both pitch curves in mesh position (wheel centre at 0, pinion centre at
 /// L_installed), mm, equal scale, with the radial sector boundaries of every tooth.

@@ -32,6 +32,7 @@ enum class Style {
   steps,       ///< piecewise-constant: horizontal from each point to the next x (gnuplot `steps`)
   linepoints,  ///< segments and a marker at every point (few points: mode shapes)
   thin,        ///< a thin grey construction line, not in the legend (sector boundaries, rays)
+  points,      ///< markers only (events on a curve: the slip starts of a cyclogram)
 };
 
 /// One curve. x and y have the same size; a NaN in either breaks the curve (a new segment begins).
@@ -53,12 +54,20 @@ struct RefLine {
   int y_axis = 1;
 };
 
+/// A shaded interval of x across the whole plot height, behind the curves (e.g. the slip phases
+/// of a friction contact in a load cyclogram).
+struct Band {
+  double x0 = 0.0, x1 = 0.0;
+};
+
 struct Figure {
   std::string id;               ///< file stem and HTML id: letters, digits, '_' and '-' (e.g. "link_loads")
   std::string title;            ///< one line above the plot; may be empty for a paper figure
   Axis x, y, y2;                ///< y2 used when a series has y_axis = 2
   std::vector<Series> series;
   std::vector<RefLine> ref_lines;
+  std::vector<Band> bands;      ///< shaded light grey, behind everything
+  std::string bands_label;      ///< legend entry of the bands (e.g. "adhesion slips"); empty: none
   bool equal_aspect = false;    ///< one unit on x as long as one on y (pitch curves, geometry)
   bool zero_line = false;       ///< a thin line at y = 0
   enum class Legend { top_right, top_left, bottom_right, bottom_left, below } legend = Legend::top_right;
@@ -73,6 +82,9 @@ RefLine make_ref_line(double value, std::string label, int series, int y_axis = 
 /// The colour of series k (Okabe–Ito palette: distinct for colour-blind readers and in greyscale
 /// by line width/dash), as "#rrggbb". The same colours in SVG, PNG and the report.
 std::string series_color(std::size_t k);
+
+/// The fill of Figure::bands, in both renderers.
+inline constexpr const char* kBandColor = "#e3e3e3";
 
 /// "N*m" → "N·m", "kg*m^2" → "kg·m²", "rad/s" stays: machdyn's unit strings as they are printed.
 std::string pretty_unit(const std::string& unit);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/plot.hpp"
@@ -26,6 +27,9 @@ struct Table {
   std::vector<std::vector<std::string>> rows;     ///< cells as text (already formatted)
   std::string note;                               ///< a line under the table
   bool text_values = false;                       ///< left-align every cell (settings), not only words
+  /// Long tables (events, slip phases): shown folded under their caption and row count, opened by a
+  /// click, so that the plots after them stay near the top.
+  bool collapsed = false;
 };
 
 struct Section {
@@ -54,7 +58,8 @@ std::string to_html(const Document& doc);
 /// `dom_id` replaces fig.id as the chart's id in the page (unique per page); empty: fig.id.
 std::string figure_json(const plot::Figure& fig, const std::string& dom_id = "");
 
-/// The model as tables: bodies, links and loads, each quantity with its unit.
+/// The model as tables: bodies, links (with their gaps), friction contacts and brakes, and loads,
+/// each quantity with its unit.
 std::vector<Table> model_tables(const Model& m);
 
 /// One run in a report. `name` is empty for the model as written; a named case (issue 3's
@@ -64,12 +69,30 @@ struct Case {
   const Model* model = nullptr;
   const SimulationResult* result = nullptr;
   const Modes* modes = nullptr;   ///< optional: natural frequencies and the mode-shape plot
+  std::string description;        ///< the case's description (cases: NAME: description:)
+  /// Optional, for a 1-DOF machine: the energy integral, drawn as ω against distance or angle (and
+  /// the crank's inertia moments), io/figures.hpp energy_figures().
+  const EnergyResult* energy = nullptr;
 };
+
+/// Rows of the events table at most; a longer run says how many were left out.
+inline constexpr std::size_t kMaxEventRows = 400;
+
+/// The mode events of a hybrid run: t, kind, element, from, to (the `initial` modes first).
+Table events_table(const SimulationResult& r);
+/// The slip phases: contact, direction, start, end, and per link the load at breakaway and the
+/// extremes inside the phase.
+Table slip_phases_table(const Model& m, const SimulationResult& r);
+/// One table over several cases: per case and link the maximum, minimum, peak (extreme of larger
+/// magnitude) with its time, the quasi-static load there, the dynamic factor and the mode events.
+Table cases_table(const std::vector<Case>& cases);
 
 /// The document of `machdyn report`: the model (of the first case), then for each case its run
 /// settings and solver statistics, the results table (peaks, static values, dynamic factors,
 /// events), the natural frequencies, and the plots (link loads with the static values marked, body
-/// speeds, mode shapes). `command` is the command line, printed under the title.
+/// speeds, mode shapes; the load cyclogram and contacts of a hybrid run; ω against distance or
+/// angle of a machine). With more than one case a comparison table (cases_table) follows the model.
+/// `command` is the command line, printed under the title.
 Document simulation_report(const std::vector<Case>& cases, const std::string& command);
 
 }  // namespace machdyn::report
