@@ -48,10 +48,10 @@ HybridSystem::HybridSystem(const Model& model)
   has_machines_ = !machine_bodies_.empty();
   im_ = inv_mass_;
   for (const auto& l : model.links) {
-    FlatLink k{l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, -l.gap_start, l.gap - l.gap_start};
-    if (l.a_point && l.a >= 0) k.pa = machine_[static_cast<size_t>(l.a)];
-    if (l.b_point && l.b >= 0) k.pb = machine_[static_cast<size_t>(l.b)];
-    links_.push_back(k);
+    const Machine* pa = l.a_point && l.a >= 0 ? machine_[static_cast<size_t>(l.a)] : nullptr;
+    const Machine* pb = l.b_point && l.b >= 0 ? machine_[static_cast<size_t>(l.b)] : nullptr;
+    links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, pa || pb, -l.gap_start, l.gap - l.gap_start});
+    link_point_.emplace_back(pa, pb);
   }
   for (const auto& c : model.contacts) {
     FlatContact k{c.a, c.b, c.kinetic.size() > 1, c.surface_times.size() > 1, c.brake,
@@ -83,13 +83,16 @@ void HybridSystem::initial_state(double* y) const {
   y[2 * n_] = y[2 * n_ + 1] = y[2 * n_ + 2] = 0.0;
 }
 
-HybridSystem::PointState HybridSystem::point_state(const FlatLink& k, const double* y) const {
+// Out of line: the constant-inertia callers (deflection, link_load) stay small enough to inline.
+__attribute__((noinline)) HybridSystem::PointState HybridSystem::point_state(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
   const double* v = y + n_;
   PointState s{0.0, 0.0, k.inv_ratio, 1.0};
   double p, dp, ddp;
   if (k.a >= 0) {
-    if (k.pa) {
-      k.pa->point(y[k.a], &p, &dp, &ddp);
+    if (pa) {
+      pa->point(y[k.a], &p, &dp, &ddp);
       s.ja = dp * k.inv_ratio;
       s.delta += p * k.inv_ratio;
     } else {
@@ -98,8 +101,8 @@ HybridSystem::PointState HybridSystem::point_state(const FlatLink& k, const doub
     s.rate += v[k.a] * s.ja;
   }
   if (k.b >= 0) {
-    if (k.pb) {
-      k.pb->point(y[k.b], &p, &dp, &ddp);
+    if (pb) {
+      pb->point(y[k.b], &p, &dp, &ddp);
       s.jb = dp;
       s.delta -= p;
     } else {
@@ -110,19 +113,27 @@ HybridSystem::PointState HybridSystem::point_state(const FlatLink& k, const doub
   return s;
 }
 
-double HybridSystem::deflection(int l, const double* y) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  if (k.pa || k.pb) return point_state(k, y).delta;
+namespace {
+// δ = q_a/i − q_b of a link without output points (also δ̇ from the velocities).
+template <class Link>
+inline double linear_deflection(const Link& k, const double* y) {
   double d = 0;
   if (k.a >= 0) d += y[k.a] * k.inv_ratio;
   if (k.b >= 0) d -= y[k.b];
   return d;
 }
+}  // namespace
+
+double HybridSystem::deflection(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  if (k.point) [[unlikely]] return point_state(l, y).delta;
+  return linear_deflection(k, y);
+}
 
 double HybridSystem::deflection_rate(int l, const double* y) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
-  if (k.pa || k.pb) return point_state(k, y).rate;
-  return deflection(l, y + n_);
+  if (k.point) [[unlikely]] return point_state(l, y).rate;
+  return linear_deflection(k, y + n_);
 }
 
 double HybridSystem::link_load(int l, const double* y) const {
@@ -140,19 +151,20 @@ double HybridSystem::link_load(int l, const double* y) const {
 double HybridSystem::link_load_rate(int l, const double* y, const double* dy) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
   if (k.gap && gap_[static_cast<size_t>(l)] == GapMode::open) return 0.0;
-  if (!k.pa && !k.pb) return k.c * deflection(l, dy) + k.d * deflection(l, dy + n_);
+  if (!k.point) return k.c * linear_deflection(k, dy) + k.d * linear_deflection(k, dy + n_);
+  const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
   // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ a) (/i).
   double rate = 0, acc = 0, p, dp, ddp;
   if (k.a >= 0) {
     const double va = y[n_ + k.a], aa = dy[n_ + k.a];
-    if (k.pa) k.pa->point(y[k.a], &p, &dp, &ddp);
+    if (pa) pa->point(y[k.a], &p, &dp, &ddp);
     else dp = 1.0, ddp = 0.0;
     rate += dp * va * k.inv_ratio;
     acc += (ddp * va * va + dp * aa) * k.inv_ratio;
   }
   if (k.b >= 0) {
     const double vb = y[n_ + k.b], ab = dy[n_ + k.b];
-    if (k.pb) k.pb->point(y[k.b], &p, &dp, &ddp);
+    if (pb) pb->point(y[k.b], &p, &dp, &ddp);
     else dp = 1.0, ddp = 0.0;
     rate -= dp * vb;
     acc -= ddp * vb * vb + dp * ab;
@@ -289,8 +301,8 @@ __attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double 
   for (size_t l = 0; l < links_.size(); ++l) {
     const FlatLink& k = links_[l];
     if constexpr (kMach) {
-      if (k.pa || k.pb) {  // a machine's output point: δ = p_a/i − p_b, forces −F ja, +F jb
-        const PointState s = point_state(k, y);
+      if (k.point) {  // a machine's output point: δ = p_a/i − p_b, forces −F ja, +F jb
+        const PointState s = point_state(static_cast<int>(l), y);
         double F;
         if (!k.gap) {
           F = k.c * s.delta + k.d * s.rate;
@@ -343,8 +355,9 @@ void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) 
   else evaluate_impl<false>(t, y, acc, fc);
 }
 
+// Inlined into evaluate(): the constant-inertia call is the same single function as before.
 template <bool kMach>
-void HybridSystem::evaluate_impl(double t, const double* y, double* acc, double* fc) {
+__attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t, const double* y, double* acc, double* fc) {
   double src, fric, damp;
   forces<kMach>(t, y, acc, fc, &src, &fric, &damp);
   const double* im = kMach ? im_.data() : inv_mass_.data();
@@ -442,8 +455,9 @@ void HybridSystem::rhs(double t, const double* y, double* dydt) {
   }
 }
 
+// Out of line: rhs() stays the small affine loop.
 template <bool kMach>
-void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
+__attribute__((noinline)) void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
   const double* v = y + n_;
   double* acc = dydt + n_;
   for (int i = 0; i < n_; ++i) dydt[i] = v[i];

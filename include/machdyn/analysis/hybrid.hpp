@@ -33,6 +33,7 @@
 #include <string>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -87,8 +88,7 @@ class HybridSystem final : public OdeSystem {
   /// open). y is read only for a link to a machine's output point (link_uses_point).
   [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const;
   [[nodiscard]] bool link_uses_point(int l) const {
-    const FlatLink& k = links_[static_cast<size_t>(l)];
-    return k.pa || k.pb;
+    return links_[static_cast<size_t>(l)].point;
   }
   /// Whether some body has a position-dependent inertia.
   [[nodiscard]] bool has_machines() const { return has_machines_; }
@@ -119,15 +119,14 @@ class HybridSystem final : public OdeSystem {
     int a, b;
     double inv_ratio, c, d;
     bool gap;
+    bool point;     // an end is a machine's output point (link_point_); fits the padding after `gap`
     double lo, hi;  // flanks δ₋, δ₊
-    const Machine* pa = nullptr;  // a's output point p(q_a) instead of q_a (a_point)
-    const Machine* pb = nullptr;
   };
   // δ, δ̇ and the weights ∂δ/∂q_a (ja), −∂δ/∂q_b (jb) of a link to a machine's output point.
   struct PointState {
     double delta, rate, ja, jb;
   };
-  [[nodiscard]] PointState point_state(const FlatLink& k, const double* y) const;
+  [[nodiscard]] PointState point_state(int l, const double* y) const;
   // What the hot path needs of a contact, decided once: most contacts have a constant kinetic
   // level, no surface motion and no brake ramp.
   struct FlatContact {
@@ -176,6 +175,8 @@ class HybridSystem final : public OdeSystem {
   bool stuck_machine_ = false;           // a stuck contact touches a machine: P_ per evaluation
   std::vector<double> im_;               // I(q)⁻¹ of the last evaluation (machines)
   std::vector<FlatLink> links_;
+  // Per link: the machines whose output points p(q) replace q_a and q_b (a_point, b_point), or null.
+  std::vector<std::pair<const Machine*, const Machine*>> link_point_;
   std::vector<FlatContact> contacts_;
   std::vector<double> f_const_;        // sum of the constant loads per body
   std::vector<const Load*> varying_;   // loads that depend on t or v
