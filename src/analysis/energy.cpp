@@ -103,6 +103,10 @@ EnergyIntegral::EnergyIntegral(const Model& m, double added_inertia, double extr
     diag.error(where, fmt::format("the energy integral needs a model with one body and no links; '{}' has {} "
                                   "bodies and {} links",
                                   m.name, m.dof(), m.links.size()));
+  if (!m.contacts.empty())
+    diag.error(where, fmt::format("'{}' has friction contacts or brakes ('{}'), whose modes switch, so the motion has "
+                                  "no single energy integral; simulate it instead",
+                                  m.name, m.contacts.front().name));
   for (const auto& ld : m.loads) {
     if (ld.kind == LoadKind::constant) constant_torque_ += ld.value;
     else

@@ -8,6 +8,7 @@
 #include <limits>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/common/diagnostics.hpp"
 
@@ -144,6 +145,13 @@ class HybridRun {
     E.damping_loss = y_[static_cast<size_t>(2 * n_ + 2)];
     E.release_loss = release_loss_;
     summarize_links();
+    if (machines_)  // I(q), ε, inertia moments, output points (analysis/machine_outputs.hpp)
+      append_machine_outputs(
+          m_, out_,
+          [&](size_t row, const double*, double* acc) {
+            std::copy_n(acc_rows_.begin() + static_cast<long>(row) * n_, n_, acc);
+          },
+          {});
     out_.stats.stepper = st.stats();
     out_.stats.method = st.name();
     out_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -184,7 +192,8 @@ class HybridRun {
       cols[c++].push_back(y[n_ + i]);
     }
     for (int l = 0; l < nl_; ++l) cols[c++].push_back(sys_.link_load(l, y));
-    if (nc_ > 0) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    if (nc_ > 0 || machines_) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    if (machines_) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
     for (int k = 0; k < nc_; ++k) {
       cols[c++].push_back(fc_[static_cast<size_t>(k)]);
       cols[c++].push_back(sys_.sliding_velocity(k, t, y));
@@ -223,8 +232,8 @@ class HybridRun {
     for (int l = 0; l < nl_; ++l) {
       if (!continued) consider(l, ta, sys_.link_load(l, ya_.data()), ya_.data());
       consider(l, tb, sys_.link_load(l, yb), yb);
-      double r0 = continued ? rate_end_[static_cast<size_t>(l)] : sys_.link_load_rate(l, da_.data());
-      double r1 = sys_.link_load_rate(l, db);
+      double r0 = continued ? rate_end_[static_cast<size_t>(l)] : sys_.link_load_rate(l, ya_.data(), da_.data());
+      double r1 = sys_.link_load_rate(l, yb, db);
       rate_end_[static_cast<size_t>(l)] = r1;
       if (!((r0 > 0 && r1 < 0) || (r0 < 0 && r1 > 0))) continue;
       // Illinois on the load rate for the interior extremum.
@@ -234,7 +243,8 @@ class HybridRun {
         double tm = (a * r1 - b * r0) / (r1 - r0);
         if (!(tm > a && tm < b)) tm = 0.5 * (a + b);
         st.derivative(tm, dtmp_.data());
-        const double r = sys_.link_load_rate(l, dtmp_.data());
+        if (sys_.link_uses_point(l)) st.interpolate(tm, ytmp_.data());  // the rate depends on q there
+        const double r = sys_.link_load_rate(l, ytmp_.data(), dtmp_.data());
         if (r == 0.0) {
           a = b = tm;
           break;
@@ -572,6 +582,8 @@ class HybridRun {
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
   double release_loss_ = 0.0;
+  bool machines_ = has_machines(m_);
+  std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "machdyn/model/machine.hpp"
+
 namespace machdyn {
 namespace {
 // y = A x for the few stuck contacts (1–3): a plain loop beats Eigen's dynamic GEMV set-up here.
@@ -38,9 +40,19 @@ const char* to_string(GapMode m) {
 HybridSystem::HybridSystem(const Model& model)
     : m_(model), n_(model.dof()), nl_(static_cast<int>(model.links.size())),
       nc_(static_cast<int>(model.contacts.size())) {
-  for (const auto& b : model.bodies) inv_mass_.push_back(1.0 / b.inertia);
-  for (const auto& l : model.links)
-    links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, -l.gap_start, l.gap - l.gap_start});
+  for (const auto& b : model.bodies) {
+    inv_mass_.push_back(1.0 / b.inertia);
+    machine_.push_back(b.machine.get());
+    if (b.machine) machine_bodies_.push_back(static_cast<int>(machine_.size()) - 1);
+  }
+  has_machines_ = !machine_bodies_.empty();
+  im_ = inv_mass_;
+  for (const auto& l : model.links) {
+    const Machine* pa = l.a_point && l.a >= 0 ? machine_[static_cast<size_t>(l.a)] : nullptr;
+    const Machine* pb = l.b_point && l.b >= 0 ? machine_[static_cast<size_t>(l.b)] : nullptr;
+    links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, pa || pb, -l.gap_start, l.gap - l.gap_start});
+    link_point_.emplace_back(pa, pb);
+  }
   for (const auto& c : model.contacts) {
     FlatContact k{c.a, c.b, c.kinetic.size() > 1, c.surface_times.size() > 1, c.brake,
                   c.kinetic.empty() ? 0.0 : c.kinetic.front(),
@@ -54,7 +66,7 @@ HybridSystem::HybridSystem(const Model& model)
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
     else varying_.push_back(&ld);
   }
-  affine_eligible_ = varying_.empty();
+  affine_eligible_ = varying_.empty() && !has_machines_;  // machines: nonlinear in y
   for (const auto& l : model.links) affine_eligible_ = affine_eligible_ && l.d == 0.0;
   for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.brake;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
@@ -71,15 +83,58 @@ void HybridSystem::initial_state(double* y) const {
   y[2 * n_] = y[2 * n_ + 1] = y[2 * n_ + 2] = 0.0;
 }
 
-double HybridSystem::deflection(int l, const double* y) const {
+// Out of line: the constant-inertia callers (deflection, link_load) stay small enough to inline.
+__attribute__((noinline)) HybridSystem::PointState HybridSystem::point_state(int l, const double* y) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
+  const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
+  const double* v = y + n_;
+  PointState s{0.0, 0.0, k.inv_ratio, 1.0};
+  double p, dp, ddp;
+  if (k.a >= 0) {
+    if (pa) {
+      pa->point(y[k.a], &p, &dp, &ddp);
+      s.ja = dp * k.inv_ratio;
+      s.delta += p * k.inv_ratio;
+    } else {
+      s.delta += y[k.a] * k.inv_ratio;
+    }
+    s.rate += v[k.a] * s.ja;
+  }
+  if (k.b >= 0) {
+    if (pb) {
+      pb->point(y[k.b], &p, &dp, &ddp);
+      s.jb = dp;
+      s.delta -= p;
+    } else {
+      s.delta -= y[k.b];
+    }
+    s.rate -= v[k.b] * s.jb;
+  }
+  return s;
+}
+
+namespace {
+// δ = q_a/i − q_b of a link without output points (also δ̇ from the velocities).
+template <class Link>
+inline double linear_deflection(const Link& k, const double* y) {
   double d = 0;
   if (k.a >= 0) d += y[k.a] * k.inv_ratio;
   if (k.b >= 0) d -= y[k.b];
   return d;
 }
+}  // namespace
 
-double HybridSystem::deflection_rate(int l, const double* y) const { return deflection(l, y + n_); }
+double HybridSystem::deflection(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  if (k.point) [[unlikely]] return point_state(l, y).delta;
+  return linear_deflection(k, y);
+}
+
+double HybridSystem::deflection_rate(int l, const double* y) const {
+  const FlatLink& k = links_[static_cast<size_t>(l)];
+  if (k.point) [[unlikely]] return point_state(l, y).rate;
+  return linear_deflection(k, y + n_);
+}
 
 double HybridSystem::link_load(int l, const double* y) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
@@ -93,10 +148,28 @@ double HybridSystem::link_load(int l, const double* y) const {
   return 0.0;
 }
 
-double HybridSystem::link_load_rate(int l, const double* dy) const {
+double HybridSystem::link_load_rate(int l, const double* y, const double* dy) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
   if (k.gap && gap_[static_cast<size_t>(l)] == GapMode::open) return 0.0;
-  return k.c * deflection(l, dy) + k.d * deflection(l, dy + n_);
+  if (!k.point) return k.c * linear_deflection(k, dy) + k.d * linear_deflection(k, dy + n_);
+  const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
+  // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ a) (/i).
+  double rate = 0, acc = 0, p, dp, ddp;
+  if (k.a >= 0) {
+    const double va = y[n_ + k.a], aa = dy[n_ + k.a];
+    if (pa) pa->point(y[k.a], &p, &dp, &ddp);
+    else dp = 1.0, ddp = 0.0;
+    rate += dp * va * k.inv_ratio;
+    acc += (ddp * va * va + dp * aa) * k.inv_ratio;
+  }
+  if (k.b >= 0) {
+    const double vb = y[n_ + k.b], ab = dy[n_ + k.b];
+    if (pb) pb->point(y[k.b], &p, &dp, &ddp);
+    else dp = 1.0, ddp = 0.0;
+    rate -= dp * vb;
+    acc -= ddp * vb * vb + dp * ab;
+  }
+  return k.c * rate + k.d * acc;
 }
 
 double HybridSystem::sliding_velocity(int k, double t, const double* y) const {
@@ -123,7 +196,16 @@ void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   r_.resize(ns);
   lam_.resize(ns);
+  stuck_machine_ = false;
+  for (int k : stuck_) {
+    const FlatContact& c = contacts_[static_cast<size_t>(k)];
+    stuck_machine_ = stuck_machine_ || machine_[static_cast<size_t>(c.a)] || (c.b >= 0 && machine_[static_cast<size_t>(c.b)]);
+  }
   if (ns == 0) return;
+  if (stuck_machine_) {  // G M(q)⁻¹ Gᵀ depends on q: formed at every evaluation
+    P_.resize(ns, ns);
+    return;
+  }
   uint64_t key = 0;
   const bool cacheable = nc_ <= 64;
   if (cacheable) {
@@ -134,32 +216,61 @@ void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
       return;
     }
   }
+  form_stuck_solution(inv_mass_.data());
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-12);
+  cod.compute(stuck_matrix(inv_mass_.data()));
+  Pproj_ = cod.pseudoInverse();
+  if (cacheable) projector_cache_[key] = {P_, Pproj_};
+}
+
+Eigen::MatrixXd HybridSystem::stuck_matrix(const double* im) const {
   // A = G M⁻¹ Gᵀ; row j of G has +1 at body a and −1 at body b of stuck contact j.
+  const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(ns, ns);
-  Eigen::VectorXd w(ns);
   for (Eigen::Index i = 0; i < ns; ++i) {
     const auto& ci = m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(i)])];
-    w(i) = std::sqrt(ci.static_limit);
     for (Eigen::Index j = 0; j < ns; ++j) {
       const auto& cj = m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
       const int ei[2] = {ci.a, ci.b}, ej[2] = {cj.a, cj.b};
       const double si[2] = {1.0, -1.0};
       for (int p = 0; p < 2; ++p)
         for (int q = 0; q < 2; ++q)
-          if (ei[p] >= 0 && ei[p] == ej[q]) A(i, j) += si[p] * si[q] * inv_mass_[static_cast<size_t>(ei[p])];
+          if (ei[p] >= 0 && ei[p] == ej[q]) A(i, j) += si[p] * si[q] * im[ei[p]];
     }
   }
+  return A;
+}
+
+void HybridSystem::form_stuck_solution(const double* im) {
+  const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
+  const Eigen::MatrixXd A = stuck_matrix(im);
+  if (ns == 1 && stuck_machine_) {  // one stuck contact: λ = r / (1/I_a + 1/I_b), no decomposition
+    P_.resize(1, 1);
+    P_(0, 0) = 1.0 / A(0, 0);
+    return;
+  }
+  Eigen::VectorXd w(ns);
+  for (Eigen::Index i = 0; i < ns; ++i)
+    w(i) = std::sqrt(m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].static_limit);
   // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s0).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   cod.setThreshold(1e-12);
   cod.compute(A * w.asDiagonal());
   P_ = w.asDiagonal() * cod.pseudoInverse();
-  cod.compute(A);
-  Pproj_ = cod.pseudoInverse();
-  if (cacheable) projector_cache_[key] = {P_, Pproj_};
+}
+
+void HybridSystem::inverse_inertias(const double* y, double* im) const {
+  for (int i = 0; i < n_; ++i) im[i] = inv_mass_[static_cast<size_t>(i)];
+  for (int i : machine_bodies_) {
+    double I, dI;
+    machine_[static_cast<size_t>(i)]->inertia(y[i], &I, &dI);
+    im[i] = 1.0 / I;
+  }
 }
 
 // Few bodies: the vectorizer's prologues cost more than they save (as in ChainSystem::rhs).
+template <bool kMach>
 __attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double t, const double* y, double* f,
                                                                          double* fc, double* p_src, double* p_fric,
                           double* p_damp) {
@@ -174,8 +285,38 @@ __attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double 
     f[ld->body] += val;
     src += val * v[ld->body];
   }
+  if constexpr (kMach) {
+    // I q'' + ½ I′ q'² = Q + ...: the velocity term joins the forces (it does no work on its own:
+    // d/dt ½ I v² = v (I v' + ½ I′ v²)); the machine's force Q(q) is a source.
+    for (int i : machine_bodies_) {
+      const Machine* mach = machine_[static_cast<size_t>(i)];
+      double I, dI;
+      mach->inertia(y[i], &I, &dI);
+      im_[static_cast<size_t>(i)] = 1.0 / I;
+      const double Q = mach->force(y[i]);
+      f[i] += Q - 0.5 * dI * v[i] * v[i];
+      src += Q * v[i];
+    }
+  }
   for (size_t l = 0; l < links_.size(); ++l) {
     const FlatLink& k = links_[l];
+    if constexpr (kMach) {
+      if (k.point) {  // a machine's output point: δ = p_a/i − p_b, forces −F ja, +F jb
+        const PointState s = point_state(static_cast<int>(l), y);
+        double F;
+        if (!k.gap) {
+          F = k.c * s.delta + k.d * s.rate;
+        } else {
+          const GapMode g = gap_[l];
+          if (g == GapMode::open) continue;
+          F = k.c * (s.delta - (g == GapMode::closed_pos ? k.hi : k.lo)) + k.d * s.rate;
+        }
+        damp += k.d * s.rate * s.rate;
+        if (k.a >= 0) f[k.a] -= F * s.ja;
+        if (k.b >= 0) f[k.b] += F * s.jb;
+        continue;
+      }
+    }
     double delta = 0, rate = 0;
     if (k.a >= 0) delta += y[k.a] * k.inv_ratio, rate += v[k.a] * k.inv_ratio;
     if (k.b >= 0) delta -= y[k.b], rate -= v[k.b];
@@ -210,23 +351,34 @@ __attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double 
 }
 
 void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) {
+  if (has_machines_) evaluate_impl<true>(t, y, acc, fc);
+  else evaluate_impl<false>(t, y, acc, fc);
+}
+
+// Inlined into evaluate(): the constant-inertia call is the same single function as before.
+template <bool kMach>
+__attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t, const double* y, double* acc, double* fc) {
   double src, fric, damp;
-  forces(t, y, acc, fc, &src, &fric, &damp);
-  for (int i = 0; i < n_; ++i) acc[i] *= inv_mass_[static_cast<size_t>(i)];
+  forces<kMach>(t, y, acc, fc, &src, &fric, &damp);
+  const double* im = kMach ? im_.data() : inv_mass_.data();
+  for (int i = 0; i < n_; ++i) acc[i] *= im[i];
   if (stuck_.empty()) return;
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
     r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
   }
+  if constexpr (kMach)
+    if (stuck_machine_) form_stuck_solution(im);
   mat_vec(P_, r_, lam_);
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));
     fc[stuck_[j]] = lam;
-    acc[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * lam;
-    if (c.b >= 0) acc[c.b] += inv_mass_[static_cast<size_t>(c.b)] * lam;
+    acc[c.a] -= im[c.a] * lam;
+    if (c.b >= 0) acc[c.b] += im[c.b] * lam;
   }
-  enforce_stuck(t, acc);
+  if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
+  else enforce_stuck(t, acc);
 }
 
 void HybridSystem::enforce_stuck(double t, double* acc) const {
@@ -243,6 +395,19 @@ void HybridSystem::enforce_stuck(double t, double* acc) const {
   }
 }
 
+void HybridSystem::enforce_stuck_weighted(double t, double* acc, const double* im) const {
+  // As enforce_stuck, with the shares of the current inertias I(q): s = I_a/(I_a + I_b).
+  for (int k : stuck_) {
+    const FlatContact& c = contacts_[static_cast<size_t>(k)];
+    if (c.b < 0) {
+      acc[c.a] = c.moving_surface ? m_.contacts[static_cast<size_t>(k)].surface_acceleration(t) : 0.0;
+    } else {
+      const double s = im[c.b] / (im[c.a] + im[c.b]);
+      acc[c.a] = acc[c.b] = s * acc[c.a] + (1.0 - s) * acc[c.b];
+    }
+  }
+}
+
 const HybridSystem::AffineMode& HybridSystem::compile_affine() {
   std::string key;
   for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
@@ -254,10 +419,10 @@ const HybridSystem::AffineMode& HybridSystem::compile_affine() {
   a.c.resize(N);
   Eigen::MatrixXd J(N, N);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(N), d(N);
-  rhs_general(0.0, y.data(), a.c.data());
+  rhs_general<false>(0.0, y.data(), a.c.data());
   for (int j = 0; j < N; ++j) {
     y(j) = 1.0;
-    rhs_general(0.0, y.data(), d.data());
+    rhs_general<false>(0.0, y.data(), d.data());
     J.col(j) = d - a.c;
     y(j) = 0.0;
   }
@@ -271,7 +436,11 @@ const HybridSystem::AffineMode& HybridSystem::compile_affine() {
 }
 
 void HybridSystem::rhs(double t, const double* y, double* dydt) {
-  if (!affine_eligible_) return rhs_general(t, y, dydt);
+  if (!affine_eligible_) {
+    if (has_machines_) rhs_general<true>(t, y, dydt);
+    else rhs_general<false>(t, y, dydt);
+    return;
+  }
   if (!affine_) affine_ = &compile_affine();
   const int N = size();
   const AffineMode& a = *affine_;
@@ -286,27 +455,33 @@ void HybridSystem::rhs(double t, const double* y, double* dydt) {
   }
 }
 
-void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
+// Out of line: rhs() stays the small affine loop.
+template <bool kMach>
+__attribute__((noinline)) void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
   const double* v = y + n_;
   double* acc = dydt + n_;
   for (int i = 0; i < n_; ++i) dydt[i] = v[i];
   double src, fric, damp;
-  forces(t, y, acc, fc_.data(), &src, &fric, &damp);
-  for (int i = 0; i < n_; ++i) acc[i] *= inv_mass_[static_cast<size_t>(i)];
+  forces<kMach>(t, y, acc, fc_.data(), &src, &fric, &damp);
+  const double* im = kMach ? im_.data() : inv_mass_.data();
+  for (int i = 0; i < n_; ++i) acc[i] *= im[i];
   if (!stuck_.empty()) {
     for (size_t j = 0; j < stuck_.size(); ++j) {
       const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
       r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
     }
+    if constexpr (kMach)
+      if (stuck_machine_) form_stuck_solution(im);
     mat_vec(P_, r_, lam_);
     for (size_t j = 0; j < stuck_.size(); ++j) {
       const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
       const double lam = lam_(static_cast<Eigen::Index>(j));
-      acc[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * lam;
-      if (c.b >= 0) acc[c.b] += inv_mass_[static_cast<size_t>(c.b)] * lam;
+      acc[c.a] -= im[c.a] * lam;
+      if (c.b >= 0) acc[c.b] += im[c.b] * lam;
       else src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
     }
-    enforce_stuck(t, acc);
+    if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
+    else enforce_stuck(t, acc);
   }
   dydt[2 * n_] = src;
   dydt[2 * n_ + 1] = fric;
@@ -318,6 +493,7 @@ void HybridSystem::external_forces(double t, const double* y, double* f) {
   evaluate(t, y, acc.data(), fc.data());
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
   for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+  for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(y[i]);
   for (int k = 0; k < nc_; ++k) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
     f[c.a] -= fc[static_cast<size_t>(k)];
@@ -327,7 +503,11 @@ void HybridSystem::external_forces(double t, const double* y, double* f) {
 
 double HybridSystem::kinetic_energy(const double* y) const {
   double T = 0;
-  for (int i = 0; i < n_; ++i) T += 0.5 * m_.bodies[static_cast<size_t>(i)].inertia * y[n_ + i] * y[n_ + i];
+  for (int i = 0; i < n_; ++i) {
+    double I = m_.bodies[static_cast<size_t>(i)].inertia, dI;
+    if (const Machine* mach = machine_[static_cast<size_t>(i)]) mach->inertia(y[i], &I, &dI);  // ½ I(q) v²
+    T += 0.5 * I * y[n_ + i] * y[n_ + i];
+  }
   return T;
 }
 
@@ -385,6 +565,7 @@ void HybridSystem::event_functions(double t, const double* y, double* g) {
 
 void HybridSystem::project_velocities(double t, double* y) const {
   if (stuck_.empty()) return;
+  if (has_machines_) return project_velocities_weighted(t, y);
   Eigen::VectorXd r(static_cast<Eigen::Index>(stuck_.size()));
   for (size_t j = 0; j < stuck_.size(); ++j) r(static_cast<Eigen::Index>(j)) = sliding_velocity(stuck_[j], t, y);
   const Eigen::VectorXd mu = Pproj_ * r;
@@ -402,6 +583,33 @@ void HybridSystem::project_velocities(double t, double* y) const {
     } else {
       const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
       v[c.a] = v[c.b] = (ma * v[c.a] + mb * v[c.b]) / (ma + mb);
+    }
+  }
+}
+
+void HybridSystem::project_velocities_weighted(double t, double* y) const {
+  // The same projection with M(q) = diag(I_i(q_i)) at the current positions.
+  std::vector<double> im(static_cast<size_t>(n_));
+  inverse_inertias(y, im.data());
+  Eigen::VectorXd r(static_cast<Eigen::Index>(stuck_.size()));
+  for (size_t j = 0; j < stuck_.size(); ++j) r(static_cast<Eigen::Index>(j)) = sliding_velocity(stuck_[j], t, y);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-12);
+  cod.compute(stuck_matrix(im.data()));
+  const Eigen::VectorXd mu = cod.pseudoInverse() * r;
+  double* v = y + n_;
+  for (size_t j = 0; j < stuck_.size(); ++j) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+    v[c.a] -= im[static_cast<size_t>(c.a)] * mu(static_cast<Eigen::Index>(j));
+    if (c.b >= 0) v[c.b] += im[static_cast<size_t>(c.b)] * mu(static_cast<Eigen::Index>(j));
+  }
+  for (int k : stuck_) {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    if (c.b < 0) {
+      v[c.a] = c.surface_velocity(t);
+    } else {
+      const double ia = im[static_cast<size_t>(c.a)], ib = im[static_cast<size_t>(c.b)];
+      v[c.a] = v[c.b] = (ib * v[c.a] + ia * v[c.b]) / (ia + ib);  // (I_a v_a + I_b v_b)/(I_a + I_b)
     }
   }
 }

@@ -247,14 +247,6 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   top.finish();
-  // The event-driven solver (gaps, friction, brakes) does not know position-dependent inertia yet:
-  // say so instead of simulating the machine with a constant inertia.
-  if (diag.empty() && m.is_hybrid())
-    for (const auto& b : m.bodies)
-      if (b.machine)
-        diag.error(bodies ? bodies->loc : Location{source, 1, 1},
-                   fmt::format("body '{}' has a position-dependent inertia, which cannot be combined with gaps, "
-                               "contacts or brakes yet", b.name));
   diag.throw_if_any();
   return m;
 }

@@ -85,9 +85,6 @@ const Broken kCatalogue[] = {
      {"4:29: error: load 'M': unknown body 'Q'"}},
     {"bad integrator", "bodies:\n  A: {inertia: 1}\nsimulation: {integrator: euler}\n",
      {"error: simulation: field 'integrator' is 'euler'; expected one of: auto, dopri5, bdf"}},
-    {"machine with a brake (not supported together yet)",
-     "bodies:\n  A: {type: inertia-expression, inertia: \"0.5 + 0.1*sin(q)^2\"}\nbrakes:\n  B: {body: A, holding: 10}\n",
-     {"2:3: error: body 'A' has a position-dependent inertia, which cannot be combined with gaps, contacts or brakes yet"}},
     {"table times decrease", "bodies:\n  A: {inertia: 1}\nloads:\n  M: {type: table, body: A, points: [[1, 0], [0, 1]]}\n",
      {"error: load 'M': times must increase"}},
     {"several problems at once",
@@ -95,6 +92,25 @@ const Broken kCatalogue[] = {
      {"2:16: error: body 'A': field 'inertia' must be positive", "3:6: error: body 'B': missing field 'inertia'",
       "3:7: error: body 'B': unknown field 'mass'", "5:34: error: link 'c': unknown body 'X'"}},
 };
+
+// Claim: a machine (position-dependent inertia) combines with a brake, a friction contact and a
+// link with a gap to its output point: the model compiles as a hybrid one (no rejection any more).
+TEST(Compile, MachineWithBrakeContactAndGapLinkCompiles) {
+  const Model m = load_model(test::write_temp(
+      "machine-brake.yaml",
+      "bodies:\n  A: {type: inertia-expression, inertia: \"0.5 + 0.1*sin(q)^2\"}\n"
+      "  C: {type: crank-slider, crank_radius: 40 mm, rod_length: 160 mm, crank_inertia: 0.08}\n"
+      "  S: {type: translational, mass: 2 kg}\n"
+      "links:\n  r: {type: spring, between: [C.piston, S], stiffness: 1e5 N/m, gap: 1 mm}\n"
+      "contacts:\n  k: {between: [A, C], static: 5, kinetic: 4}\n"
+      "brakes:\n  B: {body: A, holding: 10}\n"));
+  EXPECT_TRUE(m.is_hybrid());
+  ASSERT_EQ(m.dof(), 3);
+  EXPECT_NE(m.bodies[0].machine, nullptr);
+  EXPECT_TRUE(m.links[0].a_point);
+  EXPECT_TRUE(m.links[0].has_gap);
+  EXPECT_EQ(m.contacts.size(), 2u);
+}
 
 // Claim: each broken file gives InputError with file:line:col and what was expected — all problems.
 TEST(Compile, CatalogueOfBrokenFilesReportsEveryProblemWithItsPlace) {

@@ -21,10 +21,19 @@
 /// static limit, the one with the largest |λ|/F_s is released in the direction of its λ; a released
 /// contact whose sliding would immediately reverse is not consistent, and then every combination is
 /// tried (fewest sliding first). Deterministic; no smoothing, no velocity threshold.
+///
+/// Bodies with position-dependent inertia (Body::machine, model/machine.hpp) are exact here too:
+/// M(q) = diag(I_i(q_i)), the velocity terms −½ I_i′ q_i'² and the machines' forces Q_i(q_i) join f̃,
+/// and links may attach to a machine's output point p(q) (δ = p_a/i − p_b, forces −F p_a′/i, +F p_b′).
+/// G M(q)⁻¹ Gᵀ then depends on q: when a stuck contact touches a machine its solution is formed at
+/// every evaluation (constant-inertia stuck sets keep their cached pseudo-inverses), and the
+/// momentum-weighted means of enforce_stuck/project_velocities use I(q). The work of Q counts as
+/// source work; the kinetic energy is ½ Σ I_i(q_i) v_i². No affine fast path with machines.
 
 #include <string>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,6 +43,8 @@
 #include "machdyn/solve/ode_system.hpp"
 
 namespace machdyn {
+
+class Machine;
 
 enum class ContactMode : int { slip_neg = -1, stuck = 0, slip_pos = 1 };
 enum class GapMode : int { closed_neg = -1, open = 0, closed_pos = 1 };
@@ -73,8 +84,14 @@ class HybridSystem final : public OdeSystem {
   [[nodiscard]] double deflection(int l, const double* y) const;       ///< δ
   [[nodiscard]] double deflection_rate(int l, const double* y) const;  ///< δ̇
   [[nodiscard]] double link_load(int l, const double* y) const;        ///< F of link l
-  /// The rate dF/dt of link l from the state derivative dy (a closed or gap-free link; 0 if open).
-  [[nodiscard]] double link_load_rate(int l, const double* dy) const;
+  /// The rate dF/dt of link l from the state y and its derivative dy (a closed or gap-free link; 0 if
+  /// open). y is read only for a link to a machine's output point (link_uses_point).
+  [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const;
+  [[nodiscard]] bool link_uses_point(int l) const {
+    return links_[static_cast<size_t>(l)].point;
+  }
+  /// Whether some body has a position-dependent inertia.
+  [[nodiscard]] bool has_machines() const { return has_machines_; }
   [[nodiscard]] double sliding_velocity(int k, double t, const double* y) const;  ///< u = v_a − v_b
   /// Accelerations (n) and contact forces F_k (stuck: λ; sliding: ±F_k; size = contacts).
   void evaluate(double t, const double* y, double* acc, double* contact_force);
@@ -102,8 +119,14 @@ class HybridSystem final : public OdeSystem {
     int a, b;
     double inv_ratio, c, d;
     bool gap;
+    bool point;     // an end is a machine's output point (link_point_); fits the padding after `gap`
     double lo, hi;  // flanks δ₋, δ₊
   };
+  // δ, δ̇ and the weights ∂δ/∂q_a (ja), −∂δ/∂q_b (jb) of a link to a machine's output point.
+  struct PointState {
+    double delta, rate, ja, jb;
+  };
+  [[nodiscard]] PointState point_state(int l, const double* y) const;
   // What the hot path needs of a contact, decided once: most contacts have a constant kinetic
   // level, no surface motion and no brake ramp.
   struct FlatContact {
@@ -111,8 +134,20 @@ class HybridSystem final : public OdeSystem {
     bool kinetic_table, moving_surface, brake;
     double kinetic0, surface0;  // the constant kinetic level and ground velocity when not tabulated
   };
+  // kMach: the model has machines (position-dependent inertia, point links). The constant-inertia
+  // instantiation is the plain code of the linear chain, untouched by the machine terms.
+  template <bool kMach>
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
+  template <bool kMach>
+  void evaluate_impl(double t, const double* y, double* acc, double* contact_force);
+  template <bool kMach>
   void rhs_general(double t, const double* y, double* dydt);
+  /// I_i(q_i)⁻¹ of every body into `im` (constant bodies: 1/I).
+  void inverse_inertias(const double* y, double* im) const;
+  /// G M⁻¹ Gᵀ of the stuck set for the inverse inertias `im`.
+  [[nodiscard]] Eigen::MatrixXd stuck_matrix(const double* im) const;
+  /// P_ for the inverse inertias `im` (machines in the stuck set: at every evaluation).
+  void form_stuck_solution(const double* im);
 
   // Within one mode, with constant loads and friction levels, no brake ramp, no moving surface and no
   // dampers, the whole right-hand side (work and losses included) is affine in y: dy = J y + c. Each
@@ -128,11 +163,20 @@ class HybridSystem final : public OdeSystem {
   std::unordered_map<std::string, AffineMode> affine_cache_;
   const AffineMode& compile_affine();
   void enforce_stuck(double t, double* acc) const;
+  void enforce_stuck_weighted(double t, double* acc, const double* im) const;
+  void project_velocities_weighted(double t, double* y) const;
 
   const Model& m_;
   int n_, nl_, nc_;
   std::vector<double> inv_mass_;
+  std::vector<const Machine*> machine_;  // per body, null for constant inertia
+  std::vector<int> machine_bodies_;      // indices of the bodies with a machine
+  bool has_machines_ = false;
+  bool stuck_machine_ = false;           // a stuck contact touches a machine: P_ per evaluation
+  std::vector<double> im_;               // I(q)⁻¹ of the last evaluation (machines)
   std::vector<FlatLink> links_;
+  // Per link: the machines whose output points p(q) replace q_a and q_b (a_point, b_point), or null.
+  std::vector<std::pair<const Machine*, const Machine*>> link_point_;
   std::vector<FlatContact> contacts_;
   std::vector<double> f_const_;        // sum of the constant loads per body
   std::vector<const Load*> varying_;   // loads that depend on t or v

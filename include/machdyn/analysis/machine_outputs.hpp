@@ -10,6 +10,8 @@
 /// Links attached to a machine's output point are nonlinear in the state, so their extremes in
 /// the summary are taken from the output grid (not located between output points).
 
+#include <functional>
+
 #include "machdyn/analysis/chain_system.hpp"
 #include "machdyn/analysis/simulate.hpp"
 
@@ -20,5 +22,12 @@ bool has_machines(const Model& m);
 
 /// Appends the series above to `r` (which holds the standard columns) and corrects link extremes.
 void append_machine_outputs(const Model& m, ChainSystem& sys, SimulationResult& r);
+
+/// The same for any solver: `accel(row, y, acc)` gives the n accelerations at output row `row`
+/// (y = [q; v] there); `link_load`, if set, gives link loads for the extremes of point links
+/// (the hybrid solver locates those itself and passes none).
+void append_machine_outputs(const Model& m, SimulationResult& r,
+                            const std::function<void(size_t row, const double* y, double* acc)>& accel,
+                            const std::function<double(int l, const double* y)>& link_load);
 
 }  // namespace machdyn
