@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/figures.hpp"
 #include "machdyn/analysis/simulate.hpp"
@@ -48,6 +49,20 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
     os << fmt::format("hybrid: {} mode events, {} slip phases; energy balance residual {:.3g} J of {:.6g} J source work\n",
                       events, r.hybrid.slip_phases.size(), r.hybrid.energy.residual(), r.hybrid.energy.source_work);
   }
+  for (const auto& x : r.machines) {
+    if (x.jumps > 0)
+      os << fmt::format("{}: {} velocity jumps (stepwise ratio), {:.6g} J lost in them\n", x.body, x.jumps, x.jump_loss);
+    if (!x.window) {
+      os << fmt::format("{}: less than one period ({:.3g} rad) run, no speed uniformity\n", x.body, x.period);
+      continue;
+    }
+    os << fmt::format("{}: last period t = {:.6g} … {:.6g} s ({:.2f} periods run): speed {:.6g} rad/s, δω = {:.4g}\n",
+                      x.body, x.t_from, x.t_to, x.periods_run, x.omega_mean, x.omega_delta);
+    if (!x.point.empty())
+      os << fmt::format("{}: {} speed mean {:.6g} m/s, max {:.6g}, min {:.6g}, δ = (max − min)/mean = {:.4g}{}\n", x.body,
+                        x.point, x.v_mean, x.v_max, x.v_min, x.delta,
+                        x.delta_previous >= 0 ? fmt::format(" (period before: {:.4g})", x.delta_previous) : "");
+  }
 }
 
 /// `--all-cases`: every case of the file, outputs in OUT/CASE/, one table of peak link loads and
@@ -60,6 +75,12 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
   // Compile every case first, so bad input stops the run before any result is written.
   std::vector<Model> models;
   for (const auto& name : names) models.push_back(load_model_case(model_path, sets, name));
+  // The event-driven solver used for every case here does not know position-dependent inertia.
+  for (const auto& m : models)
+    if (has_machines(m))
+      throw InputError(Location{model_path, 0, 0},
+                       "--all-cases: the model has a machine with position-dependent inertia, which only the "
+                       "smooth simulation handles; run the cases one by one with --case NAME");
   nlohmann::json all = nlohmann::json::array();
   // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
   std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",

@@ -25,7 +25,8 @@ constexpr DenseFn kDense[] = {dense_rhs<1>, dense_rhs<2>, dense_rhs<3>, dense_rh
 
 }  // namespace
 
-ChainSystem::ChainSystem(const Model& model) : m_(model), n_(model.dof()) {
+ChainSystem::ChainSystem(const Model& model)
+    : m_(model), n_(model.dof()), q_lo_(static_cast<size_t>(n_), -HUGE_VAL), q_hi_(static_cast<size_t>(n_), HUGE_VAL) {
   for (const auto& b : model.bodies) {
     inv_mass_.push_back(1.0 / b.inertia);
     machine_.push_back(b.machine.get());
@@ -68,7 +69,7 @@ ChainSystem::LinkState ChainSystem::link_state(const FlatLink& k, const double* 
   double p, dp, ddp;
   if (k.a >= 0) {
     if (k.pa) {
-      k.pa->point(y[k.a], &p, &dp, &ddp);
+      k.pa->point(mq(k.a, y), &p, &dp, &ddp);
       s.ja = dp * k.inv_ratio;
       s.delta += p * k.inv_ratio;
     } else {
@@ -78,7 +79,7 @@ ChainSystem::LinkState ChainSystem::link_state(const FlatLink& k, const double* 
   }
   if (k.b >= 0) {
     if (k.pb) {
-      k.pb->point(y[k.b], &p, &dp, &ddp);
+      k.pb->point(mq(k.b, y), &p, &dp, &ddp);
       s.jb = dp;
       s.delta -= p;
     } else {
@@ -97,8 +98,13 @@ void ChainSystem::initial_state(double* y) const {
 }
 
 void ChainSystem::generalized_loads(double t, const double* y, double* f) const {
-  for (int i = 0; i < n_; ++i) f[i] = machine_[static_cast<size_t>(i)] ? machine_[static_cast<size_t>(i)]->force(y[i]) : 0.0;
+  for (int i = 0; i < n_; ++i) f[i] = machine_[static_cast<size_t>(i)] ? machine_[static_cast<size_t>(i)]->force(mq(i, y)) : 0.0;
   for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+}
+
+void ChainSystem::set_evaluation_window(int body, double lo, double hi) {
+  q_lo_[static_cast<size_t>(body)] = lo;
+  q_hi_[static_cast<size_t>(body)] = hi;
 }
 
 double ChainSystem::link_load(int l, const double* y) const {
@@ -172,7 +178,7 @@ void ChainSystem::rhs_nonlinear(double t, const double* y, double* dydt) {
     if (const Machine* mach = machine_[static_cast<size_t>(i)]) {
       // I q'' + ½ I′ q'² = Q (model/machine.hpp).
       double I, dI;
-      mach->inertia(y[i], &I, &dI);
+      mach->inertia(mq(i, y), &I, &dI);
       acc[i] = (acc[i] - 0.5 * dI * v[i] * v[i]) / I;
     } else {
       acc[i] *= inv_mass_[static_cast<size_t>(i)];

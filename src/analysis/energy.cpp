@@ -114,6 +114,10 @@ EnergyIntegral::EnergyIntegral(const Model& m, double added_inertia, double extr
                                     "only constant loads and the machine's own forces can be used",
                                     ld.name));
   }
+  if (m.dof() == 1 && m.bodies[0].machine && m.bodies[0].machine->has_jumps())
+    diag.error(where, fmt::format("body '{}' has velocity jumps (a stepwise gear ratio): kinetic energy is lost at "
+                                  "every jump, so the energy integral does not hold; use `simulate`",
+                                  m.bodies[0].name));
   diag.throw_if_any();
   body_ = &m.bodies[0];
   q0_ = body_->q0;

@@ -61,6 +61,8 @@ void append_machine_outputs(const Model& m, SimulationResult& r,
     std::vector<std::string> names = {b.name + ".inertia_kg_m2", b.name + ".acceleration_rad_s2"};
     for (int p = 0; p < mach.parts(); ++p) names.push_back(b.name + ".M_" + mach.part_name(p) + "_N_m");
     if (!mach.point_name().empty()) names.push_back(b.name + "." + mach.point_name() + "_m");
+    const bool point_speed = !mach.point_name().empty() && mach.reports_point_speed();
+    if (point_speed) names.push_back(b.name + "." + mach.point_name() + "_speed_m_s");
     for (const auto& e : mach.extra_names()) names.push_back(b.name + "." + e);
     std::vector<std::vector<double>> cols(names.size());
     std::vector<double> extra(mach.extra_names().size());
@@ -79,6 +81,7 @@ void append_machine_outputs(const Model& m, SimulationResult& r,
         double x, dx, ddx;
         mach.point(q, &x, &dx, &ddx);
         cols[c++].push_back(x);
+        if (point_speed) cols[c++].push_back(dx * w);
       }
       mach.extras(q, extra.data());
       for (double e : extra) cols[c++].push_back(e);

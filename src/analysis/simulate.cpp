@@ -11,6 +11,8 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
+#include "machdyn/model/machine.hpp"
+#include "analysis/machine_run.hpp"
 
 namespace machdyn {
 
@@ -62,8 +64,9 @@ namespace {
 /// values of the loads then (O(#loads)), for the quasi-static load at t_max.
 class Recorder final : public StepObserver {
  public:
-  Recorder(const Model& m, ChainSystem& sys, SimulationResult& out, const SimulateOptions& opt)
-      : m_(m), sys_(sys), out_(out), opt_(opt), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
+  Recorder(const Model& m, ChainSystem& sys, SimulationResult& out, const SimulateOptions& opt,
+           detail::MachineRun& run)
+      : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
         loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)) {
     auto suffix = [](const char* unit) {
       std::string s(unit);
@@ -88,6 +91,7 @@ class Recorder final : public StepObserver {
 
   void on_step(const Stepper& s) override {
     peaks_.on_step(s, on_new_max_);
+    run_.on_step(s);
     // Progress: look at the clock every 32 steps only, report every progress_interval_s.
     if (opt_.progress && (++steps_ & 31) == 0) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -103,7 +107,7 @@ class Recorder final : public StepObserver {
     p.t = t;
     p.t_end = m_.simulation.t_end;
     p.steps = steps_;
-    p.events = 0;  // no events in a linear chain yet
+    p.events = run_.jumps();  // velocity jumps of stepwise gears
     p.wall_s = wall;
     p.finished = finished;
     return p;
@@ -145,6 +149,7 @@ class Recorder final : public StepObserver {
   ChainSystem& sys_;
   SimulationResult& out_;
   const SimulateOptions& opt_;
+  detail::MachineRun& run_;
   std::chrono::steady_clock::time_point start_;
   long steps_ = 0;
   double next_report_ = 0.0;
@@ -188,9 +193,13 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
   opt.atol = m.simulation.atol;
   opt.max_steps = m.simulation.max_steps;
   auto stepper = make_stepper(method, sys, opt);
-  Recorder rec(m, sys, out, options);
-  out.stats = integrate(*stepper, 0.0, y0.data(), m.simulation.t_end, m.simulation.dt_out, rec);
+  detail::MachineRun run(m, sys);  // velocity jumps (stepwise gears) and the point-speed report
+  run.start(0.0, y0.data());
+  Recorder rec(m, sys, out, options, run);
+  out.stats = integrate(*stepper, 0.0, y0.data(), m.simulation.t_end, m.simulation.dt_out, rec,
+                        run.has_jumps() ? &run : nullptr);
   rec.finish();
+  out.machines = run.reports();
 
   // Quasi-static loads at each link's peak time.
   const ParticularSolver particular(m);

@@ -115,6 +115,31 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   }
   j["links"] = links;
   if (r.hybrid.active) add_hybrid_summary(m, r, j);
+  if (!r.machines.empty()) {
+    nlohmann::json ms = nlohmann::json::object();
+    for (const auto& x : r.machines) {
+      nlohmann::json e = {{"period_rad", x.period}, {"periods_run", x.periods_run}, {"jumps", x.jumps},
+                          {"jump_loss_J", x.jump_loss}};
+      if (x.window) {
+        e["window_s"] = {x.t_from, x.t_to};
+        e["omega_mean_rad_s"] = x.omega_mean;
+        e["omega_max_rad_s"] = x.omega_max;
+        e["omega_min_rad_s"] = x.omega_min;
+        e["omega_delta"] = x.omega_delta;
+        e["jumps_window"] = x.jumps_window;
+        e["jump_loss_window_J"] = x.jump_loss_window;
+        if (!x.point.empty())
+          e[x.point + "_speed"] = {{"mean_m_s", x.v_mean},
+                                   {"max_m_s", x.v_max},
+                                   {"min_m_s", x.v_min},
+                                   {"delta", x.delta},
+                                   {"delta_previous_period", x.delta_previous >= 0 ? nlohmann::json(x.delta_previous)
+                                                                                   : nlohmann::json(nullptr)}};
+      }
+      ms[x.body] = e;
+    }
+    j["machines"] = ms;
+  }
   j["solver"] = {{"method", r.stats.method},
                  {"reason", r.method_reason},
                  {"steps", r.stats.stepper.steps},

@@ -1,10 +1,15 @@
 #include "model/compile_machine.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <stdexcept>
 #include <fmt/format.h>
 
+#include "machdyn/gears/gear_model.hpp"
+#include "machdyn/gears/synthesis.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/gear_drive.hpp"
 #include "machdyn/model/machine.hpp"
 
 namespace machdyn {
@@ -195,13 +200,74 @@ std::shared_ptr<const Machine> inertia_expression(FieldReader& f, Body& b) {
   return mach;
 }
 
+/// The gear pair of a gear-drive: `gears: FILE` (a `machdyn gears` spec, relative to the model
+/// file) or the spec's fields inline as a map. Problems inside the spec keep their own place.
+std::optional<gears::GearModel> read_gear_spec(FieldReader& f, gears::GearSynthesis* syn) {
+  Diagnostics& diag = f.diagnostics();
+  const SpecNode* g = f.node("gears");
+  if (!g) {
+    diag.error(f.map().loc, fmt::format("{}: missing field 'gears' (a gear spec file, as for `machdyn gears`, or "
+                                        "its fields inline)", f.what()));
+    return std::nullopt;
+  }
+  try {
+    SpecNode spec;
+    if (g->is_scalar()) {
+      std::filesystem::path path(g->scalar);
+      // Relative to the model file (the body's own file; a `--set` value has no file).
+      const std::string& model_file = f.map().loc.file;
+      if (path.is_relative() && !model_file.empty() && model_file.rfind("--set", 0) != 0)
+        path = std::filesystem::path(model_file).parent_path() / path;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec)) {
+        f.error_at("gears", fmt::format("field 'gears': cannot open the gear spec '{}' (looked for {})", g->scalar,
+                                        path.string()));
+        return std::nullopt;
+      }
+      spec = read_yaml_file(path.string());
+    } else if (g->is_map()) {
+      spec = *g;
+    } else {
+      f.error_at("gears", "field 'gears' expected a gear spec file name or a map of its fields");
+      return std::nullopt;
+    }
+    gears::GearModel gm = gears::compile_gears(spec);
+    if (gm.law.kind() != gears::RatioLaw::Kind::Walking) {
+      diag.error(gm.where.law, "gear-drive: the propulsor's travel X(phi) is built in for 'law: walking' only "
+                               "(a, b, c of the wheel-walking mechanism)");
+      return std::nullopt;
+    }
+    *syn = gears::synthesize(gm);
+    return gm;
+  } catch (const InputError& e) {
+    for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
+    return std::nullopt;
+  }
+}
+
+std::shared_ptr<const Machine> gear_drive(FieldReader& f, Body& b) {
+  GearDrive::Params p;
+  p.I_p = f.positive("pinion_inertia", dim::inertia).value_or(1.0);
+  p.I_H = f.positive("wheel_inertia", dim::inertia, 0.0, true).value_or(0.0);
+  p.m = f.positive("mass", dim::mass, 0.0, true).value_or(0.0);
+  p.F_r = f.quantity("resistance", dim::force, 0.0).value_or(0.0);
+  auto ratio = f.word("ratio", {"continuous", "stepwise"}, "continuous");
+  p.ratio = ratio && *ratio == "stepwise" ? GearDrive::Ratio::stepwise : GearDrive::Ratio::continuous;
+  b.q0 = f.quantity("position", dim::none, 0.0).value_or(0.0);
+  b.v0 = f.quantity("velocity", dim::angular_velocity, 0.0).value_or(0.0);
+  gears::GearSynthesis syn;
+  auto gm = read_gear_spec(f, &syn);
+  if (!gm) return nullptr;
+  return std::make_shared<GearDrive>(p, std::move(*gm), syn);
+}
+
 }  // namespace
 
 bool is_machine_type(const SpecNode& spec) {
   const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr;
   if (!t || !t->is_scalar()) return false;
   return t->scalar == "crank-slider" || t->scalar == "rolling-wheel" || t->scalar == "inertia-table" ||
-         t->scalar == "inertia-expression";
+         t->scalar == "inertia-expression" || t->scalar == "gear-drive";
 }
 
 Body compile_machine_body(const std::string& name, const SpecNode& spec, Diagnostics& diag) {
@@ -214,6 +280,7 @@ Body compile_machine_body(const std::string& name, const SpecNode& spec, Diagnos
   if (type == "crank-slider") b.machine = crank_slider(f, b);
   else if (type == "rolling-wheel") b.machine = rolling_wheel(f, b);
   else if (type == "inertia-table") b.machine = inertia_table(f, b);
+  else if (type == "gear-drive") b.machine = gear_drive(f, b);
   else b.machine = inertia_expression(f, b);
   f.finish();
   double I = 1.0, dI = 0.0;

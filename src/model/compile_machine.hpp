@@ -7,6 +7,8 @@
 //     wheel: {type: rolling-wheel, scheme: 1|2|3, R1, r1, r2, H, m1, m2, rho, F, beta0, omega0}
 //     cam:   {type: inertia-table, points: [[q, I], ...], periodic: true|false, torque, position, velocity}
 //     rot:   {type: inertia-expression, inertia: "expr in q", torque: "expr in q", period, position, velocity}
+//     drive: {type: gear-drive, gears: FILE | {gear spec fields}, ratio: continuous|stepwise,
+//             pinion_inertia, wheel_inertia, mass, resistance, position, velocity}   (model/gear_drive.hpp)
 // Links may attach to a machine's output point: `between: [crank.piston, load]`.
 
 #include <string>
@@ -16,7 +18,7 @@
 
 namespace machdyn {
 
-/// Whether the body's `type` names a machine (crank-slider, rolling-wheel, inertia-table, inertia-expression).
+/// Whether the body's `type` names a machine (crank-slider, rolling-wheel, inertia-table, inertia-expression, gear-drive).
 bool is_machine_type(const SpecNode& spec);
 
 /// Compiles one machine body; problems go to `diag` with their place.

@@ -12,6 +12,7 @@
 /// δ = p_a(q_a)/i − p_b(q_b) and row J = ∂δ/∂q; such links are nonlinear in y. The machines' own
 /// forces Q(q) are part of f. With machines the Jacobian is by finite differences.
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ class ChainSystem final : public OdeSystem {
   [[nodiscard]] std::vector<double> link_load_weights(int l) const;
   /// The external loads as generalized forces f(t, v) (size n).
   void generalized_loads(double t, const double* y, double* f) const;
+  /// Evaluates body i's machine (inertia, force, point) at q clamped to [lo, hi]. For machines with
+  /// velocity jumps (stepwise gears) analysis/machine_run.cpp keeps this window inside the current
+  /// piece, so that a step ending a hair beyond a jump position (the re-integration up to the
+  /// located event) does not see the next piece's inertia. Default: no clamp.
+  void set_evaluation_window(int body, double lo, double hi);
 
  private:
   struct FlatLink {
@@ -62,6 +68,11 @@ class ChainSystem final : public OdeSystem {
   std::vector<double> inv_mass_;
   std::vector<FlatLink> links_;
   std::vector<const Machine*> machine_;  ///< per body, null for constant inertia
+  std::vector<double> q_lo_, q_hi_;      ///< evaluation windows of the machines (±inf: none)
+  /// The position at which body i's machine is evaluated.
+  [[nodiscard]] double mq(int i, const double* y) const {
+    return std::clamp(y[i], q_lo_[static_cast<size_t>(i)], q_hi_[static_cast<size_t>(i)]);
+  }
   bool nonlinear_ = false;               ///< machines or point links present
   // Fast paths of the linear chain (no machines, no point links):
   std::vector<FlatLink> between_;     // links with two bodies (hot path without ground branches)

@@ -6,7 +6,9 @@
 ///   NAME.acceleration_rad_s2    ε = q''
 ///   NAME.M_PART_N_m             inertia moment of each part, M_k = −I_k ε − ½ I_k′ ω² (paper 004 eq. 5)
 ///   NAME.POINT_m                the output point: piston displacement from TDC, wheel centre travel x
+///   NAME.POINT_speed_m_s        the point's speed p′(q) q' (gear drive: the travel speed)
 ///   NAME.beta_rad               the rolling wheel's thread angle β
+///   NAME.phi_rad, NAME.ratio    the gear drive's carrier angle φ and ratio i = dθ/dφ
 /// Links attached to a machine's output point are nonlinear in the state, so their extremes in
 /// the summary are taken from the output grid (not located between output points).
 

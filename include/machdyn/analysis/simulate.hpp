@@ -26,6 +26,29 @@ struct LinkSummary {
   double dynamic_factor = 0.0;
 };
 
+/// For a machine body whose output point advances with q (the gear drive's travel X, model/
+/// gear_drive.hpp): the uniformity of the point's speed V = p′(q) q' and of q' over the last whole
+/// period P of q in the run (steady running once the run is long enough: compare `delta_previous`,
+/// the same over the period before), and the velocity jumps of the run (stepwise gears).
+///   V̄ = (p(q_end) − p(q_end − P))/(t_end − t_from), q(t_from) = q_end − P (sign of the motion)
+///   δ = (V_max − V_min)/V̄ over [t_from, t_end], extremes over the dense solution (a few points per
+///   step, and both sides of every jump, where the stepwise extremes are).
+struct MachineRunReport {
+  std::string body;
+  std::string point;            ///< the output point's name ("travel"); empty: no point-speed report
+  double period = 0.0;          ///< P, rad
+  double periods_run = 0.0;     ///< (q_end − q_0)/P
+  bool window = false;          ///< at least one whole period was run (the values below are set)
+  double t_from = 0.0, t_to = 0.0;  ///< the window, s
+  double v_mean = 0.0, v_max = 0.0, v_min = 0.0, delta = 0.0;  ///< point speed, m/s
+  double delta_previous = -1.0;  ///< δ over the period before the window (−1 if fewer than 2 periods)
+  double omega_mean = 0.0, omega_max = 0.0, omega_min = 0.0, omega_delta = 0.0;  ///< q', rad/s
+  long jumps = 0;               ///< velocity jumps over the run
+  double jump_loss = 0.0;       ///< kinetic energy lost in them, J
+  long jumps_window = 0;        ///< jumps inside the window
+  double jump_loss_window = 0.0;  ///< J, inside the window
+};
+
 struct SimulationResult {
   std::vector<std::string> column_names;      ///< "t_s", "I1.position_rad", ..., "c1.load_N_m"
   std::vector<std::vector<double>> columns;   ///< one series per name, on the output grid
@@ -33,6 +56,7 @@ struct SimulationResult {
   RunStats stats;
   std::string method_reason;                  ///< why this integrator (for `integrator: auto`)
   HybridReport hybrid;                        ///< events, slip phases, energy (models with gaps or friction)
+  std::vector<MachineRunReport> machines;     ///< machines with velocity jumps or a point-speed report
 };
 
 /// The peak of link l for a table over runs or load cases: the extreme of larger magnitude, its time,

@@ -52,6 +52,25 @@ class Machine {
   [[nodiscard]] virtual std::vector<double> kinks(double /*q_a*/, double /*q_b*/) const { return {}; }
   /// Period of I and Q in q (2π for a crank), 0 if not periodic.
   [[nodiscard]] virtual double period() const { return 0.0; }
+  /// Whether the output point's velocity p′(q) q' gets its own output column `NAME.POINT_speed_m_s`
+  /// and a uniformity report over the last period (the gear drive's travel speed).
+  [[nodiscard]] virtual bool reports_point_speed() const { return false; }
+
+  /// Velocity jumps. A machine whose internal velocity ratio jumps at fixed positions (a stepwise
+  /// gear: one circular arc per tooth) has I(q) discontinuous there, and passing such a position is
+  /// an impact: the speed jumps from w− to w+ = velocity_after_jump(). has_jumps() says whether the
+  /// machine has any; next_jump(q, dir) is the first jump position strictly beyond q in the
+  /// direction dir = ±1 (±infinity if none).
+  [[nodiscard]] virtual bool has_jumps() const { return false; }
+  [[nodiscard]] virtual double next_jump(double /*q*/, int dir) const {
+    return dir > 0 ? HUGE_VAL : -HUGE_VAL;
+  }
+  /// The speed just after passing the jump position qj in direction dir with speed w (sign of w =
+  /// dir); *loss receives the kinetic energy lost in the impact, J (≥ 0).
+  [[nodiscard]] virtual double velocity_after_jump(double /*qj*/, int /*dir*/, double w, double* loss) const {
+    *loss = 0.0;
+    return w;
+  }
 
   /// For the energy analysis: a parameter s that describes the range of motion better than q (the
   /// wheel's thread angle β ∈ (β0, π) while φ → ∞). q(s) and dq/ds; the identity by default.
