@@ -16,6 +16,7 @@
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
+#include "machdyn/model/machine.hpp"
 
 namespace machdyn::cli {
 namespace {
@@ -75,12 +76,14 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
   // Compile every case first, so bad input stops the run before any result is written.
   std::vector<Model> models;
   for (const auto& name : names) models.push_back(load_model_case(model_path, sets, name));
-  // The event-driven solver used for every case here does not know position-dependent inertia.
+  // Every case runs event-driven; that solver handles position-dependent inertia but not the
+  // velocity jumps of a stepwise gear drive.
   for (const auto& m : models)
-    if (has_machines(m))
-      throw InputError(Location{model_path, 0, 0},
-                       "--all-cases: the model has a machine with position-dependent inertia, which only the "
-                       "smooth simulation handles; run the cases one by one with --case NAME");
+    for (const auto& b : m.bodies)
+      if (b.machine && b.machine->has_jumps())
+        throw InputError(Location{model_path, 0, 0},
+                         fmt::format("--all-cases: body '{}' has velocity jumps (a stepwise gear drive), which only the "
+                                     "smooth simulation handles; run the cases one by one with --case NAME", b.name));
   nlohmann::json all = nlohmann::json::array();
   // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
   std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",

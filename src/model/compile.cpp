@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/machine.hpp"
 #include "compile_hybrid.hpp"
 #include "model/compile_machine.hpp"
 
@@ -247,6 +248,14 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   top.finish();
+  // The event-driven solver (gaps, contacts, brakes) does not apply the velocity jumps of a
+  // machine with jumps (a stepwise gear drive): say so instead of simulating it without them.
+  if (diag.empty() && m.is_hybrid())
+    for (const auto& b : m.bodies)
+      if (b.machine && b.machine->has_jumps())
+        diag.error(bodies ? bodies->loc : Location{source, 1, 1},
+                   fmt::format("body '{}' has velocity jumps (stepwise gear ratio), which cannot be combined with gaps, "
+                               "contacts or brakes yet", b.name));
   diag.throw_if_any();
   return m;
 }

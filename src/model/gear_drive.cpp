@@ -60,7 +60,7 @@ GearDrive::Kinematics GearDrive::kinematics(double theta) const {
   }
   // Continuous: the big sector of θ ∈ [θ_1 − Θ, θ_1) is φ ∈ [−T/2, T/2) (θ(T/2) = θ_1).
   const double phi_w = gears_.law.phi_of_theta(w);
-  const gears::Jet i = gears_.law.ratio(phi_w);
+  const Jet i = gears_.law.ratio(phi_w);
   const double g = 1.0 / i.v;
   return {k * T_ + phi_w, g, -i.d * g * g * g};  // d(1/i)/dθ = −i′/i² · dφ/dθ
 }
