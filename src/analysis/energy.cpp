@@ -8,6 +8,7 @@
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/machine.hpp"
+#include "machdyn/solve/roots.hpp"
 
 namespace machdyn {
 
@@ -189,28 +190,13 @@ double golden_max(const std::function<double(double)>& f, double a, double b) {
   return 0.5 * (a + b);
 }
 
-/// A root of f in [a, b] with f(a) f(b) <= 0 (Illinois false position, then bisection safeguard).
+/// A root of f in [a, b] with f(a) f(b) <= 0 (solve/roots.hpp).
 double root(const std::function<double(double)>& f, double a, double b) {
-  double fa = f(a), fb = f(b);
+  const double fa = f(a), fb = f(b);
   if (fa == 0) return a;
   if (fb == 0) return b;
-  int side = 0;
-  for (int it = 0; it < 200; ++it) {
-    double c = (a * fb - b * fa) / (fb - fa);
-    if (!(c > std::min(a, b) && c < std::max(a, b))) c = 0.5 * (a + b);
-    const double fc = f(c);
-    if (fc == 0 || std::abs(b - a) < 4e-16 * std::max(1.0, std::abs(c))) return c;
-    if (sign(fc) == sign(fb)) {
-      b = c, fb = fc;
-      if (side == -1) fa *= 0.5;
-      side = -1;
-    } else {
-      a = c, fa = fc;
-      if (side == 1) fb *= 0.5;
-      side = 1;
-    }
-  }
-  return 0.5 * (a + b);
+  const Bracket br = illinois(f, a, fa, b, fb, 4e-16 * std::max({1.0, std::abs(a), std::abs(b)}));
+  return 0.5 * (br.lo + br.hi);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/solve/roots.hpp"
 
 namespace machdyn {
 namespace {
@@ -236,30 +237,15 @@ class HybridRun {
       double r1 = sys_.link_load_rate(l, yb, db);
       rate_end_[static_cast<size_t>(l)] = r1;
       if (!((r0 > 0 && r1 < 0) || (r0 < 0 && r1 > 0))) continue;
-      // Illinois on the load rate for the interior extremum.
-      double a = ta, b = tb;
-      int side = 0;
-      for (int it = 0; it < 100 && b - a > 1e-15 * std::max(1.0, std::abs(b)); ++it) {
-        double tm = (a * r1 - b * r0) / (r1 - r0);
-        if (!(tm > a && tm < b)) tm = 0.5 * (a + b);
-        st.derivative(tm, dtmp_.data());
-        if (sys_.link_uses_point(l)) st.interpolate(tm, ytmp_.data());  // the rate depends on q there
-        const double r = sys_.link_load_rate(l, ytmp_.data(), dtmp_.data());
-        if (r == 0.0) {
-          a = b = tm;
-          break;
-        }
-        if ((r > 0) == (r0 > 0)) {
-          a = tm, r0 = r;
-          if (side == -1) r1 *= 0.5;
-          side = -1;
-        } else {
-          b = tm, r1 = r;
-          if (side == 1) r0 *= 0.5;
-          side = 1;
-        }
-      }
-      const double te = 0.5 * (a + b);
+      // The interior extremum: where the load rate changes sign (solve/roots.hpp).
+      const Bracket br = illinois(
+          [&](double tm) {
+            st.derivative(tm, dtmp_.data());
+            if (sys_.link_uses_point(l)) st.interpolate(tm, ytmp_.data());  // the rate depends on q there
+            return sys_.link_load_rate(l, ytmp_.data(), dtmp_.data());
+          },
+          ta, r0, tb, r1, 1e-15 * std::max(1.0, std::abs(tb)), 100);
+      const double te = 0.5 * (br.lo + br.hi);
       st.interpolate(te, ytmp_.data());
       consider(l, te, sys_.link_load(l, ytmp_.data()), ytmp_.data());
     }
@@ -329,26 +315,16 @@ class HybridRun {
   }
 
   // ---- events ----
-  /// Illinois on slot k over [lo, hi] (g(lo) = g0 ≥ 0 > g1 = g(hi)); returns the final bracket.
+  /// Slot k's sign change over [lo, hi] (g(lo) = g0 ≥ 0 > g1 = g(hi)); returns the final bracket.
   void locate(const Stepper& st, int k, double g0, double g1, double& lo, double& hi) {
-    const double tol = 1e-13 * std::max(1.0, std::abs(hi));
-    int side = 0;
-    for (int it = 0; it < 200 && hi - lo > tol; ++it) {
-      double tm = g0 - g1 > 0 ? (lo * g1 - hi * g0) / (g1 - g0) : 0.5 * (lo + hi);
-      if (!(tm > lo && tm < hi) || it % 8 == 7) tm = 0.5 * (lo + hi);  // keep shrinking on discontinuities
-      st.interpolate(tm, ytmp_.data());
-      sys_.event_functions(tm, ytmp_.data(), g_tmp_.data());
-      const double g = g_tmp_[static_cast<size_t>(k)];
-      if (g >= 0.0) {
-        lo = tm, g0 = g;
-        if (side == -1) g1 *= 0.5;
-        side = -1;
-      } else {
-        hi = tm, g1 = g;
-        if (side == 1) g0 *= 0.5;
-        side = 1;
-      }
-    }
+    const Bracket br = illinois(
+        [&](double tm) {
+          st.interpolate(tm, ytmp_.data());
+          sys_.event_functions(tm, ytmp_.data(), g_tmp_.data());
+          return g_tmp_[static_cast<size_t>(k)];
+        },
+        lo, g0, hi, g1, 1e-13 * std::max(1.0, std::abs(hi)));
+    lo = br.lo, hi = br.hi;
   }
 
   /// Progress: the clock is read every 32 steps only; a report at most every progress_interval_s.

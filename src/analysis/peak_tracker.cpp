@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "machdyn/solve/roots.hpp"
+
 namespace machdyn {
 
 PeakTracker::PeakTracker(const std::vector<std::vector<double>>& weights) {
@@ -32,26 +34,14 @@ void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_ne
 }
 
 double PeakTracker::locate_extremum(const Stepper& s, const Signal& g, double t0, double r0, double t1, double r1) {
-  // Illinois (modified regula falsi) on the rate; r0 and r1 have opposite signs.
   std::vector<double> dy(dy_.size());
-  int side = 0;
-  for (int it = 0; it < 100 && t1 - t0 > 1e-15 * std::max(1.0, std::abs(t1)); ++it) {
-    double t = (t0 * r1 - t1 * r0) / (r1 - r0);
-    if (!(t > t0 && t < t1)) t = 0.5 * (t0 + t1);
-    s.derivative(t, dy.data());
-    const double r = g.dot(dy.data());
-    if (r == 0.0) return t;
-    if ((r > 0) == (r0 > 0)) {
-      t0 = t, r0 = r;
-      if (side == -1) r1 *= 0.5;
-      side = -1;
-    } else {
-      t1 = t, r1 = r;
-      if (side == 1) r0 *= 0.5;
-      side = 1;
-    }
-  }
-  return 0.5 * (t0 + t1);
+  const Bracket br = illinois(
+      [&](double t) {
+        s.derivative(t, dy.data());
+        return g.dot(dy.data());
+      },
+      t0, r0, t1, r1, 1e-15 * std::max(1.0, std::abs(t1)), 100);
+  return 0.5 * (br.lo + br.hi);
 }
 
 void PeakTracker::on_step(const Stepper& s, const NewMax& on_new_max) {
