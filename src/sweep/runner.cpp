@@ -9,6 +9,9 @@
 #include <thread>
 #include <fcntl.h>
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
@@ -139,6 +142,14 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   out.threads = options.jobs > 0 ? options.jobs : default_sweep_jobs();
   out.table_path = (fs::path(options.out_dir) / "sweep.csv").string();
   out.journal_path = (fs::path(options.out_dir) / "sweep.journal").string();
+
+#if defined(__GLIBC__)
+  // Per-worker memory reuse: freed run memory stays in the worker's arena (see SweepOptions).
+  if (options.retain_memory) {
+    ::mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    ::mallopt(M_TOP_PAD, 16 << 20);
+  }
+#endif
 
   // Rank 0 opens the journal; every rank learns which runs are finished.
   std::unique_ptr<SweepJournal> journal;

@@ -1,8 +1,10 @@
 #include "machdyn/sweep/table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -50,7 +52,46 @@ std::vector<SummaryColumns> standard_summary_columns() {
     v.push_back(static_cast<double>(r.stats.stepper.rejected));
     v.push_back(static_cast<double>(r.stats.stepper.rhs_evals));
   };
-  return {peaks, solver};
+  return {peaks, hybrid_summary_columns(), solver};
+}
+
+SummaryColumns hybrid_summary_columns() {
+  SummaryColumns g;
+  g.header = [](const Model& m) {
+    std::vector<std::string> h;
+    if (!m.is_hybrid()) return h;
+    for (const auto& k : counted_event_kinds()) h.push_back("events_" + k);
+    for (const auto& c : m.contacts) {
+      h.push_back(c.name + ".slips");
+      h.push_back(c.name + ".period_s");
+      for (const auto& l : m.links) h.push_back(c.name + "." + l.name + "_max_over_static_limit");
+    }
+    return h;
+  };
+  g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
+    if (!m.is_hybrid()) return;
+    for (long n : event_counts(r.hybrid)) v.push_back(static_cast<double>(n));
+    for (const auto& s : contact_statistics(m, r)) {
+      v.push_back(static_cast<double>(s.slips));
+      v.push_back(s.period_s);
+      for (double x : s.link_max_over_static_limit) v.push_back(x);
+    }
+  };
+  return g;
+}
+
+std::vector<std::vector<std::string>> summary_column_names(const SweepPlan& plan,
+                                                           const std::vector<SummaryColumns>& columns) {
+  std::vector<std::vector<std::string>> out;
+  const auto models = column_models(plan);
+  for (const auto& g : columns) {
+    std::vector<std::string> names;
+    for (const Model* m : models)
+      for (auto& name : g.header(*m))
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(std::move(name));
+    out.push_back(std::move(names));
+  }
+  return out;
 }
 
 std::string csv_field(const std::string& text) {
@@ -99,8 +140,8 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
     h += ',';
     h += csv_field(a.target);
   }
-  for (const auto& g : columns)
-    for (const auto& name : g.header(plan.base_model)) {
+  for (const auto& names : summary_column_names(plan, columns))
+    for (const auto& name : names) {
       h += ',';
       h += csv_field(name);
     }
@@ -119,20 +160,37 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     row += std::isnan(v.si) ? csv_field(v.text) : number(v.si);
   }
 
+  const auto names = summary_column_names(plan, columns);
   size_t n_summary = 0;
-  for (const auto& g : columns) n_summary += g.header(plan.base_model).size();
+  for (const auto& g : names) n_summary += g.size();
   std::string message;
   try {
     const Model m = compile_model(run_spec(plan, run), plan.request.model_path);
     const SimulationResult r = simulate(m);
+    // Each group's values, in the table's columns: a column the run's model has no element for
+    // (a brake of another case) stays empty.
+    std::vector<std::string> cells;
+    cells.reserve(n_summary);
     std::vector<double> values;
-    values.reserve(n_summary);
-    for (const auto& g : columns) g.values(m, r, values);
-    if (values.size() != n_summary)
-      throw std::runtime_error(fmt::format("the run gave {} summary values, the header has {}", values.size(), n_summary));
-    for (double v : values) {
+    for (size_t k = 0; k < columns.size(); ++k) {
+      const auto& g = columns[k];
+      values.clear();
+      g.values(m, r, values);
+      const auto own = g.header(m);
+      if (values.size() != own.size())
+        throw std::runtime_error(fmt::format("the run gave {} summary values, its header has {}", values.size(), own.size()));
+      if (own == names[k]) {
+        for (double v : values) cells.push_back(number(v));
+        continue;
+      }
+      for (const auto& name : names[k]) {
+        const auto it = std::find(own.begin(), own.end(), name);
+        cells.push_back(it == own.end() ? std::string() : number(values[static_cast<size_t>(it - own.begin())]));
+      }
+    }
+    for (const auto& c : cells) {
       row += ',';
-      row += number(v);
+      row += c;
     }
     return row + ",ok,";
   } catch (const InputError& e) {
