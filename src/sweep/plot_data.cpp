@@ -388,7 +388,7 @@ plot::Figure sweep_plot_figure(const std::string& data_csv, const SweepPlotSpec&
     sort_by_x(x, z);
     const size_t n = x.size();
     f.series.push_back(plot::make_series(spec.output, std::move(x), std::move(z), style(n)));
-    f.legend = plot::Figure::Legend::below;
+    f.series.back().in_legend = false;  // one curve: the y axis says what it is
     return f;
   }
   const auto ys = distinct(d.y_text);
@@ -406,8 +406,10 @@ plot::Figure sweep_plot_figure(const std::string& data_csv, const SweepPlotSpec&
     const size_t n = x.size();
     f.series.push_back(plot::make_series(by_case ? text : spec.inputs[1] + " = " + value_label(text, spec.input_axes[1]),
                                          std::move(x), std::move(z), style(n)));
-    // The palette has 8 colours: later curves are dashed.
-    f.series.back().dashed = f.series.size() > 8;
+    // Past the palette's colours (plot::series_color repeats) a curve is dashed.
+    const size_t k = f.series.size() - 1;
+    for (size_t j = 0; j < k; ++j)
+      if (plot::series_color(j) == plot::series_color(k)) f.series.back().dashed = true;
   }
   f.legend = plot::Figure::Legend::below;
   return f;
