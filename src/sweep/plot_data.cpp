@@ -30,7 +30,7 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-/// The plot data parsed: columns x[, y], z per ok row; `words` holds the texts of a non-numeric x.
+/// The plot data parsed: columns x[, y], z per ok row, with their texts (a word-valued input is NaN).
 struct PlotData {
   std::vector<std::string> x_text, y_text;
   std::vector<double> x, y, z;
@@ -257,11 +257,10 @@ plot::Axis column_axis(const std::string& column) {
       quantity = "F_max(" + field.substr(0, field.size() - 22) + ") / F_s(" + elem + ")";
     else quantity = name;
   } else if (name.rfind("events_", 0) == 0) {
-    quantity = "events " + name.substr(7);
+    quantity = "number of " + name.substr(7) + " events";
   } else {
-    quantity = name;
+    quantity = name;  // steps, rejected_steps, rhs_evals
   }
-  if (quantity == name && !unit.empty()) return plot::make_axis(name, unit);
   return plot::make_axis(quantity, unit);
 }
 

@@ -149,6 +149,11 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
 }
 
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns) {
+  return execute_run(plan, run, columns, summary_column_names(plan, columns));
+}
+
+std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns,
+                        const std::vector<std::vector<std::string>>& names) {
   // The run's key: index, case, varied values.
   std::string row = std::to_string(run.index);
   if (run.case_index >= 0) {
@@ -160,7 +165,6 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     row += std::isnan(v.si) ? csv_field(v.text) : number(v.si);
   }
 
-  const auto names = summary_column_names(plan, columns);
   size_t n_summary = 0;
   for (const auto& g : names) n_summary += g.size();
   std::string message;

@@ -54,6 +54,9 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
 /// (no newline). Never throws for a failing run: an InputError (a value the field rejects),
 /// SolverError or any other exception gives status `error` and its message.
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns);
+/// The same with the table's column names computed once (summary_column_names), for many runs.
+std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns,
+                        const std::vector<std::vector<std::string>>& names);
 
 /// Quotes a CSV field when it holds a comma, quote or space at an end; newlines become spaces.
 std::string csv_field(const std::string& text);
