@@ -251,6 +251,10 @@ plot::Axis column_axis(const std::string& column) {
     else if (field == "t_max") quantity = "time of the peak of " + elem;
     else if (field == "static") quantity = "quasi-static load of " + elem + " at its peak";
     else if (field == "dynamic_factor") quantity = "dynamic factor of " + elem;
+    else if (field == "peak") quantity = "signed peak load of " + elem;
+    else if (field == "t_peak") quantity = "time of the peak of " + elem;
+    else if (field == "peak_static") quantity = "quasi-static load of " + elem + " at its peak";
+    else if (field == "peak_dynamic_factor") quantity = "peak dynamic factor of " + elem;
     else if (field == "slips") quantity = "slips of " + elem;
     else if (field == "period") quantity = "self-oscillation period of " + elem;
     else if (ends_with(field, "_max_over_static_limit"))

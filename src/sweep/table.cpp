@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/compile.hpp"
@@ -52,14 +54,48 @@ std::vector<SummaryColumns> standard_summary_columns() {
     v.push_back(static_cast<double>(r.stats.stepper.rejected));
     v.push_back(static_cast<double>(r.stats.stepper.rhs_evals));
   };
-  return {peaks, hybrid_summary_columns(), solver};
+  return {peaks, peak_summary_columns(), hybrid_summary_columns(), solver};
+}
+
+bool runs_event_driven(const Model& m) { return m.is_hybrid() || !m.load_case.empty(); }
+
+SummaryColumns peak_summary_columns() {
+  SummaryColumns g;
+  g.header = [](const Model& m) {
+    std::vector<std::string> h;
+    if (!runs_event_driven(m)) return h;
+    for (const auto& l : m.links) {
+      const auto u = unit_suffix(link_load_unit(m, l));
+      for (const auto& f : {"peak_" + u, std::string("t_peak_s"), "peak_static_" + u, std::string("peak_dynamic_factor")})
+        h.push_back(l.name + "." + f);
+    }
+    return h;
+  };
+  g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
+    if (!runs_event_driven(m)) return;
+    for (size_t l = 0; l < r.links.size(); ++l) {
+      // As the table of `simulate --all-cases`: the extreme of larger magnitude, the quasi-static
+      // load at its time, and their ratio (NaN when the static load is ~0).
+      const auto& s = r.links[l];
+      const bool neg = std::abs(s.min) > std::abs(s.max);
+      const double peak = neg ? s.min : s.max;
+      const double stat = !neg ? s.static_load
+                               : l < r.hybrid.static_at_min.size() ? r.hybrid.static_at_min[l]
+                                                                    : std::numeric_limits<double>::quiet_NaN();
+      v.push_back(peak);
+      v.push_back(neg ? s.t_min : s.t_max);
+      v.push_back(stat);
+      v.push_back(std::abs(stat) > 1e-9 * std::abs(peak) ? peak / stat : std::numeric_limits<double>::quiet_NaN());
+    }
+  };
+  return g;
 }
 
 SummaryColumns hybrid_summary_columns() {
   SummaryColumns g;
   g.header = [](const Model& m) {
     std::vector<std::string> h;
-    if (!m.is_hybrid()) return h;
+    if (!runs_event_driven(m)) return h;
     for (const auto& k : counted_event_kinds()) h.push_back("events_" + k);
     for (const auto& c : m.contacts) {
       h.push_back(c.name + ".slips");
@@ -69,7 +105,7 @@ SummaryColumns hybrid_summary_columns() {
     return h;
   };
   g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
-    if (!m.is_hybrid()) return;
+    if (!runs_event_driven(m)) return;
     for (long n : event_counts(r.hybrid)) v.push_back(static_cast<double>(n));
     for (const auto& s : contact_statistics(m, r)) {
       v.push_back(static_cast<double>(s.slips));
@@ -169,8 +205,11 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
   for (const auto& g : names) n_summary += g.size();
   std::string message;
   try {
-    const Model m = compile_model(run_spec(plan, run), plan.request.model_path);
-    const SimulationResult r = simulate(m);
+    Model m = compile_model(run_spec(plan, run), plan.request.model_path);
+    if (run.case_index >= 0) m.load_case = plan.request.cases[static_cast<size_t>(run.case_index)];
+    // The cases of a file run event-driven, smooth or not, as with `simulate --all-cases`: every row
+    // of a case sweep is computed alike and has the quasi-static load at a negative peak.
+    const SimulationResult r = runs_event_driven(m) ? simulate_hybrid(m) : simulate(m);
     // Each group's values, in the table's columns: a column the run's model has no element for
     // (a brake of another case) stays empty.
     std::vector<std::string> cells;

@@ -8,8 +8,8 @@
 ///
 /// Summary columns come in groups (SummaryColumns). The standard groups are the link peaks
 /// (`L.max_U`, `L.min_U`, `L.t_max_s`, `L.static_U`, `L.dynamic_factor` for every link L, U its load
-/// unit `N_m` or `N`), the hybrid figures (hybrid_summary_columns(), only for models with a gap, a
-/// contact or a brake) and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). A new
+/// unit `N_m` or `N`), for event-driven runs (runs_event_driven()) the peaks of larger magnitude
+/// (peak_summary_columns()) and the hybrid figures (hybrid_summary_columns()), and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). A new
 /// analysis adds a group: a header function over a model and a value function over one run's model
 /// and result. The table's columns of a group are the union of its header over the sweep's models
 /// (column_models(): the base, or every case); a run fills the columns its own model has and leaves
@@ -33,10 +33,23 @@ struct SummaryColumns {
   std::function<void(const Model& run_model, const SimulationResult& result, std::vector<double>& values)> values;
 };
 
-/// The link peaks, the hybrid figures, then the solver statistics.
+/// The link peaks, the peaks of larger magnitude and the hybrid figures (event-driven runs only),
+/// then the solver statistics.
 std::vector<SummaryColumns> standard_summary_columns();
 
-/// Figures of a hybrid run (analysis/hybrid_stats.hpp); no columns for a smooth model:
+/// Whether a run of this model is event-driven (simulate_hybrid): a model with a gap, a contact or
+/// a brake, and every run of a case sweep (Model::load_case set), smooth or not, as `simulate
+/// --all-cases` runs its cases.
+bool runs_event_driven(const Model& m);
+
+/// For event-driven runs, per link L (U its load unit), as the table of `simulate --all-cases`:
+/// `L.peak_U` the extreme of larger magnitude (max or min), `L.t_peak_s` its time,
+/// `L.peak_static_U` the quasi-static load there (HybridReport::static_at_min for a negative peak)
+/// and `L.peak_dynamic_factor` their ratio (nan when the static load is ~0). The dynamic factor of
+/// a link loaded mostly in the negative direction (hoist mode 6). No columns for a smooth run.
+SummaryColumns peak_summary_columns();
+
+/// Figures of an event-driven run (analysis/hybrid_stats.hpp); no columns for a smooth model:
 ///   `events_K` for K in gap_closed, gap_opened, stick, slip, reversal: events of that kind;
 ///   per contact or brake C: `C.slips` (slip phases), `C.period_s` (self-oscillation period, the
 ///   mean interval between slip starts in the second half of the run; nan with fewer than two),
