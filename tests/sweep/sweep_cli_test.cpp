@@ -163,5 +163,22 @@ TEST(SweepCli, AllCasesOfTheHoistModesWithPlot) {
   EXPECT_NE(r.err.find("no case named 'hover'"), std::string::npos) << r.err;
 }
 
+// Claim: a case sweep over hybrid and smooth modes gives the same table on 1 thread, 2 threads and
+// 2 MPI ranks.
+TEST(SweepCli, CaseSweepIdenticalForThreadsAndRanks) {
+  const std::string args = " sweep '" + test::example("hoist-modes.yaml") +
+                           "' --set simulation.t_end=0.2 --vary MB.value=-300,-270,-240 --all-cases";
+  ASSERT_EQ(test::run_cli(args + " --jobs 1 -o cases1").exit_code, 0);
+  ASSERT_EQ(test::run_cli(args + " --jobs 2 -o cases2").exit_code, 0);
+  const auto ref = slurp(test::temp_dir() / "cases1" / "sweep.csv");
+  EXPECT_EQ(count_lines(test::temp_dir() / "cases1" / "sweep.csv"), 34);
+  EXPECT_EQ(slurp(test::temp_dir() / "cases2" / "sweep.csv"), ref);
+  if (!MpiSession::built() || sh("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no MPI: ranks not checked";
+  const int rc = sh("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+                    "mpirun -np 2 --oversubscribe " + cli() + args + " --jobs 1 -o cases-mpi >cases-mpi.out 2>cases-mpi.err");
+  ASSERT_EQ(rc, 0) << slurp(test::temp_dir() / "cases-mpi.err");
+  EXPECT_EQ(slurp(test::temp_dir() / "cases-mpi" / "sweep.csv"), ref);
+}
+
 }  // namespace
 }  // namespace machdyn
