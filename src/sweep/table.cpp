@@ -209,7 +209,11 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     if (run.case_index >= 0) m.load_case = plan.request.cases[static_cast<size_t>(run.case_index)];
     // The cases of a file run event-driven, smooth or not, as with `simulate --all-cases`: every row
     // of a case sweep is computed alike and has the quasi-static load at a negative peak.
-    const SimulationResult r = runs_event_driven(m) ? simulate_hybrid(m) : simulate(m);
+    // The table needs the summaries only: event-driven runs skip the time series (a third of a
+    // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs).
+    HybridOptions summaries_only;
+    summaries_only.record_series = false;
+    const SimulationResult r = runs_event_driven(m) ? simulate_hybrid(m, summaries_only) : simulate(m);
     // Each group's values, in the table's columns: a column the run's model has no element for
     // (a brake of another case) stays empty.
     std::vector<std::string> cells;

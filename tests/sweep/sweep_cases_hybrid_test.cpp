@@ -189,6 +189,21 @@ TEST(SweepHybrid, ColumnsMatchSimulateSummary) {
   EXPECT_EQ(std::stol(low[column(header, "events_gap_closed")]) + std::stol(low[column(header, "events_gap_opened")]), 57);
 }
 
+// Claim: a hybrid run without the time series (as sweeps run it) has the same peaks, events, slip
+// phases, energies and solver statistics as with it, and no rows.
+TEST(SweepHybrid, RunWithoutSeriesHasTheSameSummary) {
+  const Model m = load_model(test::example("travel-start.yaml"), {"adhesion.mu_k=0.10"});
+  HybridOptions lean;
+  lean.record_series = false;
+  const SimulationResult full = simulate_hybrid(m), summary = simulate_hybrid(m, lean);
+  ASSERT_FALSE(full.columns[0].empty());
+  EXPECT_TRUE(summary.columns.empty() || summary.columns[0].empty());
+  auto a = simulation_summary(m, full), b = simulation_summary(m, summary);
+  a["solver"].erase("wall_time_s"), b["solver"].erase("wall_time_s");
+  a["solver"].erase("output_rows"), b["solver"].erase("output_rows");
+  EXPECT_EQ(a.dump(), b.dump());
+}
+
 // Claim: a smooth model has no hybrid columns (the table of issue 7 is unchanged).
 TEST(SweepHybrid, NoHybridColumnsForASmoothModel) {
   SweepRequest req;

@@ -157,6 +157,10 @@ struct HybridOptions {
   long max_events = 1'000'000;  ///< SolverError when exceeded
   int chatter_count = 50;       ///< switches of one element ...
   double chatter_window = 1e-6; ///< ... within this fraction of t_end (or of 1 s) mean chattering
+  /// false: no time series on the output grid (SimulationResult::columns stay empty, the names are
+  /// set); the peaks, events, slip phases and energies are the same bytes. For callers that need
+  /// only the summaries (sweeps): a third less CPU for the travel start-up (4001 output rows).
+  bool record_series = true;
 };
 
 /// Event-driven simulation (see above). Fills SimulationResult like simulate() and its `hybrid`
