@@ -1,5 +1,6 @@
 // `machdyn sweep MODEL --vary NAME.FIELD=SPEC ... [--method grid|lhs|random] [--samples N] [--seed S]
-//  [-o DIR] [--jobs J] [--resume] [--plot OUTPUT[:X[:Y]]] [--set ...]` — parameter studies
+//  [-o DIR] [--jobs J] [--resume] [--plot OUTPUT[:X[:Y]]] [--case NAME ... | --all-cases] [--set ...]`
+//  — parameter studies
 // (library: machdyn/sweep/*). Works the same under `mpirun -np N`.
 #include <atomic>
 #include <csignal>
@@ -10,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/cases.hpp"
 #include "machdyn/sweep/mpi.hpp"
 #include "machdyn/sweep/plot_data.hpp"
 #include "machdyn/sweep/runner.hpp"
@@ -27,6 +30,8 @@ struct SweepArgs {
   int jobs = 0;
   bool resume = false;
   std::string plot;
+  std::vector<std::string> cases;  ///< --case, in order
+  bool all_cases = false;
 };
 
 std::atomic<bool> g_stop{false};
@@ -63,6 +68,13 @@ int run_sweep_command(const SweepArgs& a) {
   req.method = a.method == "lhs" ? SweepMethod::lhs : a.method == "random" ? SweepMethod::random : SweepMethod::grid;
   req.samples = a.samples;
   req.seed = a.seed;
+  if (a.all_cases && !a.cases.empty()) throw InputError(Location{"--case", 0, 0}, "give either --case NAME ... or --all-cases");
+  req.cases = a.cases;
+  if (a.all_cases) {
+    req.cases = case_names(read_yaml_file(a.model));
+    if (req.cases.empty()) throw InputError(Location{a.model, 0, 0}, "--all-cases: the model file has no 'cases:'");
+  }
+  req.apply_case = [](SpecNode& spec, const std::string& name) { apply_case(spec, name); };
   const SweepPlan plan = make_sweep_plan(req);  // every input error, before any run
 
   SweepOptions opt;
@@ -73,7 +85,10 @@ int run_sweep_command(const SweepArgs& a) {
   opt.resume = a.resume;
   opt.stop = &g_stop;
   std::optional<SweepPlotSpec> plot;
-  if (!a.plot.empty()) plot = parse_plot_spec(a.plot, plan, sweep_header(plan, standard_summary_columns()));
+  if (!a.plot.empty()) {
+    plot = parse_plot_spec(a.plot, plan, sweep_header(plan, standard_summary_columns()));
+    plot::find_gnuplot();  // say it before a long sweep, not after
+  }
 
   const bool tty = root && ::isatty(STDERR_FILENO);
   if (tty) {
@@ -112,12 +127,19 @@ int run_sweep_command(const SweepArgs& a) {
     for (const auto& x : plot->inputs) name += "-vs-" + x;
     const auto dir = std::filesystem::path(r.table_path).parent_path();
     const auto data = (dir / ("plot-" + name + ".csv")).string();
-    write_file_atomic(data, sweep_plot_csv(r.table_path, *plot));
-    const auto image = (dir / ("plot-" + name + ".svg")).string();
-    if (render_sweep_plot(data, *plot, image))
-      std::cout << fmt::format("wrote {} and {}\n", data, image);
-    else
-      std::cout << fmt::format("wrote {} (plot data; this build draws no picture yet)\n", data);
+    const std::string csv = sweep_plot_csv(r.table_path, *plot);
+    write_file_atomic(data, csv);
+    const auto stem = (dir / ("plot-" + name)).string();
+    try {
+      const auto img = render_sweep_plot(csv, *plot);
+      write_file_atomic(stem + ".svg", img.svg);
+      write_file_atomic(stem + ".png", img.png);
+      std::cout << fmt::format("wrote {}, {}.svg and {}.png\n", data, stem, stem);
+    } catch (const std::runtime_error& e) {
+      // The table is complete; a missing gnuplot only costs the picture.
+      std::cout << fmt::format("wrote {} (plot data only)\n", data);
+      std::cerr << fmt::format("warning: no picture: {}\n", e.what());
+    }
   }
   return 0;
 }
@@ -140,8 +162,12 @@ void register_sweep(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--out", a->out_dir, "Output folder for sweep.csv and sweep.journal (default out/MODEL-sweep)");
   cmd->add_option("--jobs", a->jobs, "Worker threads per process (default: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--resume", a->resume, "Continue an interrupted sweep from its journal in the output folder");
-  cmd->add_option("--plot", a->plot, "OUTPUT[:X[:Y]]: write the data of a summary plot of a table column "
+  cmd->add_option("--plot", a->plot, "OUTPUT[:X[:Y]]: summary plot (CSV data, SVG, PNG) of a table column "
                                      "against one or two varied fields");
+  cmd->add_option("--case", a->cases, "Run every point for this load case of the file's 'cases:' (repeatable); "
+                                     "the table gets a `case` column, the case varying slowest")
+      ->allow_extra_args(false);
+  cmd->add_flag("--all-cases", a->all_cases, "Run every point for every load case of the file");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_sweep_command(*a); }); });
 }

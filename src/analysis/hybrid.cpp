@@ -84,7 +84,7 @@ class HybridRun {
     double t = 0.0;
     st.reset(t, y_.data());
     sys_.event_functions(t, y_.data(), g_prev_.data());
-    output(0.0, y_.data());
+    if (opt_.record_series) output(0.0, y_.data());
     k_out_ = 1;
     size_t next_bp = 0;
     const auto& bps = out_.hybrid.breakpoints;
@@ -207,7 +207,7 @@ class HybridRun {
 
   // ---- the solution on [ta, tb] inside the last step, in the current modes ----
   void segment(const Stepper& st, double ta, double tb) {
-    for (; k_out_ <= n_out_ && out_time(k_out_) <= tb; ++k_out_) {
+    for (; opt_.record_series && k_out_ <= n_out_ && out_time(k_out_) <= tb; ++k_out_) {
       const double tk = out_time(k_out_);
       if (tk == st.t()) {
         output(tk, st.y());

@@ -1,5 +1,6 @@
 #include "machdyn/sweep/plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -92,7 +93,8 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   plan.request = request;
 
   // The base: file and --set; it must compile on its own.
-  plan.base = read_yaml_file(request.model_path);
+  const SpecNode file = read_yaml_file(request.model_path);
+  plan.base = file;
   for (const auto& o : request.sets) apply_set(plan.base, o);
   plan.base_model = compile_model(plan.base, request.model_path);
 
@@ -134,15 +136,24 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
     diag.error({"--case", 0, 0}, "this model format has no named cases");
   diag.throw_if_any();
   for (const auto& axis : plan.axes) probe_axis(plan, axis, diag);
-  if (!request.cases.empty()) {
-    for (const auto& c : request.cases) {
-      try {
-        SpecNode s = plan.base;
-        request.apply_case(s, c);
-        (void)compile_model(s, request.model_path);
-      } catch (const InputError& e) {
-        for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
-      }
+  // Cases: file, case, --set (as `simulate --case NAME --set ...`), each compiled once here.
+  for (size_t c = 0; c < request.cases.size(); ++c) {
+    const auto& name = request.cases[c];
+    if (std::find(request.cases.begin(), request.cases.begin() + static_cast<long>(c), name) !=
+        request.cases.begin() + static_cast<long>(c)) {
+      diag.error({"--case " + name, 0, 0}, "this case is already given");
+      continue;
+    }
+    try {
+      SpecNode s = file;
+      request.apply_case(s, name);
+      for (const auto& o : request.sets) apply_set(s, o);
+      Model m = compile_model(s, request.model_path);
+      m.load_case = name;
+      plan.case_bases.push_back(std::move(s));
+      plan.case_models.push_back(std::move(m));
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
     }
   }
   diag.throw_if_any();
@@ -210,10 +221,16 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
 }
 
 SpecNode run_spec(const SweepPlan& plan, const SweepRun& run) {
-  SpecNode s = plan.base;
-  if (run.case_index >= 0) plan.request.apply_case(s, plan.request.cases[static_cast<size_t>(run.case_index)]);
+  SpecNode s = run.case_index >= 0 ? plan.case_bases[static_cast<size_t>(run.case_index)] : plan.base;
   for (size_t d = 0; d < plan.axes.size(); ++d) apply_set(s, plan.axes[d].target + "=" + run.values[d].text);
   return s;
+}
+
+std::vector<const Model*> column_models(const SweepPlan& plan) {
+  if (plan.case_models.empty()) return {&plan.base_model};
+  std::vector<const Model*> out;
+  for (const auto& m : plan.case_models) out.push_back(&m);
+  return out;
 }
 
 }  // namespace machdyn

@@ -1,14 +1,316 @@
 #include "machdyn/sweep/plot_data.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/sweep/table.hpp"
 
+extern char** environ;
+
 namespace machdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/// The plot data parsed: columns x[, y], z per ok row, with their texts (a word-valued input is NaN).
+struct PlotData {
+  std::vector<std::string> x_text, y_text;
+  std::vector<double> x, y, z;
+};
+
+double to_number(const std::string& t) {
+  if (t == "nan" || t.empty()) return std::numeric_limits<double>::quiet_NaN();
+  try {
+    size_t used = 0;
+    const double v = std::stod(t, &used);
+    return used == t.size() ? v : std::numeric_limits<double>::quiet_NaN();
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+PlotData parse_data(const std::string& csv, size_t inputs) {
+  PlotData d;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const auto f = split_csv_line(line);
+    if (f.size() != inputs + 1) continue;
+    d.x_text.push_back(f[0]);
+    d.x.push_back(to_number(f[0]));
+    if (inputs == 2) {
+      d.y_text.push_back(f[1]);
+      d.y.push_back(to_number(f[1]));
+    }
+    d.z.push_back(to_number(f[inputs]));
+  }
+  return d;
+}
+
+/// Distinct texts in order of first appearance.
+std::vector<std::string> distinct(const std::vector<std::string>& texts) {
+  std::vector<std::string> out;
+  for (const auto& t : texts)
+    if (std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
+  return out;
+}
+
+/// A word-valued x (e.g. the integrator): positions 0, 1, ... with the words as tick labels.
+void categorical_x(PlotData& d, plot::Axis& axis) {
+  if (std::none_of(d.x.begin(), d.x.end(), [](double v) { return std::isnan(v); })) return;
+  const auto words = distinct(d.x_text);
+  for (size_t i = 0; i < d.x.size(); ++i)
+    d.x[i] = static_cast<double>(std::find(words.begin(), words.end(), d.x_text[i]) - words.begin());
+  for (size_t k = 0; k < words.size(); ++k) axis.ticks.emplace_back(static_cast<double>(k), words[k]);
+}
+
+/// Points (x, z) in x order (a sweep table is in run order, random samples are not sorted).
+void sort_by_x(std::vector<double>& x, std::vector<double>& z) {
+  std::vector<size_t> order(x.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] < x[b]; });
+  std::vector<double> xs, zs;
+  for (size_t i : order) xs.push_back(x[i]), zs.push_back(z[i]);
+  x.swap(xs);
+  z.swap(zs);
+}
+
+std::string value_label(const std::string& text, const plot::Axis& axis) {
+  const double v = to_number(text);
+  const std::string number = std::isnan(v) ? text : fmt::format("{:.4g}", v);
+  return axis.unit.empty() || std::isnan(v) ? number : number + " " + axis.unit;
+}
+
+/// Runs `exe script` with output into `log`; the exit status (-1 if not run).
+int run_gnuplot(const fs::path& exe, const fs::path& script, const fs::path& log) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  std::string a0 = exe.string(), a1 = script.string();
+  char* argv[] = {a0.data(), a1.data(), nullptr};
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (const char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return q + "'";
+}
+
+/// Half-widths of the cells of a grid axis: from each value to the midpoints with its neighbours
+/// (the end cells mirror their inner half). Keyed by the value's text.
+std::map<std::string, std::pair<double, double>> grid_cells(const std::vector<std::string>& texts, bool log_axis) {
+  std::vector<std::pair<double, std::string>> v;
+  for (const auto& t : distinct(texts)) v.emplace_back(to_number(t), t);
+  std::sort(v.begin(), v.end());
+  std::map<std::string, std::pair<double, double>> cells;
+  auto f = [&](double a) { return log_axis ? std::log(a) : a; };
+  auto finv = [&](double a) { return log_axis ? std::exp(a) : a; };
+  for (size_t i = 0; i < v.size(); ++i) {
+    const double c = f(v[i].first);
+    double lo = i > 0 ? 0.5 * (c + f(v[i - 1].first)) : std::numeric_limits<double>::quiet_NaN();
+    double hi = i + 1 < v.size() ? 0.5 * (c + f(v[i + 1].first)) : std::numeric_limits<double>::quiet_NaN();
+    if (std::isnan(lo)) lo = std::isnan(hi) ? c - 0.5 : 2 * c - hi;
+    if (std::isnan(hi)) hi = 2 * c - lo;
+    cells[v[i].second] = {finv(lo), finv(hi)};
+  }
+  return cells;
+}
+
+/// A heat map of z over (x, y): cells for a full grid, dots for scattered points. SVG then PNG
+/// (the sizes and fonts of io/plot.hpp).
+plot::Rendered render_heat_map(const PlotData& d, const SweepPlotSpec& spec) {
+  const auto xs = distinct(d.x_text), ys = distinct(d.y_text);
+  const bool grid = xs.size() * ys.size() == d.z.size() && xs.size() > 1 && ys.size() > 1;
+  auto positive = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double a) { return a > 0; });
+  };
+  // A log-spaced grid axis (constant ratio of neighbours) is drawn on a log scale.
+  auto log_spaced = [&](const std::vector<std::string>& texts) {
+    std::vector<double> v;
+    for (const auto& t : distinct(texts)) v.push_back(to_number(t));
+    std::sort(v.begin(), v.end());
+    if (v.size() < 3 || !positive(v)) return false;
+    const double r = v[1] / v[0];
+    if (r < 1.5) return false;
+    for (size_t i = 2; i < v.size(); ++i)
+      if (std::abs(v[i] / v[i - 1] / r - 1) > 1e-6) return false;
+    return true;
+  };
+  const bool logx = grid && log_spaced(d.x_text), logy = grid && log_spaced(d.y_text);
+  std::string data;
+  const auto cx = grid_cells(d.x_text, logx), cy = grid_cells(d.y_text, logy);
+  for (size_t i = 0; i < d.z.size(); ++i) {
+    if (!std::isfinite(d.x[i]) || !std::isfinite(d.y[i]) || !std::isfinite(d.z[i])) continue;
+    const auto [xl, xh] = cx.at(d.x_text[i]);
+    const auto [yl, yh] = cy.at(d.y_text[i]);
+    data += fmt::format("{:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g}\n", d.x[i], d.y[i], xl, xh, yl, yh, d.z[i]);
+  }
+  const fs::path gnuplot = plot::find_gnuplot();
+  std::string tmpl = (fs::temp_directory_path() / "machdyn-sweep-plot-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary folder for gnuplot");
+  const fs::path tmp = tmpl;
+  struct Remove {
+    fs::path p;
+    ~Remove() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } remove{tmp};
+  const fs::path dat = tmp / "data.dat", script = tmp / "plot.gp", log = tmp / "gnuplot.log";
+  std::ofstream(dat, std::ios::binary) << data;
+  std::string g;
+  for (const bool svg : {true, false}) {
+    g += "reset\nset encoding utf8\n";
+    g += svg ? "set terminal svg size 800,500 dynamic noenhanced font 'DejaVu Sans,12' background '#ffffff' linewidth 1\n"
+             : "set terminal pngcairo size 1600,1000 noenhanced font 'DejaVu Sans,24' background '#ffffff' linewidth 2\n";
+    g += "set output " + quote((tmp / (svg ? "plot.svg" : "plot.png")).string()) + "\n";
+    g += "set border 3 lw 1\nset tics nomirror out\nset key off\n";
+    g += "set xlabel " + quote(spec.input_axes[0].label()) + "\n";
+    g += "set ylabel " + quote(spec.input_axes[1].label()) + "\n";
+    g += "set cblabel " + quote(spec.output_axis.label()) + "\n";
+    // Viridis: monotone in lightness, readable for colour-blind readers and in greyscale.
+    g += "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n";
+    if (logx) g += "set logscale x\n";
+    if (logy) g += "set logscale y\n";
+    if (grid) {
+      g += "set autoscale xfix\nset autoscale yfix\n";
+      g += "plot " + quote(dat.string()) +
+           " using 1:2:3:4:5:6:7 with boxxyerror fill solid 1.0 noborder lc palette notitle\n";
+    } else {
+      g += "set offsets graph 0.02, graph 0.02, graph 0.04, graph 0.04\n";
+      g += "plot " + quote(dat.string()) + " using 1:2:7 with points pt 7 ps " + (svg ? "0.8" : "1.2") +
+           " lc palette notitle\n";
+    }
+    g += "unset output\n";
+  }
+  std::ofstream(script, std::ios::binary) << g;
+  const int rc = run_gnuplot(gnuplot, script, log);
+  if (rc != 0) throw std::runtime_error(fmt::format("gnuplot ({}) failed drawing the sweep plot (exit {}): {}",
+                                                    gnuplot.string(), rc, slurp(log)));
+  plot::Rendered r{slurp(tmp / "plot.svg"), slurp(tmp / "plot.png")};
+  if (r.svg.empty() || r.png.empty()) throw std::runtime_error("gnuplot wrote no sweep plot: " + slurp(log));
+  return r;
+}
+
+}  // namespace
+
+plot::Axis column_axis(const std::string& column) {
+  std::string name = column, unit;
+  for (const auto& [tail, u] : std::vector<std::pair<std::string, std::string>>{
+           {"_N_m", "N·m"}, {"_N", "N"}, {"_s", "s"}, {"_J", "J"}, {"_m", "m"}, {"_rad", "rad"}}) {
+    if (ends_with(name, tail)) {
+      name.resize(name.size() - tail.size());
+      unit = u;
+      break;
+    }
+  }
+  const auto dot = name.find('.');
+  const std::string elem = dot == std::string::npos ? "" : name.substr(0, dot);
+  const std::string field = dot == std::string::npos ? name : name.substr(dot + 1);
+  std::string quantity = column;
+  if (!elem.empty()) {
+    if (field == "max") quantity = "peak load of " + elem;
+    else if (field == "min") quantity = "minimum load of " + elem;
+    else if (field == "t_max") quantity = "time of the peak of " + elem;
+    else if (field == "static") quantity = "quasi-static load of " + elem + " at its peak";
+    else if (field == "dynamic_factor") quantity = "dynamic factor of " + elem;
+    else if (field == "peak") quantity = "signed peak load of " + elem;
+    else if (field == "t_peak") quantity = "time of the peak of " + elem;
+    else if (field == "peak_static") quantity = "quasi-static load of " + elem + " at its peak";
+    else if (field == "peak_dynamic_factor") quantity = "peak dynamic factor of " + elem;
+    else if (field == "slips") quantity = "slips of " + elem;
+    else if (field == "period") quantity = "self-oscillation period of " + elem;
+    else if (ends_with(field, "_max_over_static_limit"))
+      quantity = "F_max(" + field.substr(0, field.size() - 22) + ") / F_s(" + elem + ")";
+    else quantity = name;
+  } else if (name.rfind("events_", 0) == 0) {
+    quantity = "number of " + name.substr(7) + " events";
+  } else {
+    quantity = name;  // steps, rejected_steps, rhs_evals
+  }
+  return plot::make_axis(quantity, unit);
+}
+
+std::string field_unit(const Model& m, const std::string& target) {
+  const auto dot = target.find('.');
+  if (dot == std::string::npos) return "";
+  const std::string elem = target.substr(0, dot), field = target.substr(dot + 1);
+  auto rot = [](BodyKind k) { return k == BodyKind::rotational; };
+  if (elem == "simulation") return field == "t_end" || field == "dt_out" ? "s" : "";
+  for (const auto& b : m.bodies) {
+    if (b.name != elem) continue;
+    if (field == "mass") return "kg";
+    if (field == "inertia") return rot(b.kind) ? "kg·m²" : "kg";
+    if (field == "position") return position_unit(b.kind);
+    if (field == "velocity") return velocity_unit(b.kind);
+    return "";
+  }
+  for (const auto& l : m.links) {
+    if (l.name != elem) continue;
+    const bool r = std::string(link_load_unit(m, l)) == "N*m";
+    if (field == "stiffness") return r ? "N·m/rad" : "N/m";
+    if (field == "damping") return r ? "N·m·s/rad" : "N·s/m";
+    if (field == "gap" || field == "gap_start") return r ? "rad" : "m";
+    return "";
+  }
+  for (const auto& l : m.loads) {
+    if (l.name != elem) continue;
+    const BodyKind k = m.bodies[static_cast<size_t>(l.body)].kind;
+    if (field == "value" || field == "before") return plot::pretty_unit(load_unit(k));
+    if (field == "t0" || field == "t1" || field == "time") return "s";
+    if (field == "omega0" || field == "speed") return velocity_unit(k);
+    return "";
+  }
+  for (const auto& c : m.contacts) {
+    if (c.name != elem) continue;
+    const BodyKind k = m.bodies[static_cast<size_t>(c.a)].kind;
+    if (field == "static" || field == "kinetic" || field == "holding" || field == "braking")
+      return plot::pretty_unit(load_unit(k));
+    if (field == "normal_force") return "N";
+    if (field == "radius") return "m";
+    if (field == "time" || field == "ramp") return "s";
+    if (field == "surface_velocity") return velocity_unit(k);
+    return "";
+  }
+  return "";
+}
 
 SweepPlotSpec parse_plot_spec(const std::string& text, const SweepPlan& plan, const std::string& header) {
   const Location where{"--plot " + text, 0, 0};
@@ -30,8 +332,10 @@ SweepPlotSpec parse_plot_spec(const std::string& text, const SweepPlan& plan, co
                                         fmt::join(columns.begin() + 1, columns.end() - 2, ", ")));
   std::vector<std::string> targets;
   for (const auto& a : plan.axes) targets.push_back(a.target);
+  if (!plan.request.cases.empty()) targets.push_back("case");
   if (parts.size() == 1) {
     for (size_t d = 0; d < std::min<size_t>(2, targets.size()); ++d) spec.inputs.push_back(targets[d]);
+    if (targets.size() > 2 && targets.back() == "case") spec.inputs.back() = "case";  // one curve per case
   } else {
     for (size_t k = 1; k < parts.size(); ++k) {
       if (std::find(targets.begin(), targets.end(), parts[k]) == targets.end())
@@ -39,6 +343,8 @@ SweepPlotSpec parse_plot_spec(const std::string& text, const SweepPlan& plan, co
       spec.inputs.push_back(parts[k]);
     }
   }
+  for (const auto& x : spec.inputs) spec.input_axes.push_back(plot::make_axis(x, field_unit(plan.base_model, x)));
+  spec.output_axis = column_axis(spec.output);
   return spec;
 }
 
@@ -70,8 +376,54 @@ std::string sweep_plot_csv(const std::string& table_path, const SweepPlotSpec& s
   return out;
 }
 
-bool render_sweep_plot(const std::string& /*data_csv*/, const SweepPlotSpec& /*spec*/, const std::string& /*image_path*/) {
-  return false;  // issue 6 (report machinery, gnuplot) draws here
+plot::Figure sweep_plot_figure(const std::string& data_csv, const SweepPlotSpec& spec) {
+  if (spec.inputs.empty() || spec.inputs.size() > 2 || spec.input_axes.size() != spec.inputs.size())
+    throw std::invalid_argument("a sweep plot needs one or two inputs with their axes");
+  PlotData d = parse_data(data_csv, spec.inputs.size());
+  plot::Figure f;
+  f.id = "sweep_plot";
+  f.x = spec.input_axes[0];
+  f.y = spec.output_axis;
+  categorical_x(d, f.x);
+  auto style = [](size_t points) { return points <= 60 ? plot::Style::linepoints : plot::Style::line; };
+  if (spec.inputs.size() == 1) {
+    std::vector<double> x = d.x, z = d.z;
+    sort_by_x(x, z);
+    const size_t n = x.size();
+    f.series.push_back(plot::make_series(spec.output, std::move(x), std::move(z), style(n)));
+    f.series.back().in_legend = false;  // one curve: the y axis says what it is
+    return f;
+  }
+  const auto ys = distinct(d.y_text);
+  const bool by_case = spec.inputs[1] == "case";
+  if (!by_case && static_cast<int>(ys.size()) > kMaxCurves)
+    throw std::invalid_argument(fmt::format("{} takes {} values: more than {} curves, a heat map", spec.inputs[1], ys.size(), kMaxCurves));
+  std::vector<std::pair<double, std::string>> order;
+  for (const auto& y : ys) order.emplace_back(to_number(y), y);
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [value, text] : order) {
+    std::vector<double> x, z;
+    for (size_t i = 0; i < d.z.size(); ++i)
+      if (d.y_text[i] == text) x.push_back(d.x[i]), z.push_back(d.z[i]);
+    sort_by_x(x, z);
+    const size_t n = x.size();
+    f.series.push_back(plot::make_series(by_case ? text : spec.inputs[1] + " = " + value_label(text, spec.input_axes[1]),
+                                         std::move(x), std::move(z), style(n)));
+    // Past the palette's colours (plot::series_color repeats) a curve is dashed.
+    const size_t k = f.series.size() - 1;
+    for (size_t j = 0; j < k; ++j)
+      if (plot::series_color(j) == plot::series_color(k)) f.series.back().dashed = true;
+  }
+  f.legend = plot::Figure::Legend::below;
+  return f;
+}
+
+plot::Rendered render_sweep_plot(const std::string& data_csv, const SweepPlotSpec& spec) {
+  if (spec.inputs.size() == 2 && spec.inputs[1] != "case") {
+    PlotData d = parse_data(data_csv, 2);
+    if (static_cast<int>(distinct(d.y_text).size()) > kMaxCurves) return render_heat_map(d, spec);
+  }
+  return plot::render(sweep_plot_figure(data_csv, spec));
 }
 
 }  // namespace machdyn

@@ -9,6 +9,9 @@
 #include <thread>
 #include <fcntl.h>
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
@@ -31,7 +34,8 @@ class ThreadPool {
  public:
   ThreadPool(const SweepPlan& plan, const std::vector<SummaryColumns>& columns, std::vector<long> work, int threads,
              const std::atomic<bool>* stop)
-      : plan_(plan), columns_(columns), work_(std::move(work)), stop_(stop), running_(threads) {
+      : plan_(plan), columns_(columns), names_(summary_column_names(plan, columns)), work_(std::move(work)), stop_(stop),
+        running_(threads) {
     for (int t = 0; t < threads; ++t) threads_.emplace_back([this] { work_loop(); });
   }
   ~ThreadPool() {
@@ -58,7 +62,7 @@ class ThreadPool {
       const size_t i = next_.fetch_add(1);
       if (i >= work_.size()) break;
       const long idx = work_[i];
-      std::string row = execute_run(plan_, plan_.runs[static_cast<size_t>(idx)], columns_);
+      std::string row = execute_run(plan_, plan_.runs[static_cast<size_t>(idx)], columns_, names_);
       {
         std::lock_guard lock(mutex_);
         queue_.push_back({idx, std::move(row)});
@@ -74,6 +78,7 @@ class ThreadPool {
 
   const SweepPlan& plan_;
   const std::vector<SummaryColumns>& columns_;
+  const std::vector<std::vector<std::string>> names_;  // the table's summary columns, per group
   const std::vector<long> work_;
   const std::atomic<bool>* stop_;
   std::atomic<size_t> next_{0};
@@ -139,6 +144,14 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
   out.threads = options.jobs > 0 ? options.jobs : default_sweep_jobs();
   out.table_path = (fs::path(options.out_dir) / "sweep.csv").string();
   out.journal_path = (fs::path(options.out_dir) / "sweep.journal").string();
+
+#if defined(__GLIBC__)
+  // Per-worker memory reuse: freed run memory stays in the worker's arena (see SweepOptions).
+  if (options.retain_memory) {
+    ::mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    ::mallopt(M_TOP_PAD, 16 << 20);
+  }
+#endif
 
   // Rank 0 opens the journal; every rank learns which runs are finished.
   std::unique_ptr<SweepJournal> journal;

@@ -1,8 +1,12 @@
 #include "machdyn/sweep/table.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -50,7 +54,80 @@ std::vector<SummaryColumns> standard_summary_columns() {
     v.push_back(static_cast<double>(r.stats.stepper.rejected));
     v.push_back(static_cast<double>(r.stats.stepper.rhs_evals));
   };
-  return {peaks, solver};
+  return {peaks, peak_summary_columns(), hybrid_summary_columns(), solver};
+}
+
+bool runs_event_driven(const Model& m) { return m.is_hybrid() || !m.load_case.empty(); }
+
+SummaryColumns peak_summary_columns() {
+  SummaryColumns g;
+  g.header = [](const Model& m) {
+    std::vector<std::string> h;
+    if (!runs_event_driven(m)) return h;
+    for (const auto& l : m.links) {
+      const auto u = unit_suffix(link_load_unit(m, l));
+      for (const auto& f : {"peak_" + u, std::string("t_peak_s"), "peak_static_" + u, std::string("peak_dynamic_factor")})
+        h.push_back(l.name + "." + f);
+    }
+    return h;
+  };
+  g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
+    if (!runs_event_driven(m)) return;
+    for (size_t l = 0; l < r.links.size(); ++l) {
+      // As the table of `simulate --all-cases`: the extreme of larger magnitude, the quasi-static
+      // load at its time, and their ratio (NaN when the static load is ~0).
+      const auto& s = r.links[l];
+      const bool neg = std::abs(s.min) > std::abs(s.max);
+      const double peak = neg ? s.min : s.max;
+      const double stat = !neg ? s.static_load
+                               : l < r.hybrid.static_at_min.size() ? r.hybrid.static_at_min[l]
+                                                                    : std::numeric_limits<double>::quiet_NaN();
+      v.push_back(peak);
+      v.push_back(neg ? s.t_min : s.t_max);
+      v.push_back(stat);
+      v.push_back(std::abs(stat) > 1e-9 * std::abs(peak) ? peak / stat : std::numeric_limits<double>::quiet_NaN());
+    }
+  };
+  return g;
+}
+
+SummaryColumns hybrid_summary_columns() {
+  SummaryColumns g;
+  g.header = [](const Model& m) {
+    std::vector<std::string> h;
+    if (!runs_event_driven(m)) return h;
+    for (const auto& k : counted_event_kinds()) h.push_back("events_" + k);
+    for (const auto& c : m.contacts) {
+      h.push_back(c.name + ".slips");
+      h.push_back(c.name + ".period_s");
+      for (const auto& l : m.links) h.push_back(c.name + "." + l.name + "_max_over_static_limit");
+    }
+    return h;
+  };
+  g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
+    if (!runs_event_driven(m)) return;
+    for (long n : event_counts(r.hybrid)) v.push_back(static_cast<double>(n));
+    for (const auto& s : contact_statistics(m, r)) {
+      v.push_back(static_cast<double>(s.slips));
+      v.push_back(s.period_s);
+      for (double x : s.link_max_over_static_limit) v.push_back(x);
+    }
+  };
+  return g;
+}
+
+std::vector<std::vector<std::string>> summary_column_names(const SweepPlan& plan,
+                                                           const std::vector<SummaryColumns>& columns) {
+  std::vector<std::vector<std::string>> out;
+  const auto models = column_models(plan);
+  for (const auto& g : columns) {
+    std::vector<std::string> names;
+    for (const Model* m : models)
+      for (auto& name : g.header(*m))
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(std::move(name));
+    out.push_back(std::move(names));
+  }
+  return out;
 }
 
 std::string csv_field(const std::string& text) {
@@ -99,8 +176,8 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
     h += ',';
     h += csv_field(a.target);
   }
-  for (const auto& g : columns)
-    for (const auto& name : g.header(plan.base_model)) {
+  for (const auto& names : summary_column_names(plan, columns))
+    for (const auto& name : names) {
       h += ',';
       h += csv_field(name);
     }
@@ -108,6 +185,11 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
 }
 
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns) {
+  return execute_run(plan, run, columns, summary_column_names(plan, columns));
+}
+
+std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns,
+                        const std::vector<std::vector<std::string>>& names) {
   // The run's key: index, case, varied values.
   std::string row = std::to_string(run.index);
   if (run.case_index >= 0) {
@@ -120,19 +202,42 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
   }
 
   size_t n_summary = 0;
-  for (const auto& g : columns) n_summary += g.header(plan.base_model).size();
+  for (const auto& g : names) n_summary += g.size();
   std::string message;
   try {
-    const Model m = compile_model(run_spec(plan, run), plan.request.model_path);
-    const SimulationResult r = simulate(m);
+    Model m = compile_model(run_spec(plan, run), plan.request.model_path);
+    if (run.case_index >= 0) m.load_case = plan.request.cases[static_cast<size_t>(run.case_index)];
+    // The cases of a file run event-driven, smooth or not, as with `simulate --all-cases`: every row
+    // of a case sweep is computed alike and has the quasi-static load at a negative peak.
+    // The table needs the summaries only: event-driven runs skip the time series (a third of a
+    // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs).
+    HybridOptions summaries_only;
+    summaries_only.record_series = false;
+    const SimulationResult r = runs_event_driven(m) ? simulate_hybrid(m, summaries_only) : simulate(m);
+    // Each group's values, in the table's columns: a column the run's model has no element for
+    // (a brake of another case) stays empty.
+    std::vector<std::string> cells;
+    cells.reserve(n_summary);
     std::vector<double> values;
-    values.reserve(n_summary);
-    for (const auto& g : columns) g.values(m, r, values);
-    if (values.size() != n_summary)
-      throw std::runtime_error(fmt::format("the run gave {} summary values, the header has {}", values.size(), n_summary));
-    for (double v : values) {
+    for (size_t k = 0; k < columns.size(); ++k) {
+      const auto& g = columns[k];
+      values.clear();
+      g.values(m, r, values);
+      const auto own = g.header(m);
+      if (values.size() != own.size())
+        throw std::runtime_error(fmt::format("the run gave {} summary values, its header has {}", values.size(), own.size()));
+      if (own == names[k]) {
+        for (double v : values) cells.push_back(number(v));
+        continue;
+      }
+      for (const auto& name : names[k]) {
+        const auto it = std::find(own.begin(), own.end(), name);
+        cells.push_back(it == own.end() ? std::string() : number(values[static_cast<size_t>(it - own.begin())]));
+      }
+    }
+    for (const auto& c : cells) {
       row += ',';
-      row += number(v);
+      row += c;
     }
     return row + ",ok,";
   } catch (const InputError& e) {

@@ -136,5 +136,49 @@ TEST(SweepCli, LhsFromTheCommandLineReproduces) {
   EXPECT_EQ(count_lines(test::temp_dir() / "lhs1" / "plot-c1.max_N_m-vs-c1.stiffness-vs-c2.stiffness.csv"), 13);
 }
 
+// Claim: --all-cases runs every point for each of the eleven hoist modes (case outermost, a `case`
+// column), --plot writes the data, an SVG holding the curve names and a PNG; --case with
+// --all-cases and an unknown case are input errors.
+TEST(SweepCli, AllCasesOfTheHoistModesWithPlot) {
+  const std::string args = " sweep '" + test::example("hoist-modes.yaml") +
+                           "' --set simulation.t_end=0.1 --vary \"MB.value=-300 N*m,-240 N*m\" --all-cases";
+  auto r = test::run_cli(args + " --plot c1.dynamic_factor -o modes");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("grid 2 = 2 runs × 11 cases = 22 runs"), std::string::npos) << r.err;
+  const auto table = slurp(test::temp_dir() / "modes" / "sweep.csv");
+  EXPECT_EQ(count_lines(test::temp_dir() / "modes" / "sweep.csv"), 23);
+  EXPECT_EQ(table.substr(0, 24), "run,case,MB.value,c1.max");
+  EXPECT_NE(table.find("\n21,braked_lowering,-240,"), std::string::npos);
+  const auto stem = test::temp_dir() / "modes" / "plot-c1.dynamic_factor-vs-MB.value-vs-case";
+  EXPECT_EQ(count_lines(stem.string() + ".csv"), 23);
+  if (sh("command -v gnuplot >/dev/null 2>&1") == 0) {
+    EXPECT_NE(slurp(stem.string() + ".svg").find("dynamic factor of c1"), std::string::npos);
+    EXPECT_NE(slurp(stem.string() + ".svg").find("braked_lowering"), std::string::npos);
+    EXPECT_EQ(slurp(stem.string() + ".png").substr(1, 3), "PNG");
+  }
+  r = test::run_cli(args + " --case accel_up -o modes2");
+  EXPECT_EQ(r.exit_code, 2);
+  r = test::run_cli(" sweep '" + test::example("hoist-modes.yaml") + "' --vary MB.value=-300,-240 --case hover -o modes3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no case named 'hover'"), std::string::npos) << r.err;
+}
+
+// Claim: a case sweep over hybrid and smooth modes gives the same table on 1 thread, 2 threads and
+// 2 MPI ranks.
+TEST(SweepCli, CaseSweepIdenticalForThreadsAndRanks) {
+  const std::string args = " sweep '" + test::example("hoist-modes.yaml") +
+                           "' --set simulation.t_end=0.2 --vary MB.value=-300,-270,-240 --all-cases";
+  ASSERT_EQ(test::run_cli(args + " --jobs 1 -o cases1").exit_code, 0);
+  ASSERT_EQ(test::run_cli(args + " --jobs 2 -o cases2").exit_code, 0);
+  const auto ref = slurp(test::temp_dir() / "cases1" / "sweep.csv");
+  EXPECT_EQ(count_lines(test::temp_dir() / "cases1" / "sweep.csv"), 34);
+  EXPECT_EQ(slurp(test::temp_dir() / "cases2" / "sweep.csv"), ref);
+  if (!MpiSession::built() || sh("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no MPI: ranks not checked";
+  const int rc = sh("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+                    "mpirun -np 2 --oversubscribe " + cli() + args + " --jobs 1 -o cases-mpi >cases-mpi.out 2>cases-mpi.err");
+  ASSERT_EQ(rc, 0) << slurp(test::temp_dir() / "cases-mpi.err");
+  EXPECT_EQ(slurp(test::temp_dir() / "cases-mpi" / "sweep.csv"), ref);
+}
+
 }  // namespace
 }  // namespace machdyn

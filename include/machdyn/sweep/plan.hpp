@@ -10,7 +10,8 @@
 ///   random: --samples points, uniform on each range (or log-uniform for `:log`), seeded.
 ///   lhs:    --samples points of a Latin hypercube, seeded (sweep/sampling.hpp).
 /// With model cases (see SweepRequest::cases) the case is the outermost factor: runs
-/// [c·P, (c+1)·P) are case c over the same P points.
+/// [c·P, (c+1)·P) are case c over the same P points. A run's spec is built as `simulate --case`
+/// builds it: the model file, its case, the --set overrides, then the run's varied values.
 
 #include <cstdint>
 #include <functional>
@@ -25,8 +26,8 @@ namespace machdyn {
 
 enum class SweepMethod { grid, random, lhs };
 
-/// Puts the named case of a model into its spec (issue 3 adds named cases to model files; it
-/// supplies this). Throws InputError for an unknown case.
+/// Puts the named case of a model into its spec. The model files' `cases:` (model/cases.hpp) use
+/// machdyn::apply_case; tests may supply their own. Throws InputError for an unknown case.
 using CaseApplier = std::function<void(SpecNode& spec, const std::string& case_name)>;
 
 /// What a user asks for (the command line fills it).
@@ -56,6 +57,9 @@ struct SweepPlan {
   SweepRequest request;
   SpecNode base;                   ///< the model file with the --set overrides
   Model base_model;                ///< base compiled (for column names)
+  /// With cases, per case c (request.cases order): the file, case c, the --set overrides ...
+  std::vector<SpecNode> case_bases;
+  std::vector<Model> case_models;  ///< ... and compiled (the table's columns are their union)
   std::vector<VaryAxis> axes;
   std::vector<SweepRun> runs;
   std::string fingerprint;         ///< 16 hex digits over model text, options and run list
@@ -70,7 +74,11 @@ struct SweepPlan {
 /// error: those runs fail alone with status `error`.
 SweepPlan make_sweep_plan(const SweepRequest& request);
 
-/// The spec of one run: base, its case, then `target=text` for each axis.
+/// The spec of one run: base (with cases: the file, its case, --set), then `target=text` for each axis.
 SpecNode run_spec(const SweepPlan& plan, const SweepRun& run);
+
+/// The models whose summary columns make the table: base_model, or one per case (a case may add
+/// or remove elements, e.g. a brake).
+std::vector<const Model*> column_models(const SweepPlan& plan);
 
 }  // namespace machdyn

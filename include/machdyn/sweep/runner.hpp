@@ -44,6 +44,13 @@ struct SweepOptions {
   std::function<void(const SweepProgress&)> progress;
   /// Summary columns; empty: standard_summary_columns().
   std::vector<SummaryColumns> columns;
+  /// Keep the memory a run frees for the next run of the same worker instead of giving it back to
+  /// the kernel (glibc: M_TRIM_THRESHOLD 256 MB and M_TOP_PAD 16 MB, set once for the process and
+  /// not restored). A run allocates its solver and its time series afresh (~0.5 MB for the travel
+  /// start-up); without this glibc returns them at every free and the next run faults them in again:
+  /// 97 000 page faults and ~20 % more CPU per 1000 runs (docs/benchmarks-issue7.md). The cost: the
+  /// process holds on to its peak heap until it ends.
+  bool retain_memory = true;
 };
 
 struct SweepOutcome {

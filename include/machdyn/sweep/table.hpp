@@ -8,9 +8,12 @@
 ///
 /// Summary columns come in groups (SummaryColumns). The standard groups are the link peaks
 /// (`L.max_U`, `L.min_U`, `L.t_max_s`, `L.static_U`, `L.dynamic_factor` for every link L, U its load
-/// unit `N_m` or `N`) and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). Later
-/// analyses (event counts, self-oscillation period) add a group: a header function over the base
-/// model and a value function over one run's model and result.
+/// unit `N_m` or `N`), for event-driven runs (runs_event_driven()) the peaks of larger magnitude
+/// (peak_summary_columns()) and the hybrid figures (hybrid_summary_columns()), and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). A new
+/// analysis adds a group: a header function over a model and a value function over one run's model
+/// and result. The table's columns of a group are the union of its header over the sweep's models
+/// (column_models(): the base, or every case); a run fills the columns its own model has and leaves
+/// the others empty (e.g. the brake columns of a case without the brake).
 
 #include <functional>
 #include <string>
@@ -24,14 +27,38 @@ namespace machdyn {
 
 /// One group of summary columns: the extension point for new per-run figures.
 struct SummaryColumns {
-  /// Column names, from the base model (every run of a sweep has the same bodies and links).
-  std::function<std::vector<std::string>(const Model& base)> header;
-  /// The values of one run, as many as header() gave; NaN is written `nan`.
+  /// Column names for a model (--vary changes no element, so a run has those of its case).
+  std::function<std::vector<std::string>(const Model& m)> header;
+  /// The values of one run, as many as header(run_model) gave, in its order; NaN is written `nan`.
   std::function<void(const Model& run_model, const SimulationResult& result, std::vector<double>& values)> values;
 };
 
-/// The link peaks, then the solver statistics.
+/// The link peaks, the peaks of larger magnitude and the hybrid figures (event-driven runs only),
+/// then the solver statistics.
 std::vector<SummaryColumns> standard_summary_columns();
+
+/// Whether a run of this model is event-driven (simulate_hybrid): a model with a gap, a contact or
+/// a brake, and every run of a case sweep (Model::load_case set), smooth or not, as `simulate
+/// --all-cases` runs its cases.
+bool runs_event_driven(const Model& m);
+
+/// For event-driven runs, per link L (U its load unit), as the table of `simulate --all-cases`:
+/// `L.peak_U` the extreme of larger magnitude (max or min), `L.t_peak_s` its time,
+/// `L.peak_static_U` the quasi-static load there (HybridReport::static_at_min for a negative peak)
+/// and `L.peak_dynamic_factor` their ratio (nan when the static load is ~0). The dynamic factor of
+/// a link loaded mostly in the negative direction (hoist mode 6). No columns for a smooth run.
+SummaryColumns peak_summary_columns();
+
+/// Figures of an event-driven run (analysis/hybrid_stats.hpp); no columns for a smooth model:
+///   `events_K` for K in gap_closed, gap_opened, stick, slip, reversal: events of that kind;
+///   per contact or brake C: `C.slips` (slip phases), `C.period_s` (self-oscillation period, the
+///   mean interval between slip starts in the second half of the run; nan with fewer than two),
+///   and per link L `C.L_max_over_static_limit` (peak load of L / static limit of C: F_max/F_sc).
+SummaryColumns hybrid_summary_columns();
+
+/// The column names of each group: the union of its header over column_models(plan), first seen first.
+std::vector<std::vector<std::string>> summary_column_names(const SweepPlan& plan,
+                                                           const std::vector<SummaryColumns>& columns);
 
 /// The table's header line (no newline).
 std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns>& columns);
@@ -40,6 +67,9 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
 /// (no newline). Never throws for a failing run: an InputError (a value the field rejects),
 /// SolverError or any other exception gives status `error` and its message.
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns);
+/// The same with the table's column names computed once (summary_column_names), for many runs.
+std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns,
+                        const std::vector<std::vector<std::string>>& names);
 
 /// Quotes a CSV field when it holds a comma, quote or space at an end; newlines become spaces.
 std::string csv_field(const std::string& text);

@@ -1,0 +1,43 @@
+#include "machdyn/analysis/hybrid_stats.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace machdyn {
+
+const std::vector<std::string>& counted_event_kinds() {
+  static const std::vector<std::string> kinds = {"gap_closed", "gap_opened", "stick", "slip", "reversal"};
+  return kinds;
+}
+
+std::vector<long> event_counts(const HybridReport& h) {
+  const auto& kinds = counted_event_kinds();
+  std::vector<long> n(kinds.size(), 0);
+  for (const auto& e : h.events) {
+    const auto it = std::find(kinds.begin(), kinds.end(), e.kind);
+    if (it != kinds.end()) ++n[static_cast<size_t>(it - kinds.begin())];
+  }
+  return n;
+}
+
+std::vector<ContactStatistics> contact_statistics(const Model& m, const SimulationResult& r) {
+  std::vector<ContactStatistics> out;
+  for (const auto& c : m.contacts) {
+    ContactStatistics s;
+    s.name = c.name;
+    std::vector<double> late;  // slip starts in the second half of the run
+    for (const auto& p : r.hybrid.slip_phases) {
+      if (p.contact != c.name) continue;
+      ++s.slips;
+      if (p.t_start >= 0.5 * m.simulation.t_end) late.push_back(p.t_start);
+    }
+    s.period_s = late.size() >= 2 ? (late.back() - late.front()) / static_cast<double>(late.size() - 1)
+                                  : std::numeric_limits<double>::quiet_NaN();
+    for (size_t l = 0; l < m.links.size() && l < r.links.size(); ++l)
+      s.link_max_over_static_limit.push_back(r.links[l].max / c.static_limit);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace machdyn
