@@ -79,11 +79,10 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
   // Every case runs event-driven; that solver handles position-dependent inertia but not the
   // velocity jumps of a stepwise gear drive.
   for (const auto& m : models)
-    for (const auto& b : m.bodies)
-      if (b.machine && b.machine->has_jumps())
-        throw InputError(Location{model_path, 0, 0},
-                         fmt::format("--all-cases: body '{}' has velocity jumps (a stepwise gear drive), which only the "
-                                     "smooth simulation handles; run the cases one by one with --case NAME", b.name));
+    if (has_velocity_jumps(m))
+      throw InputError(Location{model_path, 0, 0},
+                       "--all-cases: the model has velocity jumps (a stepwise gear drive), which only the smooth "
+                       "simulation handles; run the cases one by one with --case NAME");
   nlohmann::json all = nlohmann::json::array();
   // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
   std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",

@@ -250,12 +250,10 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   top.finish();
   // The event-driven solver (gaps, contacts, brakes) does not apply the velocity jumps of a
   // machine with jumps (a stepwise gear drive): say so instead of simulating it without them.
-  if (diag.empty() && m.is_hybrid())
-    for (const auto& b : m.bodies)
-      if (b.machine && b.machine->has_jumps())
-        diag.error(bodies ? bodies->loc : Location{source, 1, 1},
-                   fmt::format("body '{}' has velocity jumps (stepwise gear ratio), which cannot be combined with gaps, "
-                               "contacts or brakes yet", b.name));
+  if (diag.empty() && m.is_hybrid() && has_velocity_jumps(m))
+    diag.error(bodies ? bodies->loc : Location{source, 1, 1},
+               "a body has velocity jumps (stepwise gear ratio), which cannot be combined with gaps, contacts or "
+               "brakes yet");
   diag.throw_if_any();
   return m;
 }

@@ -339,4 +339,10 @@ InertiaExpression::InertiaExpression(Expression inertia, std::optional<Expressio
 
 void InertiaExpression::part_inertia(int, double q, double* I, double* dI) const { inertia_.evaluate(q, I, dI); }
 
+bool has_velocity_jumps(const Model& m) {
+  for (const auto& b : m.bodies)
+    if (b.machine && b.machine->has_jumps()) return true;
+  return false;
+}
+
 }  // namespace machdyn

@@ -1,5 +1,7 @@
 #include "machdyn/sweep/table.hpp"
 
+#include "machdyn/model/machine.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -57,7 +59,11 @@ std::vector<SummaryColumns> standard_summary_columns() {
   return {peaks, peak_summary_columns(), hybrid_summary_columns(), solver};
 }
 
-bool runs_event_driven(const Model& m) { return m.is_hybrid() || !m.load_case.empty(); }
+bool runs_event_driven(const Model& m) {
+  // Case sweeps run event-driven like `simulate --all-cases`, except a stepwise gear drive, whose
+  // velocity jumps only the smooth path applies (the compiler keeps those out of hybrid models).
+  return m.is_hybrid() || (!m.load_case.empty() && !has_velocity_jumps(m));
+}
 
 SummaryColumns peak_summary_columns() {
   SummaryColumns g;
@@ -73,19 +79,9 @@ SummaryColumns peak_summary_columns() {
   };
   g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
     if (!runs_event_driven(m)) return;
-    for (size_t l = 0; l < r.links.size(); ++l) {
-      // As the table of `simulate --all-cases`: the extreme of larger magnitude, the quasi-static
-      // load at its time, and their ratio (NaN when the static load is ~0).
-      const auto& s = r.links[l];
-      const bool neg = std::abs(s.min) > std::abs(s.max);
-      const double peak = neg ? s.min : s.max;
-      const double stat = !neg ? s.static_load
-                               : l < r.hybrid.static_at_min.size() ? r.hybrid.static_at_min[l]
-                                                                    : std::numeric_limits<double>::quiet_NaN();
-      v.push_back(peak);
-      v.push_back(neg ? s.t_min : s.t_max);
-      v.push_back(stat);
-      v.push_back(std::abs(stat) > 1e-9 * std::abs(peak) ? peak / stat : std::numeric_limits<double>::quiet_NaN());
+    for (size_t l = 0; l < r.links.size(); ++l) {  // as the table of `simulate --all-cases`
+      const LinkPeak p = link_peak(r, l);
+      v.insert(v.end(), {p.peak, p.t_peak, p.static_load, p.dynamic_factor});
     }
   };
   return g;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "machdyn/common/expression.hpp"
+#include "machdyn/model/model.hpp"
 
 namespace machdyn {
 
@@ -250,5 +251,8 @@ class InertiaExpression final : public Machine {
   std::optional<Expression> torque_;
   double period_;
 };
+
+/// Whether a body of `m` is a machine with velocity jumps (a stepwise gear drive).
+bool has_velocity_jumps(const Model& m);
 
 }  // namespace machdyn
