@@ -2,7 +2,7 @@
 # Siconos on the travel start-up of issue 3 (paper 001), beside machdyn's event-driven run.
 #   bash bench/run-siconos.sh [BUILD_DIR]      (default build/release; bench/run.sh calls it)
 # Skipped with one line when Debian's python3 cannot import siconos (apt-get install python3-siconos).
-# Not a test: the times depend on the machine. Results go into docs/benchmarks-siconos.md.
+# Not a test: the times depend on the machine. Results go into docs/benchmarks.md.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-build/release}

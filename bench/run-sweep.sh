@@ -9,7 +9,7 @@
 # Environment: REPEAT (default 3) repetitions of each measurement, the best is printed (the machine
 # is shared: the best is the least disturbed); SCIPY_RUNS (default 10) runs done by scipy.
 # scipy exists for these two sweeps (bench/scipy_travel_sweep.py, bench/scipy_sweep.py).
-# Not a test: numbers depend on the machine. Results go into docs/benchmarks-issue7.md with this command.
+# Not a test: numbers depend on the machine. Results go into docs/benchmarks.md with this command.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-build/release}

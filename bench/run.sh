@@ -24,5 +24,9 @@ awk -v m="$md" -v h="$hand" 'BEGIN{printf "machdyn / hand-written loop: %.2f (go
 [[ "$sp" =~ ^[0-9.]+$ ]] && awk -v m="$md" -v s="$sp" 'BEGIN{printf "scipy / machdyn:             %.0f (goal >= 50)\n", s/m}'
 oct=$(echo "$oc" | awk '/hoist octave/{print $3}')
 [[ "$oct" =~ ^[0-9.]+$ ]] && awk -v m="$md" -v s="$oct" 'BEGIN{printf "octave / machdyn:            %.0f\n", s/m}'
+echo "== travel start-up (paper 001), 2 s: hybrid event-driven run against a hand-written event loop and scipy"
+"$build/bench/bench_travel_start" "$here/../examples/travel-start.yaml" 30
+/usr/bin/python3 "$here/travel_start_scipy.py" 2>/dev/null || echo "scipy unavailable"
+/usr/bin/python3 "$here/travel_start_scipy.py" 1e-10 1e-12 2>/dev/null || true
 for f in "$here"/run-*.sh; do [ -e "$f" ] && bash "$f" "$build"; done
 exit 0

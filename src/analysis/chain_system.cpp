@@ -166,8 +166,11 @@ __attribute__((optimize("no-tree-vectorize"))) void ChainSystem::rhs(double t, c
 void ChainSystem::rhs_nonlinear(double t, const double* y, double* dydt) {
   const double* v = y + n_;
   double* acc = dydt + n_;
-  for (int i = 0; i < n_; ++i) dydt[i] = v[i];
-  generalized_loads(t, y, acc);
+  for (int i = 0; i < n_; ++i) {
+    dydt[i] = v[i];
+    acc[i] = 0.0;
+  }
+  for (const auto& ld : m_.loads) acc[ld.body] += ld.evaluate(t, v[ld.body]);
   for (const auto& k : links_) {
     const LinkState s = link_state(k, y);
     const double F = k.c * s.delta + k.d * s.rate;
@@ -176,10 +179,10 @@ void ChainSystem::rhs_nonlinear(double t, const double* y, double* dydt) {
   }
   for (int i = 0; i < n_; ++i) {
     if (const Machine* mach = machine_[static_cast<size_t>(i)]) {
-      // I q'' + ½ I′ q'² = Q (model/machine.hpp).
-      double I, dI;
-      mach->inertia(mq(i, y), &I, &dI);
-      acc[i] = (acc[i] - 0.5 * dI * v[i] * v[i]) / I;
+      // I q'' + ½ I′ q'² = Q_machine + loads + links (model/machine.hpp).
+      double I, dI, Q;
+      mach->dynamics(mq(i, y), &I, &dI, &Q);
+      acc[i] = (acc[i] + Q - 0.5 * dI * v[i] * v[i]) / I;
     } else {
       acc[i] *= inv_mass_[static_cast<size_t>(i)];
     }

@@ -127,96 +127,92 @@ std::string CrankSlider::part_name(int k) const {
   return names[k];
 }
 
-namespace {
-/// Kinematics of the point at distance a from the crank pin along the rod, and of the rod angle ψ.
-/// Derivatives with respect to φ (see the class comment for the geometry):
-///   u = sin ψ = λ sin φ,  c = cos ψ = √(1 − u²)
-///   ψ′ = λ cos φ / c,     ψ″ = −λ sin φ / c + λ³ sin φ cos²φ / c³
-///   P_x = r cos φ + a c:  P_x′ = −r sin φ − a u ψ′,  P_x″ = −r cos φ − a (λ cos φ ψ′ + u ψ″)
-///   P_y = r sin φ (1 − a/l): P_y′ = r cos φ (1 − a/l), P_y″ = −r sin φ (1 − a/l)
-struct RodKinematics {
-  double u, c, dpsi, ddpsi;
-  RodKinematics(double r, double l, double phi) {
-    const double lam = r / l, s = std::sin(phi), co = std::cos(phi);
-    u = lam * s;
-    c = std::sqrt(1.0 - u * u);
-    dpsi = lam * co / c;
-    ddpsi = -lam * s / c + lam * lam * lam * s * co * co / (c * c * c);
+
+CrankSlider::Kinematics CrankSlider::kinematics(double q) const {
+  Kinematics K;
+  const double r = p_.r, l = p_.l, a = p_.a, lam = r / l;
+  const double s = std::sin(q), co = std::cos(q);
+  K.I[0] = p_.J_c;
+  K.dI[0] = 0.0;
+  if (p_.approximate) {
+    // S = sin φ + (λ/2) sin 2φ ≈ −(dx_B/dφ)/r,  S′ = cos φ + λ cos 2φ;
+    // x = r(1 − cos φ) + (λ r/4)(1 − cos 2φ), so x′ = r S exactly.
+    const double s2 = 2.0 * s * co, c2 = co * co - s * s;
+    const double S = s + 0.5 * lam * s2, dS = co + lam * c2;
+    for (int k = 1; k <= 2; ++k) {
+      const double mB = k == 1 ? p_.m_rod * a / l : p_.m_p;
+      K.I[k] = mB * r * r * S * S + (k == 1 ? p_.m_rod * (1.0 - a / l) * r * r : 0.0);
+      K.dI[k] = 2.0 * mB * r * r * S * dS;
+    }
+    K.x = r * (1 - co) + 0.25 * lam * r * (1 - c2);
+    K.dx = r * S;
+    K.ddx = r * dS;
+    return K;
   }
-};
-}  // namespace
+  // Exact: u = sin ψ = λ sin φ, c = cos ψ; ψ′ = λ cos φ / c, ψ″ = −λ sin φ / c + λ³ sin φ cos²φ / c³;
+  // a point at distance d from the crank pin along the rod: P_x′ = −r sin φ − d u ψ′,
+  // P_x″ = −r cos φ − d (λ cos φ ψ′ + u ψ″); the rod's centre P_y = r sin φ (1 − a/l).
+  const double u = lam * s, c = std::sqrt(1.0 - u * u), dpsi = lam * co / c;
+  const double ddpsi = -lam * s / c + lam * lam * lam * s * co * co / (c * c * c);
+  auto px = [&](double d, double* d1, double* d2) {
+    *d1 = -r * s - d * u * dpsi;
+    *d2 = -r * co - d * (lam * co * dpsi + u * ddpsi);
+  };
+  double gx1, gx2, bx1, bx2;
+  px(a, &gx1, &gx2);
+  px(l, &bx1, &bx2);
+  const double gy1 = r * co * (1.0 - a / l), gy2 = -r * s * (1.0 - a / l);
+  K.I[1] = p_.m_rod * (gx1 * gx1 + gy1 * gy1) + p_.J_rod * dpsi * dpsi;
+  K.dI[1] = 2.0 * p_.m_rod * (gx1 * gx2 + gy1 * gy2) + 2.0 * p_.J_rod * dpsi * ddpsi;
+  K.I[2] = p_.m_p * bx1 * bx1;
+  K.dI[2] = 2.0 * p_.m_p * bx1 * bx2;
+  K.x = r + l - (r * co + l * c);  // from the outer dead centre
+  K.dx = -bx1;
+  K.ddx = -bx2;
+  return K;
+}
 
 void CrankSlider::part_inertia(int k, double q, double* I, double* dI) const {
-  const double r = p_.r, l = p_.l, a = p_.a;
-  const double s = std::sin(q), co = std::cos(q);
-  if (k == 0) {
-    *I = p_.J_c;
-    *dI = 0.0;
-    return;
-  }
-  if (p_.approximate) {
-    // S = sin φ + (λ/2) sin 2φ ≈ −(dx_B/dφ)/r,  S′ = cos φ + λ cos 2φ.
-    const double lam = r / l;
-    const double S = s + 0.5 * lam * std::sin(2 * q), dS = co + lam * std::cos(2 * q);
-    const double mB = k == 1 ? p_.m_rod * a / l : p_.m_p;
-    *I = mB * r * r * S * S + (k == 1 ? p_.m_rod * (1.0 - a / l) * r * r : 0.0);
-    *dI = 2.0 * mB * r * r * S * dS;
-    return;
-  }
-  const RodKinematics K(r, l, q);
-  const double lam = r / l;
-  auto px = [&](double dist, double* d1, double* d2) {
-    *d1 = -r * s - dist * K.u * K.dpsi;
-    *d2 = -r * co - dist * (lam * co * K.dpsi + K.u * K.ddpsi);
-  };
-  if (k == 1) {
-    double gx1, gx2;
-    px(a, &gx1, &gx2);
-    const double gy1 = r * co * (1.0 - a / l), gy2 = -r * s * (1.0 - a / l);
-    *I = p_.m_rod * (gx1 * gx1 + gy1 * gy1) + p_.J_rod * K.dpsi * K.dpsi;
-    *dI = 2.0 * p_.m_rod * (gx1 * gx2 + gy1 * gy2) + 2.0 * p_.J_rod * K.dpsi * K.ddpsi;
-  } else {
-    double bx1, bx2;
-    px(l, &bx1, &bx2);
-    *I = p_.m_p * bx1 * bx1;
-    *dI = 2.0 * p_.m_p * bx1 * bx2;
-  }
+  const Kinematics K = kinematics(q);
+  *I = K.I[k];
+  *dI = K.dI[k];
+}
+
+void CrankSlider::inertia(double q, double* I, double* dI) const {
+  const Kinematics K = kinematics(q);
+  *I = K.I[0] + K.I[1] + K.I[2];
+  *dI = K.dI[0] + K.dI[1] + K.dI[2];
 }
 
 void CrankSlider::point(double q, double* p, double* dp, double* ddp) const {
-  const double r = p_.r, l = p_.l, lam = r / l;
-  if (p_.approximate) {
-    // s = r(1 − cos φ) + (λ r/4)(1 − cos 2φ), so s′ = r S exactly.
-    *p = r * (1 - std::cos(q)) + 0.25 * lam * r * (1 - std::cos(2 * q));
-    *dp = r * (std::sin(q) + 0.5 * lam * std::sin(2 * q));
-    *ddp = r * (std::cos(q) + lam * std::cos(2 * q));
-    return;
-  }
-  const RodKinematics K(r, l, q);
-  const double s = std::sin(q), co = std::cos(q);
-  *p = r + l - (r * co + l * K.c);
-  *dp = r * s + l * K.u * K.dpsi;
-  *ddp = r * co + l * (lam * co * K.dpsi + K.u * K.ddpsi);
+  const Kinematics K = kinematics(q);
+  *p = K.x, *dp = K.dx, *ddp = K.ddx;
 }
 
-double CrankSlider::piston_force(double phi) const {
+double CrankSlider::piston_force(double phi, double x) const {
   switch (against_) {
     case ForceAgainst::none: return 0.0;
     case ForceAgainst::angle: return force_(phi);
-    case ForceAgainst::position: {
-      double s, ds, dds;
-      point(phi, &s, &ds, &dds);
-      return force_(s);
-    }
+    case ForceAgainst::position: return force_(x);
   }
   return 0.0;
 }
 
+double CrankSlider::piston_force(double phi) const {
+  return against_ == ForceAgainst::position ? piston_force(phi, kinematics(phi).x) : piston_force(phi, 0.0);
+}
+
 double CrankSlider::force(double q) const {
   if (against_ == ForceAgainst::none) return 0.0;
-  double s, ds, dds;
-  point(q, &s, &ds, &dds);
-  return piston_force(q) * ds;
+  const Kinematics K = kinematics(q);
+  return piston_force(q, K.x) * K.dx;
+}
+
+void CrankSlider::dynamics(double q, double* I, double* dI, double* Q) const {
+  const Kinematics K = kinematics(q);
+  *I = K.I[0] + K.I[1] + K.I[2];
+  *dI = K.dI[0] + K.dI[1] + K.dI[2];
+  *Q = against_ == ForceAgainst::none ? 0.0 : piston_force(q, K.x) * K.dx;
 }
 
 std::vector<double> CrankSlider::kinks(double q_a, double q_b) const {

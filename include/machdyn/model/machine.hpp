@@ -37,10 +37,16 @@ class Machine {
   /// I_k(q) in kg·m² and dI_k/dq in kg·m²/rad.
   virtual void part_inertia(int k, double q, double* I, double* dI) const = 0;
   /// I(q) = Σ I_k and I′(q).
-  void inertia(double q, double* I, double* dI) const;
+  virtual void inertia(double q, double* I, double* dI) const;
   /// The machine's own generalized force Q(q), N·m (gas force on the piston, the thread's pull).
   /// Depends on position only, so it enters the energy integral.
   [[nodiscard]] virtual double force(double /*q*/) const { return 0.0; }
+  /// I, I′ and Q at once — what the equation of motion needs per evaluation. A machine whose parts
+  /// share expensive kinematics (the crank-slider's rod angle) computes them once here.
+  virtual void dynamics(double q, double* I, double* dI, double* Q) const {
+    inertia(q, I, dI);
+    *Q = force(q);
+  }
   /// Name of the output point ("piston", "x") or empty if none.
   [[nodiscard]] virtual std::string point_name() const { return {}; }
   /// p(q) in m with p′ (m/rad) and p″ (m/rad²).
@@ -147,7 +153,9 @@ class CrankSlider final : public Machine {
   [[nodiscard]] int parts() const override { return 3; }
   [[nodiscard]] std::string part_name(int k) const override;
   void part_inertia(int k, double q, double* I, double* dI) const override;
+  void inertia(double q, double* I, double* dI) const override;
   [[nodiscard]] double force(double q) const override;
+  void dynamics(double q, double* I, double* dI, double* Q) const override;
   [[nodiscard]] std::string point_name() const override { return "piston"; }
   void point(double q, double* p, double* dp, double* ddp) const override;
   [[nodiscard]] double period() const override;
@@ -156,7 +164,15 @@ class CrankSlider final : public Machine {
   /// The piston force F (N) at crank angle φ.
   [[nodiscard]] double piston_force(double phi) const;
 
+  /// Everything the parts and the piston need at one crank angle: sin φ, cos φ once.
+  struct Kinematics {
+    double I[3], dI[3];  // per part
+    double x, dx, ddx;   // piston travel from the outer dead centre and its derivatives
+  };
+  [[nodiscard]] Kinematics kinematics(double q) const;
+
  private:
+  [[nodiscard]] double piston_force(double phi, double x) const;
   Params p_;
   ForceAgainst against_;
   LinearTable force_;
