@@ -20,16 +20,15 @@ extern char** environ;
 
 namespace machdyn::plot {
 
-namespace {
-
-namespace fs = std::filesystem;
-
-/// A gnuplot single-quoted string: only ' needs doubling; no escapes, no enhanced-text markup.
 std::string quote(const std::string& s) {
   std::string q = "'";
   for (const char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
   return q + "'";
 }
+
+namespace {
+
+namespace fs = std::filesystem;
 
 /// Characters, not bytes, of a UTF-8 string (for margins).
 std::size_t utf8_length(const std::string& s) {
@@ -272,23 +271,29 @@ fs::path find_gnuplot() {
   throw std::runtime_error("the static figures (--plot) need gnuplot, which is not on PATH: " + hint);
 }
 
-Rendered render(const Figure& fig) {
-  validate(fig);
+Rendered render_script(const std::string& data, const ScriptFor& script, const std::string& what) {
   const fs::path gnuplot = find_gnuplot();
   TempDir tmp;
-  const fs::path data = tmp.path / "data.dat", svg = tmp.path / "figure.svg", png = tmp.path / "figure.png",
-                 script = tmp.path / "figure.gp", log = tmp.path / "gnuplot.log";
-  std::ofstream(data, std::ios::binary) << gnuplot_data(fig);
-  std::ofstream(script, std::ios::binary) << gnuplot_script(fig, Format::svg, data.string(), svg.string())
-                                          << gnuplot_script(fig, Format::png, data.string(), png.string());
-  const int rc = run_process(gnuplot, {script.string()}, log);
+  const fs::path data_path = tmp.path / "data.dat", svg = tmp.path / "figure.svg", png = tmp.path / "figure.png",
+                 script_path = tmp.path / "figure.gp", log = tmp.path / "gnuplot.log";
+  std::ofstream(data_path, std::ios::binary) << data;
+  std::ofstream(script_path, std::ios::binary) << script(Format::svg, data_path.string(), svg.string())
+                                               << script(Format::png, data_path.string(), png.string());
+  const int rc = run_process(gnuplot, {script_path.string()}, log);
   if (rc != 0)
-    throw std::runtime_error(fmt::format("gnuplot ({}) failed drawing figure '{}' (exit {}): {}", gnuplot.string(),
-                                         fig.id, rc, slurp(log)));
+    throw std::runtime_error(
+        fmt::format("gnuplot ({}) failed drawing {} (exit {}): {}", gnuplot.string(), what, rc, slurp(log)));
   Rendered r{slurp(svg), slurp(png)};
-  if (r.svg.empty() || r.png.empty())
-    throw std::runtime_error(fmt::format("gnuplot wrote no figure '{}': {}", fig.id, slurp(log)));
+  if (r.svg.empty() || r.png.empty()) throw std::runtime_error(fmt::format("gnuplot wrote no {}: {}", what, slurp(log)));
   return r;
+}
+
+Rendered render(const Figure& fig) {
+  validate(fig);
+  return render_script(
+      gnuplot_data(fig),
+      [&](Format f, const std::string& data_path, const std::string& out) { return gnuplot_script(fig, f, data_path, out); },
+      fmt::format("figure '{}'", fig.id));
 }
 
 }  // namespace machdyn::plot

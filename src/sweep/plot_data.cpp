@@ -102,37 +102,6 @@ std::string value_label(const std::string& text, const plot::Axis& axis) {
 }
 
 /// Runs `exe script` with output into `log`; the exit status (-1 if not run).
-int run_gnuplot(const fs::path& exe, const fs::path& script, const fs::path& log) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  std::string a0 = exe.string(), a1 = script.string();
-  char* argv[] = {a0.data(), a1.data(), nullptr};
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (const char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return q + "'";
-}
-
 /// Half-widths of the cells of a grid axis: from each value to the midpoints with its neighbours
 /// (the end cells mirror their inner half). Keyed by the value's text.
 std::map<std::string, std::pair<double, double>> grid_cells(const std::vector<std::string>& texts, bool log_axis) {
@@ -182,51 +151,32 @@ plot::Rendered render_heat_map(const PlotData& d, const SweepPlotSpec& spec) {
     const auto [yl, yh] = cy.at(d.y_text[i]);
     data += fmt::format("{:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g}\n", d.x[i], d.y[i], xl, xh, yl, yh, d.z[i]);
   }
-  const fs::path gnuplot = plot::find_gnuplot();
-  std::string tmpl = (fs::temp_directory_path() / "machdyn-sweep-plot-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary folder for gnuplot");
-  const fs::path tmp = tmpl;
-  struct Remove {
-    fs::path p;
-    ~Remove() {
-      std::error_code ec;
-      fs::remove_all(p, ec);
-    }
-  } remove{tmp};
-  const fs::path dat = tmp / "data.dat", script = tmp / "plot.gp", log = tmp / "gnuplot.log";
-  std::ofstream(dat, std::ios::binary) << data;
-  std::string g;
-  for (const bool svg : {true, false}) {
-    g += "reset\nset encoding utf8\n";
+  const auto script = [&](plot::Format format, const std::string& data_path, const std::string& out) {
+    const bool svg = format == plot::Format::svg;
+    std::string g = "reset\nset encoding utf8\n";
     g += svg ? "set terminal svg size 800,500 dynamic noenhanced font 'DejaVu Sans,12' background '#ffffff' linewidth 1\n"
              : "set terminal pngcairo size 1600,1000 noenhanced font 'DejaVu Sans,24' background '#ffffff' linewidth 2\n";
-    g += "set output " + quote((tmp / (svg ? "plot.svg" : "plot.png")).string()) + "\n";
+    g += "set output " + plot::quote(out) + "\n";
     g += "set border 3 lw 1\nset tics nomirror out\nset key off\n";
-    g += "set xlabel " + quote(spec.input_axes[0].label()) + "\n";
-    g += "set ylabel " + quote(spec.input_axes[1].label()) + "\n";
-    g += "set cblabel " + quote(spec.output_axis.label()) + "\n";
+    g += "set xlabel " + plot::quote(spec.input_axes[0].label()) + "\n";
+    g += "set ylabel " + plot::quote(spec.input_axes[1].label()) + "\n";
+    g += "set cblabel " + plot::quote(spec.output_axis.label()) + "\n";
     // Viridis: monotone in lightness, readable for colour-blind readers and in greyscale.
     g += "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n";
     if (logx) g += "set logscale x\n";
     if (logy) g += "set logscale y\n";
     if (grid) {
       g += "set autoscale xfix\nset autoscale yfix\n";
-      g += "plot " + quote(dat.string()) +
+      g += "plot " + plot::quote(data_path) +
            " using 1:2:3:4:5:6:7 with boxxyerror fill solid 1.0 noborder lc palette notitle\n";
     } else {
       g += "set offsets graph 0.02, graph 0.02, graph 0.04, graph 0.04\n";
-      g += "plot " + quote(dat.string()) + " using 1:2:7 with points pt 7 ps " + (svg ? "0.8" : "1.2") +
+      g += "plot " + plot::quote(data_path) + " using 1:2:7 with points pt 7 ps " + (svg ? "0.8" : "1.2") +
            " lc palette notitle\n";
     }
-    g += "unset output\n";
-  }
-  std::ofstream(script, std::ios::binary) << g;
-  const int rc = run_gnuplot(gnuplot, script, log);
-  if (rc != 0) throw std::runtime_error(fmt::format("gnuplot ({}) failed drawing the sweep plot (exit {}): {}",
-                                                    gnuplot.string(), rc, slurp(log)));
-  plot::Rendered r{slurp(tmp / "plot.svg"), slurp(tmp / "plot.png")};
-  if (r.svg.empty() || r.png.empty()) throw std::runtime_error("gnuplot wrote no sweep plot: " + slurp(log));
-  return r;
+    return g + "unset output\n";
+  };
+  return plot::render_script(data, script, "the sweep plot");
 }
 
 }  // namespace

@@ -16,14 +16,10 @@
 namespace machdyn {
 namespace {
 
+using test::column;
+
 constexpr double kPi = std::numbers::pi;
 
-size_t column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return c;
-  ADD_FAILURE() << "no column " << name;
-  return 0;
-}
 
 // Claim (paper 000, eq. 28): in scheme 1 the speed tends, as β → π, to
 // ω1max = √(4 F H (1 + cos β0) / (3 m1 R1² sin β0)) = 8.92 rad/s. Derivation of the closed form:

@@ -18,12 +18,8 @@
 namespace machdyn {
 namespace {
 
-size_t column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return c;
-  ADD_FAILURE() << "no column " << name;
-  return 0;
-}
+using test::column;
+
 
 std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element, const std::string& kind) {
   std::vector<ModeEvent> out;

@@ -18,14 +18,10 @@
 namespace machdyn {
 namespace {
 
+using test::column;
+
 constexpr double kPi = std::numbers::pi;
 
-size_t column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return c;
-  ADD_FAILURE() << "no column " << name;
-  return 0;
-}
 
 const char* kCrank = R"Y(
   crank:

@@ -12,18 +12,14 @@
 namespace machdyn {
 namespace {
 
+using test::column;
+
 paper002::ThreeMassHoist hoist_of(const Model& m) {
   // The example's MB load has value −M_B (it opposes lifting).
   return {m.bodies[0].inertia, m.bodies[1].inertia, m.bodies[2].inertia, m.links[0].c, m.links[1].c,
           m.loads[0].value, -m.loads[1].value};
 }
 
-size_t column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return c;
-  ADD_FAILURE() << "no column " << name;
-  return 0;
-}
 
 class HoistSimulation : public ::testing::TestWithParam<std::string> {};
 

@@ -12,16 +12,12 @@
 namespace machdyn {
 namespace {
 
+using test::slurp;
+using test::have_gnuplot;
+
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
-bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 // Claim: energy --plot on the rolling wheel writes ω against distance with the limit line labelled
 // ω_lim = 8.923 rad/s; on the crank-slider ω against crank angle and the inertia moments of crank,

@@ -14,16 +14,12 @@
 namespace machdyn {
 namespace {
 
+using test::slurp;
+using test::have_gnuplot;
+
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
-bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 // Claim: simulate --plot writes the link-load figure (legend names the links, the static values
 // labelled) and the body speeds, each as SVG and PNG, beside the CSV and JSON.

@@ -2,6 +2,9 @@
 // Helpers shared by the tests: temporary model files and running the CLI as a user would.
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include "machdyn/analysis/simulate.hpp"
 
 namespace machdyn::test {
 
@@ -21,5 +24,17 @@ CliResult run_cli(const std::string& args, const std::filesystem::path& cwd = te
 
 /// Path of a shipped example.
 std::string example(const std::string& name);
+
+/// The whole content of a file ("" if it cannot be read).
+std::string slurp(const std::filesystem::path& p);
+
+/// The lines of a text, without their line ends.
+std::vector<std::string> lines_of(const std::string& text);
+
+/// Whether gnuplot is on PATH (the figure tests skip, saying so, without it).
+bool have_gnuplot();
+
+/// Index of the output column called `name`; records a test failure if there is none.
+std::size_t column(const SimulationResult& r, const std::string& name);
 
 }  // namespace machdyn::test

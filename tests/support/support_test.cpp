@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 namespace machdyn::test {
 
 std::filesystem::path temp_dir() {
@@ -42,17 +44,34 @@ CliResult run_cli(const std::string& args, const std::filesystem::path& cwd) {
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
   r.out = slurp(base.string() + ".out");
   r.err = slurp(base.string() + ".err");
   return r;
 }
 
 std::string example(const std::string& name) { return std::string(MACHDYN_SOURCE_DIR) + "/examples/" + name; }
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+std::size_t column(const SimulationResult& r, const std::string& name) {
+  for (std::size_t c = 0; c < r.column_names.size(); ++c)
+    if (r.column_names[c] == name) return c;
+  ADD_FAILURE() << "no column " << name;
+  return 0;
+}
 
 }  // namespace machdyn::test

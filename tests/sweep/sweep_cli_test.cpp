@@ -13,14 +13,10 @@
 namespace machdyn {
 namespace {
 
+using test::slurp;
+
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 long count_lines(const fs::path& p) {
   const auto s = slurp(p);

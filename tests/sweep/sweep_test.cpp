@@ -17,21 +17,12 @@
 namespace machdyn {
 namespace {
 
+using test::slurp;
+using test::lines_of;
+
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
 
 SweepRequest hoist_request(std::vector<std::string> vary) {
   SweepRequest r;

@@ -9,6 +9,7 @@
 /// the caller writes them (atomically) next to its other results.
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -118,5 +119,14 @@ struct Rendered {
 /// Runs gnuplot (a subprocess; data and script through a fresh temporary folder, removed after) and
 /// returns both files. Throws std::runtime_error with gnuplot's message when it fails.
 Rendered render(const Figure& fig);
+
+/// The same machinery for a figure that a Figure cannot describe (the sweep's heat map): `data` is
+/// written to a file, `script(format, data_path, output_path)` gives the gnuplot commands for one
+/// format; `what` names the figure in error messages.
+using ScriptFor = std::function<std::string(Format format, const std::string& data_path, const std::string& output_path)>;
+Rendered render_script(const std::string& data, const ScriptFor& script, const std::string& what);
+
+/// A gnuplot single-quoted string: only ' needs doubling; no escapes, no enhanced-text markup.
+std::string quote(const std::string& s);
 
 }  // namespace machdyn::plot
