@@ -565,51 +565,40 @@ void HybridSystem::event_functions(double t, const double* y, double* g) {
 
 void HybridSystem::project_velocities(double t, double* y) const {
   if (stuck_.empty()) return;
-  if (has_machines_) return project_velocities_weighted(t, y);
+  // Minimal M-norm velocity change that makes every stuck contact's sliding velocity zero:
+  // Δv = −M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁺ G v. With machines M = diag(I_i(q_i)) at the current positions.
+  const double* im = inv_mass_.data();
+  const Eigen::MatrixXd* P = &Pproj_;
+  std::vector<double> im_q;
+  Eigen::MatrixXd P_q;
+  if (has_machines_) {
+    im_q.resize(static_cast<size_t>(n_));
+    inverse_inertias(y, im_q.data());
+    im = im_q.data();
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-12);
+    cod.compute(stuck_matrix(im));
+    P_q = cod.pseudoInverse();
+    P = &P_q;
+  }
   Eigen::VectorXd r(static_cast<Eigen::Index>(stuck_.size()));
   for (size_t j = 0; j < stuck_.size(); ++j) r(static_cast<Eigen::Index>(j)) = sliding_velocity(stuck_[j], t, y);
-  const Eigen::VectorXd mu = Pproj_ * r;
+  const Eigen::VectorXd mu = *P * r;
   double* v = y + n_;
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
-    v[c.a] -= inv_mass_[static_cast<size_t>(c.a)] * mu(static_cast<Eigen::Index>(j));
-    if (c.b >= 0) v[c.b] += inv_mass_[static_cast<size_t>(c.b)] * mu(static_cast<Eigen::Index>(j));
+    v[c.a] -= im[c.a] * mu(static_cast<Eigen::Index>(j));
+    if (c.b >= 0) v[c.b] += im[c.b] * mu(static_cast<Eigen::Index>(j));
   }
-  // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations).
+  // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations); the common
+  // velocity is the momentum mean (I_a v_a + I_b v_b)/(I_a + I_b).
   for (int k : stuck_) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
     if (c.b < 0) {
       v[c.a] = c.surface_velocity(t);
     } else {
-      const double ma = m_.bodies[static_cast<size_t>(c.a)].inertia, mb = m_.bodies[static_cast<size_t>(c.b)].inertia;
-      v[c.a] = v[c.b] = (ma * v[c.a] + mb * v[c.b]) / (ma + mb);
-    }
-  }
-}
-
-void HybridSystem::project_velocities_weighted(double t, double* y) const {
-  // The same projection with M(q) = diag(I_i(q_i)) at the current positions.
-  std::vector<double> im(static_cast<size_t>(n_));
-  inverse_inertias(y, im.data());
-  Eigen::VectorXd r(static_cast<Eigen::Index>(stuck_.size()));
-  for (size_t j = 0; j < stuck_.size(); ++j) r(static_cast<Eigen::Index>(j)) = sliding_velocity(stuck_[j], t, y);
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-  cod.setThreshold(1e-12);
-  cod.compute(stuck_matrix(im.data()));
-  const Eigen::VectorXd mu = cod.pseudoInverse() * r;
-  double* v = y + n_;
-  for (size_t j = 0; j < stuck_.size(); ++j) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
-    v[c.a] -= im[static_cast<size_t>(c.a)] * mu(static_cast<Eigen::Index>(j));
-    if (c.b >= 0) v[c.b] += im[static_cast<size_t>(c.b)] * mu(static_cast<Eigen::Index>(j));
-  }
-  for (int k : stuck_) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
-    if (c.b < 0) {
-      v[c.a] = c.surface_velocity(t);
-    } else {
-      const double ia = im[static_cast<size_t>(c.a)], ib = im[static_cast<size_t>(c.b)];
-      v[c.a] = v[c.b] = (ib * v[c.a] + ia * v[c.b]) / (ia + ib);  // (I_a v_a + I_b v_b)/(I_a + I_b)
+      const double ia = im[c.a], ib = im[c.b];
+      v[c.a] = v[c.b] = (ib * v[c.a] + ia * v[c.b]) / (ia + ib);
     }
   }
 }

@@ -8,10 +8,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -19,7 +15,6 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/sweep/table.hpp"
 
-extern char** environ;
 
 namespace machdyn {
 namespace {

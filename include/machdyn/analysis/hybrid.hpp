@@ -164,7 +164,6 @@ class HybridSystem final : public OdeSystem {
   const AffineMode& compile_affine();
   void enforce_stuck(double t, double* acc) const;
   void enforce_stuck_weighted(double t, double* acc, const double* im) const;
-  void project_velocities_weighted(double t, double* y) const;
 
   const Model& m_;
   int n_, nl_, nc_;
