@@ -16,13 +16,6 @@
 namespace machdyn {
 namespace {
 
-std::string unit_suffix(const char* unit) {
-  std::string s(unit);
-  for (auto& ch : s)
-    if (ch == '*' || ch == '/') ch = '_';
-  return s;
-}
-
 /// Times in (0, t_end) where a load, a brake or a surface-velocity table has a kink or a jump.
 std::vector<double> breakpoints(const Model& m) {
   std::vector<double> t;
@@ -163,12 +156,7 @@ class HybridRun {
   // ---- output ----
   void setup_columns() {
     auto& names = out_.column_names;
-    names.push_back("t_s");
-    for (const auto& b : m_.bodies) {
-      names.push_back(b.name + ".position_" + unit_suffix(position_unit(b.kind)));
-      names.push_back(b.name + ".velocity_" + unit_suffix(velocity_unit(b.kind)));
-    }
-    for (const auto& l : m_.links) names.push_back(l.name + ".load_" + unit_suffix(link_load_unit(m_, l)));
+    names = chain_column_names(m_);
     for (const auto& c : m_.contacts) {
       const BodyKind k = m_.bodies[static_cast<size_t>(c.a)].kind;
       names.push_back(c.name + ".force_" + unit_suffix(load_unit(k)));

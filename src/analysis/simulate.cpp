@@ -68,18 +68,7 @@ class Recorder final : public StepObserver {
            detail::MachineRun& run)
       : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
         loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)) {
-    auto suffix = [](const char* unit) {
-      std::string s(unit);
-      for (auto& ch : s)
-        if (ch == '*' || ch == '/') ch = '_';
-      return s;
-    };
-    out_.column_names.push_back("t_s");
-    for (const auto& b : m.bodies) {
-      out_.column_names.push_back(b.name + ".position_" + suffix(position_unit(b.kind)));
-      out_.column_names.push_back(b.name + ".velocity_" + suffix(velocity_unit(b.kind)));
-    }
-    for (const auto& l : m.links) out_.column_names.push_back(l.name + ".load_" + suffix(link_load_unit(m, l)));
+    out_.column_names = chain_column_names(m);
     out_.columns.resize(out_.column_names.size());
     const auto rows = static_cast<size_t>(m.simulation.t_end / m.simulation.dt_out) + 2;
     for (auto& col : out_.columns) col.reserve(rows);

@@ -57,6 +57,23 @@ const char* position_unit(BodyKind k) { return k == BodyKind::rotational ? "rad"
 const char* velocity_unit(BodyKind k) { return k == BodyKind::rotational ? "rad/s" : "m/s"; }
 const char* load_unit(BodyKind k) { return k == BodyKind::rotational ? "N*m" : "N"; }
 
+std::string unit_suffix(const char* unit) {
+  std::string s(unit);
+  for (auto& ch : s)
+    if (ch == '*' || ch == '/') ch = '_';
+  return s;
+}
+
+std::vector<std::string> chain_column_names(const Model& m) {
+  std::vector<std::string> names{"t_s"};
+  for (const auto& b : m.bodies) {
+    names.push_back(b.name + ".position_" + unit_suffix(position_unit(b.kind)));
+    names.push_back(b.name + ".velocity_" + unit_suffix(velocity_unit(b.kind)));
+  }
+  for (const auto& l : m.links) names.push_back(l.name + ".load_" + unit_suffix(link_load_unit(m, l)));
+  return names;
+}
+
 const char* link_load_unit(const Model& m, const Link& l) {
   int side = l.b != kGround ? l.b : l.a;
   if (l.b != kGround ? l.b_point : l.a_point) return "N";  // a machine's output point (piston) moves in m

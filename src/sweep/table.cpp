@@ -15,13 +15,6 @@
 namespace machdyn {
 namespace {
 
-std::string unit_suffix(const char* unit) {
-  std::string s(unit);
-  for (auto& ch : s)
-    if (ch == '*' || ch == '/') ch = '_';
-  return s;
-}
-
 std::string number(double v) {
   if (std::isnan(v)) return "nan";
   return fmt::format("{}", v);  // shortest text that reads back to the same double

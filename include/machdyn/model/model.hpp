@@ -151,5 +151,10 @@ const char* velocity_unit(BodyKind k);
 const char* load_unit(BodyKind k);
 /// The unit of a link's load: that of body b (or a, for a link to the ground).
 const char* link_load_unit(const Model& m, const Link& l);
+/// A unit as a suffix of an output column name: "N*m" → "N_m", "rad/s" → "rad_s".
+std::string unit_suffix(const char* unit);
+/// The columns every simulation writes: "t_s", then per body "NAME.position_rad|m" and
+/// "NAME.velocity_rad_s|m_s", then per link "NAME.load_N_m|N".
+std::vector<std::string> chain_column_names(const Model& m);
 
 }  // namespace machdyn
