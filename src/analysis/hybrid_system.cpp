@@ -351,15 +351,16 @@ __attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double 
 }
 
 void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) {
-  if (has_machines_) evaluate_impl<true>(t, y, acc, fc);
-  else evaluate_impl<false>(t, y, acc, fc);
+  double src, fric, damp;
+  if (has_machines_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
+  else evaluate_impl<false>(t, y, acc, fc, &src, &fric, &damp);
 }
 
 // Inlined into evaluate(): the constant-inertia call is the same single function as before.
 template <bool kMach>
-__attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t, const double* y, double* acc, double* fc) {
-  double src, fric, damp;
-  forces<kMach>(t, y, acc, fc, &src, &fric, &damp);
+__attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t, const double* y, double* acc, double* fc,
+                                                                       double* src, double* fric, double* damp) {
+  forces<kMach>(t, y, acc, fc, src, fric, damp);
   const double* im = kMach ? im_.data() : inv_mass_.data();
   for (int i = 0; i < n_; ++i) acc[i] *= im[i];
   if (stuck_.empty()) return;
@@ -376,6 +377,7 @@ __attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t,
     fc[stuck_[j]] = lam;
     acc[c.a] -= im[c.a] * lam;
     if (c.b >= 0) acc[c.b] += im[c.b] * lam;
+    else *src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
   }
   if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
   else enforce_stuck(t, acc);
@@ -458,31 +460,9 @@ void HybridSystem::rhs(double t, const double* y, double* dydt) {
 // Out of line: rhs() stays the small affine loop.
 template <bool kMach>
 __attribute__((noinline)) void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
-  const double* v = y + n_;
-  double* acc = dydt + n_;
-  for (int i = 0; i < n_; ++i) dydt[i] = v[i];
+  for (int i = 0; i < n_; ++i) dydt[i] = y[n_ + i];
   double src, fric, damp;
-  forces<kMach>(t, y, acc, fc_.data(), &src, &fric, &damp);
-  const double* im = kMach ? im_.data() : inv_mass_.data();
-  for (int i = 0; i < n_; ++i) acc[i] *= im[i];
-  if (!stuck_.empty()) {
-    for (size_t j = 0; j < stuck_.size(); ++j) {
-      const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
-      r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
-    }
-    if constexpr (kMach)
-      if (stuck_machine_) form_stuck_solution(im);
-    mat_vec(P_, r_, lam_);
-    for (size_t j = 0; j < stuck_.size(); ++j) {
-      const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
-      const double lam = lam_(static_cast<Eigen::Index>(j));
-      acc[c.a] -= im[c.a] * lam;
-      if (c.b >= 0) acc[c.b] += im[c.b] * lam;
-      else src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
-    }
-    if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
-    else enforce_stuck(t, acc);
-  }
+  evaluate_impl<kMach>(t, y, dydt + n_, fc_.data(), &src, &fric, &damp);
   dydt[2 * n_] = src;
   dydt[2 * n_ + 1] = fric;
   dydt[2 * n_ + 2] = damp;

@@ -139,7 +139,9 @@ class HybridSystem final : public OdeSystem {
   template <bool kMach>
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
   template <bool kMach>
-  void evaluate_impl(double t, const double* y, double* acc, double* contact_force);
+  /// Accelerations and contact forces; the rates of source work, friction and damping losses.
+  void evaluate_impl(double t, const double* y, double* acc, double* contact_force, double* src, double* fric,
+                     double* damp);
   template <bool kMach>
   void rhs_general(double t, const double* y, double* dydt);
   /// I_i(q_i)⁻¹ of every body into `im` (constant bodies: 1/I).
