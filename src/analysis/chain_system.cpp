@@ -65,29 +65,9 @@ ChainSystem::ChainSystem(const Model& model)
 
 ChainSystem::LinkState ChainSystem::link_state(const FlatLink& k, const double* y) const {
   const double* v = y + n_;
-  LinkState s{0.0, 0.0, k.inv_ratio, 1.0};
-  double p, dp, ddp;
-  if (k.a >= 0) {
-    if (k.pa) {
-      k.pa->point(mq(k.a, y), &p, &dp, &ddp);
-      s.ja = dp * k.inv_ratio;
-      s.delta += p * k.inv_ratio;
-    } else {
-      s.delta += y[k.a] * k.inv_ratio;
-    }
-    s.rate += v[k.a] * s.ja;
-  }
-  if (k.b >= 0) {
-    if (k.pb) {
-      k.pb->point(mq(k.b, y), &p, &dp, &ddp);
-      s.jb = dp;
-      s.delta -= p;
-    } else {
-      s.delta -= y[k.b];
-    }
-    s.rate -= v[k.b] * s.jb;
-  }
-  return s;
+  const LinkDeflection d = link_deflection(k.a, k.b, k.inv_ratio, k.pa, k.pb, k.a >= 0 ? mq(k.a, y) : 0.0,
+                                           k.b >= 0 ? mq(k.b, y) : 0.0, k.a >= 0 ? v[k.a] : 0.0, k.b >= 0 ? v[k.b] : 0.0);
+  return {d.delta, d.rate, d.ja, d.jb};
 }
 
 void ChainSystem::initial_state(double* y) const {

@@ -88,29 +88,9 @@ __attribute__((noinline)) HybridSystem::PointState HybridSystem::point_state(int
   const FlatLink& k = links_[static_cast<size_t>(l)];
   const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
   const double* v = y + n_;
-  PointState s{0.0, 0.0, k.inv_ratio, 1.0};
-  double p, dp, ddp;
-  if (k.a >= 0) {
-    if (pa) {
-      pa->point(y[k.a], &p, &dp, &ddp);
-      s.ja = dp * k.inv_ratio;
-      s.delta += p * k.inv_ratio;
-    } else {
-      s.delta += y[k.a] * k.inv_ratio;
-    }
-    s.rate += v[k.a] * s.ja;
-  }
-  if (k.b >= 0) {
-    if (pb) {
-      pb->point(y[k.b], &p, &dp, &ddp);
-      s.jb = dp;
-      s.delta -= p;
-    } else {
-      s.delta -= y[k.b];
-    }
-    s.rate -= v[k.b] * s.jb;
-  }
-  return s;
+  const LinkDeflection d = link_deflection(k.a, k.b, k.inv_ratio, pa, pb, k.a >= 0 ? y[k.a] : 0.0,
+                                           k.b >= 0 ? y[k.b] : 0.0, k.a >= 0 ? v[k.a] : 0.0, k.b >= 0 ? v[k.b] : 0.0);
+  return {d.delta, d.rate, d.ja, d.jb};
 }
 
 namespace {

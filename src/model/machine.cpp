@@ -335,6 +335,33 @@ InertiaExpression::InertiaExpression(Expression inertia, std::optional<Expressio
 
 void InertiaExpression::part_inertia(int, double q, double* I, double* dI) const { inertia_.evaluate(q, I, dI); }
 
+LinkDeflection link_deflection(int a, int b, double inv_ratio, const Machine* pa, const Machine* pb, double qa,
+                               double qb, double va, double vb) {
+  LinkDeflection s{0.0, 0.0, inv_ratio, 1.0};
+  double p, dp, ddp;
+  if (a >= 0) {
+    if (pa) {
+      pa->point(qa, &p, &dp, &ddp);
+      s.ja = dp * inv_ratio;
+      s.delta += p * inv_ratio;
+    } else {
+      s.delta += qa * inv_ratio;
+    }
+    s.rate += va * s.ja;
+  }
+  if (b >= 0) {
+    if (pb) {
+      pb->point(qb, &p, &dp, &ddp);
+      s.jb = dp;
+      s.delta -= p;
+    } else {
+      s.delta -= qb;
+    }
+    s.rate -= vb * s.jb;
+  }
+  return s;
+}
+
 bool has_velocity_jumps(const Model& m) {
   for (const auto& b : m.bodies)
     if (b.machine && b.machine->has_jumps()) return true;

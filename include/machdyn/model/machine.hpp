@@ -268,6 +268,15 @@ class InertiaExpression final : public Machine {
   double period_;
 };
 
+/// Deflection of a link whose ends may be machine output points p(q) (Link::a_point, b_point):
+///   δ = p_a(q_a)/i − p_b(q_b),  δ̇ = ja v_a − jb v_b,  ja = p_a′(q_a)/i, jb = p_b′(q_b)
+/// (a plain end has p(q) = q, so ja = 1/i, jb = 1). An end with index < 0 is the ground.
+struct LinkDeflection {
+  double delta, rate, ja, jb;
+};
+LinkDeflection link_deflection(int a, int b, double inv_ratio, const Machine* pa, const Machine* pb, double qa,
+                               double qb, double va, double vb);
+
 /// Whether a body of `m` is a machine with velocity jumps (a stepwise gear drive).
 bool has_velocity_jumps(const Model& m);
 
