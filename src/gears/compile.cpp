@@ -90,13 +90,20 @@ GearModel compile_gears(const SpecNode& root) {
   m.where.root = root.loc;
   m.where.law = place("law");
   m.where.L = place("L");
-  m.where.L_installed = place("L_installed");
+  m.where.L_installed = root.find("L_installed") ? place("L_installed") : place("clearance");
   m.where.z = place("z");
   m.where.zH = place("zH");
 
   auto law_kind = fr.word("law", {"walking", "travel", "expression", "table"}, std::string("walking"));
   auto L = fr.positive("L", dim::length);
-  auto L_inst = fr.positive("L_installed", dim::length, L ? std::optional<double>(*L) : std::optional<double>(1.0));
+  // The installation distance: absolute (L_installed) or as the clearance over L, so that
+  // `--set L=...` keeps the example's 0.5 mm of the paper (143.5 → 144 mm).
+  const bool has_installed = root.find("L_installed") != nullptr, has_clearance = root.find("clearance") != nullptr;
+  if (has_installed && has_clearance)
+    fr.error_at("clearance", "give either 'L_installed' or 'clearance' (installation distance − L), not both");
+  auto clearance = fr.quantity("clearance", dim::length, 0.0);
+  auto L_inst = fr.positive("L_installed", dim::length,
+                            L && clearance ? std::optional<double>(*L + *clearance) : std::optional<double>(1.0));
   auto z = fr.integer("z", 1, 100000);
   auto zH = fr.integer("zH", 1, 100000);
   auto N = fr.integer("sectors", 1, 1000, 4L);

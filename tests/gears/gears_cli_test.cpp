@@ -92,13 +92,18 @@ TEST(GearsCli, OutputFolderHasTableDrawingsAndDxf) {
   EXPECT_EQ(dxf.str().substr(dxf.str().size() - 4), "EOF\n");
 }
 
-// (--set L alone would put L above the file's L_installed = 144 mm: refused, see the catalogue.)
+// The example gives the installation as a clearance over L, so --set L alone moves both, as the
+// issue's `--set L="150 mm"` expects; L_installed can still be set absolutely.
 TEST(GearsCli, SetOverridesATopLevelField) {
-  const CliRun r = run(kExample + " --json --set L=\"150 mm\" --set L_installed=\"150.5 mm\"");
+  const CliRun r = run(kExample + " --json --set L=\"150 mm\"");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   // the sector angles do not depend on L, the radii scale with it
   EXPECT_NEAR(j["sectors"][0]["rH"].get<double>(), 82.19826833599573 * 150.0 / 143.5, 1e-6);
+  // both forms of the installation distance at once are refused at the clearance
+  const CliRun both = run(kExample + " --set L_installed=\"150.5 mm\"");
+  EXPECT_EQ(both.code, 2);
+  EXPECT_NE(both.out.find("give either 'L_installed' or 'clearance'"), std::string::npos) << both.out;
 }
 
 // The bad-input catalogue: each case names the exact place.

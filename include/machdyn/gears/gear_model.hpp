@@ -13,7 +13,7 @@
 ///   ratio_table  [[φ, i], ...], law table: one big sector, φ with an angle unit
 ///   normalize    true | false (default false): scale an expression/table law so that it closes
 ///   L            calculation centre distance (length, > 0)
-///   L_installed  installation centre distance (length, default L, L ≤ L_installed < L + m)
+///   L_installed (or clearance = L_installed − L)  installation centre distance (length, default L, L ≤ L_installed < L + m)
 ///   z, zH        teeth of the pinion and of the wheel
 ///   sectors      number N of big sectors of the wheel (default 4); z_H/N teeth per big sector
 ///   tolerance    angle, the successive approximations stop below it (default 1e-6 rad, as the paper)
