@@ -232,7 +232,7 @@ class HybridRun {
             if (sys_.link_uses_point(l)) st.interpolate(tm, ytmp_.data());  // the rate depends on q there
             return sys_.link_load_rate(l, ytmp_.data(), dtmp_.data());
           },
-          ta, r0, tb, r1, 1e-15 * std::max(1.0, std::abs(tb)), 100);
+          ta, r0, tb, r1, 1e-15 * std::max(1.0, std::abs(tb)), 100, /*bisect_every=*/0);  // a smooth rate
       const double te = 0.5 * (br.lo + br.hi);
       st.interpolate(te, ytmp_.data());
       consider(l, te, sys_.link_load(l, ytmp_.data()), ytmp_.data());

@@ -34,13 +34,13 @@ void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_ne
 }
 
 double PeakTracker::locate_extremum(const Stepper& s, const Signal& g, double t0, double r0, double t1, double r1) {
-  std::vector<double> dy(dy_.size());
+  // dy_ is free here: the end-of-step derivative comes from s.dydt().
   const Bracket br = illinois(
       [&](double t) {
-        s.derivative(t, dy.data());
-        return g.dot(dy.data());
+        s.derivative(t, dy_.data());
+        return g.dot(dy_.data());
       },
-      t0, r0, t1, r1, 1e-15 * std::max(1.0, std::abs(t1)), 100);
+      t0, r0, t1, r1, 1e-15 * std::max(1.0, std::abs(t1)), 100, /*bisect_every=*/0);  // a smooth rate
   return 0.5 * (br.lo + br.hi);
 }
 
