@@ -43,17 +43,7 @@ double gauss(const std::function<double(double)>& f, double a, double b, int pan
   return s;
 }
 
-const char* kCrank = R"Y(
-  crank:
-    type: crank-slider
-    crank_radius: 40 mm
-    rod_length: 160 mm
-    rod_mass: 1.2 kg
-    rod_com: 80 mm
-    rod_inertia: 0.00256 kg*m^2
-    piston_mass: 1.6 kg
-    crank_inertia: 0.08 kg*m^2
-)Y";
+const std::string kCrank = test::kCrankSliderBody;
 
 // Claim: a crank-slider braked from 50 rad/s (braking torque M_b = 30 N·m, a constant gas force
 // 500 N on the piston, so Q(φ) = F ds/dφ) stops where the energy integral says,

@@ -23,18 +23,8 @@ using test::column;
 constexpr double kPi = std::numbers::pi;
 
 
-const char* kCrank = R"Y(
-  crank:
-    type: crank-slider
-    crank_radius: 40 mm
-    rod_length: 160 mm
-    rod_mass: 1.2 kg
-    rod_com: 80 mm
-    rod_inertia: 0.00256 kg*m^2
-    piston_mass: 1.6 kg
-    crank_inertia: 0.08 kg*m^2
-    piston_force: {against: position, points: [[0, 3000 N], [20 mm, 500 N], [80 mm, 0 N]]}
-)Y";
+const std::string kCrank = std::string(test::kCrankSliderBody) +
+                           "    piston_force: {against: position, points: [[0, 3000 N], [20 mm, 500 N], [80 mm, 0 N]]}\n";
 
 // Claim: in motor — shaft spring — crank-slider (undamped, constant motor torque M), the energy
 // ½ I_m ω_m² + ½ I(φ) ω² + ½ c (q_m − φ)² − M q_m − A_gas(φ) stays at its initial value to 1e-8

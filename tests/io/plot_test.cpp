@@ -15,6 +15,8 @@
 namespace machdyn {
 namespace {
 
+using test::have_gnuplot;
+
 plot::Figure two_series() {
   plot::Figure f;
   f.id = "demo";
@@ -25,15 +27,6 @@ plot::Figure two_series() {
   f.series.push_back(plot::make_series("c2", {0, 1}, {5, 6}, plot::Style::steps));
   f.ref_lines.push_back(plot::make_ref_line(354, "c1* = 354 N·m", 0));
   return f;
-}
-
-bool have_gnuplot() {
-  try {
-    plot::find_gnuplot();
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
 }
 
 // Claim: the data file has one block per series, in order, each headed by its name; a NaN breaks

@@ -31,8 +31,12 @@ std::string slurp(const std::filesystem::path& p);
 /// The lines of a text, without their line ends.
 std::vector<std::string> lines_of(const std::string& text);
 
-/// Whether gnuplot is on PATH (the figure tests skip, saying so, without it).
+/// Whether the library finds gnuplot (the figure tests skip, saying so, without it).
 bool have_gnuplot();
+
+/// A body `crank` under `bodies:` (a crank-slider: r = 40 mm, l = 160 mm, rod 1.2 kg, piston 1.6 kg,
+/// crank 0.08 kg·m²), for tests to append their own fields to.
+extern const char* const kCrankSliderBody;
 
 /// Index of the output column called `name`; records a test failure if there is none.
 std::size_t column(const SimulationResult& r, const std::string& name);

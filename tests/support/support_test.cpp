@@ -1,6 +1,8 @@
 // Implementation of the test helpers (the file name puts it into the test executable).
 #include "support/support.hpp"
 
+#include "machdyn/io/plot.hpp"
+
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -65,7 +67,26 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+bool have_gnuplot() {
+  try {
+    plot::find_gnuplot();  // $MACHDYN_GNUPLOT or gnuplot on PATH, as the library looks for it
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+const char* const kCrankSliderBody = R"Y(
+  crank:
+    type: crank-slider
+    crank_radius: 40 mm
+    rod_length: 160 mm
+    rod_mass: 1.2 kg
+    rod_com: 80 mm
+    rod_inertia: 0.00256 kg*m^2
+    piston_mass: 1.6 kg
+    crank_inertia: 0.08 kg*m^2
+)Y";
 
 std::size_t column(const SimulationResult& r, const std::string& name) {
   for (std::size_t c = 0; c < r.column_names.size(); ++c)

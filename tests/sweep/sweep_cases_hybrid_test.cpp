@@ -20,6 +20,8 @@
 namespace machdyn {
 namespace {
 
+using test::have_gnuplot;
+
 using test::slurp;
 using test::lines_of;
 
@@ -31,15 +33,6 @@ size_t column(const std::vector<std::string>& header, const std::string& name) {
   const auto it = std::find(header.begin(), header.end(), name);
   EXPECT_NE(it, header.end()) << "no column " << name;
   return static_cast<size_t>(it - header.begin());
-}
-
-bool have_gnuplot() {
-  try {
-    plot::find_gnuplot();
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
 }
 
 SweepRequest modes_request(std::vector<std::string> cases) {
