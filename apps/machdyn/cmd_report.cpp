@@ -106,7 +106,8 @@ int run_report(const ReportArgs& a) {
     cases.push_back(c);
   }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
-  const std::string out = a.out.empty() ? (default_out_dir(a.model) / "report.html").string() : a.out;
+  // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
+  const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
                            static_cast<double>(html.size()) / 1e3,

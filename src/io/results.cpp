@@ -6,7 +6,7 @@
 
 namespace machdyn {
 
-std::string timeseries_csv(const SimulationResult& r) {
+void timeseries_csv(const SimulationResult& r, const ChunkSink& sink) {
   std::string s;
   for (size_t c = 0; c < r.column_names.size(); ++c) {
     if (c) s += ',';
@@ -14,15 +14,31 @@ std::string timeseries_csv(const SimulationResult& r) {
   }
   s += '\n';
   const size_t rows = r.columns.empty() ? 0 : r.columns[0].size();
-  s.reserve(s.size() + rows * r.columns.size() * 24);
+  // About 1 MB at a time: a long run's CSV is never held whole in memory.
+  constexpr size_t chunk = size_t{1} << 20;
+  s.reserve(chunk + 4096);
   for (size_t i = 0; i < rows; ++i) {
     for (size_t c = 0; c < r.columns.size(); ++c) {
       if (c) s += ',';
       fmt::format_to(std::back_inserter(s), "{:.17g}", r.columns[c][i]);
     }
     s += '\n';
+    if (s.size() >= chunk) {
+      sink(s);
+      s.clear();
+    }
   }
-  return s;
+  sink(s);
+}
+
+std::string timeseries_csv(const SimulationResult& r) {
+  std::string all;
+  timeseries_csv(r, [&](std::string_view d) { all.append(d); });
+  return all;
+}
+
+void write_timeseries_csv(const std::filesystem::path& path, const SimulationResult& r) {
+  write_file_atomic(path, [&](const ChunkSink& sink) { timeseries_csv(r, sink); });
 }
 
 namespace {

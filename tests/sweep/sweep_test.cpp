@@ -201,16 +201,33 @@ TEST(Sweep, JournalRecordsDetectDamage) {
   EXPECT_FALSE(parse_journal_record(std::string(40, '\0') + "\n", text));
 }
 
-// Claim: a new sweep never overwrites a journal holding rows, and --resume refuses the journal
-// of another sweep.
+// Claim: a new sweep never overwrites a journal holding rows — neither of the same plan nor of a
+// changed one (the README's `:5` → `:6`) — and --resume refuses the journal of another sweep; the
+// earlier journal and table stay byte for byte.
 TEST(Sweep, JournalIsNeverOverwrittenByMistake) {
   const auto plan = make_sweep_plan(hoist_request({"c1.stiffness=1e4,2e4"}));
   const auto dir = test::temp_dir() / "guard";
   ASSERT_TRUE(run_into(plan, dir, 1).complete);
+  const std::string journal = slurp(dir / "sweep.journal"), table = slurp(dir / "sweep.csv");
   EXPECT_THROW(run_into(plan, dir, 1), InputError);
   const auto other = make_sweep_plan(hoist_request({"c1.stiffness=1e4,3e4"}));
   EXPECT_THROW(run_into(other, dir, 1, true), InputError);
-  EXPECT_EQ(lines_of(slurp(dir / "sweep.journal")).size(), 3u);
+  const auto changed = make_sweep_plan(hoist_request({"c1.stiffness=1e4:2e4:3"}));
+  try {
+    run_into(changed, dir, 1);
+    ADD_FAILURE() << "a changed plan replaced the finished sweep";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another sweep"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "sweep.journal"), journal);
+  EXPECT_EQ(slurp(dir / "sweep.csv"), table);
+  EXPECT_EQ(lines_of(journal).size(), 3u);
+  // A file that is not a journal is not ours to replace.
+  const auto alien = test::temp_dir() / "guard-alien";
+  fs::create_directories(alien);
+  std::ofstream(alien / "sweep.journal") << "my notes\n";
+  EXPECT_THROW(run_into(plan, alien, 1), InputError);
+  EXPECT_EQ(slurp(alien / "sweep.journal"), "my notes\n");
 }
 
 // Claim: with the stop flag set no run starts, no table is written, and --resume then finishes.

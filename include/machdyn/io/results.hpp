@@ -9,6 +9,7 @@
 
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/model/model.hpp"
 
 namespace machdyn {
@@ -16,6 +17,10 @@ namespace machdyn {
 /// CSV: a header of column names (`t_s`, `I1.position_rad`, …, `c1.load_N_m`), then one row per
 /// output time, 17 significant digits.
 std::string timeseries_csv(const SimulationResult& r);
+/// The same CSV handed to `sink` in pieces of about 1 MB.
+void timeseries_csv(const SimulationResult& r, const ChunkSink& sink);
+/// Writes the CSV to `path` atomically, in pieces (io/output_file.hpp); throws OutputError.
+void write_timeseries_csv(const std::filesystem::path& path, const SimulationResult& r);
 
 /// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static, dynamic_factor,
 /// unit}}, solver: {method, reason, steps, rejected_steps, rhs_evals, jac_evals, wall_time_s}}`.
