@@ -14,9 +14,9 @@ trap 'rm -rf "$tmp"' EXIT
 "$machdyn" gears examples/walking-drive-gears.yaml --plot -o "$tmp/gears" >/dev/null
 "$machdyn" simulate examples/travel-start.yaml --plot -o "$tmp/travel" >/dev/null
 for k in 1 2 3; do
-  "$machdyn" energy examples/rolling-wheel-$k.yaml --plot --plot-dir "$tmp/wheel-$k" >/dev/null
+  "$machdyn" energy examples/rolling-wheel-$k.yaml --plot -o "$tmp/wheel-$k" >/dev/null
 done
-"$machdyn" energy examples/crank-slider.yaml --plot --plot-dir "$tmp/crank" >/dev/null
+"$machdyn" energy examples/crank-slider.yaml --plot -o "$tmp/crank" >/dev/null
 "$machdyn" report examples/travel-start.yaml --quiet -o "$tmp/report.html" >/dev/null
 "$machdyn" report examples/hoist-modes.yaml --all-cases --quiet -o "$tmp/cases.html" >/dev/null
 mkdir -p docs/img
