@@ -200,7 +200,8 @@ int run_modes(const std::string& model_path, const std::vector<std::string>& set
     std::cout << j.dump(2) << '\n';
     return 0;
   }
-  std::cout << fmt::format("model: {} ({})\nrigid-body modes: {}\n", m.name, m.source, modes.rigid_body_modes);
+  std::cout << fmt::format("model: {} ({})\ntopology: {}\nrigid-body modes: {}\n", m.name, m.source,
+                           j["topology"]["note"].get<std::string>(), modes.rigid_body_modes);
   std::cout << fmt::format("{:>4} {:>16} {:>14}   mass-normalized shape ({})\n", "mode", "omega [rad/s]", "f [Hz]",
                            [&] {
                              std::string s;
