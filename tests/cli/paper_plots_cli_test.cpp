@@ -68,7 +68,8 @@ TEST(PaperPlotsCli, HybridSimulatePlotWritesCyclogram) {
                         "body_speeds.png", "timeseries.csv", "summary.json"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   const std::string svg = slurp(dir / "load_cyclogram.svg");
-  for (const char* s : {"F_sc = 9000 N", "adhesion slips", "c at breakaway", "link force F, N"})
+  for (const char* s : {"F_sc = 9 kN", "adhesion slips", "c at breakaway", "link force F, kN",
+                        "Travel drive start-up (paper 001): load cyclogram"})
     EXPECT_NE(svg.find(s), std::string::npos) << s;
 }
 
