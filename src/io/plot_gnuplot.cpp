@@ -169,6 +169,8 @@ std::string gnuplot_script(const Figure& fig, Format format, const std::string& 
     g += "set border 11 lw 1\nset y2tics nomirror out\nset y2label " + quote(fig.y2.label()) + "\n";
   }
   g += ticks_cmd("x", fig.x) + ticks_cmd("y", fig.y);
+  if (fig.x.log) g += "set logscale x\n";
+  if (fig.y.log) g += "set logscale y\n";
   g += fmt::format("set key {} noautotitle samplen 2.5 spacing 1.15 width 1\n", key_position(fig.legend));
 
   // Plain decimal tick labels, never e-notation (the figure functions scale to kN, kN·m, ...).

@@ -24,6 +24,7 @@ struct Axis {
   std::optional<double> min, max;    ///< fixed range; autoscale when empty
   /// Tick labels at given positions (e.g. body names on the x axis of a mode shape); empty: numbers.
   std::vector<std::pair<double, std::string>> ticks;
+  bool log = false;                  ///< logarithmic scale (a log-spaced sweep design); values > 0
   [[nodiscard]] std::string label() const;  ///< "quantity, unit" or "quantity"
   [[nodiscard]] bool used() const { return !quantity.empty(); }
 };
