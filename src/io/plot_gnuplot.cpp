@@ -57,6 +57,10 @@ std::string range_cmd(const char* axis, const Axis& a, Range r, double pad) {
   if (a.min) r.lo = *a.min;
   if (a.max) r.hi = *a.max;
   if (!r.valid()) return fmt::format("set autoscale {}\n", axis);
+  if (a.log && r.lo > 0) {  // the margin as a factor: the same share of the log axis on each side
+    const double ratio = std::pow(r.hi / r.lo, pad);
+    return fmt::format("set {}range [{:.9g}:{:.9g}]\n", axis, a.min ? *a.min : r.lo / ratio, a.max ? *a.max : r.hi * ratio);
+  }
   double span = r.hi - r.lo;
   if (span <= 0) span = std::max(std::abs(r.hi), 1.0);
   const double lo = a.min ? *a.min : r.lo - pad * span, hi = a.max ? *a.max : r.hi + pad * span;

@@ -350,6 +350,15 @@ plot::Figure sweep_plot_figure(const std::string& data_csv, const SweepPlotSpec&
   f.x = spec.input_axes[0];
   f.y = spec.output_axis;
   categorical_x(d, f.x);
+  // A log axis over less than a decade or two gets one labelled tick at every design value.
+  if (f.x.log && f.x.ticks.empty()) {
+    std::vector<double> xs;
+    for (double v : d.x)
+      if (std::isfinite(v) && v > 0 && std::find(xs.begin(), xs.end(), v) == xs.end()) xs.push_back(v);
+    std::sort(xs.begin(), xs.end());
+    if (xs.size() <= 12)
+      for (double v : xs) f.x.ticks.emplace_back(v, fmt::format("{:.4g}", v));
+  }
   auto style = [](size_t points) { return points <= 60 ? plot::Style::linepoints : plot::Style::line; };
   if (spec.inputs.size() == 1) {
     std::vector<double> x = d.x, z = d.z;
