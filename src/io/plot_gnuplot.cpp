@@ -219,15 +219,17 @@ std::string gnuplot_script(const Figure& fig, Format format, const std::string& 
     g += range_cmd("y", fig.y, ry, 0.08);
     if (y2) g += range_cmd("y2", fig.y2, ry2, 0.08);
   }
-  // Events: dotted vertical lines, labels written upwards just inside the top.
+  // Events: dotted vertical lines, labels written upwards from just inside the bottom (the peak
+  // note sits at the top) on an opaque box, so a curve behind them does not garble them.
   const std::string small_font = format == Format::svg ? "DejaVu Sans,9" : "DejaVu Sans,18";
+  if (!fig.events.empty()) g += "set style textbox opaque noborder\n";
   for (const auto& e : fig.events) {
     g += fmt::format("set arrow from first {0:.10g}, graph 0 to first {0:.10g}, graph 1 nohead lc rgb '#707070' lw 1 "
                      "dt 3 back\n",
                      e.x);
     if (!e.label.empty())
-      g += fmt::format("set label {} at first {:.10g}, graph 0.98 rotate by 90 right offset -0.4,0 tc rgb '#505050' "
-                       "font '{}' front\n",
+      g += fmt::format("set label {} at first {:.10g}, graph 0.02 rotate by 90 left offset -0.4,0 tc rgb '#505050' "
+                       "font '{}' boxed front\n",
                        quote(e.label), e.x, small_font);
   }
   for (const auto& n : fig.notes) {
