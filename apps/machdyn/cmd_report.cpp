@@ -18,6 +18,7 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -32,6 +33,7 @@ struct ReportArgs {
   std::vector<std::string> sets;
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
+  bool large_output = false;  ///< --large-output: embed series above the size limit
   std::string command_line;
 };
 
@@ -81,6 +83,16 @@ int run_report(const ReportArgs& a) {
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
                            {}, {}, std::nullopt});
+  // The report embeds every series: the same size limit as simulate's time series, before any run.
+  if (!a.large_output) {
+    std::uint64_t total = 0;
+    for (const auto& run : runs) total += estimate_timeseries(run.model).csv_bytes;
+    if (total > kDefaultOutputLimitBytes)
+      throw InputError(Location{a.model, 0, 0},
+                       fmt::format("the report would embed about {} of time series, more than the limit of {}; raise "
+                                   "simulation.dt_out or pass --large-output",
+                                   byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
+  }
   for (auto& run : runs) {
     ProgressBar bar(a.quiet);
     if (a.all_cases) {
@@ -124,6 +136,7 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
   cmd->add_option("-o,--out", args->out, "The HTML file to write (default out/MODEL/report.html)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar on stderr");
+  cmd->add_flag("--large-output", args->large_output, "Embed the time series even when they would exceed 1 GB");
   cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
   cmd->add_flag("--all-cases", args->all_cases,
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");

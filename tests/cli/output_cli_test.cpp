@@ -105,7 +105,8 @@ TEST(OutputCli, SizeEstimateMatchesTheWrittenTimeSeries) {
 }
 
 // Claim: a time series above the limit (the issue's `dt_out = 1e-7`) is refused before the run
-// with exit 2, its estimated size and both ways out, and writes nothing; a small one passes.
+// with exit 2, its estimated size and both ways out, and writes nothing — by simulate, by
+// simulate --all-cases (the sum of the cases) and by report; a small one passes.
 TEST(OutputCli, OversizeTimeSeriesIsRefusedBeforeTheRun) {
   const auto dir = test::temp_dir() / "oversize";
   const std::string model = test::example("hoist-3mass.yaml");
@@ -119,6 +120,11 @@ TEST(OutputCli, OversizeTimeSeriesIsRefusedBeforeTheRun) {
                                  "' --all-cases --set simulation.dt_out=1e-6 -o '" + dir.string() + "'");
   EXPECT_EQ(all.exit_code, 2) << all.err;
   EXPECT_NE(all.err.find("--all-cases: the time series of the 11 cases would be about"), std::string::npos) << all.err;
+  EXPECT_FALSE(fs::exists(dir));
+  const auto rep = test::run_cli("report '" + model + "' --quiet --set simulation.dt_out=1e-7 -o '" +
+                                 (dir / "r.html").string() + "'");
+  EXPECT_EQ(rep.exit_code, 2) << rep.err;
+  EXPECT_NE(rep.err.find("the report would embed about 1.08 GB"), std::string::npos) << rep.err;
   EXPECT_FALSE(fs::exists(dir));
   // The library check with a small limit, against the same estimate.
   const Model m = load_model(model);
