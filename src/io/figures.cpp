@@ -244,11 +244,19 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
 plot::Figure contacts_figure(const Model& m, const SimulationResult& r) {
   if (m.contacts.empty() || !r.hybrid.active)
     throw std::invalid_argument("contacts figure: needs the hybrid (event-driven) result of a model with contacts");
+  return contacts_figure(m, r, m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind);
+}
+
+plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind kind) {
+  if (m.contacts.empty() || !r.hybrid.active)
+    throw std::invalid_argument("contacts figure: needs the hybrid (event-driven) result of a model with contacts");
+  const BodyKind first = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
   plot::Figure f;
-  f.id = "contacts";
+  // The figure of the first contact's kind is `contacts`; the other kind (a brake in N·m beside a
+  // wheel contact in N) gets its own, so no contact is left out for its unit.
+  f.id = kind == first ? "contacts" : kind == BodyKind::rotational ? "contacts_torques" : "contacts_forces";
   f.title = titled(m, "contacts: force (solid, left), sliding velocity (dashed, right)");
   f.x = plot::make_axis("time t", "s");
-  const auto kind = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
   const bool rot = kind == BodyKind::rotational;
   double largest = 0.0;
   for (const auto& c : m.contacts)
@@ -279,7 +287,15 @@ std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationRes
   if (hybrid && !m.links.empty()) figs.push_back(load_cyclogram_figure(m, r));
   if (!m.links.empty()) figs.push_back(link_loads_figure(m, r));
   figs.push_back(body_speeds_figure(m, r));
-  if (hybrid) figs.push_back(contacts_figure(m, r));
+  if (hybrid) {
+    const BodyKind first = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
+    figs.push_back(contacts_figure(m, r, first));
+    const bool other = std::any_of(m.contacts.begin(), m.contacts.end(), [&](const FrictionContact& c) {
+      return m.bodies[static_cast<std::size_t>(c.a)].kind != first;
+    });
+    if (other)
+      figs.push_back(contacts_figure(m, r, first == BodyKind::rotational ? BodyKind::translational : BodyKind::rotational));
+  }
   return figs;
 }
 

@@ -80,6 +80,33 @@ TEST(PaperFigures, ContactsFigureHasForceAndSlidingVelocityOfEveryContact) {
   EXPECT_EQ(figs[3].id, "contacts");
 }
 
+// Claim: a model with contacts on bodies of both kinds (a brake in N·m on the drive, wheel adhesion
+// in N) draws every contact: one contacts figure per kind, each with force and sliding velocity of
+// exactly the contacts of its kind.
+TEST(PaperFigures, ContactsOfBothKindsAreAllDrawn) {
+  const Model m = load_model(test::write_temp("mixed-contacts.yaml", R"(bodies:
+  motor: {type: rotational, inertia: 0.5}
+  cart: {type: translational, mass: 100}
+links:
+  rope: {type: spring, between: [motor, cart], ratio: 10, stiffness: 1e5}
+loads:
+  M: {type: constant, body: motor, value: 20}
+contacts:
+  rail: {between: [cart, ground], static: 300, kinetic: 250}
+brakes:
+  T: {body: motor, holding: 30, braking: 25, time: 0.05, ramp: 0.01}
+simulation: {t_end: 0.1}
+)"));
+  const SimulationResult r = simulate(m);
+  const auto figs = simulation_figures(m, r);
+  std::vector<std::string> names;
+  for (const auto& f : figs)
+    if (f.id.rfind("contacts", 0) == 0)
+      for (const auto& s : f.series) names.push_back(f.id + "/" + s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"contacts/rail: force", "contacts/rail: sliding velocity",
+                                             "contacts_torques/T: force", "contacts_torques/T: sliding velocity"}));
+}
+
 // Claim: simulate() with a progress callback routes a hybrid model through simulate_hybrid with
 // that callback: it reports the mode events so far, and the last report (finished) counts every
 // event of the result except the `initial` entries.

@@ -36,6 +36,11 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r);
 /// Contact forces (left axis) and sliding velocities u = v_a − v_b (right axis) of the friction
 /// contacts and brakes against time, slip phases shaded as in the cyclogram.
 plot::Figure contacts_figure(const Model& m, const SimulationResult& r);
+/// The same for the contacts on bodies of `kind` only (one unit per axis): id `contacts` for the
+/// first contact's kind, `contacts_torques` / `contacts_forces` for the other. simulation_figures
+/// draws both when a model has contacts of both kinds (a drum brake beside wheel adhesion), so
+/// none is left out.
+plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind kind);
 
 /// The figures `simulate --plot` writes: link loads (when the model has links), body speeds; for a
 /// hybrid model with links and contacts the load cyclogram and the contacts figure in addition.
