@@ -32,6 +32,7 @@ struct SimulateArgs {
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: write a time series above the size limit
+  bool rpm = false;           ///< --rpm: angular speeds of the figures in rpm
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -165,7 +166,9 @@ int run_simulate(const SimulateArgs& a) {
   const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
   const auto summary = simulation_summary(m, r);
   std::vector<std::string> figures;
-  if (a.plot) figures = write_figures(out_dir, simulation_figures(m, r));
+  FigureOptions fig_options;
+  fig_options.rpm = a.rpm;
+  if (a.plot) figures = write_figures(out_dir, simulation_figures(m, r, fig_options));
   write_timeseries_csv(std::filesystem::path(out_dir) / "timeseries.csv", r);
   write_file_atomic((std::filesystem::path(out_dir) / "summary.json").string(), summary.dump(2) + "\n");
   if (a.json) {
@@ -238,6 +241,7 @@ void register_simulate(CLI::App& app, int& exit_code) {
   cmd->add_flag("--all-cases", args->all_cases,
                 "Run every load case: one table of peak link loads and dynamic factors, outputs in OUT/CASE/; "
                 "if a case fails nothing is written");
+  cmd->add_flag("--rpm", args->rpm, "With --plot: angular speeds in rpm instead of rad/s");
   cmd->add_flag("--large-output", args->large_output,
                 "Write the time series even when it would exceed 1 GB (simulation.t_end/dt_out rows)");
   cmd->callback([args, &exit_code] {

@@ -148,7 +148,9 @@ plot::Figure link_loads_figure(const Model& m, const SimulationResult& r) {
   return f;
 }
 
-plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) {
+plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) { return body_speeds_figure(m, r, {}); }
+
+plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r, const FigureOptions& opt) {
   plot::Figure f;
   f.id = "body_speeds";
   f.title = titled(m, "body speeds");
@@ -156,11 +158,16 @@ plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) {
   const auto& t = column(r, "t_s");
   const bool any_rot = std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return b.kind == BodyKind::rotational; });
   const bool any_tr = std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return b.kind == BodyKind::translational; });
-  f.y = any_rot ? plot::make_axis("angular velocity ω", "rad/s") : plot::make_axis("velocity v", "m/s");
+  f.y = !any_rot ? plot::make_axis("velocity v", "m/s")
+        : opt.rpm ? plot::make_axis("speed n", "rpm")
+                  : plot::make_axis("angular velocity ω", "rad/s");
   if (any_rot && any_tr) f.y2 = plot::make_axis("velocity v", "m/s");
-  for (const Body& b : m.bodies)
-    f.series.push_back(plot::make_series(b.name, t, column(r, b.name + ".velocity_"), plot::Style::line,
-                                         any_rot && b.kind == BodyKind::translational ? 2 : 1));
+  const double to_rpm = 60.0 / (2.0 * kPi);
+  for (const Body& b : m.bodies) {
+    const bool rot = b.kind == BodyKind::rotational;
+    f.series.push_back(plot::make_series(b.name, t, scaled(column(r, b.name + ".velocity_"), rot && opt.rpm ? to_rpm : 1.0),
+                                         plot::Style::line, any_rot && !rot ? 2 : 1));
+  }
   f.legend = plot::Figure::Legend::below;
   return f;
 }
@@ -281,12 +288,12 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind
   return f;
 }
 
-std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r) {
+std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r, const FigureOptions& opt) {
   std::vector<plot::Figure> figs;
   const bool hybrid = r.hybrid.active && !m.contacts.empty();
   if (hybrid && !m.links.empty()) figs.push_back(load_cyclogram_figure(m, r));
   if (!m.links.empty()) figs.push_back(link_loads_figure(m, r));
-  figs.push_back(body_speeds_figure(m, r));
+  figs.push_back(body_speeds_figure(m, r, opt));
   if (hybrid) {
     const BodyKind first = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
     figs.push_back(contacts_figure(m, r, first));

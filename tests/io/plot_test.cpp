@@ -200,5 +200,21 @@ TEST(Figures, DualAxisZerosAlignAndTicksArePlainDecimals) {
     EXPECT_NE(g.find(fmt), std::string::npos) << fmt;
 }
 
+// Claim: with the rpm option the body speeds of rotational bodies are n = 60 ω / 2π on an axis in
+// rpm; the default stays in rad/s.
+TEST(Figures, BodySpeedsInRpmOnRequest) {
+  const Model m = load_model(test::example("hoist-3mass.yaml"), {"simulation.t_end=0.05"});
+  const SimulationResult r = simulate(m);
+  FigureOptions opt;
+  opt.rpm = true;
+  const plot::Figure f = body_speeds_figure(m, r, opt), g = body_speeds_figure(m, r);
+  EXPECT_EQ(f.y.label(), "speed n, rpm");
+  EXPECT_EQ(g.y.label(), "angular velocity ω, rad/s");
+  const auto& omega = r.columns[test::column(r, "I1.velocity_rad_s")];
+  ASSERT_EQ(f.series[0].y.size(), omega.size());
+  for (std::size_t k = 0; k < omega.size(); k += 7) EXPECT_NEAR(f.series[0].y[k], omega[k] * 30.0 / M_PI,
+                                                     1e-9 * (1 + std::abs(omega[k]) * 10));
+}
+
 }  // namespace
 }  // namespace machdyn
