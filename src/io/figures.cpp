@@ -310,10 +310,10 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
   plot::Figure f;
   f.id = "mode_shapes";
   const Eigen::Index shown = std::min<Eigen::Index>(modes.shapes.cols(), std::max(1, max_modes));
-  f.title = shown < modes.shapes.cols()
-                ? fmt::format("The {} lowest of {} elastic mode shapes (each scaled to max |φ| = 1)", shown,
-                              modes.shapes.cols())
-                : std::string("Elastic mode shapes (each scaled to max |φ| = 1)");
+  f.title = titled(m, shown < modes.shapes.cols()
+                         ? fmt::format("the {} lowest of {} elastic mode shapes (each scaled to max |φ| = 1)", shown,
+                                       modes.shapes.cols())
+                         : std::string("elastic mode shapes (each scaled to max |φ| = 1)"));
   f.x = plot::make_axis("body", "");
   // Every body named while the names fit; a long chain names every k-th body.
   std::size_t name_chars = 0;

@@ -205,7 +205,7 @@ TEST(PaperFigures, ModeShapesOfTwentyMassChainStayReadable) {
   ASSERT_EQ(modes.shapes.cols(), 19);
   const plot::Figure f = mode_shapes_figure(m, modes);
   EXPECT_EQ(f.series.size(), 6u);
-  EXPECT_EQ(f.title, "The 6 lowest of 19 elastic mode shapes (each scaled to max |φ| = 1)");
+  EXPECT_EQ(f.title, m.name + ": the 6 lowest of 19 elastic mode shapes (each scaled to max |φ| = 1)");
   EXPECT_EQ(f.series[0].style, plot::Style::line);
   std::size_t chars = 0;
   for (const auto& t : f.x.ticks) chars += t.second.size() + 2;
