@@ -178,11 +178,11 @@ PYBIND11_MODULE(_machdyn, mod) {
         diags.append(py::make_tuple(d.where.file, d.where.line, d.where.column, d.message));
         text += (text.empty() ? "" : "\n") + d.str();
       }
-      py::object exc = input_error(py::str(text));
+      py::object exc = py::reinterpret_borrow<py::object>(input_error.ptr())(py::str(text));
       exc.attr("diagnostics") = diags;
       PyErr_SetObject(input_error.ptr(), exc.ptr());
     } catch (const SolverError& e) {
-      py::object exc = solver_error(py::str(e.what()));
+      py::object exc = py::reinterpret_borrow<py::object>(solver_error.ptr())(py::str(e.what()));
       exc.attr("element") = e.element();
       exc.attr("time") = e.time();
       PyErr_SetObject(solver_error.ptr(), exc.ptr());

@@ -201,7 +201,8 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
         out = tmp.name
     try:
         info = _machdyn.sweep(model._core, *args, _os.fspath(out), int(threads or 0))
-        df = pd.read_csv(info["table_path"], keep_default_na=False, na_values=["nan", ""])
+        df = pd.read_csv(info["table_path"], keep_default_na=False, na_values=["nan", ""],
+                         float_precision="round_trip")  # the 17 digits back to the same doubles
     finally:
         if tmp is not None:
             tmp.cleanup()
