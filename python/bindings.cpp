@@ -3,6 +3,8 @@
 // numpy, pandas or matplotlib is in machdyn/*.py; this file only converts. Long calls (simulate,
 // sweep, report) release the GIL: they read an immutable Model and write only their own result, so
 // runs from several Python threads are safe.
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -245,6 +247,21 @@ PYBIND11_MODULE(_machdyn, mod) {
     r->model = p.model;
     r->result = nogil([&] { return simulate(*p.model); });
     return r;
+  });
+
+  // For bench/python_bench.py: the median wall time of `repeats` calls of simulate() timed in C++,
+  // the reference for the Python call's overhead.
+  mod.def("_time_simulate", [](const PyModel& p, int repeats) {
+    return nogil([&] {
+      std::vector<double> t;
+      for (int k = 0; k < repeats; ++k) {
+        const auto a = std::chrono::steady_clock::now();
+        const SimulationResult r = simulate(*p.model);
+        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+      }
+      std::sort(t.begin(), t.end());
+      return t.empty() ? 0.0 : t[t.size() / 2];
+    });
   });
 
   mod.def("modes", [](const PyModel& p) {
