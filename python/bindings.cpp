@@ -4,6 +4,7 @@
 // sweep, report) release the GIL: they read an immutable Model and write only their own result, so
 // runs from several Python threads are safe.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -315,7 +316,8 @@ PYBIND11_MODULE(_machdyn, mod) {
 
   // A sweep as `machdyn sweep` runs it (sweep/plan.hpp, sweep/runner.hpp): same designs, same table.
   mod.def("sweep", [](const PyModel& p, const std::vector<std::string>& vary, const std::string& method, int samples,
-                      std::uint64_t seed, const std::vector<std::string>& cases, const std::string& out_dir, int jobs) {
+                      std::uint64_t seed, const std::vector<std::string>& cases, const std::string& out_dir, int jobs,
+                      bool resume) {
     SweepRequest req;
     req.model_path = p.source;
     if (!p.from_file) req.model_text = p.text;
@@ -332,7 +334,19 @@ PYBIND11_MODULE(_machdyn, mod) {
     SweepOptions opt;
     opt.out_dir = out_dir;
     opt.jobs = jobs;
+    opt.resume = resume;
+    // Ctrl-C: run_sweep calls `progress` on this thread every 0.1 s; a pending KeyboardInterrupt
+    // stops new runs (finished ones stay in the journal, for resume=True) and is raised afterwards.
+    std::atomic<bool> stop{false};
+    bool interrupted = false;
+    opt.stop = &stop;
+    opt.progress = [&](const SweepProgress&) {
+      if (interrupted) return;
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) interrupted = true, stop = true;
+    };
     const SweepOutcome r = nogil([&] { return run_sweep(plan, opt); });
+    if (interrupted) throw py::error_already_set();
     py::dict d;
     d["table_path"] = r.table_path, d["total"] = r.total, d["ok"] = r.ok, d["errors"] = r.errors;
     d["threads"] = r.threads, d["wall_s"] = r.wall_s, d["description"] = plan.description;

@@ -165,7 +165,7 @@ def _vary_text(v: object) -> str:
 
 def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", samples: int = 0, seed: int = 1,
           cases: Iterable[str] | str | None = None, all_cases: bool = False, threads: int | None = None,
-          out: str | _os.PathLike | None = None):
+          out: str | _os.PathLike | None = None, resume: bool = False):
     """A parameter study, as ``machdyn sweep``: the same runs, the same table, the same threads.
 
     vary:      ``{"NAME.FIELD": SPEC}``; SPEC is ``"a:b:n"`` (linear), ``"a:b:n:log"``, ``"a:b"``
@@ -176,6 +176,8 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
                every case of the file.
     threads:   worker threads (default: all cores).
     out:       folder for sweep.csv and sweep.journal (default: a temporary folder, removed after).
+    resume:    continue an interrupted sweep from the journal in ``out`` (Ctrl-C stops a sweep:
+               the finished runs stay in the journal and KeyboardInterrupt is raised).
     Returns a pandas DataFrame of the table (run, varied fields in SI, summary columns, status,
     message). A failing run is a row with status ``error``; bad input raises InputError before any run.
     """
@@ -200,7 +202,7 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
         tmp = _tempfile.TemporaryDirectory(prefix="machdyn-sweep-")
         out = tmp.name
     try:
-        info = _machdyn.sweep(model._core, *args, _os.fspath(out), int(threads or 0))
+        info = _machdyn.sweep(model._core, *args, _os.fspath(out), int(threads or 0), bool(resume))
         df = pd.read_csv(info["table_path"], keep_default_na=False, na_values=["nan", ""],
                          float_precision="round_trip")  # the 17 digits back to the same doubles
     finally:

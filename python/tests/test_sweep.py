@@ -60,3 +60,20 @@ def test_sweep_of_a_model_from_a_string():
     b = machdyn.sweep(machdyn.load(example("hoist-3mass.yaml")), vary={"c1.stiffness": [2e4, 3e4]}, threads=1)
     pd.testing.assert_frame_equal(a.drop(columns=["steps", "rejected_steps", "rhs_evals"], errors="ignore"),
                                   b.drop(columns=["steps", "rejected_steps", "rhs_evals"], errors="ignore"))
+
+
+def test_ctrl_c_stops_a_sweep_and_resume_finishes_the_same_table(tmp):
+    import os
+    import signal
+    import threading
+    m = machdyn.load(example("travel-start.yaml"))
+    vary = {"adhesion.mu_k": "0.09:0.13:40", "P.value": "6000:7000:50"}  # 2000 runs, ~1 s per thread-core
+    threading.Timer(0.15, os.kill, (os.getpid(), signal.SIGINT)).start()
+    with pytest.raises(KeyboardInterrupt):
+        machdyn.sweep(m, vary=vary, threads=1, out=tmp / "a")
+    journaled = len((tmp / "a" / "sweep.journal").read_text().splitlines())
+    assert not (tmp / "a" / "sweep.csv").exists()
+    df = machdyn.sweep(m, vary=vary, threads=2, out=tmp / "a", resume=True)
+    assert len(df) == 2000 and df.attrs["total"] == 2000 and journaled < 2000
+    machdyn.sweep(m, vary=vary, threads=2, out=tmp / "b")
+    assert (tmp / "a" / "sweep.csv").read_bytes() == (tmp / "b" / "sweep.csv").read_bytes()
