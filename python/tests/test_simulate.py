@@ -67,6 +67,19 @@ def test_hoist_equals_the_cli_to_the_last_bit(tmp):
         assert np.array_equal(r[name], table[:, k]), name
 
 
+@pytest.mark.parametrize("name", ["travel-start.yaml", "crank-slider.yaml", "crank-slider-brake.yaml",
+                                  "rolling-wheel-1.yaml", "walking-drive.yaml", "chain-20.yaml"])
+def test_every_kind_of_model_equals_the_cli(tmp, name):
+    # Smooth and event-driven runs, machines with variable inertia, a stepwise gear drive, a chain.
+    run_cli("simulate", example(name), "-o", tmp, "--quiet")
+    r = machdyn.simulate(machdyn.load(example(name)))
+    cli = json.load(open(tmp / "summary.json"))
+    for s in (cli, r.summary):
+        s["solver"].pop("wall_time_s")
+    assert r.summary == cli
+    assert r.to_csv() == (tmp / "timeseries.csv").read_text()
+
+
 def test_set_and_case_equal_the_cli(tmp):
     path = example("hoist-modes.yaml")
     m = machdyn.load(path)
