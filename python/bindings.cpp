@@ -233,7 +233,7 @@ PYBIND11_MODULE(_machdyn, mod) {
              const auto& c = r->result.columns.at(k);
              // A read-only view of the result's memory; the array keeps the result alive.
              py::array_t<double> a(static_cast<py::ssize_t>(c.size()), c.data(), py::cast(r));
-             py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+             a.attr("flags").attr("writeable") = false;
              return a;
            })
       .def("summary_json", [](const PyResult& r) { return simulation_summary(*r.model, r.result).dump(2); })

@@ -174,7 +174,7 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
     method:    "grid" (full factorial), "lhs" (Latin hypercube) or "random", with ``samples``, ``seed``.
     cases:     load cases to run every point for (the table gets a ``case`` column); ``all_cases``:
                every case of the file.
-    threads:   worker threads (default: all cores).
+    threads:   worker threads, 1 … 1024 (default: all cores).
     out:       folder for sweep.csv and sweep.journal (default: a temporary folder, removed after).
     resume:    continue an interrupted sweep from the journal in ``out`` (Ctrl-C stops a sweep:
                the finished runs stay in the journal and KeyboardInterrupt is raised).
@@ -194,8 +194,8 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
         case_list = model.cases
         if not case_list:
             raise ValueError("all_cases: the model file has no 'cases:'")
-    if threads is not None and threads < 1:
-        raise ValueError("threads: expected 1 or more")
+    if threads is not None and not 1 <= threads <= 1024:
+        raise ValueError("threads: expected 1 … 1024")
     args = ([f"{k}={_vary_text(v)}" for k, v in vary.items()], method, int(samples), int(seed), case_list)
     tmp = None
     if out is None:

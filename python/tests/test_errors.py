@@ -107,3 +107,15 @@ def test_bad_arguments_raise_python_errors():
         machdyn.energy(m)  # three bodies and links: no energy integral
     with pytest.raises(ValueError):
         machdyn.energy(m, points=1)
+    for threads in (0, 10**6):
+        with pytest.raises(ValueError):
+            machdyn.sweep(m, vary={"c1.stiffness": "1e4:2e4:2"}, threads=threads)
+    with pytest.raises(machdyn.InputError):
+        machdyn.sweep(m, vary={"c1.stiffness": "1:2:1000000000"})
+    with pytest.raises(machdyn.InputError):
+        machdyn.energy(machdyn.load(example("crank-slider.yaml")), to="abc")
+    with pytest.raises(machdyn.InputError):
+        machdyn.gears("/nonexistent/gears.yaml")
+    r = machdyn.simulate(m)
+    with pytest.raises(IndexError):
+        r._core.column(10**6)
