@@ -187,9 +187,14 @@ def test_rich_display_and_plot():
     assert "<table>" in html and "c1" in html and "c2" in html
     ax = r.plot()
     assert len(ax.get_lines()) == 4  # two loads and their static markers
-    assert "Three-mass hoist" in repr(r) or "c1" in repr(r)
+    assert "Three-mass hoist" in repr(r) and "c1: max" in repr(r)
 
 
-def test_help_has_units():
-    assert "N*m" in machdyn.simulate.__doc__ and "s" in machdyn.simulate.__doc__
-    assert "rad/s" in machdyn.modes.__doc__
+def test_help_documents_every_function_with_units():
+    for f in (machdyn.load, machdyn.loads, machdyn.from_dict, machdyn.simulate, machdyn.modes, machdyn.energy,
+              machdyn.gears, machdyn.sweep, machdyn.report, machdyn.Result, machdyn.Modes):
+        assert f.__doc__ and len(f.__doc__) > 80, f
+    assert "(s)" in machdyn.simulate.__doc__ and "N*m" in machdyn.simulate.__doc__
+    assert "rad/s" in machdyn.modes.__doc__ and "Hz" in machdyn.modes.__doc__
+    assert "kg*m^2" in machdyn.energy.__doc__ and "rad" in machdyn.energy.__doc__
+    assert "mm" in machdyn.gears.__doc__
