@@ -5,7 +5,7 @@ BUILD_RELEASE := build/release
 BUILD_TEST    := build/test
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test deps deps-browser build-release build-test bench clean
+.PHONY: demo test deps deps-browser build-release build-test bench package clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -31,6 +31,11 @@ test: build-test
 
 bench: build-release
 	@bash bench/run.sh $(BUILD_RELEASE)
+
+# A Debian package (CPack) with the CLI, the library, the headers, the CMake package and the Python module.
+package: build-release
+	@cd $(BUILD_RELEASE) && cpack -G DEB
+	@ls $(BUILD_RELEASE)/package/*.deb
 
 clean:
 	rm -rf build

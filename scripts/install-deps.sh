@@ -3,12 +3,16 @@
 #   gnuplot-nox, fonts-dejavu-core: the static figures of --plot (SVG, PNG)
 #   nodejs, npm: CMake installs the report's charting library (uPlot, report/package-lock.json) with
 #                `npm ci` at configure time; installed only when no npm is on PATH already
+#   pybind11-dev, python3-dev: the Python module (python/, built for Debian's /usr/bin/python3);
+#   python3-pytest, -numpy, -pandas, -matplotlib, -nbconvert, -ipykernel: its tests and the notebook
 #   chromium:    only with MACHDYN_WITH_CHROMIUM=1 (large); without it the browser test of the HTML
 #                report is skipped, and says so
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
           libeigen3-dev libsundials-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core)
+          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core
+          pybind11-dev python3-dev python3-pytest python3-numpy python3-pandas python3-matplotlib
+          python3-nbconvert python3-ipykernel)
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 # MPI sweeps (`mpirun -np N machdyn sweep`): OpenMPI is installed unless MACHDYN_WITH_MPI=0 (it pulls
 # in ~150 MB: gfortran, UCX, libfabric); without it the MPI test skips with a message.

@@ -54,17 +54,6 @@ struct CaseRun {
   std::optional<EnergyResult> energy;
 };
 
-/// The energy integral of a 1-DOF machine without links, or nothing when the model has none
-/// (e.g. a load that depends on time).
-std::optional<EnergyResult> machine_energy(const Model& m) {
-  if (m.dof() != 1 || !m.links.empty() || !has_machines(m) || m.is_hybrid()) return std::nullopt;
-  try {
-    return energy_analysis(m);
-  } catch (const InputError&) {
-    return std::nullopt;
-  }
-}
-
 int run_report(const ReportArgs& a) {
   if (!report::assets_available())
     throw std::runtime_error("this machdyn was built without the report's charting library (MACHDYN_REPORT=OFF)");

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/machine.hpp"
 #include "machdyn/solve/roots.hpp"
@@ -441,6 +442,15 @@ SteadyResult steady_running(const Model& m, double omega_mean, double delta_targ
   r.delta_with_flywheel = analyse(J1, &r.omega_max_fw, &r.omega_min_fw);
   r.omega_start_fw = w_start;
   return r;
+}
+
+std::optional<EnergyResult> machine_energy(const Model& m) {
+  if (m.dof() != 1 || !m.links.empty() || !has_machines(m) || m.is_hybrid()) return std::nullopt;
+  try {
+    return energy_analysis(m);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace machdyn

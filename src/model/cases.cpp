@@ -89,10 +89,14 @@ void apply_case(SpecNode& root, const std::string& name) {
 
 Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
                       const std::string& case_name) {
-  SpecNode root = read_yaml_file(path);
+  return compile_model_case(read_yaml_file(path), path, overrides, case_name);
+}
+
+Model compile_model_case(SpecNode root, const std::string& source, const std::vector<std::string>& overrides,
+                         const std::string& case_name) {
   if (!case_name.empty()) apply_case(root, case_name);
   for (const auto& o : overrides) apply_set(root, o);
-  Model m = compile_model(root, path);
+  Model m = compile_model(root, source);
   if (!case_name.empty()) {
     m.load_case = case_name;
     m.name += " [" + case_name + "]";

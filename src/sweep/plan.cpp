@@ -93,7 +93,8 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   plan.request = request;
 
   // The base: file and --set; it must compile on its own.
-  const SpecNode file = read_yaml_file(request.model_path);
+  const SpecNode file = request.model_text.empty() ? read_yaml_file(request.model_path)
+                                                   : parse_yaml_string(request.model_text, request.model_path);
   plan.base = file;
   for (const auto& o : request.sets) apply_set(plan.base, o);
   plan.base_model = compile_model(plan.base, request.model_path);
@@ -208,7 +209,7 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   // Fingerprint: what decides the table (model text, options), so --resume refuses another sweep.
   std::uint64_t h = fnv1a("machdyn-sweep-v1");
   auto add = [&](std::string_view s) { h = fnv1a(s, fnv1a("\x1f", h)); };
-  add(read_text(request.model_path));
+  add(request.model_text.empty() ? read_text(request.model_path) : request.model_text);
   for (const auto& s : request.sets) add(s);
   add("vary");
   for (const auto& v : request.vary) add(v);

@@ -84,6 +84,11 @@ struct EnergyResult {
 /// The analysis described in the file comment. Throws InputError on unsuitable models.
 EnergyResult energy_analysis(const Model& m, const EnergyOptions& opt = {});
 
+/// The energy integral of a 1-DOF machine without links, gaps or contacts (what a report draws as
+/// ω against distance or angle), or nothing when the model has no such integral (e.g. a load that
+/// depends on time: energy_analysis rejects it).
+std::optional<EnergyResult> machine_energy(const Model& m);
+
 /// Steady running of a periodic machine (a crank): with the constant torque that balances the work
 /// per period, the periodic speed whose mean (ωmax + ωmin)/2 is `omega_mean`, its coefficient of
 /// speed fluctuation δ = (ωmax − ωmin)/ωmean, and the flywheel inertia J (added to I(q)) that brings

@@ -30,4 +30,9 @@ void apply_case(SpecNode& root, const std::string& name);
 Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
                       const std::string& case_name);
 
+/// The same for a spec already read (a file's or a string's; `source` names it in messages and in
+/// Model::source): applies the case, then the overrides, compiles. Throws InputError.
+Model compile_model_case(SpecNode root, const std::string& source, const std::vector<std::string>& overrides,
+                         const std::string& case_name);
+
 }  // namespace machdyn

@@ -33,6 +33,9 @@ using CaseApplier = std::function<void(SpecNode& spec, const std::string& case_n
 /// What a user asks for (the command line fills it).
 struct SweepRequest {
   std::string model_path;
+  /// The model's YAML text; when not empty it is used instead of reading `model_path`, which then
+  /// only names the source in messages (the Python module's models from a string).
+  std::string model_text;
   std::vector<std::string> sets;  ///< `NAME.FIELD=VALUE`, applied to the base before any --vary
   std::vector<std::string> vary;  ///< `NAME.FIELD=SPEC`, in order
   SweepMethod method = SweepMethod::grid;

@@ -1,0 +1,234 @@
+"""machdyn: dynamics of machine drives (cranes, hoists, travel drives, crank machines, non-circular
+gears) from Python.
+
+A thin layer over the C++ library, calling the same functions as the ``machdyn`` command line, so
+results are equal to the CLI's to the last bit::
+
+    import machdyn
+    m = machdyn.load("examples/hoist-3mass.yaml", set={"c1.stiffness": "3e4 N*m/rad"})
+    r = machdyn.simulate(m)
+    r.t, r["c1.load"]          # numpy arrays: s, N*m
+    r.summary                  # the dict of summary.json
+    r.to_pandas(); r.plot()
+    machdyn.modes(m).frequencies_hz
+    machdyn.sweep(m, vary={"c1.stiffness": "1e4:5e4:5"}, threads=2)   # a pandas DataFrame
+
+Every quantity is SI (rad, m, s, kg, N, N*m); column and key names carry the unit. Bad input raises
+:class:`InputError` (every problem, with file:line:col); a numerical failure :class:`SolverError`
+(the element and the time). Runs release the GIL and may run in several threads at once.
+"""
+from __future__ import annotations
+
+import json as _json
+import os as _os
+import tempfile as _tempfile
+from typing import Iterable, Mapping
+
+from . import _machdyn
+from ._result import Modes, Result, _Model
+
+__version__ = _machdyn.__version__
+__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "gears", "sweep", "report",
+           "InputError", "SolverError", "Model", "Result", "Modes"]
+
+Model = _Model
+
+#: Bad input (a model file, a string, an override). ``e.diagnostics`` lists every problem as
+#: ``(file, line, column, message)`` tuples (line and column 0 when the place is not in a file);
+#: ``str(e)`` has one ``file:line:col: error: message`` line each. A subclass of ValueError.
+InputError = _machdyn.InputError
+#: A numerical failure during a run: ``e.element`` (body, link or load name) and ``e.time`` (s).
+#: A subclass of RuntimeError.
+SolverError = _machdyn.SolverError
+
+
+def _sets(set_: Mapping[str, object] | Iterable[str] | None) -> list[str]:
+    """``{"c1.stiffness": "3e4 N*m/rad"}`` or ``["c1.stiffness=3e4"]`` → the CLI's ``--set`` strings."""
+    if set_ is None:
+        return []
+    if isinstance(set_, Mapping):
+        out = []
+        for k, v in set_.items():
+            if not isinstance(k, str):
+                raise TypeError(f"set: keys are NAME.FIELD strings, not {type(k).__name__}")
+            out.append(f"{k}={_value_text(v)}")
+        return out
+    if isinstance(set_, str):
+        return [set_]
+    return [str(s) for s in set_]
+
+
+def _value_text(v: object) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        return repr(v)  # shortest text that reads back to the same double
+    if isinstance(v, (list, tuple, dict)):
+        return _json.dumps(v)  # YAML reads JSON: tables like [[0, 0], [1, 5]]
+    return str(v)
+
+
+def load(path: str | _os.PathLike, set: Mapping[str, object] | Iterable[str] | None = None,
+         case: str | None = None) -> Model:
+    """Reads and compiles a model file (YAML, docs/model-files.md), as ``machdyn simulate PATH``.
+
+    path: the model file.
+    set:  overrides ``{"NAME.FIELD": value}`` (a value may carry its unit: ``"3e4 N*m/rad"``; a
+          number is taken in SI) or a list of ``"NAME.FIELD=VALUE"`` strings, as ``--set``.
+    case: a load case of the file's ``cases:`` (as ``--case NAME``), applied before ``set``.
+    Raises InputError with every problem of the file and the overrides.
+    """
+    return _Model(_machdyn.load_file(_os.fspath(path), _sets(set), case or ""))
+
+
+def loads(text: str, set: Mapping[str, object] | Iterable[str] | None = None, case: str | None = None,
+          source: str = "<string>") -> Model:
+    """Compiles a model from YAML text; ``source`` names it in error messages. See :func:`load`."""
+    if not isinstance(text, str):
+        raise TypeError(f"loads: expected the YAML text as str, not {type(text).__name__}")
+    return _Model(_machdyn.load_text(text, source, _sets(set), case or ""))
+
+
+def from_dict(spec: Mapping, set: Mapping[str, object] | Iterable[str] | None = None, case: str | None = None,
+              source: str = "<dict>") -> Model:
+    """Compiles a model from a dict with the layout of a model file (``{"bodies": {...}, ...}``).
+    Values may be numbers (SI) or strings with units. See :func:`load`."""
+    if not isinstance(spec, Mapping):
+        raise TypeError(f"from_dict: expected a dict, not {type(spec).__name__}")
+    # JSON is YAML: the dict goes through the same reader as a file.
+    return loads(_json.dumps(spec, indent=1, allow_nan=False), set=set, case=case, source=source)
+
+
+def simulate(model: Model, case: str | None = None) -> Result:
+    """Simulates the model with its ``simulation:`` settings, as ``machdyn simulate`` does.
+
+    case: run this load case of the model's file instead (as ``--case NAME``).
+    Returns a :class:`Result`: ``r.t`` (s), ``r["c1.load"]`` (N*m or N), every series as a numpy
+    array, ``r.summary`` (the summary.json dict), ``r.events`` (mode events of an event-driven run).
+    Raises SolverError (element, time) on a numerical failure. The GIL is released during the run.
+    """
+    m = model.with_case(case) if case else model
+    return Result(_machdyn.simulate(m._core), m)
+
+
+def modes(model: Model) -> Modes:
+    """Natural frequencies and mass-normalized mode shapes (K φ = ω² M φ), as ``machdyn modes``.
+
+    Returns :class:`Modes`: ``omega`` (rad/s), ``frequencies_hz`` (Hz), ``shapes`` (bodies × modes,
+    mass-normalized), ``summary`` (the dict of ``machdyn modes --json``).
+    """
+    text, omega, shapes = _machdyn.modes(model._core)
+    return Modes(_json.loads(text), omega, shapes)
+
+
+def energy(model: Model, to: str | float | None = None, points: int = 201, delta: float | None = None,
+           mean_speed: str | float | None = None) -> dict:
+    """Energy integral ω(q) of a 1-DOF machine (one body, no links), as ``machdyn energy --json``.
+
+    to:         end of the scan in the sweep coordinate (β for the rolling wheel, q otherwise), rad;
+                a string may carry a unit ("720 deg"). Default: one period or 2π.
+    points:     rows of the ω(q) table (3 … 1e6).
+    delta:      target coefficient of speed fluctuation (ωmax − ωmin)/ωmean: adds ``steady``
+                (steady running and the flywheel inertia, kg*m^2, that brings δ to it).
+    mean_speed: mean speed for ``delta``, rad/s (default: the body's initial speed).
+    Returns the JSON dict; ``table`` holds the columns q (rad), omega (rad/s), I (kg*m^2).
+    Raises InputError for a model without such an integral (time-dependent loads, links).
+    """
+    if not 3 <= int(points) <= 1_000_000:
+        raise ValueError("points: expected 3 … 1000000")
+    if delta is not None and not delta > 0:
+        raise ValueError("delta: expected a positive number")
+    return _json.loads(_machdyn.energy(model._core, "" if to is None else _value_text(to), int(points),
+                                       float(delta or 0.0), "" if mean_speed is None else _value_text(mean_speed)))
+
+
+def gears(spec: str | _os.PathLike, set: Mapping[str, object] | Iterable[str] | None = None) -> dict:
+    """Synthesizes a non-circular gear pair from a gear spec file, as ``machdyn gears --json``.
+
+    set: overrides ``{"FIELD": value}`` (e.g. ``{"L": "150 mm"}``).
+    Returns the JSON dict: ``u``, ``sectors`` [{i, phi, dphi, rH, theta, dtheta, r}] (rad, mm), ...
+    The paper's Table 1 as text is under the key ``"text"``.
+    """
+    text, table = _machdyn.gears(_os.fspath(spec), _sets(set))
+    out = _json.loads(text)
+    out["text"] = table
+    return out
+
+
+def _vary_text(v: object) -> str:
+    if isinstance(v, str):
+        return v
+    if isinstance(v, Iterable):
+        return ",".join(_value_text(x) for x in v)
+    raise TypeError(f"vary: a value is a SPEC string ('a:b:n', 'a:b:n:log', 'a:b') or a list, not {type(v).__name__}")
+
+
+def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", samples: int = 0, seed: int = 1,
+          cases: Iterable[str] | str | None = None, all_cases: bool = False, threads: int | None = None,
+          out: str | _os.PathLike | None = None, resume: bool = False):
+    """A parameter study, as ``machdyn sweep``: the same runs, the same table, the same threads.
+
+    vary:      ``{"NAME.FIELD": SPEC}``; SPEC is ``"a:b:n"`` (linear), ``"a:b:n:log"``, ``"a:b"``
+               (random, lhs) or a list of values; values may carry units (``"2 mm:8 mm:4"``). A grid
+               varies the first key slowest.
+    method:    "grid" (full factorial), "lhs" (Latin hypercube) or "random", with ``samples``, ``seed``.
+    cases:     load cases to run every point for (the table gets a ``case`` column); ``all_cases``:
+               every case of the file.
+    threads:   worker threads, 1 … 1024 (default: all cores).
+    out:       folder for sweep.csv and sweep.journal (default: a temporary folder, removed after).
+    resume:    continue an interrupted sweep from the journal in ``out`` (Ctrl-C stops a sweep:
+               the finished runs stay in the journal and KeyboardInterrupt is raised).
+    Returns a pandas DataFrame of the table (run, varied fields in SI, summary columns, status,
+    message). A failing run is a row with status ``error``; bad input raises InputError before any run.
+    """
+    import pandas as pd  # only sweeps need pandas
+
+    if not isinstance(vary, Mapping) or not vary:
+        raise ValueError("vary: give at least one {'NAME.FIELD': SPEC}")
+    if method not in ("grid", "lhs", "random"):
+        raise ValueError(f"method: expected grid, lhs or random, not {method!r}")
+    case_list = [cases] if isinstance(cases, str) else list(cases or [])
+    if all_cases:
+        if case_list:
+            raise ValueError("give either cases or all_cases")
+        case_list = model.cases
+        if not case_list:
+            raise ValueError("all_cases: the model file has no 'cases:'")
+    if threads is not None and not 1 <= threads <= 1024:
+        raise ValueError("threads: expected 1 … 1024")
+    args = ([f"{k}={_vary_text(v)}" for k, v in vary.items()], method, int(samples), int(seed), case_list)
+    tmp = None
+    if out is None:
+        tmp = _tempfile.TemporaryDirectory(prefix="machdyn-sweep-")
+        out = tmp.name
+    try:
+        info = _machdyn.sweep(model._core, *args, _os.fspath(out), int(threads or 0), bool(resume))
+        df = pd.read_csv(info["table_path"], keep_default_na=False, na_values=["nan", ""],
+                         float_precision="round_trip")  # the 17 digits back to the same doubles
+    finally:
+        if tmp is not None:
+            tmp.cleanup()
+    df.attrs.update({k: v for k, v in info.items() if k != "table_path" or tmp is None})
+    return df
+
+
+def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:
+    """Simulates, computes the modes and writes the self-contained HTML report to ``path``, as
+    ``machdyn report``. Returns the path. Written through a temporary file, so a failed run leaves
+    no partial file."""
+    m = model.with_case(case) if case else model
+    command = f"machdyn.report({_os.path.basename(m.source)!r}" + (f", case={case!r}" if case else "") + ")"
+    html = _machdyn.report_html(m._core, command)
+    path = _os.fspath(path)
+    folder = _os.path.dirname(_os.path.abspath(path))
+    _os.makedirs(folder, exist_ok=True)
+    fd, tmp = _tempfile.mkstemp(dir=folder, prefix=".report-", suffix=".tmp")
+    try:
+        with _os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(html)
+        _os.replace(tmp, path)
+    except BaseException:
+        if _os.path.exists(tmp):
+            _os.unlink(tmp)
+        raise
+    return path

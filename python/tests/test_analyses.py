@@ -1,0 +1,74 @@
+"""modes, energy, gears, report: the CLI's JSON, and an independent check of each."""
+import math
+
+import numpy as np
+import pytest
+
+import machdyn
+from conftest import cli_json, example
+
+
+def test_modes_equal_the_cli():
+    path = example("hoist-3mass.yaml")
+    modes = machdyn.modes(machdyn.load(path))
+    assert modes.summary == cli_json("modes", path, "--json")
+    assert np.array_equal(modes.omega, modes.summary["frequencies_rad_s"])
+    assert modes.bodies == ["I1", "I2", "I3"]
+
+
+def test_modes_solve_the_eigenproblem():
+    # K φ = ω² M φ for every mode, with M and K assembled here from the model's own numbers.
+    m = machdyn.load(example("hoist-3mass.yaml"))
+    I = np.array([b["inertia_kg_m2"] for b in m.bodies])
+    c1, c2 = (l["stiffness"] for l in m.links)
+    K = np.array([[c1, -c1, 0], [-c1, c1 + c2, -c2], [0, -c2, c2]])
+    modes = machdyn.modes(m)
+    for k, w in enumerate(modes.omega):
+        phi = modes.shapes[:, k]
+        np.testing.assert_allclose(K @ phi, w**2 * I * phi, rtol=0, atol=1e-9 * w**2 * np.abs(I * phi).max())
+    assert modes.rigid_body_modes == 1 and len(modes.omega) == 2
+
+
+def test_energy_equals_the_cli_and_the_simulation():
+    path = example("crank-slider.yaml")
+    m = machdyn.load(path)
+    e = machdyn.energy(m)
+    assert e == cli_json("energy", path, "--json")
+    # A second algorithm: the simulation's ω at the same crank angles (ODE integration against the
+    # energy integral's quadrature). q rises monotonically, so ω(q) interpolates on the output grid.
+    r = machdyn.simulate(m)
+    q, w = r["crank.position"], r["crank.velocity"]
+    table_q, table_w = np.array(e["table"]["q"]), np.array(e["table"]["omega"])
+    inside = (table_q >= q[0]) & (table_q <= q[-1])
+    assert inside.sum() > 50
+    np.testing.assert_allclose(np.interp(table_q[inside], q, w), table_w[inside], rtol=1e-4)
+
+
+def test_gears_equal_the_cli_and_the_law():
+    path = example("walking-drive-gears.yaml")
+    g = machdyn.gears(path)
+    text = g.pop("text")
+    assert g == cli_json("gears", path, "--json")
+    assert "sector" in text.lower()
+    # Paper 003: k = 3b/(a − b + c) with a = 60 mm, b = 100 mm, c = 360 mm.
+    assert g["k"] == pytest.approx(3 * 100 / (60 - 100 + 360), rel=1e-12)
+    g2 = machdyn.gears(path, set={"L": "150 mm"})
+    assert g2 != g
+
+
+def test_report_is_one_html_file(tmp):
+    out = machdyn.report(machdyn.load(example("hoist-3mass.yaml")), tmp / "r" / "report.html")
+    html = open(out, encoding="utf-8").read()
+    assert html.startswith("<!DOCTYPE html>") or html.lower().startswith("<!doctype html>")
+    assert "Three-mass hoist" in html and "uPlot" in html
+    assert [p.name for p in (tmp / "r").iterdir()] == ["report.html"]
+
+
+def test_model_inspection():
+    m = machdyn.load(example("travel-start.yaml"))
+    assert [b["name"] for b in m.bodies] == ["m1", "mk", "m2"]
+    assert m.bodies[0]["mass_kg"] == 3000
+    assert m.links[0]["gap"] == pytest.approx(0.004)
+    assert {c["name"] for c in m.contacts} == {"adhesion", "W"}
+    assert m.is_hybrid and m.simulation["t_end_s"] == 2
+    assert "travel" in repr(m).lower() and "<table>" in m._repr_html_()
