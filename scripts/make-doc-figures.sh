@@ -13,15 +13,20 @@ trap 'rm -rf "$tmp"' EXIT
 "$machdyn" modes examples/chain-20.yaml --plot -o "$tmp/chain" >/dev/null
 "$machdyn" gears examples/walking-drive-gears.yaml --plot -o "$tmp/gears" >/dev/null
 "$machdyn" simulate examples/travel-start.yaml --plot -o "$tmp/travel" >/dev/null
+"$machdyn" simulate examples/hoist-modes.yaml --case brake_I2_lifting --plot -o "$tmp/modes" >/dev/null
+"$machdyn" simulate examples/chain-20.yaml --plot -o "$tmp/chain" >/dev/null
 for k in 1 2 3; do
-  "$machdyn" energy examples/rolling-wheel-$k.yaml --plot --plot-dir "$tmp/wheel-$k" >/dev/null
+  "$machdyn" energy examples/rolling-wheel-$k.yaml --plot -o "$tmp/wheel-$k" >/dev/null
 done
-"$machdyn" energy examples/crank-slider.yaml --plot --plot-dir "$tmp/crank" >/dev/null
+"$machdyn" energy examples/crank-slider.yaml --plot -o "$tmp/crank" >/dev/null
 "$machdyn" report examples/travel-start.yaml --quiet -o "$tmp/report.html" >/dev/null
 "$machdyn" report examples/hoist-modes.yaml --all-cases --quiet -o "$tmp/cases.html" >/dev/null
 mkdir -p docs/img
-rm -f docs/img/*.png
+# Only the images made here are replaced (the sweep figures of docs/sweeps.md are made by their own
+# commands, the report screenshots only when chromium is installed).
 cp "$tmp"/hoist/{link_loads,mode_shapes}.png "$tmp"/gears/{pitch_curves,ratio}.png docs/img/
+cp "$tmp"/modes/brake_I2_lifting/link_loads.png docs/img/link_loads_brake_case.png
+cp "$tmp"/chain/link_loads.png docs/img/link_loads_chain20.png
 cp "$tmp"/travel/load_cyclogram.png docs/img/load_cyclogram.png
 cp "$tmp"/travel/contacts.png docs/img/contacts.png
 cp "$tmp"/chain/mode_shapes.png docs/img/mode_shapes_chain20.png
@@ -32,15 +37,18 @@ shot() {  # shot HTML PNG HEIGHT: a screenshot of the top of a report
     --disable-component-update --disable-sync --user-data-dir="$tmp/profile-$(basename "$2")" --virtual-time-budget=8000 \
     --hide-scrollbars --window-size=1100,"$3" --screenshot="$PWD/$2" "file://$1" 2>/dev/null
 }
+made=(docs/img/{link_loads,mode_shapes,pitch_curves,ratio,link_loads_brake_case,link_loads_chain20,load_cyclogram}.png
+      docs/img/{contacts,mode_shapes_chain20,speed_distance_1,speed_distance_2,speed_distance_3,speed_angle,inertia_moments}.png)
 if command -v chromium >/dev/null; then
   shot "$tmp/report.html" docs/img/report.png 2600
   shot "$tmp/cases.html" docs/img/report_cases.png 1500
+  made+=(docs/img/report.png docs/img/report_cases.png)
 fi
 if command -v convert >/dev/null && convert -version 2>/dev/null | grep -q ImageMagick; then
-  for f in docs/img/*.png; do convert "$f" -resize '1200x>' -strip "$f"; done
+  for f in "${made[@]}"; do convert "$f" -resize '1200x>' -strip "$f"; done
 fi
 if command -v pngquant >/dev/null; then
-  for f in docs/img/*.png; do pngquant --force --skip-if-larger --quality 70-95 --output "$f" "$f" || true; done
+  for f in "${made[@]}"; do pngquant --force --skip-if-larger --quality 70-95 --output "$f" "$f" || true; done
 fi
 ls -la docs/img
 du -sh docs/img

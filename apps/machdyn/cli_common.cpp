@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/output_file.hpp"
 
 namespace machdyn::cli {
 
@@ -32,19 +33,7 @@ void add_set_option(CLI::App& cmd, std::vector<std::string>& sets) {
 }
 
 void write_file_atomic(const std::string& path, const std::string& content) {
-  namespace fs = std::filesystem;
-  fs::path p(path);
-  if (p.has_parent_path()) fs::create_directories(p.parent_path());
-  fs::path tmp = p;
-  tmp += ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    out << content;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, p);
+  machdyn::write_file_atomic(std::filesystem::path(path), std::string_view(content));
 }
 
 std::vector<std::string> write_figures(const std::filesystem::path& dir, const std::vector<plot::Figure>& figures) {
@@ -62,6 +51,12 @@ std::vector<std::string> write_figures(const std::filesystem::path& dir, const s
 
 std::filesystem::path default_out_dir(const std::string& model_path) {
   return std::filesystem::path("out") / std::filesystem::path(model_path).stem();
+}
+
+std::filesystem::path output_dir(const std::string& model_path, const std::string& out_option,
+                                 const std::string& load_case) {
+  const std::filesystem::path out = out_option.empty() ? default_out_dir(model_path) : std::filesystem::path(out_option);
+  return load_case.empty() ? out : out / load_case;
 }
 
 }  // namespace machdyn::cli

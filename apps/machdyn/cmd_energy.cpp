@@ -1,8 +1,11 @@
-// `machdyn energy MODEL [--json] [--to S] [--points N] [-o table.csv] [--delta D [--mean-speed W]]
-// [--plot [--plot-dir DIR]]`:
+// `machdyn energy MODEL [--json] [--to S] [--points N] [-o DIR] [--delta D [--mean-speed W]] [--plot]`:
 // the energy integral ω(q) of a 1-DOF machine (analysis/energy.hpp) and, with --delta, steady
 // running of a periodic machine with the flywheel that brings the speed fluctuation to D.
+// Like every command it writes into one folder, -o DIR (default out/MODEL): energy.csv (the ω(q)
+// table), energy.json (what --json prints) and with --plot the figures. `--plot-dir DIR` is the
+// deprecated spelling of `-o DIR`.
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <fmt/format.h>
 
@@ -18,9 +21,10 @@ namespace machdyn::cli {
 namespace {
 
 struct EnergyArgs {
-  std::string model, to, mean_speed, out;
+  std::string model, to, mean_speed;
+  std::string out;       ///< -o: the output folder (default out/MODEL)
   bool plot = false;     ///< write the figures (SVG + PNG, gnuplot)
-  std::string plot_dir;  ///< their folder (default out/MODEL)
+  std::string plot_dir;  ///< --plot-dir: deprecated alias of -o
   int points = 201;
   double delta = 0.0;
   bool json = false;
@@ -48,7 +52,25 @@ std::string table_csv(const nlohmann::json& t) {
   return s;
 }
 
+/// The output folder from -o and the deprecated --plot-dir.
+std::filesystem::path energy_out_dir(const EnergyArgs& a) {
+  if (a.out.size() >= 4 && a.out.ends_with(".csv"))
+    throw InputError(Location{"-o", 0, 0}, fmt::format("-o names the output folder, as for every command; the table "
+                                                       "is written to DIR/energy.csv (e.g. -o {})",
+                                                       std::filesystem::path(a.out).parent_path().empty()
+                                                           ? std::string("out")
+                                                           : std::filesystem::path(a.out).parent_path().string()));
+  if (!a.plot_dir.empty()) {
+    if (!a.out.empty() && a.out != a.plot_dir)
+      throw InputError(Location{"--plot-dir", 0, 0}, "give the output folder once, with -o DIR");
+    std::cerr << "machdyn: warning: --plot-dir is deprecated; use -o DIR (one folder for every output)\n";
+    return a.plot_dir;
+  }
+  return output_dir(a.model, a.out, "");
+}
+
 int run_energy(const EnergyArgs& a) {
+  const std::filesystem::path out_dir = energy_out_dir(a);
   const Model m = load_model(a.model, a.sets);
   if (a.plot) plot::find_gnuplot();  // before the work, not after
   EnergyOptions opt;
@@ -65,12 +87,12 @@ int run_energy(const EnergyArgs& a) {
   std::vector<plot::Rendered> rendered;
   const auto figures = a.plot ? energy_figures(m, r) : std::vector<plot::Figure>{};
   for (const auto& f : figures) rendered.push_back(plot::render(f));
-  if (!a.out.empty()) write_file_atomic(a.out, table_csv(j["table"]));
-  const std::filesystem::path plot_dir = a.plot_dir.empty() ? default_out_dir(a.model) : std::filesystem::path(a.plot_dir);
+  write_file_atomic((out_dir / "energy.csv").string(), table_csv(j["table"]));
+  write_file_atomic((out_dir / "energy.json").string(), j.dump(2) + "\n");
   std::vector<std::string> files;
   for (std::size_t k = 0; k < figures.size(); ++k) {
-    write_file_atomic((plot_dir / (figures[k].id + ".svg")).string(), rendered[k].svg);
-    write_file_atomic((plot_dir / (figures[k].id + ".png")).string(), rendered[k].png);
+    write_file_atomic((out_dir / (figures[k].id + ".svg")).string(), rendered[k].svg);
+    write_file_atomic((out_dir / (figures[k].id + ".png")).string(), rendered[k].png);
     files.push_back(figures[k].id + ".svg"), files.push_back(figures[k].id + ".png");
   }
   if (a.json) {
@@ -89,6 +111,9 @@ int run_energy(const EnergyArgs& a) {
   std::cout << fmt::format("omega_min = {:.9g} rad/s at q = {:.9g} rad\n", r.omega_min, r.q_at_omega_min);
   std::cout << fmt::format("omega_limit: {} ({})\n", r.omega_limit ? fmt::format("{:.9g} rad/s", *r.omega_limit) : "-",
                            r.limit_kind);
+  if (r.epsilon_limit)
+    std::cout << fmt::format("epsilon_limit = {:.9g} rad/s^2 (the angular acceleration the unbounded motion tends to)\n",
+                             *r.epsilon_limit);
   for (const auto& [k, v] : j.items())
     if (k.find('_') != std::string::npos && (k.rfind(r.s_name + "_", 0) == 0 || (!r.point_name.empty() && k.rfind(r.point_name + "_", 0) == 0)) && r.s_name != "q")
       std::cout << fmt::format("{} = {}\n", k, v.is_array() ? list(v) : fmt::format("{:.9g}", v.get<double>()));
@@ -110,8 +135,8 @@ int run_energy(const EnergyArgs& a) {
   for (size_t i = 0; i < rows; i += (i + stride < rows || i + 1 == rows) ? stride : rows - 1 - i)
     std::cout << fmt::format("{:>16.9g} {:>16.9g} {:>16.9g}\n", t["q"][i].get<double>(), t["omega"][i].get<double>(),
                              t["I"][i].get<double>());
-  if (!a.out.empty()) std::cout << fmt::format("wrote {}\n", a.out);
-  if (!files.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", plot_dir.string(), fmt::join(files, ","));
+  std::cout << fmt::format("wrote {0}/energy.csv and {0}/energy.json\n", out_dir.string());
+  if (!files.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", out_dir.string(), fmt::join(files, ","));
   return 0;
 }
 
@@ -126,14 +151,15 @@ void register_energy(CLI::App& app, int& exit_code) {
   cmd->add_option("--to", a->to, "End of the scan in the sweep coordinate (beta for the rolling wheel, q otherwise), "
                                  "e.g. '720 deg'");
   cmd->add_option("--points", a->points, "Rows of the omega(q) table (default 201)")->check(CLI::Range(3, 1000000));
-  cmd->add_option("-o,--out", a->out, "Write the omega(q) table as CSV");
+  cmd->add_option("-o,--out", a->out,
+                  "Output folder (default out/MODEL): energy.csv (the omega(q) table), energy.json, --plot figures");
   cmd->add_option("--delta", a->delta, "Target coefficient of speed fluctuation (ωmax−ωmin)/ωmean: size a flywheel")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--mean-speed", a->mean_speed, "Mean speed for --delta (default: the body's initial velocity)");
   cmd->add_flag("--plot", a->plot,
                 "Write speed_distance.svg/.png (rolling wheel: omega against distance, limit speed dashed) or "
                 "speed_angle.svg/.png, and for a crank inertia_moments.svg/.png (needs gnuplot)");
-  cmd->add_option("--plot-dir", a->plot_dir, "Folder for the --plot figures (default out/MODEL)");
+  cmd->add_option("--plot-dir", a->plot_dir, "Deprecated: the same as -o DIR");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_energy(*a); }); });
 }

@@ -18,6 +18,7 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -32,6 +33,7 @@ struct ReportArgs {
   std::vector<std::string> sets;
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
+  bool large_output = false;  ///< --large-output: embed series above the size limit
   std::string command_line;
 };
 
@@ -70,6 +72,16 @@ int run_report(const ReportArgs& a) {
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
                            {}, {}, std::nullopt});
+  // The report embeds every series: the same size limit as simulate's time series, before any run.
+  if (!a.large_output) {
+    std::uint64_t total = 0;
+    for (const auto& run : runs) total += estimate_timeseries(run.model).csv_bytes;
+    if (total > kDefaultOutputLimitBytes)
+      throw InputError(Location{a.model, 0, 0},
+                       fmt::format("the report would embed about {} of time series, more than the limit of {}; raise "
+                                   "simulation.dt_out or pass --large-output",
+                                   byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
+  }
   for (auto& run : runs) {
     ProgressBar bar(a.quiet);
     if (a.all_cases) {
@@ -95,7 +107,8 @@ int run_report(const ReportArgs& a) {
     cases.push_back(c);
   }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
-  const std::string out = a.out.empty() ? (default_out_dir(a.model) / "report.html").string() : a.out;
+  // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
+  const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
                            static_cast<double>(html.size()) / 1e3,
@@ -112,6 +125,7 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
   cmd->add_option("-o,--out", args->out, "The HTML file to write (default out/MODEL/report.html)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar on stderr");
+  cmd->add_flag("--large-output", args->large_output, "Embed the time series even when they would exceed 1 GB");
   cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
   cmd->add_flag("--all-cases", args->all_cases,
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");

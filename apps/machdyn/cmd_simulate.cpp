@@ -11,6 +11,7 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -30,6 +31,8 @@ struct SimulateArgs {
   std::vector<std::string> sets;
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
+  bool large_output = false;  ///< --large-output: write a time series above the size limit
+  bool rpm = false;           ///< --rpm: angular speeds of the figures in rpm
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -67,15 +70,16 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
 }
 
 /// `--all-cases`: every case of the file, outputs in OUT/CASE/, one table of peak link loads and
-/// dynamic factors.
-int run_all_cases(const std::string& model_path, const std::vector<std::string>& sets, std::string out_dir,
-                  bool json) {
+/// dynamic factors. All or nothing: every case runs (results kept in memory) before the first file
+/// is written, so a case that fails leaves no result of this run behind and is named on stderr.
+int run_all_cases(const SimulateArgs& a) {
+  const std::string& model_path = a.model;
   const auto names = case_names(read_yaml_file(model_path));
   if (names.empty()) throw InputError(Location{model_path, 0, 0}, "--all-cases: the model file has no 'cases:'");
-  if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(model_path).stem()).string();
+  const std::filesystem::path out_dir = output_dir(model_path, a.out_dir, "");
   // Compile every case first, so bad input stops the run before any result is written.
   std::vector<Model> models;
-  for (const auto& name : names) models.push_back(load_model_case(model_path, sets, name));
+  for (const auto& name : names) models.push_back(load_model_case(model_path, a.sets, name));
   // Every case runs event-driven; that solver handles position-dependent inertia but not the
   // velocity jumps of a stepwise gear drive.
   for (const auto& m : models)
@@ -83,52 +87,89 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
       throw InputError(Location{model_path, 0, 0},
                        "--all-cases: the model has velocity jumps (a stepwise gear drive), which only the smooth "
                        "simulation handles; run the cases one by one with --case NAME");
+  // The cases' time series are all held until the end: their sum must fit the output limit.
+  if (!a.large_output) {
+    std::uint64_t total = 0;
+    for (const auto& m : models) total += estimate_timeseries(m).csv_bytes;
+    if (total > kDefaultOutputLimitBytes)
+      throw InputError(Location{model_path, 0, 0},
+                       fmt::format("--all-cases: the time series of the {} cases would be about {} together, more "
+                                   "than the limit of {}; raise simulation.dt_out or pass --large-output",
+                                   models.size(), byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
+  }
+  std::vector<SimulationResult> results;
+  for (size_t c = 0; c < names.size(); ++c) {
+    try {
+      results.push_back(simulate_hybrid(models[c]));  // event-driven for every case, smooth or not
+    } catch (const SolverError&) {
+      std::cerr << fmt::format("machdyn: case '{}' ({} of {}) failed; no result of this run was written\n", names[c],
+                               c + 1, names.size());
+      throw;
+    }
+  }
   nlohmann::json all = nlohmann::json::array();
   // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
   std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",
                                   "link", "max", "min", "peak", "t_peak [s]", "static", "dyn.factor", "events", "", "unit");
-  for (size_t c = 0; c < names.size(); ++c) {
-    const Model& m = models[c];
-    const SimulationResult r = simulate_hybrid(m);  // event-driven for every case, smooth or not
-    const auto summary = simulation_summary(m, r);
-    const auto dir = std::filesystem::path(out_dir) / names[c];
-    write_file_atomic((dir / "timeseries.csv").string(), timeseries_csv(r));
-    write_file_atomic((dir / "summary.json").string(), summary.dump(2) + "\n");
-    all.push_back(summary);
-    long events = 0;
-    for (const auto& e : r.hybrid.events) events += e.kind != "initial";
-    for (size_t l = 0; l < m.links.size(); ++l) {
-      const auto& s = r.links[l];
-      const LinkPeak p = link_peak(r, l);
-      table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
-                           l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, p.peak, p.t_peak, p.static_load,
-                           p.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+  // A failure while writing (disk full) removes what this run wrote, so no half set is left.
+  std::vector<std::filesystem::path> written;
+  try {
+    for (size_t c = 0; c < names.size(); ++c) {
+      const Model& m = models[c];
+      const SimulationResult& r = results[c];
+      const auto summary = simulation_summary(m, r);
+      const auto dir = out_dir / names[c];
+      written.push_back(dir / "timeseries.csv");
+      write_timeseries_csv(written.back(), r);
+      written.push_back(dir / "summary.json");
+      write_file_atomic(written.back().string(), summary.dump(2) + "\n");
+      all.push_back(summary);
+      long events = 0;
+      for (const auto& e : r.hybrid.events) events += e.kind != "initial";
+      for (size_t l = 0; l < m.links.size(); ++l) {
+        const auto& s = r.links[l];
+        const LinkPeak p = link_peak(r, l);
+        table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
+                             l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, p.peak, p.t_peak, p.static_load,
+                             p.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+      }
     }
+    written.push_back(out_dir / "cases.json");
+    write_file_atomic(written.back().string(), all.dump(2) + "\n");
+  } catch (const OutputError&) {
+    for (const auto& p : written) {
+      std::error_code ec;
+      std::filesystem::remove(p, ec);
+    }
+    throw;
   }
-  write_file_atomic((std::filesystem::path(out_dir) / "cases.json").string(), all.dump(2) + "\n");
-  if (json) {
+  if (a.json) {
     std::cout << all.dump(2) << '\n';
   } else {
     std::cout << fmt::format("model: {} ({}), {} cases\n", models[0].name.substr(0, models[0].name.rfind(" [")),
                              model_path, names.size())
-              << table << fmt::format("wrote {0}/CASE/timeseries.csv, {0}/CASE/summary.json, {0}/cases.json\n", out_dir);
+              << table
+              << fmt::format("wrote {0}/CASE/timeseries.csv, {0}/CASE/summary.json, {0}/cases.json\n", out_dir.string());
   }
   return 0;
 }
 
 int run_simulate(const SimulateArgs& a) {
   const Model m = load_model_case(a.model, a.sets, a.load_case);
+  if (!a.large_output) check_output_size(m, kDefaultOutputLimitBytes, "--large-output");
   if (a.plot) plot::find_gnuplot();  // say it before a long run, not after
   ProgressBar bar(a.quiet);
   SimulateOptions options;
   options.progress = bar.callback();
   const SimulationResult r = simulate(m, options);
   bar.clear();
-  const std::string out_dir = a.out_dir.empty() ? default_out_dir(a.model).string() : a.out_dir;
+  const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
   const auto summary = simulation_summary(m, r);
   std::vector<std::string> figures;
-  if (a.plot) figures = write_figures(out_dir, simulation_figures(m, r));
-  write_file_atomic((std::filesystem::path(out_dir) / "timeseries.csv").string(), timeseries_csv(r));
+  FigureOptions fig_options;
+  fig_options.rpm = a.rpm;
+  if (a.plot) figures = write_figures(out_dir, simulation_figures(m, r, fig_options));
+  write_timeseries_csv(std::filesystem::path(out_dir) / "timeseries.csv", r);
   write_file_atomic((std::filesystem::path(out_dir) / "summary.json").string(), summary.dump(2) + "\n");
   if (a.json) {
     std::cout << summary.dump(2) << '\n';
@@ -162,7 +203,8 @@ int run_modes(const std::string& model_path, const std::vector<std::string>& set
     std::cout << j.dump(2) << '\n';
     return 0;
   }
-  std::cout << fmt::format("model: {} ({})\nrigid-body modes: {}\n", m.name, m.source, modes.rigid_body_modes);
+  std::cout << fmt::format("model: {} ({})\ntopology: {}\nrigid-body modes: {}\n", m.name, m.source,
+                           j["topology"]["note"].get<std::string>(), modes.rigid_body_modes);
   std::cout << fmt::format("{:>4} {:>16} {:>14}   mass-normalized shape ({})\n", "mode", "omega [rad/s]", "f [Hz]",
                            [&] {
                              std::string s;
@@ -186,7 +228,9 @@ void register_simulate(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SimulateArgs>();
   auto* cmd = app.add_subcommand("simulate", "Simulate a model: time series, link-load peaks, dynamic factors");
   cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
-  cmd->add_option("-o,--out", args->out_dir, "Output folder for timeseries.csv and summary.json (default out/MODEL)");
+  cmd->add_option("-o,--out", args->out_dir,
+                  "Output folder OUT (default out/MODEL); timeseries.csv and summary.json go to OUT, with --case NAME "
+                  "to OUT/NAME, with --all-cases to OUT/CASE for each case");
   cmd->add_flag("--json", args->json, "Print the summary as JSON to stdout");
   cmd->add_flag("--plot", args->plot,
                 "Also write link_loads.svg/.png (link loads against time, static values dashed) and "
@@ -195,12 +239,16 @@ void register_simulate(CLI::App& app, int& exit_code) {
   add_set_option(*cmd, args->sets);
   cmd->add_option("--case", args->load_case, "Run one load case of the file's 'cases:' (e.g. a hoist operating mode)");
   cmd->add_flag("--all-cases", args->all_cases,
-                "Run every load case: one table of peak link loads and dynamic factors, outputs in OUT/CASE/");
+                "Run every load case: one table of peak link loads and dynamic factors, outputs in OUT/CASE/; "
+                "if a case fails nothing is written");
+  cmd->add_flag("--rpm", args->rpm, "With --plot: angular speeds in rpm instead of rad/s");
+  cmd->add_flag("--large-output", args->large_output,
+                "Write the time series even when it would exceed 1 GB (simulation.t_end/dt_out rows)");
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
       if (args->all_cases && !args->load_case.empty())
         throw InputError(Location{"--case", 0, 0}, "give either --case NAME or --all-cases");
-      if (args->all_cases) return run_all_cases(args->model, args->sets, args->out_dir, args->json);
+      if (args->all_cases) return run_all_cases(*args);
       return run_simulate(*args);
     });
   });

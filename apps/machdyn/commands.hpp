@@ -32,6 +32,11 @@ std::vector<std::string> write_figures(const std::filesystem::path& dir, const s
 /// The default output folder of a command: out/<model file stem>.
 std::filesystem::path default_out_dir(const std::string& model_path);
 
+/// The one output-folder convention of every command: OUT is `-o` or out/<model file stem>; a
+/// run of load case NAME (`--case NAME`, and each case of `--all-cases`) writes to OUT/NAME.
+std::filesystem::path output_dir(const std::string& model_path, const std::string& out_option,
+                                 const std::string& load_case);
+
 void register_simulate(CLI::App& app, int& exit_code);
 void register_report(CLI::App& app, int& exit_code);
 void register_modes(CLI::App& app, int& exit_code);

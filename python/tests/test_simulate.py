@@ -86,7 +86,7 @@ def test_set_and_case_equal_the_cli(tmp):
     case = m.cases[1]
     run_cli("simulate", path, "-o", tmp, "--quiet", "--case", case, "--set", "c1.stiffness=3e4 N*m/rad")
     r = machdyn.simulate(machdyn.load(path, set={"c1.stiffness": "3e4 N*m/rad"}), case=case)
-    cli = json.load(open(tmp / "summary.json"))
+    cli = json.load(open(tmp / case / "summary.json"))  # a case writes to OUT/CASE (README, output folders)
     for s in (cli, r.summary):
         s["solver"].pop("wall_time_s")
     assert r.summary == cli

@@ -286,6 +286,9 @@ EnergyResult energy_analysis(const Model& m, const EnergyOptions& opt) {
       r.limit_kind = "finite";
     } else if (Qend > 0) {
       r.limit_kind = "unbounded";
+      // q'' = (Q − ½ I′ ω²)/I with I′ω² → 0 at the end of the range (I′ vanishes faster than ω²
+      // grows), so the acceleration tends to Q/I there: paper 000 eq. 30 for the rolling wheel.
+      r.epsilon_limit = Qend / E.inertia_s(*open_end);
     } else {
       auto En = energy_from(s_last, A_last);
       for (int j = 4; j <= 14; ++j) {

@@ -27,8 +27,9 @@ nlohmann::json energy_json(const Model& m, const EnergyResult& r) {
   j["q_at_omega_min"] = r.q_at_omega_min;
   j["omega_limit"] = r.omega_limit ? num(*r.omega_limit) : nlohmann::json();
   j["limit"] = r.limit_kind;
+  j["epsilon_limit"] = r.epsilon_limit ? num(*r.epsilon_limit) : nlohmann::json();  // rad/s², with "unbounded"
   if (r.work_per_period) j["work_per_period"] = *r.work_per_period;
-  j["units"] = {{"q", "rad"}, {"omega", "rad/s"}, {"I", "kg*m^2"}, {"A", "J"}};
+  j["units"] = {{"q", "rad"}, {"omega", "rad/s"}, {"epsilon_limit", "rad/s^2"}, {"I", "kg*m^2"}, {"A", "J"}};
   // Values in the sweep coordinate (β for the wheel) and at the output point (x, piston).
   std::vector<double> tp_s, tp_p;
   auto point = [&](double q) {

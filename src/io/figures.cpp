@@ -32,49 +32,142 @@ std::string endpoint_name(const Model& m, int body) {
 
 std::string number(double v) { return fmt::format("{:.4g}", v); }
 
-}  // namespace
+/// An engineering unit for loads of this size: the SI unit ("N", "N*m") with k or M in front when
+/// the largest magnitude reaches 10⁴ or 10⁷, so tick labels stay short decimals (43.5 kN, not
+/// 43500 or 4.35e+04). Returns the factor to multiply SI values by and the printed unit.
+std::pair<double, std::string> engineering(double largest, const std::string& si_unit) {
+  const std::string u = plot::pretty_unit(si_unit);
+  if (largest >= 1e7) return {1e-6, "M" + u};
+  if (largest >= 1e4) return {1e-3, "k" + u};
+  return {1.0, u};
+}
 
-plot::Figure link_loads_figure(const Model& m, const SimulationResult& r) {
-  plot::Figure f;
-  f.id = "link_loads";
-  f.title = "Link loads; dashed: quasi-static load (particular solution)";
-  f.x = plot::make_axis("time t", "s");
+std::vector<double> scaled(std::vector<double> v, double k) {
+  if (k != 1.0)
+    for (double& x : v) x *= k;
+  return v;
+}
+
+/// "MODEL [case]: what" — a figure in a report names the model and the case.
+std::string titled(const Model& m, const std::string& what) { return m.name + ": " + what; }
+
+/// The events of a hybrid run as marks: brakes applied (at t_apply > 0), gaps closing and opening,
+/// contacts breaking away and sticking. With more than 12, only the first of each kind and element
+/// (a stick–slip run has hundreds); the title of the figure says so through `*thinned`.
+std::vector<plot::EventMark> event_marks(const Model& m, const SimulationResult& r, bool* thinned) {
+  std::vector<plot::EventMark> all;
+  for (const auto& c : m.contacts)
+    if (c.brake && c.t_apply > 0.0) all.push_back({c.t_apply, c.name + " applied"});
+  for (const auto& e : r.hybrid.events) {
+    if (e.kind == "initial") continue;
+    std::string what = e.kind == "slip" ? "breakaway" : e.kind == "stick" ? "sticks" : e.kind;
+    for (auto& ch : what)
+      if (ch == '_') ch = ' ';
+    all.push_back({e.t, e.element + " " + what});
+  }
+  std::stable_sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
+  *thinned = false;
+  std::vector<plot::EventMark> marks;
+  if (all.size() <= 12) {
+    marks = all;
+  } else {
+    *thinned = true;
+    for (const auto& e : all)
+      if (std::none_of(marks.begin(), marks.end(), [&](const plot::EventMark& f) { return f.label == e.label; }))
+        marks.push_back(e);
+  }
+  // Labels closer than 2.5 % of the run would overprint: such a line keeps no label.
+  double last = -1e300;
+  for (auto& e : marks) {
+    if (e.x - last < 0.025 * m.simulation.t_end) e.label.clear();
+    else last = e.x;
+  }
+  return marks;
+}
+
+/// The link loads as series of `f` (left axis N·m, right axis N when both occur), in engineering
+/// units; `static_in_legend`: the quasi-static load as a dashed line in the link's colour with its
+/// value in the legend entry (one label per link, so many links never overlap).
+void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_legend, plot::Figure& f) {
   const auto& t = column(r, "t_s");
   const bool any_torque = std::any_of(m.links.begin(), m.links.end(),
                                       [&](const Link& l) { return std::string(link_load_unit(m, l)) == "N*m"; });
   const bool any_force = std::any_of(m.links.begin(), m.links.end(),
                                      [&](const Link& l) { return std::string(link_load_unit(m, l)) == "N"; });
-  f.y = any_torque ? plot::make_axis("link torque M", "N·m") : plot::make_axis("link force F", "N");
-  if (any_torque && any_force) f.y2 = plot::make_axis("link force F", "N");
+  double largest[3] = {0, 0, 0};
+  auto axis_of = [&](const Link& L) { return any_torque && std::string(link_load_unit(m, L)) == "N" ? 2 : 1; };
+  for (std::size_t l = 0; l < m.links.size(); ++l)
+    for (double v : column(r, m.links[l].name + ".load_"))
+      if (std::isfinite(v)) largest[axis_of(m.links[l])] = std::max(largest[axis_of(m.links[l])], std::abs(v));
+  const auto [k1, u1] = engineering(largest[1], any_torque ? "N*m" : "N");
+  const auto [k2, u2] = engineering(largest[2], "N");
+  f.y = any_torque ? plot::make_axis("link torque M", u1) : plot::make_axis("link force F", u1);
+  if (any_torque && any_force) f.y2 = plot::make_axis("link force F", u2);
+  double peak_abs = -1.0;
+  plot::Annotation peak;
   for (std::size_t l = 0; l < m.links.size(); ++l) {
     const Link& L = m.links[l];
-    const std::string unit = link_load_unit(m, L);
-    const int axis = any_torque && unit == "N" ? 2 : 1;
-    f.series.push_back(plot::make_series(fmt::format("{} ({}–{})", L.name, endpoint_name(m, L.a), endpoint_name(m, L.b)),
-                                         t, column(r, L.name + ".load_"), plot::Style::line, axis));
-    if (l < r.links.size() && std::isfinite(r.links[l].static_load))
-      f.ref_lines.push_back(plot::make_ref_line(
-          r.links[l].static_load, fmt::format("{}* = {} {}", L.name, number(r.links[l].static_load), plot::pretty_unit(unit)),
-          static_cast<int>(l), axis));
+    const int axis = axis_of(L);
+    const double k = axis == 2 ? k2 : k1;
+    const std::string& unit = axis == 2 ? u2 : u1;
+    std::string name = fmt::format("{} ({}–{})", L.name, endpoint_name(m, L.a), endpoint_name(m, L.b));
+    const bool has_static = l < r.links.size() && std::isfinite(r.links[l].static_load);
+    if (static_in_legend && has_static) {
+      name += fmt::format(", {}* = {} {}", L.name, number(k * r.links[l].static_load), unit);
+      f.ref_lines.push_back(plot::make_ref_line(k * r.links[l].static_load, "", static_cast<int>(l), axis));
+    }
+    f.series.push_back(plot::make_series(name, t, scaled(column(r, L.name + ".load_"), k), plot::Style::line, axis));
+    // The peak: the extreme of larger magnitude of the link whose peak is largest (in its unit).
+    if (l < r.links.size()) {
+      const auto& S = r.links[l];
+      const bool use_max = std::abs(S.max) >= std::abs(S.min);
+      const double v = use_max ? S.max : S.min, tv = use_max ? S.t_max : S.t_min;
+      if (std::isfinite(v) && std::abs(v) * k > peak_abs) {
+        peak_abs = std::abs(v) * k;
+        peak = {tv, k * v, fmt::format("{} peak {} {} at {} s", L.name, number(k * v), unit, number(tv)),
+                static_cast<int>(l), axis};
+      }
+    }
   }
+  if (peak_abs > 0.0) f.notes.push_back(peak);
+}
+
+}  // namespace
+
+plot::Figure link_loads_figure(const Model& m, const SimulationResult& r) {
+  plot::Figure f;
+  f.id = "link_loads";
+  f.x = plot::make_axis("time t", "s");
+  add_link_loads(m, r, true, f);
+  bool thinned = false;
+  if (r.hybrid.active) f.events = event_marks(m, r, &thinned);
+  f.title = titled(m, std::string("link loads") +
+                          (f.events.empty() ? "" : thinned ? "; dotted: first events of each kind" : "; dotted: events"));
   f.zero_line = true;
   f.legend = plot::Figure::Legend::below;
   return f;
 }
 
-plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) {
+plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) { return body_speeds_figure(m, r, {}); }
+
+plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r, const FigureOptions& opt) {
   plot::Figure f;
   f.id = "body_speeds";
-  f.title = "Body speeds";
+  f.title = titled(m, "body speeds");
   f.x = plot::make_axis("time t", "s");
   const auto& t = column(r, "t_s");
   const bool any_rot = std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return b.kind == BodyKind::rotational; });
   const bool any_tr = std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return b.kind == BodyKind::translational; });
-  f.y = any_rot ? plot::make_axis("angular velocity ω", "rad/s") : plot::make_axis("velocity v", "m/s");
+  f.y = !any_rot ? plot::make_axis("velocity v", "m/s")
+        : opt.rpm ? plot::make_axis("speed n", "rpm")
+                  : plot::make_axis("angular velocity ω", "rad/s");
   if (any_rot && any_tr) f.y2 = plot::make_axis("velocity v", "m/s");
-  for (const Body& b : m.bodies)
-    f.series.push_back(plot::make_series(b.name, t, column(r, b.name + ".velocity_"), plot::Style::line,
-                                         any_rot && b.kind == BodyKind::translational ? 2 : 1));
+  const double to_rpm = 60.0 / (2.0 * kPi);
+  for (const Body& b : m.bodies) {
+    const bool rot = b.kind == BodyKind::rotational;
+    f.series.push_back(plot::make_series(b.name, t, scaled(column(r, b.name + ".velocity_"), rot && opt.rpm ? to_rpm : 1.0),
+                                         plot::Style::line, any_rot && !rot ? 2 : 1));
+  }
   f.legend = plot::Figure::Legend::below;
   return f;
 }
@@ -111,20 +204,25 @@ const char* contact_unit(const Model& m, const FrictionContact& c) {
 plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
   if (m.links.empty() || !r.hybrid.active)
     throw std::invalid_argument("load cyclogram: needs the hybrid (event-driven) result of a model with links");
-  plot::Figure f = link_loads_figure(m, r);
+  plot::Figure f;
+  f.x = plot::make_axis("time t", "s");
+  // The cyclogram compares with the adhesion limit, not the quasi-static load.
+  add_link_loads(m, r, false, f);
   f.id = "load_cyclogram";
-  f.ref_lines.clear();  // the cyclogram compares with the adhesion limit, not the quasi-static load
+  f.zero_line = true;
+  f.legend = plot::Figure::Legend::below;
   const auto ks = slipping_contacts(m);
   const std::string y_unit = link_load_unit(m, m.links[0]);
+  // The scale add_link_loads chose for the left axis (1, 1e-3 or 1e-6), from its unit's prefix.
+  const double k_left = f.y.unit.rfind("k", 0) == 0 ? 1e-3 : f.y.unit.rfind("M", 0) == 0 ? 1e-6 : 1.0;
   for (const std::size_t k : ks) {
     const auto& c = m.contacts[k];
     if (c.brake || std::string(contact_unit(m, c)) != y_unit) continue;
     f.ref_lines.push_back(plot::make_ref_line(
-        c.static_limit, fmt::format("F_sc = {} {}", number(c.static_limit), plot::pretty_unit(y_unit)), -1));
+        k_left * c.static_limit, fmt::format("F_sc = {} {}", number(k_left * c.static_limit), f.y.unit), -1));
   }
   add_slip_bands(m, r, ks, f);
-  f.title = fmt::format("Load cyclogram: link load{}{}; dots: load at breakaway",
-                        f.ref_lines.empty() ? "" : "; dashed: static limit F_sc", f.bands.empty() ? "" : "; shaded: slip");
+  f.title = titled(m, fmt::format("load cyclogram{}", f.ref_lines.empty() ? "" : "; dashed: static limit F_sc"));
   // The breakaway loads: the link load at the start of every slip phase of these contacts.
   const std::size_t n_links = m.links.size();
   for (std::size_t l = 0; l < n_links; ++l) {
@@ -133,14 +231,17 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
     for (const auto& p : r.hybrid.slip_phases) {
       const bool shown = std::any_of(ks.begin(), ks.end(), [&](std::size_t k) { return m.contacts[k].name == p.contact; });
       if (!shown || l >= p.link_start.size()) continue;
+      const double k = f.series[l].y_axis == 2 ? (f.y2.unit.rfind("k", 0) == 0 ? 1e-3 : f.y2.unit.rfind("M", 0) == 0 ? 1e-6 : 1.0)
+                                               : k_left;
       s.x.push_back(p.t_start);
-      s.y.push_back(p.link_start[l]);
+      s.y.push_back(k * p.link_start[l]);
     }
     if (!s.x.empty()) {
+      const std::string& unit = f.series[l].y_axis == 2 ? f.y2.unit : f.y.unit;
       const double lo = *std::min_element(s.y.begin(), s.y.end()), hi = *std::max_element(s.y.begin(), s.y.end());
-      s.name += hi - lo <= 5e-4 * std::max(std::abs(hi), 1.0)
-                    ? fmt::format(" ({} {})", number(hi), plot::pretty_unit(link_load_unit(m, m.links[l])))
-                    : fmt::format(" ({} … {} {})", number(lo), number(hi), plot::pretty_unit(link_load_unit(m, m.links[l])));
+      s.name += hi - lo <= 5e-4 * std::max(std::abs(hi), 1e-3)
+                    ? fmt::format(" ({} {})", number(hi), unit)
+                    : fmt::format(" ({} … {} {})", number(lo), number(hi), unit);
       f.series.push_back(std::move(s));
     }
   }
@@ -150,18 +251,32 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
 plot::Figure contacts_figure(const Model& m, const SimulationResult& r) {
   if (m.contacts.empty() || !r.hybrid.active)
     throw std::invalid_argument("contacts figure: needs the hybrid (event-driven) result of a model with contacts");
+  return contacts_figure(m, r, m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind);
+}
+
+plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind kind) {
+  if (m.contacts.empty() || !r.hybrid.active)
+    throw std::invalid_argument("contacts figure: needs the hybrid (event-driven) result of a model with contacts");
+  const BodyKind first = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
   plot::Figure f;
-  f.id = "contacts";
-  f.title = "Friction contacts: force (solid, left) and sliding velocity (dashed, right); shaded: slip";
+  // The figure of the first contact's kind is `contacts`; the other kind (a brake in N·m beside a
+  // wheel contact in N) gets its own, so no contact is left out for its unit.
+  f.id = kind == first ? "contacts" : kind == BodyKind::rotational ? "contacts_torques" : "contacts_forces";
+  f.title = titled(m, "contacts: force (solid, left), sliding velocity (dashed, right)");
   f.x = plot::make_axis("time t", "s");
-  const auto kind = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
   const bool rot = kind == BodyKind::rotational;
-  f.y = rot ? plot::make_axis("contact torque M", "N·m") : plot::make_axis("contact force F", "N");
+  double largest = 0.0;
+  for (const auto& c : m.contacts)
+    if (m.bodies[static_cast<std::size_t>(c.a)].kind == kind)
+      for (double v : column(r, c.name + ".force_"))
+        if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+  const auto [k_force, u_force] = engineering(largest, rot ? "N*m" : "N");
+  f.y = rot ? plot::make_axis("contact torque M", u_force) : plot::make_axis("contact force F", u_force);
   f.y2 = rot ? plot::make_axis("sliding velocity u", "rad/s") : plot::make_axis("sliding velocity u", "m/s");
   const auto& t = column(r, "t_s");
   for (const auto& c : m.contacts) {
     if (m.bodies[static_cast<std::size_t>(c.a)].kind != kind) continue;  // one kind of unit per figure
-    f.series.push_back(plot::make_series(c.name + ": force", t, column(r, c.name + ".force_")));
+    f.series.push_back(plot::make_series(c.name + ": force", t, scaled(column(r, c.name + ".force_"), k_force)));
     plot::Series u = plot::make_series(c.name + ": sliding velocity", t, column(r, c.name + ".sliding_velocity_"),
                                        plot::Style::line, 2);
     u.dashed = true;
@@ -173,13 +288,21 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r) {
   return f;
 }
 
-std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r) {
+std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r, const FigureOptions& opt) {
   std::vector<plot::Figure> figs;
   const bool hybrid = r.hybrid.active && !m.contacts.empty();
   if (hybrid && !m.links.empty()) figs.push_back(load_cyclogram_figure(m, r));
   if (!m.links.empty()) figs.push_back(link_loads_figure(m, r));
-  figs.push_back(body_speeds_figure(m, r));
-  if (hybrid) figs.push_back(contacts_figure(m, r));
+  figs.push_back(body_speeds_figure(m, r, opt));
+  if (hybrid) {
+    const BodyKind first = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
+    figs.push_back(contacts_figure(m, r, first));
+    const bool other = std::any_of(m.contacts.begin(), m.contacts.end(), [&](const FrictionContact& c) {
+      return m.bodies[static_cast<std::size_t>(c.a)].kind != first;
+    });
+    if (other)
+      figs.push_back(contacts_figure(m, r, first == BodyKind::rotational ? BodyKind::translational : BodyKind::rotational));
+  }
   return figs;
 }
 
@@ -187,10 +310,10 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
   plot::Figure f;
   f.id = "mode_shapes";
   const Eigen::Index shown = std::min<Eigen::Index>(modes.shapes.cols(), std::max(1, max_modes));
-  f.title = shown < modes.shapes.cols()
-                ? fmt::format("The {} lowest of {} elastic mode shapes (each scaled to max |φ| = 1)", shown,
-                              modes.shapes.cols())
-                : std::string("Elastic mode shapes (each scaled to max |φ| = 1)");
+  f.title = titled(m, shown < modes.shapes.cols()
+                         ? fmt::format("the {} lowest of {} elastic mode shapes (each scaled to max |φ| = 1)", shown,
+                                       modes.shapes.cols())
+                         : std::string("elastic mode shapes (each scaled to max |φ| = 1)"));
   f.x = plot::make_axis("body", "");
   // Every body named while the names fit; a long chain names every k-th body.
   std::size_t name_chars = 0;

@@ -57,6 +57,10 @@ std::string range_cmd(const char* axis, const Axis& a, Range r, double pad) {
   if (a.min) r.lo = *a.min;
   if (a.max) r.hi = *a.max;
   if (!r.valid()) return fmt::format("set autoscale {}\n", axis);
+  if (a.log && r.lo > 0) {  // the margin as a factor: the same share of the log axis on each side
+    const double ratio = std::pow(r.hi / r.lo, pad);
+    return fmt::format("set {}range [{:.9g}:{:.9g}]\n", axis, a.min ? *a.min : r.lo / ratio, a.max ? *a.max : r.hi * ratio);
+  }
   double span = r.hi - r.lo;
   if (span <= 0) span = std::max(std::abs(r.hi), 1.0);
   const double lo = a.min ? *a.min : r.lo - pad * span, hi = a.max ? *a.max : r.hi + pad * span;
@@ -169,22 +173,73 @@ std::string gnuplot_script(const Figure& fig, Format format, const std::string& 
     g += "set border 11 lw 1\nset y2tics nomirror out\nset y2label " + quote(fig.y2.label()) + "\n";
   }
   g += ticks_cmd("x", fig.x) + ticks_cmd("y", fig.y);
+  if (fig.x.log) g += "set logscale x\n";
+  if (fig.y.log) g += "set logscale y\n";
   g += fmt::format("set key {} noautotitle samplen 2.5 spacing 1.15 width 1\n", key_position(fig.legend));
+
+  // Plain decimal tick labels, never e-notation (the figure functions scale to kN, kN·m, ...).
+  g += "set format x '%.10g'\nset format y '%.10g'\n";
+  if (y2) g += "set format y2 '%.10g'\n";
 
   Range rx, ry, ry2;
   for (const auto& s : fig.series)
     for (std::size_t k = 0; k < s.x.size(); ++k)
       if (finite_point(s, k)) rx.add(s.x[k]), (s.y_axis == 2 ? ry2 : ry).add(s.y[k]);
   for (const auto& r : fig.ref_lines) (r.y_axis == 2 ? ry2 : ry).add(r.value);
+  for (const auto& n : fig.notes) (n.y_axis == 2 ? ry2 : ry).add(n.y);
   if (fig.zero_line) ry.add(0.0);
+  if (fig.zero_line && y2) ry2.add(0.0);
   if (fig.equal_aspect) {
     g += "set size ratio -1\n";
     g += range_cmd("x", fig.x, rx, 0.04) + range_cmd("y", fig.y, ry, 0.04);
+  } else if (fig.zero_line && y2 && ry.valid() && ry2.valid() && !fig.y.min && !fig.y.max && !fig.y2.min &&
+             !fig.y2.max) {
+    // Two axes, one zero line: the zeros sit at the same height, so a curve on either axis is read
+    // against the same line (a rope at 43.5 kN never looks slack).
+    g += range_cmd("x", fig.x, rx, fig.x.ticks.empty() ? 0.0 : 0.08);
+    auto pad = [](Range r) {
+      const double span = r.hi - r.lo > 0 ? r.hi - r.lo : std::max(std::abs(r.hi), 1.0);
+      r.lo = r.lo < 0 ? r.lo - 0.08 * span : 0.0;
+      r.hi = r.hi > 0 ? r.hi + 0.08 * span : 0.0;
+      if (r.lo == r.hi) r.hi = 1.0;
+      return r;
+    };
+    Range a = pad(ry), b = pad(ry2);
+    // Fraction of the height below zero: the larger one for both axes.
+    const double f = std::max(-a.lo / (a.hi - a.lo), -b.lo / (b.hi - b.lo));
+    for (Range* r : {&a, &b}) {
+      if (f >= 1.0) r->hi = 0.0, r->lo = std::min(r->lo, -1.0);
+      else if (r->hi > 0.0) r->lo = std::min(r->lo, -f / (1.0 - f) * r->hi);
+      else r->hi = -r->lo * (1.0 - f) / f;
+    }
+    g += fmt::format("set yrange [{:.9g}:{:.9g}]\nset y2range [{:.9g}:{:.9g}]\n", a.lo, a.hi, b.lo, b.hi);
   } else {
     g += range_cmd("x", fig.x, rx, fig.x.ticks.empty() ? 0.0 : 0.08);
     // Room above the data for the labels of reference lines and an inside legend.
     g += range_cmd("y", fig.y, ry, 0.08);
     if (y2) g += range_cmd("y2", fig.y2, ry2, 0.08);
+  }
+  // Events: dotted vertical lines, labels written upwards from just inside the bottom (the peak
+  // note sits at the top) on an opaque box, so a curve behind them does not garble them.
+  const std::string small_font = format == Format::svg ? "DejaVu Sans,9" : "DejaVu Sans,18";
+  if (!fig.events.empty()) g += "set style textbox opaque noborder\n";
+  for (const auto& e : fig.events) {
+    g += fmt::format("set arrow from first {0:.10g}, graph 0 to first {0:.10g}, graph 1 nohead lc rgb '#707070' lw 1 "
+                     "dt 3 back\n",
+                     e.x);
+    if (!e.label.empty())
+      g += fmt::format("set label {} at first {:.10g}, graph 0.02 rotate by 90 left offset -0.4,0 tc rgb '#505050' "
+                       "font '{}' boxed front\n",
+                       quote(e.label), e.x, small_font);
+  }
+  for (const auto& n : fig.notes) {
+    const std::string color = n.series >= 0 ? series_color(static_cast<std::size_t>(n.series)) : "#000000";
+    // Text on the side with room: right of the point in the left 60 % of the plot, else left of it.
+    const bool left = rx.valid() && rx.hi > rx.lo && (n.x - rx.lo) / (rx.hi - rx.lo) > 0.6;
+    g += fmt::format("set label {} at first {:.10g}, {} {:.10g} {} point pt 6 ps 1.6 lc rgb '{}' offset {},0.6 "
+                     "tc rgb '{}' front\n",
+                     quote(n.text), n.x, n.y_axis == 2 ? "second" : "first", n.y, left ? "right" : "left", color,
+                     left ? "-1.2" : "1.2", color);
   }
   for (std::size_t k = 0; k < fig.bands.size(); ++k)
     g += fmt::format("set object {} rect from first {:.10g}, graph 0 to first {:.10g}, graph 1 behind fc rgb '{}' "

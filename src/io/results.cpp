@@ -6,7 +6,7 @@
 
 namespace machdyn {
 
-std::string timeseries_csv(const SimulationResult& r) {
+void timeseries_csv(const SimulationResult& r, const ChunkSink& sink) {
   std::string s;
   for (size_t c = 0; c < r.column_names.size(); ++c) {
     if (c) s += ',';
@@ -14,15 +14,31 @@ std::string timeseries_csv(const SimulationResult& r) {
   }
   s += '\n';
   const size_t rows = r.columns.empty() ? 0 : r.columns[0].size();
-  s.reserve(s.size() + rows * r.columns.size() * 24);
+  // About 1 MB at a time: a long run's CSV is never held whole in memory.
+  constexpr size_t chunk = size_t{1} << 20;
+  s.reserve(chunk + 4096);
   for (size_t i = 0; i < rows; ++i) {
     for (size_t c = 0; c < r.columns.size(); ++c) {
       if (c) s += ',';
       fmt::format_to(std::back_inserter(s), "{:.17g}", r.columns[c][i]);
     }
     s += '\n';
+    if (s.size() >= chunk) {
+      sink(s);
+      s.clear();
+    }
   }
-  return s;
+  sink(s);
+}
+
+std::string timeseries_csv(const SimulationResult& r) {
+  std::string all;
+  timeseries_csv(r, [&](std::string_view d) { all.append(d); });
+  return all;
+}
+
+void write_timeseries_csv(const std::filesystem::path& path, const SimulationResult& r) {
+  write_file_atomic(path, [&](const ChunkSink& sink) { timeseries_csv(r, sink); });
 }
 
 namespace {
@@ -151,9 +167,31 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   return j;
 }
 
+nlohmann::json modes_topology(const Model& m) {
+  std::vector<std::string> gaps, contacts, brakes;
+  for (const auto& l : m.links)
+    if (l.has_gap) gaps.push_back(l.name);
+  for (const auto& c : m.contacts) (c.brake ? brakes : contacts).push_back(c.name);
+  std::string note = fmt::format("{} bodies and {} link(s), linearized at the initial position", m.bodies.size(),
+                                 m.links.size());
+  if (!gaps.empty()) note += fmt::format("; gaps taken as closed (the spring acts): {}", fmt::join(gaps, ", "));
+  if (!contacts.empty()) note += fmt::format("; friction contacts left out (bodies free): {}", fmt::join(contacts, ", "));
+  if (!brakes.empty()) note += fmt::format("; brakes left out (not applied): {}", fmt::join(brakes, ", "));
+  const bool exact = gaps.empty() && contacts.empty() && brakes.empty();
+  if (!exact) note += " — the modes of this linear chain, not of every mode of the hybrid model";
+  return {{"bodies", m.bodies.size()},
+          {"links", m.links.size()},
+          {"gaps_closed", gaps},
+          {"contacts_ignored", contacts},
+          {"brakes_ignored", brakes},
+          {"exact", exact},
+          {"note", note}};
+}
+
 nlohmann::json modes_summary(const Model& m, const Modes& modes) {
   nlohmann::json j;
   j["model"] = m.name;
+  j["topology"] = modes_topology(m);
   j["rigid_body_modes"] = modes.rigid_body_modes;
   std::vector<double> w(modes.omega.data(), modes.omega.data() + modes.omega.size()), hz;
   for (double x : w) hz.push_back(x / (2.0 * std::numbers::pi));

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/output_file.hpp"
 
 namespace machdyn {
 namespace {
@@ -98,6 +99,7 @@ SweepJournal::SweepJournal(std::string path, const std::string& fingerprint, lon
     bool first = true;
     std::string text;
     long rows_seen = 0;
+    bool foreign = false;  // the journal of another sweep (header with another fingerprint)
     while (pos < all.size()) {
       const auto nl = all.find('\n', pos);
       const auto end = nl == std::string::npos ? all.size() : nl + 1;
@@ -107,11 +109,13 @@ SweepJournal::SweepJournal(std::string path, const std::string& fingerprint, lon
       if (first) {
         first = false;
         if (valid && text == expected_header) continue;
-        if (!resume) break;  // checked below: a fresh sweep may replace a journal without rows
-        throw InputError(where, valid && text.starts_with("#machdyn-sweep-journal")
-                                    ? "this journal belongs to another sweep (other model file, --set, --vary, "
-                                      "method, samples or seed); remove it or choose another -o"
-                                    : "this is not a machdyn sweep journal");
+        if (!valid || !text.starts_with("#machdyn-sweep-journal"))
+          throw InputError(where, "this is not a machdyn sweep journal; remove it or choose another -o");
+        if (resume)
+          throw InputError(where, "this journal belongs to another sweep (other model file, --set, --vary, "
+                                  "method, samples or seed); remove it or choose another -o");
+        foreign = true;  // counted below: a fresh sweep may replace a journal without rows, nothing else
+        continue;
       }
       ++rows_seen;
       const long idx = valid ? row_index(text) : -1;
@@ -125,6 +129,13 @@ SweepJournal::SweepJournal(std::string path, const std::string& fingerprint, lon
         ++finished_;
       }
     }
+    // A finished or interrupted run is never discarded: the same plan needs --resume, another plan
+    // another folder (its table, sweep.csv beside the journal, would be replaced too).
+    if (!resume && rows_seen > 0 && foreign)
+      throw InputError(where, fmt::format("holds {} finished run(s) of another sweep (other model file, --set, "
+                                          "--vary, method, samples or seed); choose another -o, or remove the "
+                                          "file to replace that sweep",
+                                          rows_seen));
     if (!resume && rows_seen > 0)
       throw InputError(where, fmt::format("holds {} finished run(s) of an earlier sweep; add --resume to continue it, "
                                           "or remove the file to start again",
@@ -139,16 +150,7 @@ SweepJournal::SweepJournal(std::string path, const std::string& fingerprint, lon
   std::string content = journal_record(expected_header);
   for (const auto& r : rows_)
     if (!r.empty()) content += journal_record(r);
-  fs::path tmp = p;
-  tmp += fmt::format(".tmp.{}", ::getpid());
-  {
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw std::runtime_error(fmt::format("cannot create {}: {}", tmp.string(), std::strerror(errno)));
-    write_all(fd, content, tmp.string());
-    (void)::fdatasync(fd);
-    ::close(fd);
-  }
-  fs::rename(tmp, p);
+  write_file_atomic(p, content);  // a full disk leaves the earlier journal as it was
   fsync_dir(p.parent_path());
   fd_ = ::open(p.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", path_, std::strerror(errno)));

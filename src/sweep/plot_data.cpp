@@ -137,7 +137,8 @@ plot::Rendered render_heat_map(const PlotData& d, const SweepPlotSpec& spec) {
       if (std::abs(v[i] / v[i - 1] / r - 1) > 1e-6) return false;
     return true;
   };
-  const bool logx = grid && log_spaced(d.x_text), logy = grid && log_spaced(d.y_text);
+  const bool logx = spec.input_axes[0].log || (grid && log_spaced(d.x_text)),
+             logy = spec.input_axes[1].log || (grid && log_spaced(d.y_text));
   std::string data;
   const auto cx = grid_cells(d.x_text, logx), cy = grid_cells(d.y_text, logy);
   for (size_t i = 0; i < d.z.size(); ++i) {
@@ -153,6 +154,8 @@ plot::Rendered render_heat_map(const PlotData& d, const SweepPlotSpec& spec) {
              : "set terminal pngcairo size 1600,1000 noenhanced font 'DejaVu Sans,24' background '#ffffff' linewidth 2\n";
     g += "set output " + plot::quote(out) + "\n";
     g += "set border 3 lw 1\nset tics nomirror out\nset key off\n";
+    if (!spec.title.empty()) g += "set title " + plot::quote(spec.title) + "\n";
+    g += "set format x '%.10g'\nset format y '%.10g'\nset format cb '%.10g'\n";
     g += "set xlabel " + plot::quote(spec.input_axes[0].label()) + "\n";
     g += "set ylabel " + plot::quote(spec.input_axes[1].label()) + "\n";
     g += "set cblabel " + plot::quote(spec.output_axis.label()) + "\n";
@@ -225,6 +228,15 @@ std::string field_unit(const Model& m, const std::string& target) {
     if (field == "inertia") return rot(b.kind) ? "kg·m²" : "kg";
     if (field == "position") return position_unit(b.kind);
     if (field == "velocity") return velocity_unit(b.kind);
+    // Machine bodies (model/machine.hpp): lengths, masses, the thread force, angles, speeds.
+    if (field == "R1" || field == "r1" || field == "r2" || field == "H" || field == "rho" ||
+        field == "crank_radius" || field == "rod_length" || field == "rod_com")
+      return "m";
+    if (field == "m1" || field == "m2" || field == "rod_mass" || field == "piston_mass") return "kg";
+    if (field == "rod_inertia" || field == "crank_inertia") return "kg·m²";
+    if (field == "F") return "N";
+    if (field == "beta0") return "rad";
+    if (field == "omega0") return "rad/s";
     return "";
   }
   for (const auto& l : m.links) {
@@ -238,9 +250,11 @@ std::string field_unit(const Model& m, const std::string& target) {
   for (const auto& l : m.loads) {
     if (l.name != elem) continue;
     const BodyKind k = m.bodies[static_cast<size_t>(l.body)].kind;
-    if (field == "value" || field == "before") return plot::pretty_unit(load_unit(k));
-    if (field == "t0" || field == "t1" || field == "time") return "s";
-    if (field == "omega0" || field == "speed") return velocity_unit(k);
+    if (field == "value" || field == "before" || field == "stall_torque" || field == "breakdown_torque")
+      return plot::pretty_unit(load_unit(k));
+    if (field == "t0" || field == "t1" || field == "time" || field == "start" || field == "end") return "s";
+    if (field == "omega0" || field == "speed" || field == "no_load_speed" || field == "synchronous_speed")
+      return velocity_unit(k);
     return "";
   }
   for (const auto& c : m.contacts) {
@@ -288,8 +302,13 @@ SweepPlotSpec parse_plot_spec(const std::string& text, const SweepPlan& plan, co
       spec.inputs.push_back(parts[k]);
     }
   }
-  for (const auto& x : spec.inputs) spec.input_axes.push_back(plot::make_axis(x, field_unit(plan.base_model, x)));
+  for (const auto& x : spec.inputs) {
+    spec.input_axes.push_back(plot::make_axis(x, field_unit(plan.base_model, x)));
+    for (const auto& a : plan.axes)
+      if (a.target == x) spec.input_axes.back().log = a.spec.kind == SampleSpec::Kind::range && a.spec.log;
+  }
   spec.output_axis = column_axis(spec.output);
+  spec.title = fmt::format("{}: {} against {}", plan.base_model.name, spec.output_axis.quantity, fmt::join(spec.inputs, " and "));
   return spec;
 }
 
@@ -327,9 +346,19 @@ plot::Figure sweep_plot_figure(const std::string& data_csv, const SweepPlotSpec&
   PlotData d = parse_data(data_csv, spec.inputs.size());
   plot::Figure f;
   f.id = "sweep_plot";
+  f.title = spec.title;
   f.x = spec.input_axes[0];
   f.y = spec.output_axis;
   categorical_x(d, f.x);
+  // A log axis over less than a decade or two gets one labelled tick at every design value.
+  if (f.x.log && f.x.ticks.empty()) {
+    std::vector<double> xs;
+    for (double v : d.x)
+      if (std::isfinite(v) && v > 0 && std::find(xs.begin(), xs.end(), v) == xs.end()) xs.push_back(v);
+    std::sort(xs.begin(), xs.end());
+    if (xs.size() <= 12)
+      for (double v : xs) f.x.ticks.emplace_back(v, fmt::format("{:.4g}", v));
+  }
   auto style = [](size_t points) { return points <= 60 ? plot::Style::linepoints : plot::Style::line; };
   if (spec.inputs.size() == 1) {
     std::vector<double> x = d.x, z = d.z;

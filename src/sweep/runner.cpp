@@ -1,5 +1,7 @@
 #include "machdyn/sweep/runner.hpp"
 
+#include "machdyn/io/output_file.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -92,36 +94,21 @@ class ThreadPool {
 /// Leading run index of a row.
 long index_of(const std::string& row) { return std::stol(row.substr(0, row.find(','))); }
 
-/// Writes the table through a temporary file and a rename.
+/// Writes the table through a temporary file and a rename (io/output_file.hpp): a full disk is an
+/// OutputError naming the table, never a truncated table.
 void write_table(const std::filesystem::path& path, const std::string& header, const std::vector<std::string>& rows) {
-  auto tmp = path;
-  tmp += fmt::format(".tmp.{}", ::getpid());
-  {
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw std::runtime_error("cannot write " + tmp.string());
+  write_file_atomic(path, [&](const ChunkSink& sink) {
     std::string buf = header + "\n";
-    auto flush = [&] {
-      std::string_view d(buf);
-      while (!d.empty()) {
-        const ssize_t w = ::write(fd, d.data(), d.size());
-        if (w < 0) {
-          ::close(fd);
-          throw std::runtime_error("cannot write " + tmp.string());
-        }
-        d.remove_prefix(static_cast<size_t>(w));
-      }
-      buf.clear();
-    };
     for (const auto& r : rows) {
       buf += r;
       buf += '\n';
-      if (buf.size() > (1u << 20)) flush();
+      if (buf.size() > (1u << 20)) {
+        sink(buf);
+        buf.clear();
+      }
     }
-    flush();
-    (void)::fdatasync(fd);
-    ::close(fd);
-  }
-  std::filesystem::rename(tmp, path);
+    sink(buf);
+  });
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // tables, and bad input with its place (exit 2).
 #include <filesystem>
 #include <fstream>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -34,13 +35,21 @@ TEST(EnergyCli, JsonKeysAndSetOnTheWheel) {
   EXPECT_NEAR(nlohmann::json::parse(r1.out)["omega_limit"].get<double>(), 8.92, 0.005);
 }
 
-// Claim: the text output names the limit speed; -o writes the ω(q) table as CSV; --delta adds the
-// steady-running block with the flywheel inertia.
+// Claim: the text output names the limit speed; -o DIR (the output folder, as for every command)
+// gets the ω(q) table as energy.csv and the JSON as energy.json; --delta adds the steady-running
+// block with the flywheel inertia; the old `-o table.csv` is an input error that says what -o is.
 TEST(EnergyCli, TextTableAndFlywheel) {
-  const auto r = test::run_cli("energy '" + test::example("crank-slider.yaml") + "' --delta 0.02 -o om.csv --points 50");
+  const auto r = test::run_cli("energy '" + test::example("crank-slider.yaml") + "' --delta 0.02 -o om --points 50");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("flywheel for delta = 0.02"), std::string::npos) << r.out;
-  std::ifstream csv(test::temp_dir() / "om.csv");
+  EXPECT_NE(r.out.find("wrote om/energy.csv and om/energy.json"), std::string::npos) << r.out;
+  EXPECT_NEAR(nlohmann::json::parse(test::slurp(test::temp_dir() / "om/energy.json"))["steady"]["delta_with_flywheel"]
+                  .get<double>(),
+              0.02, 1e-9);
+  const auto old = test::run_cli("energy '" + test::example("crank-slider.yaml") + "' -o om.csv");
+  EXPECT_EQ(old.exit_code, 2);
+  EXPECT_NE(old.err.find("-o: error: -o names the output folder"), std::string::npos) << old.err;
+  std::ifstream csv(test::temp_dir() / "om/energy.csv");
   std::string header;
   std::getline(csv, header);
   EXPECT_NE(header.find("omega"), std::string::npos);
@@ -51,6 +60,23 @@ TEST(EnergyCli, TextTableAndFlywheel) {
       test::run_cli("energy '" + test::example("crank-slider.yaml") + "' --json --delta 0.02").out);
   EXPECT_GT(j["steady"]["flywheel_inertia"].get<double>(), 0.0);
   EXPECT_NEAR(j["steady"]["delta_with_flywheel"].get<double>(), 0.02, 1e-9);
+}
+
+// Claim: on the scheme-3 wheel (speed without bound) the printout and the JSON carry the limiting
+// angular acceleration of paper 000 eq. 30, ε = F (R1 − r1)/[m1 (ρ² + r1²) + (m2/2)(R1 − r1)²],
+// beside `limit: unbounded`; a bounded scheme has null there.
+TEST(EnergyCli, SchemeThreeReportsLimitingAcceleration) {
+  const double eq30 = 200 * (0.6 - 0.3) / (50 * (0.42 * 0.42 + 0.3 * 0.3) + 5 * 0.3 * 0.3);
+  const auto r = test::run_cli("energy '" + test::example("rolling-wheel-3.yaml") + "' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["limit"], "unbounded");
+  EXPECT_NEAR(j["epsilon_limit"].get<double>(), eq30, 1e-12 * eq30);
+  EXPECT_EQ(j["units"]["epsilon_limit"], "rad/s^2");
+  const auto t = test::run_cli("energy '" + test::example("rolling-wheel-3.yaml") + "'");
+  EXPECT_NE(t.out.find(fmt::format("epsilon_limit = {:.9g} rad/s^2", eq30)), std::string::npos) << t.out;
+  const auto one = nlohmann::json::parse(test::run_cli("energy '" + test::example("rolling-wheel-1.yaml") + "' --json").out);
+  EXPECT_TRUE(one["epsilon_limit"].is_null());
 }
 
 // Claim: simulate works on the new examples and writes the inertia-moment and geometry columns.

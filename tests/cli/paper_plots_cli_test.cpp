@@ -21,14 +21,15 @@ namespace fs = std::filesystem;
 
 // Claim: energy --plot on the rolling wheel writes ω against distance with the limit line labelled
 // ω_lim = 8.923 rad/s; on the crank-slider ω against crank angle and the inertia moments of crank,
-// rod and piston; SVG and PNG each, into --plot-dir, beside the -o table.
+// rod and piston; SVG and PNG each, into the -o folder beside the table energy.csv. The deprecated
+// --plot-dir still names that folder, with a warning.
 TEST(PaperPlotsCli, EnergyPlotWritesSpeedDistanceAndInertiaMoments) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed (apt-get install gnuplot-nox)";
   const auto dir = test::temp_dir() / "energy-plot";
-  auto r = test::run_cli("energy '" + test::example("rolling-wheel-1.yaml") + "' --plot --plot-dir '" + dir.string() +
-                         "' -o '" + (dir / "w.csv").string() + "'");
+  auto r = test::run_cli("energy '" + test::example("rolling-wheel-1.yaml") + "' --plot -o '" + dir.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"speed_distance.svg", "speed_distance.png", "w.csv"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
+  for (const char* f : {"speed_distance.svg", "speed_distance.png", "energy.csv", "energy.json"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
   const std::string svg = slurp(dir / "speed_distance.svg");
   for (const char* s : {"ω_lim = 8.923 rad/s", "distance travelled x, m", "angular velocity ω, rad/s"})
     EXPECT_NE(svg.find(s), std::string::npos) << s;
@@ -36,6 +37,8 @@ TEST(PaperPlotsCli, EnergyPlotWritesSpeedDistanceAndInertiaMoments) {
   const auto cdir = test::temp_dir() / "energy-plot-crank";
   r = test::run_cli("energy '" + test::example("crank-slider.yaml") + "' --plot --plot-dir '" + cdir.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("--plot-dir is deprecated; use -o DIR"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(cdir / "energy.csv"));
   for (const char* f : {"speed_angle.svg", "speed_angle.png", "inertia_moments.svg", "inertia_moments.png"})
     EXPECT_TRUE(fs::exists(cdir / f)) << f;
   const std::string im = slurp(cdir / "inertia_moments.svg");
@@ -48,7 +51,7 @@ TEST(PaperPlotsCli, EnergyPlotWritesSpeedDistanceAndInertiaMoments) {
 TEST(PaperPlotsCli, EnergyPlotBadInputWritesNothing) {
   const auto dir = test::temp_dir() / "energy-plot-bad";
   const auto model = test::write_temp("bad-wheel.yaml", "name: bad\nbodies:\n  w: {type: rolling-wheel, scheme: 7}\n");
-  const auto r = test::run_cli("energy '" + model + "' --plot --plot-dir '" + dir.string() + "'");
+  const auto r = test::run_cli("energy '" + model + "' --plot -o '" + dir.string() + "'");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("bad-wheel.yaml:3:"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir));
@@ -65,7 +68,8 @@ TEST(PaperPlotsCli, HybridSimulatePlotWritesCyclogram) {
                         "body_speeds.png", "timeseries.csv", "summary.json"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   const std::string svg = slurp(dir / "load_cyclogram.svg");
-  for (const char* s : {"F_sc = 9000 N", "adhesion slips", "c at breakaway", "link force F, N"})
+  for (const char* s : {"F_sc = 9 kN", "adhesion slips", "c at breakaway", "link force F, kN",
+                        "Travel drive start-up (paper 001): load cyclogram"})
     EXPECT_NE(svg.find(s), std::string::npos) << s;
 }
 

@@ -33,7 +33,8 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 }
 
 // Claim: the cyclogram of the travel start-up (paper 001) draws the link force c, the static
-// adhesion limit F_sc = ΔG·μ_s = 50 kN · 0.18 = 9000 N as its one reference line, one shaded band per
+// adhesion limit F_sc = ΔG·μ_s = 50 kN · 0.18 = 9 kN (loads of 10 kN are drawn in kN) as its one
+// reference line, one shaded band per
 // slip phase of the adhesion (not of the resistance W, which slides all the time), and at every
 // breakaway the link load, which for the first slip equals the closed form of stage 3,
 // F_slip = [F_sc (mk + m2) − mk W]/m2 = 9225 N (analysis/travel_start.hpp).
@@ -43,8 +44,9 @@ TEST(PaperFigures, CyclogramMarksStaticAdhesionLimitSlipPhasesAndBreakaway) {
   const plot::Figure f = load_cyclogram_figure(m, r);
   EXPECT_EQ(f.id, "load_cyclogram");
   ASSERT_EQ(f.ref_lines.size(), 1u);
-  EXPECT_DOUBLE_EQ(f.ref_lines[0].value, 50e3 * 0.18);
-  EXPECT_EQ(f.ref_lines[0].label, "F_sc = 9000 N");
+  EXPECT_EQ(f.y.label(), "link force F, kN");
+  EXPECT_DOUBLE_EQ(f.ref_lines[0].value, 50e3 * 0.18 * 1e-3);
+  EXPECT_EQ(f.ref_lines[0].label, "F_sc = 9 kN");
   long adhesion_phases = 0;
   for (const auto& p : r.hybrid.slip_phases) adhesion_phases += p.contact == "adhesion";
   EXPECT_EQ(static_cast<long>(f.bands.size()), adhesion_phases);
@@ -58,7 +60,7 @@ TEST(PaperFigures, CyclogramMarksStaticAdhesionLimitSlipPhasesAndBreakaway) {
   d.m1 = 3000, d.mk = 300, d.m2 = 10000, d.c = 2.0e6, d.Delta = 4e-3, d.P = 6800, d.W = 1500, d.F_sc = 9000, d.F_d = 5500;
   const auto e = paper001::exact_stages(d);
   EXPECT_NEAR(breakaway.x[0], e.slip_time(), 1e-9);
-  EXPECT_NEAR(breakaway.y[0], e.F_slip, 1e-6 * e.F_slip);
+  EXPECT_NEAR(breakaway.y[0] * 1e3, e.F_slip, 1e-6 * e.F_slip);
   for (std::size_t k = 0; k < f.bands.size(); ++k) EXPECT_DOUBLE_EQ(f.bands[k].x0, breakaway.x[k]);
 }
 
@@ -76,6 +78,33 @@ TEST(PaperFigures, ContactsFigureHasForceAndSlidingVelocityOfEveryContact) {
   ASSERT_EQ(figs.size(), 4u);
   EXPECT_EQ(figs[0].id, "load_cyclogram");
   EXPECT_EQ(figs[3].id, "contacts");
+}
+
+// Claim: a model with contacts on bodies of both kinds (a brake in N·m on the drive, wheel adhesion
+// in N) draws every contact: one contacts figure per kind, each with force and sliding velocity of
+// exactly the contacts of its kind.
+TEST(PaperFigures, ContactsOfBothKindsAreAllDrawn) {
+  const Model m = load_model(test::write_temp("mixed-contacts.yaml", R"(bodies:
+  motor: {type: rotational, inertia: 0.5}
+  cart: {type: translational, mass: 100}
+links:
+  rope: {type: spring, between: [motor, cart], ratio: 10, stiffness: 1e5}
+loads:
+  M: {type: constant, body: motor, value: 20}
+contacts:
+  rail: {between: [cart, ground], static: 300, kinetic: 250}
+brakes:
+  T: {body: motor, holding: 30, braking: 25, time: 0.05, ramp: 0.01}
+simulation: {t_end: 0.1}
+)"));
+  const SimulationResult r = simulate(m);
+  const auto figs = simulation_figures(m, r);
+  std::vector<std::string> names;
+  for (const auto& f : figs)
+    if (f.id.rfind("contacts", 0) == 0)
+      for (const auto& s : f.series) names.push_back(f.id + "/" + s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"contacts/rail: force", "contacts/rail: sliding velocity",
+                                             "contacts_torques/T: force", "contacts_torques/T: sliding velocity"}));
 }
 
 // Claim: simulate() with a progress callback routes a hybrid model through simulate_hybrid with
@@ -176,7 +205,7 @@ TEST(PaperFigures, ModeShapesOfTwentyMassChainStayReadable) {
   ASSERT_EQ(modes.shapes.cols(), 19);
   const plot::Figure f = mode_shapes_figure(m, modes);
   EXPECT_EQ(f.series.size(), 6u);
-  EXPECT_EQ(f.title, "The 6 lowest of 19 elastic mode shapes (each scaled to max |φ| = 1)");
+  EXPECT_EQ(f.title, m.name + ": the 6 lowest of 19 elastic mode shapes (each scaled to max |φ| = 1)");
   EXPECT_EQ(f.series[0].style, plot::Style::line);
   std::size_t chars = 0;
   for (const auto& t : f.x.ticks) chars += t.second.size() + 2;

@@ -4,11 +4,14 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 
@@ -95,13 +98,32 @@ TEST(Plot, MissingGnuplotSaysWhatToInstall) {
 }
 
 // Claim: the link-load figure of the paper 002 hoist has one curve per link and the particular
-// solutions M12* = 354 N·m, M23* = 30 N·m (eq. 22) as reference lines in the links' colours.
+// solutions M12* = 354 N·m, M23* = 30 N·m (eq. 22) as reference lines in the links' colours, their
+// values in the legend entries (one label per link, never overlapping) and not as labels on the
+// plot; the title names the model; the peak (the extreme of larger magnitude over all links) is
+// annotated at its time with its value.
 TEST(Figures, HoistLinkLoadsMarkTheParticularSolution) {
   const Model m = load_model(test::example("hoist-3mass.yaml"), {"simulation.t_end=0.05"});
   const SimulationResult r = simulate(m);
   const plot::Figure f = link_loads_figure(m, r);
   ASSERT_EQ(f.series.size(), 2u);
-  EXPECT_EQ(f.series[0].name, "c1 (I1–I2)");
+  EXPECT_EQ(f.series[0].name, "c1 (I1–I2), c1* = 354 N·m");
+  EXPECT_EQ(f.series[1].name, "c2 (I2–I3), c2* = 30 N·m");
+  for (const auto& rl : f.ref_lines) EXPECT_EQ(rl.label, "");
+  EXPECT_EQ(f.title.rfind(m.name + ": link loads", 0), 0u) << f.title;
+  ASSERT_EQ(f.notes.size(), 1u);
+  std::size_t top = 0;
+  double top_abs = -1;
+  for (std::size_t l = 0; l < r.links.size(); ++l)
+    for (double v : {r.links[l].max, r.links[l].min})
+      if (std::abs(v) > top_abs) top_abs = std::abs(v), top = l;
+  const auto& S = r.links[top];
+  const bool use_max = std::abs(S.max) >= std::abs(S.min);
+  EXPECT_EQ(f.notes[0].series, static_cast<int>(top));
+  EXPECT_DOUBLE_EQ(f.notes[0].y, use_max ? S.max : S.min);
+  EXPECT_DOUBLE_EQ(f.notes[0].x, use_max ? S.t_max : S.t_min);
+  EXPECT_NE(f.notes[0].text.find(fmt::format("{:.4g} N·m", use_max ? S.max : S.min)), std::string::npos)
+      << f.notes[0].text;
   EXPECT_EQ(f.series[0].x.size(), r.columns[0].size());
   ASSERT_EQ(f.ref_lines.size(), 2u);
   EXPECT_NEAR(f.ref_lines[0].value, 354.0, 1e-9);
@@ -126,6 +148,72 @@ TEST(Figures, ModeShapesOneCurvePerModeScaledToOne) {
   }
   EXPECT_EQ(f.x.ticks.size(), 3u);
   EXPECT_EQ(f.x.ticks[2].second, "I3");
+}
+
+// Claim: a hybrid run's link-load figure marks its events at their times (here the brake of the
+// hoist sticking, slipping back and sticking again), and its title names the model and the case.
+TEST(Figures, LinkLoadsMarkEventsAndNameTheCase) {
+  const Model m = load_model_case(test::example("hoist-modes.yaml"), {}, "brake_I2_lifting");
+  const SimulationResult r = simulate(m);
+  const plot::Figure f = link_loads_figure(m, r);
+  EXPECT_NE(f.title.find("[brake_I2_lifting]"), std::string::npos) << f.title;
+  std::vector<double> expected;
+  for (const auto& e : r.hybrid.events)
+    if (e.kind != "initial") expected.push_back(e.t);
+  ASSERT_FALSE(expected.empty());
+  ASSERT_EQ(f.events.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_DOUBLE_EQ(f.events[k].x, expected[k]);
+  EXPECT_EQ(f.events[0].label, "T sticks");
+}
+
+/// The [lo:hi] of `set NAME [lo:hi]` in a gnuplot script.
+std::pair<double, double> range_in(const std::string& script, const std::string& name) {
+  const auto at = script.find("set " + name + " [");
+  if (at == std::string::npos) return {0, 0};
+  double lo = 0, hi = 0;
+  std::sscanf(script.c_str() + at + name.size() + 6, "%lf:%lf", &lo, &hi);
+  return {lo, hi};
+}
+
+// Claim: with two y axes and a zero line, zero sits at the same height on both (the fraction of the
+// height below zero is equal), every curve stays inside its axis' range, and tick labels are plain
+// decimals, never e-notation.
+TEST(Figures, DualAxisZerosAlignAndTicksArePlainDecimals) {
+  plot::Figure f;
+  f.id = "dual";
+  f.x = plot::make_axis("time t", "s");
+  f.y = plot::make_axis("link torque M", "kN·m");
+  f.y2 = plot::make_axis("link force F", "kN");
+  f.series.push_back(plot::make_series("M", {0, 1, 2}, {-3, 10, 4}));
+  f.series.push_back(plot::make_series("F", {0, 1, 2}, {20, 43.5, 30}, plot::Style::line, 2));
+  f.zero_line = true;
+  const std::string g = plot::gnuplot_script(f, plot::Format::svg, "d.dat", "o.svg");
+  const auto [lo1, hi1] = range_in(g, "yrange");
+  const auto [lo2, hi2] = range_in(g, "y2range");
+  ASSERT_LT(lo1, 0.0);
+  EXPECT_NEAR(-lo1 / (hi1 - lo1), -lo2 / (hi2 - lo2), 1e-9) << g;
+  EXPECT_LE(lo1, -3.0);
+  EXPECT_GE(hi1, 10.0);
+  EXPECT_LE(lo2, 0.0);
+  EXPECT_GE(hi2, 43.5);
+  for (const char* fmt : {"set format y '%.10g'", "set format y2 '%.10g'", "set format x '%.10g'"})
+    EXPECT_NE(g.find(fmt), std::string::npos) << fmt;
+}
+
+// Claim: with the rpm option the body speeds of rotational bodies are n = 60 ω / 2π on an axis in
+// rpm; the default stays in rad/s.
+TEST(Figures, BodySpeedsInRpmOnRequest) {
+  const Model m = load_model(test::example("hoist-3mass.yaml"), {"simulation.t_end=0.05"});
+  const SimulationResult r = simulate(m);
+  FigureOptions opt;
+  opt.rpm = true;
+  const plot::Figure f = body_speeds_figure(m, r, opt), g = body_speeds_figure(m, r);
+  EXPECT_EQ(f.y.label(), "speed n, rpm");
+  EXPECT_EQ(g.y.label(), "angular velocity ω, rad/s");
+  const auto& omega = r.columns[test::column(r, "I1.velocity_rad_s")];
+  ASSERT_EQ(f.series[0].y.size(), omega.size());
+  for (std::size_t k = 0; k < omega.size(); k += 7) EXPECT_NEAR(f.series[0].y[k], omega[k] * 30.0 / M_PI,
+                                                     1e-9 * (1 + std::abs(omega[k]) * 10));
 }
 
 }  // namespace

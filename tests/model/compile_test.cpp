@@ -129,14 +129,30 @@ TEST(Compile, CatalogueOfBrokenFilesReportsEveryProblemWithItsPlace) {
   }
 }
 
-// Claim: initial conditions default to rest with unstressed links.
+// Claim: initial conditions default to rest with unstressed links: every position and velocity is
+// 0, and the link load the run reports is 0 at t = 0 and stays 0 (no load acts, so nothing moves).
+// The same file with A turned by 0.3 rad starts with the load c·(0.3/i − 0) = 0.1 N·m, so the
+// column checked is the link load.
 TEST(Compile, DefaultsToRestWithUnstressedLinks) {
-  const Model m = load_model(test::write_temp("rest.yaml", "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n"
-                                                           "links:\n  c: {type: spring, between: [A, B], ratio: 3, stiffness: 1}\n"));
+  const std::string text = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n"
+                           "links:\n  c: {type: spring, between: [A, B], ratio: 3, stiffness: 1}\n"
+                           "simulation: {t_end: 0.5}\n";
+  const Model m = load_model(test::write_temp("rest.yaml", text));
   for (const auto& b : m.bodies) {
     EXPECT_EQ(b.q0, 0.0);
     EXPECT_EQ(b.v0, 0.0);
   }
+  const SimulationResult r = simulate(m);
+  const auto& load = r.columns[test::column(r, "c.load_N_m")];
+  ASSERT_FALSE(load.empty());
+  for (double F : load) EXPECT_EQ(F, 0.0);
+  EXPECT_EQ(r.links[0].max, 0.0);
+  EXPECT_EQ(r.links[0].min, 0.0);
+
+  const Model turned = load_model(test::write_temp(
+      "turned.yaml", "bodies:\n  A: {inertia: 1, position: 0.3}\n" + text.substr(text.find("  B:"))));
+  const SimulationResult rt = simulate(turned);
+  EXPECT_NEAR(rt.columns[test::column(rt, "c.load_N_m")][0], 0.1, 1e-14);
 }
 
 }  // namespace

@@ -201,16 +201,33 @@ TEST(Sweep, JournalRecordsDetectDamage) {
   EXPECT_FALSE(parse_journal_record(std::string(40, '\0') + "\n", text));
 }
 
-// Claim: a new sweep never overwrites a journal holding rows, and --resume refuses the journal
-// of another sweep.
+// Claim: a new sweep never overwrites a journal holding rows — neither of the same plan nor of a
+// changed one (the README's `:5` → `:6`) — and --resume refuses the journal of another sweep; the
+// earlier journal and table stay byte for byte.
 TEST(Sweep, JournalIsNeverOverwrittenByMistake) {
   const auto plan = make_sweep_plan(hoist_request({"c1.stiffness=1e4,2e4"}));
   const auto dir = test::temp_dir() / "guard";
   ASSERT_TRUE(run_into(plan, dir, 1).complete);
+  const std::string journal = slurp(dir / "sweep.journal"), table = slurp(dir / "sweep.csv");
   EXPECT_THROW(run_into(plan, dir, 1), InputError);
   const auto other = make_sweep_plan(hoist_request({"c1.stiffness=1e4,3e4"}));
   EXPECT_THROW(run_into(other, dir, 1, true), InputError);
-  EXPECT_EQ(lines_of(slurp(dir / "sweep.journal")).size(), 3u);
+  const auto changed = make_sweep_plan(hoist_request({"c1.stiffness=1e4:2e4:3"}));
+  try {
+    run_into(changed, dir, 1);
+    ADD_FAILURE() << "a changed plan replaced the finished sweep";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another sweep"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "sweep.journal"), journal);
+  EXPECT_EQ(slurp(dir / "sweep.csv"), table);
+  EXPECT_EQ(lines_of(journal).size(), 3u);
+  // A file that is not a journal is not ours to replace.
+  const auto alien = test::temp_dir() / "guard-alien";
+  fs::create_directories(alien);
+  std::ofstream(alien / "sweep.journal") << "my notes\n";
+  EXPECT_THROW(run_into(plan, alien, 1), InputError);
+  EXPECT_EQ(slurp(alien / "sweep.journal"), "my notes\n");
 }
 
 // Claim: with the stop flag set no run starts, no table is written, and --resume then finishes.
@@ -266,6 +283,42 @@ TEST(Sweep, PlotDataPicksColumns) {
   EXPECT_EQ(parse_plot_spec("c1.static_N_m:I3.inertia", plan, header).inputs, std::vector<std::string>{"I3.inertia"});
   EXPECT_THROW(parse_plot_spec("c3.max", plan, header), InputError);
   EXPECT_THROW(parse_plot_spec("c1.max_N_m:c2.stiffness", plan, header), InputError);
+}
+
+// Claim: a sweep plot names the model and what it shows in its title, gives every swept field
+// its unit (also those a plain lookup of value/stiffness misses: a motor's stall torque, a ramp's
+// end time) and draws a log-spaced design (`:log`) on a log axis, a linear one on a linear axis.
+TEST(Sweep, PlotHasTitleUnitsAndLogAxes) {
+  const std::string model = test::write_temp("sweep-units.yaml", R"(name: motor ramp
+bodies:
+  A: {inertia: 1}
+  B: {inertia: 2}
+links:
+  c: {type: spring, between: [A, B], stiffness: 1e4}
+loads:
+  M: {type: motor-linear, body: A, stall_torque: 100 N*m, no_load_speed: 100 rad/s}
+  R: {type: ramp, body: B, value: -20 N*m, end: 0.1 s}
+simulation: {t_end: 0.2}
+)");
+  SweepRequest req;
+  req.model_path = model;
+  req.vary = {"M.stall_torque=50:500:3:log", "R.end=0.05:0.15:3"};
+  const auto plan = make_sweep_plan(req);
+  const auto header = sweep_header(plan, standard_summary_columns());
+  const auto spec = parse_plot_spec("c.max_N_m:M.stall_torque:R.end", plan, header);
+  ASSERT_EQ(spec.input_axes.size(), 2u);
+  EXPECT_EQ(spec.input_axes[0].label(), "M.stall_torque, N·m");
+  EXPECT_TRUE(spec.input_axes[0].log);
+  EXPECT_EQ(spec.input_axes[1].label(), "R.end, s");
+  EXPECT_FALSE(spec.input_axes[1].log);
+  EXPECT_EQ(spec.title, "motor ramp: peak load of c against M.stall_torque and R.end");
+  const std::string csv = "M.stall_torque,R.end,c.max_N_m\n50,0.05,1\n158.1,0.05,2\n500,0.05,3\n"
+                          "50,0.15,1.5\n158.1,0.15,2.5\n500,0.15,3.5\n";
+  const plot::Figure f = sweep_plot_figure(csv, spec);
+  EXPECT_EQ(f.title, spec.title);
+  EXPECT_TRUE(f.x.log);
+  EXPECT_NE(plot::gnuplot_script(f, plot::Format::svg, "d", "o").find("set logscale x"), std::string::npos);
+  EXPECT_EQ(f.series[0].name, "R.end = 0.05 s");
 }
 
 }  // namespace

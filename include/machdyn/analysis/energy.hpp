@@ -73,6 +73,10 @@ struct EnergyResult {
   double omega_max = 0, q_at_omega_max = 0, omega_min = 0, q_at_omega_min = 0;
   std::optional<double> omega_limit;   ///< as s reaches its end; null when unbounded or not reached
   std::string limit_kind;              ///< "finite", "unbounded", "turning point", "none"
+  /// With an unbounded limit: the angular acceleration q'' the motion tends to, rad/s², = Q/I at the
+  /// end of the range (the term ½ I′ ω² vanishes there); paper 000 eq. 30 for the rolling wheel,
+  /// ε = F (R1 − r1) / [m1 (ρ² + r1²) + (m2/2)(R1 − r1)²]. Null otherwise.
+  std::optional<double> epsilon_limit;
   std::optional<double> work_per_period;  ///< A over one period, for periodic machines
   std::vector<EnergyRow> table;
 };

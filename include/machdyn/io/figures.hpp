@@ -24,6 +24,13 @@ plot::Figure link_loads_figure(const Model& m, const SimulationResult& r);
 /// Body velocities against time (rad/s on the left axis, m/s on the right when both occur).
 plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r);
 
+/// Choices of how figures show their quantities.
+struct FigureOptions {
+  bool rpm = false;  ///< angular speeds in rpm (n = 60 ω / 2π) instead of rad/s
+};
+/// The same with options (rpm).
+plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r, const FigureOptions& opt);
+
 /// Paper 001: the load cyclogram of a start-up with wheel slip — link loads against time, the static
 /// limit F_sc of every slipping contact (= ΔG·μ_s for wheel–rail adhesion: FrictionContact::
 /// static_limit) as a dashed black line, the slip phases of those contacts shaded, and the link load
@@ -36,10 +43,15 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r);
 /// Contact forces (left axis) and sliding velocities u = v_a − v_b (right axis) of the friction
 /// contacts and brakes against time, slip phases shaded as in the cyclogram.
 plot::Figure contacts_figure(const Model& m, const SimulationResult& r);
+/// The same for the contacts on bodies of `kind` only (one unit per axis): id `contacts` for the
+/// first contact's kind, `contacts_torques` / `contacts_forces` for the other. simulation_figures
+/// draws both when a model has contacts of both kinds (a drum brake beside wheel adhesion), so
+/// none is left out.
+plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind kind);
 
 /// The figures `simulate --plot` writes: link loads (when the model has links), body speeds; for a
 /// hybrid model with links and contacts the load cyclogram and the contacts figure in addition.
-std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r);
+std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r, const FigureOptions& opt = {});
 
 /// Elastic mode shapes: amplitude per body (x: the bodies in model order, named), one curve per
 /// mode, each scaled to max |φ_i| = 1 and labelled with its natural frequency. At most `max_modes`

@@ -24,6 +24,7 @@ struct Axis {
   std::optional<double> min, max;    ///< fixed range; autoscale when empty
   /// Tick labels at given positions (e.g. body names on the x axis of a mode shape); empty: numbers.
   std::vector<std::pair<double, std::string>> ticks;
+  bool log = false;                  ///< logarithmic scale (a log-spaced sweep design); values > 0
   [[nodiscard]] std::string label() const;  ///< "quantity, unit" or "quantity"
   [[nodiscard]] bool used() const { return !quantity.empty(); }
 };
@@ -61,6 +62,21 @@ struct Band {
   double x0 = 0.0, x1 = 0.0;
 };
 
+/// A vertical dotted line at x (an event: breakaway, stick, brake applied, gap closed), its label
+/// written upwards at the top of the plot.
+struct EventMark {
+  double x = 0.0;
+  std::string label;            ///< e.g. "adhesion slips", "T applied"
+};
+
+/// A marked point with a text beside it (the peak of a curve), in the colour of series `series`.
+struct Annotation {
+  double x = 0.0, y = 0.0;
+  std::string text;             ///< e.g. "peak −204 N·m at 0.254 s"
+  int series = -1;
+  int y_axis = 1;
+};
+
 struct Figure {
   std::string id;               ///< file stem and HTML id: letters, digits, '_' and '-' (e.g. "link_loads")
   std::string title;            ///< one line above the plot; may be empty for a paper figure
@@ -70,7 +86,9 @@ struct Figure {
   std::vector<Band> bands;      ///< shaded light grey, behind everything
   std::string bands_label;      ///< legend entry of the bands (e.g. "adhesion slips"); empty: none
   bool equal_aspect = false;    ///< one unit on x as long as one on y (pitch curves, geometry)
-  bool zero_line = false;       ///< a thin line at y = 0
+  bool zero_line = false;       ///< a thin line at y = 0 (with a right axis: both axes' zeros aligned)
+  std::vector<EventMark> events;     ///< vertical event lines (gnuplot; the report lists events in a table)
+  std::vector<Annotation> notes;     ///< annotated points (the peak)
   enum class Legend { top_right, top_left, bottom_right, bottom_left, below } legend = Legend::top_right;
 };
 

@@ -9,6 +9,7 @@
 
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/model/model.hpp"
 
 namespace machdyn {
@@ -16,14 +17,24 @@ namespace machdyn {
 /// CSV: a header of column names (`t_s`, `I1.position_rad`, …, `c1.load_N_m`), then one row per
 /// output time, 17 significant digits.
 std::string timeseries_csv(const SimulationResult& r);
+/// The same CSV handed to `sink` in pieces of about 1 MB.
+void timeseries_csv(const SimulationResult& r, const ChunkSink& sink);
+/// Writes the CSV to `path` atomically, in pieces (io/output_file.hpp); throws OutputError.
+void write_timeseries_csv(const std::filesystem::path& path, const SimulationResult& r);
 
 /// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static, dynamic_factor,
 /// unit}}, solver: {method, reason, steps, rejected_steps, rhs_evals, jac_evals, wall_time_s}}`.
 /// dynamic_factor is null when the static load is zero.
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
 
-/// `{model, frequencies_rad_s, frequencies_hz, rigid_body_modes, shapes: [{frequency_rad_s,
-/// frequency_hz, NAME: amplitude, ...}], bodies: [names]}`.
+/// Which topology `modes` analyses: `{bodies, links, gaps_closed: [link names], contacts_ignored:
+/// [names], brakes_ignored: [names], exact, note}`. The linear analysis takes every gap as closed
+/// and leaves friction contacts and brakes out; `exact` is true when the model has none of them,
+/// `note` says it in one line.
+nlohmann::json modes_topology(const Model& m);
+
+/// `{model, topology (modes_topology), frequencies_rad_s, frequencies_hz, rigid_body_modes, shapes:
+/// [{frequency_rad_s, frequency_hz, NAME: amplitude, ...}], bodies: [names]}`.
 nlohmann::json modes_summary(const Model& m, const Modes& modes);
 
 }  // namespace machdyn

@@ -26,8 +26,10 @@ struct SweepPlotSpec {
   std::vector<std::string> inputs;  ///< one or two --vary targets (x, then y)
   /// Axis labels (parse_plot_spec fills them): quantity and SI unit of each input and the output,
   /// e.g. {"c1.stiffness", "N·m/rad"}, {"peak load of c1", "N·m"}.
-  std::vector<plot::Axis> input_axes;
+  std::vector<plot::Axis> input_axes;  ///< log = true for a log-spaced or log-sampled input (`:log`)
   plot::Axis output_axis;
+  /// "MODEL: OUTPUT against X[ and Y]" (parse_plot_spec fills it); the figure's title.
+  std::string title;
 };
 
 /// At most this many values of the second input are drawn as a family of curves; more: a heat map.
