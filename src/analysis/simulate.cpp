@@ -78,9 +78,13 @@ class Recorder final : public StepObserver {
     };
   }
 
+  void on_segment(const Stepper& s, double ta, double tb) override {
+    peaks_.on_segment(s, ta, tb, on_new_max_);
+    run_.on_segment(s, ta, tb);
+  }
+  void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
+
   void on_step(const Stepper& s) override {
-    peaks_.on_step(s, on_new_max_);
-    run_.on_step(s);
     // Progress: look at the clock every 32 steps only, report every progress_interval_s.
     if (opt_.progress && (++steps_ & 31) == 0) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -181,12 +185,15 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
   opt.rtol = m.simulation.rtol;
   opt.atol = m.simulation.atol;
   opt.max_steps = m.simulation.max_steps;
-  auto stepper = make_stepper(method, sys, opt);
   detail::MachineRun run(m, sys);  // velocity jumps (stepwise gears) and the point-speed report
   run.start(0.0, y0.data());
+  EventSystem& events = run.has_jumps() ? static_cast<EventSystem&>(run) : sys;
+  auto stepper = make_stepper(method, events, opt);
   Recorder rec(m, sys, out, options, run);
-  out.stats = integrate(*stepper, 0.0, y0.data(), m.simulation.t_end, m.simulation.dt_out, rec,
-                        run.has_jumps() ? &run : nullptr);
+  DriveOptions drive;
+  drive.dt_out = m.simulation.dt_out;
+  drive.event_tol = 4e-16;  // jump positions of stepwise gears: to the last bits of t
+  out.stats = integrate(*stepper, events, 0.0, y0.data(), m.simulation.t_end, drive, rec);
   rec.finish();
   out.machines = run.reports();
 

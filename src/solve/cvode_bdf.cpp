@@ -91,6 +91,8 @@ void CvodeBdf::reset(double t0, const double* y0) {
     if (opt_.h_max > 0) CVodeSetMaxStep(impl_->mem, opt_.h_max);
     impl_->initialized = true;
   } else {
+    // CVodeReInit zeroes CVODE's counters: keep what the run took so far (stats() adds them).
+    done_ = stats();
     CVodeReInit(impl_->mem, t0, impl_->y);
   }
 }
@@ -142,21 +144,21 @@ void CvodeBdf::derivative(double t, double* dy_out) const {
 }
 
 StepperStats CvodeBdf::stats() const {
-  StepperStats s;
+  StepperStats s = done_;
   long v = 0;
   CVodeGetNumSteps(impl_->mem, &v);
-  s.steps = v;
+  s.steps += v;
   CVodeGetNumRhsEvals(impl_->mem, &v);
-  s.rhs_evals = v;
+  s.rhs_evals += v;
   long lsrhs = 0;
   CVodeGetNumLinRhsEvals(impl_->mem, &lsrhs);
   s.rhs_evals += lsrhs;
   CVodeGetNumJacEvals(impl_->mem, &v);
-  s.jac_evals = v;
+  s.jac_evals += v;
   long ef = 0, cf = 0;
   CVodeGetNumErrTestFails(impl_->mem, &ef);
   CVodeGetNumNonlinSolvConvFails(impl_->mem, &cf);
-  s.rejected = ef + cf;
+  s.rejected += ef + cf;
   return s;
 }
 

@@ -35,6 +35,7 @@ class CvodeBdf final : public Stepper {
   StepperOptions opt_;
   double t_ = 0.0, t_old_ = 0.0;
   std::vector<double> y_, dy_;
+  StepperStats done_;  // counts before the last CVodeReInit
 };
 
 }  // namespace machdyn

@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "machdyn/model/model.hpp"
-#include "machdyn/solve/ode_system.hpp"
+#include "machdyn/solve/event_system.hpp"
 
 namespace machdyn {
 
-class ChainSystem final : public OdeSystem {
+class ChainSystem final : public EventSystem {  // no events of its own
  public:
   /// Keeps a reference: `model` must outlive the system.
   explicit ChainSystem(const Model& model);
