@@ -98,11 +98,10 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
     long events = 0;
     for (const auto& e : r.hybrid.events) events += e.kind != "initial";
     for (size_t l = 0; l < m.links.size(); ++l) {
-      const auto& s = r.links[l];
-      const LinkPeak p = link_peak(r, l);
+      const LinkSummary& s = r.links[l];
       table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
-                           l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, p.peak, p.t_peak, p.static_load,
-                           p.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+                           l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, s.peak, s.t_peak, s.static_load,
+                           s.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
     }
   }
   write_file_atomic((std::filesystem::path(out_dir) / "cases.json").string(), all.dump(2) + "\n");

@@ -248,12 +248,9 @@ class HybridRun final : public EventSystem, public StepObserver {
       s.max = p.max, s.min = p.min, s.t_max = p.t_max, s.t_min = p.t_min;
       const Eigen::VectorXd F =
           static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_max.data(), n_));
-      s.static_load = F(l);
-      out_.hybrid.static_at_min.push_back(
-          static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_min.data(), n_))(l));
-      const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
-      s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
-                                                                 : std::numeric_limits<double>::quiet_NaN();
+      s.static_at_max = F(l);
+      s.static_at_min = static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_min.data(), n_))(l);
+      set_peak(s);
       out_.links.push_back(s);
     }
   }

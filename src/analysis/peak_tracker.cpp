@@ -28,9 +28,12 @@ void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_ne
   const double v = g.dot(y);
   if (!started_ || v > g.max) {
     g.max = v, g.t_max = t;
-    if (on_new_max) on_new_max(j, t, y);
+    if (on_new_max) on_new_max(j, true, t, y);
   }
-  if (!started_ || v < g.min) g.min = v, g.t_min = t;
+  if (!started_ || v < g.min) {
+    g.min = v, g.t_min = t;
+    if (on_new_max) on_new_max(j, false, t, y);
+  }
 }
 
 double PeakTracker::locate_extremum(const Stepper& s, const Signal& g, double t0, double r0, double t1, double r1) {

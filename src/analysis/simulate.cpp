@@ -60,20 +60,20 @@ Method choose_method(const Model& m, std::string* reason) {
 
 namespace {
 
-/// Collects the output grid and the link-load peaks; at each new maximum of link l it keeps the
-/// values of the loads then (O(#loads)), for the quasi-static load at t_max.
+/// Collects the output grid and the link-load peaks; at each new maximum or minimum of link l it
+/// keeps the values of the loads then (O(#loads)), for the quasi-static loads at t_max and t_min.
 class Recorder final : public StepObserver {
  public:
   Recorder(const Model& m, ChainSystem& sys, SimulationResult& out, const SimulateOptions& opt,
            detail::MachineRun& run)
       : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
-        loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)) {
+        loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)), loads_at_min_(loads_at_max_) {
     out_.column_names = chain_column_names(m);
     out_.columns.resize(out_.column_names.size());
     const auto rows = static_cast<size_t>(m.simulation.t_end / m.simulation.dt_out) + 2;
     for (auto& col : out_.columns) col.reserve(rows);
-    on_new_max_ = [this](int l, double t, const double* y) {
-      auto& vals = loads_at_max_[static_cast<size_t>(l)];
+    on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
+      auto& vals = (is_max ? loads_at_max_ : loads_at_min_)[static_cast<size_t>(l)];
       for (size_t k = 0; k < m_.loads.size(); ++k) vals[k] = m_.loads[k].evaluate(t, y[m_.dof() + m_.loads[k].body]);
     };
   }
@@ -125,10 +125,11 @@ class Recorder final : public StepObserver {
   }
 
   const PeakTracker& peaks() const { return peaks_; }
-  /// The generalized forces of the loads acting when link l had its maximum.
-  Eigen::VectorXd forces_at_max(size_t l) const {
+  /// The generalized forces of the loads acting when link l had its maximum (or minimum).
+  Eigen::VectorXd forces_at(size_t l, bool at_max) const {
+    const auto& vals = (at_max ? loads_at_max_ : loads_at_min_)[l];
     Eigen::VectorXd f = Eigen::VectorXd::Zero(m_.dof());
-    for (size_t k = 0; k < m_.loads.size(); ++k) f(m_.loads[k].body) += loads_at_max_[l][k];
+    for (size_t k = 0; k < m_.loads.size(); ++k) f(m_.loads[k].body) += vals[k];
     return f;
   }
 
@@ -147,24 +148,19 @@ class Recorder final : public StepObserver {
   long steps_ = 0;
   double next_report_ = 0.0;
   PeakTracker peaks_;
-  std::vector<std::vector<double>> loads_at_max_;
+  std::vector<std::vector<double>> loads_at_max_, loads_at_min_;
   PeakTracker::NewMax on_new_max_;
 };
 
 }  // namespace
 
-LinkPeak link_peak(const SimulationResult& r, std::size_t l) {
-  const LinkSummary& s = r.links.at(l);
+void set_peak(LinkSummary& s) {
   const bool neg = std::abs(s.min) > std::abs(s.max);
-  LinkPeak p;
-  p.peak = neg ? s.min : s.max;
-  p.t_peak = neg ? s.t_min : s.t_max;
-  p.static_load = !neg ? s.static_load
-                       : l < r.hybrid.static_at_min.size() ? r.hybrid.static_at_min[l]
-                                                           : std::numeric_limits<double>::quiet_NaN();
-  p.dynamic_factor = std::abs(p.static_load) > 1e-9 * std::abs(p.peak) ? p.peak / p.static_load
+  s.peak = neg ? s.min : s.max;
+  s.t_peak = neg ? s.t_min : s.t_max;
+  s.static_load = neg ? s.static_at_min : s.static_at_max;
+  s.dynamic_factor = std::abs(s.static_load) > 1e-9 * std::abs(s.peak) ? s.peak / s.static_load
                                                                        : std::numeric_limits<double>::quiet_NaN();
-  return p;
 }
 
 SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
@@ -206,10 +202,9 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
     s.min = rec.peaks().min(j);
     s.t_max = rec.peaks().t_max(j);
     s.t_min = rec.peaks().t_min(j);
-    s.static_load = particular.solve(rec.forces_at_max(l))(j);
-    const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
-    s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
-                                                               : std::numeric_limits<double>::quiet_NaN();
+    s.static_at_max = particular.solve(rec.forces_at(l, true))(j);
+    s.static_at_min = particular.solve(rec.forces_at(l, false))(j);
+    set_peak(s);
     out.links.push_back(s);
   }
   append_machine_outputs(m, sys, out);  // variable-inertia series (analysis/machine_outputs.hpp)

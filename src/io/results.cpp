@@ -109,6 +109,10 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
                               {"min", L.min},
                               {"t_max", L.t_max},
                               {"t_min", L.t_min},
+                              {"static_at_max", L.static_at_max},
+                              {"static_at_min", L.static_at_min},
+                              {"peak", L.peak},
+                              {"t_peak", L.t_peak},
                               {"static", L.static_load},
                               {"dynamic_factor", number_or_null(L.dynamic_factor)},
                               {"unit", link_load_unit(m, m.links[l])}};

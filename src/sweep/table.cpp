@@ -73,7 +73,7 @@ SummaryColumns peak_summary_columns() {
   g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
     if (!runs_event_driven(m)) return;
     for (size_t l = 0; l < r.links.size(); ++l) {  // as the table of `simulate --all-cases`
-      const LinkPeak p = link_peak(r, l);
+      const LinkSummary& p = r.links[l];
       v.insert(v.end(), {p.peak, p.t_peak, p.static_load, p.dynamic_factor});
     }
   };

@@ -17,8 +17,8 @@ class PeakTracker {
   /// `weights[j]` has the size of the state.
   explicit PeakTracker(const std::vector<std::vector<double>>& weights);
 
-  /// Called when signal j reaches a new maximum at time t with state y.
-  using NewMax = std::function<void(int j, double t, const double* y)>;
+  /// Called when signal j reaches a new maximum (is_max) or minimum at time t with state y.
+  using NewMax = std::function<void(int j, bool is_max, double t, const double* y)>;
   /// The solution on [ta, tb] ⊂ [s.t_prev(), s.t()] (a driver piece, solve/driver.hpp). A piece
   /// that starts where the last one ended continues it (its start was seen, its rate is known).
   void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max);

@@ -17,9 +17,10 @@ namespace machdyn {
 /// output time, 17 significant digits.
 std::string timeseries_csv(const SimulationResult& r);
 
-/// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static, dynamic_factor,
-/// unit}}, solver: {method, reason, steps, rejected_steps, rhs_evals, jac_evals, wall_time_s}}`.
-/// dynamic_factor is null when the static load is zero.
+/// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static_at_max,
+/// static_at_min, peak, t_peak, static, dynamic_factor, unit}}, solver: {method, reason, steps,
+/// rejected_steps, rhs_evals, jac_evals, wall_time_s}}`. `static` is the quasi-static load at the
+/// peak and dynamic_factor = peak / static (LinkSummary), null when the static load is ~0.
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
 
 /// `{model, frequencies_rad_s, frequencies_hz, rigid_body_modes, shapes: [{frequency_rad_s,
