@@ -457,6 +457,11 @@ class HybridRun final : public EventSystem, public StepObserver {
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
+    // A contact whose sliding speed reached zero is decided at zero speed: the located time lies a
+    // rounding error past the crossing, so its u is set to exactly 0 first (a slide that goes on,
+    // or reverses, then starts on its event function's zero, not past it).
+    for (int k : Z)
+      if (old[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
     const std::vector<ContactMode> now = decide_contacts(t, Z);
     strict_.clear();
     apply_contact_modes(t, old, now, false);

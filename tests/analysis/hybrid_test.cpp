@@ -306,6 +306,52 @@ TEST_P(Hybrid, EnergyBalanceOverHundredsOfEvents) {
   EXPECT_NEAR(E.friction_loss, 1500.0 * x2 + 5500.0 * (xk - x2), tol * E.friction_loss);
 }
 
+// Claim (friction law edge): a kinetic table that rises above the applied force right after
+// breakaway (μ_s 0.3, μ_k 0.2 at rest rising to 0.9 at 1e-9 m/s, N = 10 N, P = 5 N on 1 kg) never
+// makes the body slide backwards. F_s = 3 N < P: it breaks away; the friction F_k(u) = 2 + 7e9 u N
+// then balances P at u* = 3/7e9 m/s, a stable creep (dF_k/du > 0), reached within ~1e-9 s. The
+// table is a damper of 7e9 N·s/m: `auto` takes BDF for it, which must give u → u*, F → P;
+// dopri5, forced, may not return a backwards slide — it ends at its step limit (SolverError).
+// Second part: the same contact with P = 1 N < F_k(0) from 1 m/s decelerates at (9 − 1) m/s² and
+// re-sticks when u returns to zero at t ≈ 1/8 s (the last 1e-9 m/s with F_k falling to 2 N takes
+// < 1e-9 s), then stays stuck (|λ| = 1 N ≤ 3 N).
+TEST_P(Hybrid, RisingKineticTableNeverSlidesBackwards) {
+  const std::string contact =
+      "contacts: {f: {between: [A, ground], normal_force: 10 N, mu_s: 0.3, mu_k: [[0, 0.2], [1e-9 m/s, 0.9], [1 m/s, 0.9]]}}\n";
+  Model m = model_of("bodies: {A: {type: translational, mass: 1 kg}}\n" + contact +
+                     "loads: {P: {type: constant, body: A, value: 5 N}}\nsimulation: {t_end: 1 s, dt_out: 0.1 s}\n");
+  std::string reason;
+  EXPECT_EQ(choose_method(m, &reason), Method::bdf) << reason;
+  if (GetParam() == IntegratorChoice::dopri5) {
+    m.simulation.max_steps = 200'000;
+    try {
+      const SimulationResult r = run(m, GetParam());
+      for (double v : col(r, "A.velocity_m_s")) EXPECT_GE(v, 0.0);
+    } catch (const SolverError& e) {
+      EXPECT_NE(std::string(e.what()).find("maximum number of steps"), std::string::npos) << e.what();
+    }
+  } else {
+    const SimulationResult r = run(m, GetParam());
+    const double u_star = 3.0 / 7e9;
+    for (double v : col(r, "A.velocity_m_s")) EXPECT_GE(v, 0.0);
+    for (double md : col(r, "f.mode")) EXPECT_EQ(md, 1.0);
+    EXPECT_NEAR(col(r, "A.velocity_m_s").back(), u_star, 1e-6 * u_star);
+    EXPECT_NEAR(col(r, "f.force_N").back(), 5.0, 1e-6);
+  }
+  const Model b = model_of("bodies: {A: {type: translational, mass: 1 kg, velocity: 1 m/s}}\n" + contact +
+                           "loads: {P: {type: constant, body: A, value: 1 N}}\n"
+                           "simulation: {t_end: 0.5 s, dt_out: 0.05 s, rtol: 1e-10, atol: 1e-12}\n");
+  const SimulationResult rb = run(b, GetParam());
+  const auto ev = events_of(rb, "f");
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_EQ(ev[0].kind, "stick");
+  EXPECT_NEAR(ev[0].t, 0.125, 1e-8);
+  for (double t : {0.15, 0.3, 0.5}) {
+    EXPECT_EQ(at(rb, "A.velocity_m_s", t), 0.0) << t;
+    EXPECT_NEAR(at(rb, "f.force_N", t), 1.0, 1e-9) << t;
+  }
+}
+
 // Claim: chattering is detected and reported with the element, the time and the count, and the
 // run ends (SolverError) instead of hanging: a block on a belt whose velocity reverses every
 // 0.5 ms switches stick/slip at every reversal; with the detector set to 10 switches in 10 ms it

@@ -71,6 +71,7 @@ struct SimulationResult {
 /// The integrator `auto` picks, from O(n) Gershgorin bounds ρ_D ≥ |Re λ| of M⁻¹D and ω_K ≥ ω_max:
 /// CVODE BDF when the fastest motion is damping-dominated (ρ_D ≥ ω_K) and ρ_D · t_end > 2e4 (an
 /// explicit method would spend > 2e4 steps on stability alone), else dopri5. `reason` says which.
+/// A rising kinetic friction table counts as a damper of its steepest slope dF_k/du.
 Method choose_method(const Model& m, std::string* reason);
 
 /// Where a running simulation is, for a progress display (the CLI draws a bar; the library only
