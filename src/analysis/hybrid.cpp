@@ -297,7 +297,14 @@ class HybridRun final : public EventSystem, public StepObserver {
     }
   }
 
+  /// A brake before its application time is released, not slipping: no slip phase.
+  bool released(int k, double t) const {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    return c.brake && t < c.t_apply;
+  }
+
   void open_phase(int k, double t, ContactMode md) {
+    if (released(k, t)) return;
     SlipPhase p;
     p.contact = m_.contacts[static_cast<size_t>(k)].name;
     p.direction = static_cast<int>(md);
@@ -404,7 +411,8 @@ class HybridRun final : public EventSystem, public StepObserver {
       const ContactMode a = old_modes[static_cast<size_t>(k)], b = modes[static_cast<size_t>(k)];
       if (!initial && a == b) continue;
       const char* kind = initial ? "initial" : b == ContactMode::stuck ? "stick" : a == ContactMode::stuck ? "slip" : "reversal";
-      record(t, kind, nl_ + k, initial ? "" : to_string(a), to_string(b));
+      record(t, kind, nl_ + k, initial ? "" : released(k, t) ? "released" : to_string(a),
+             released(k, t) ? "released" : to_string(b));
       close_phase(k, t);
       if (b != ContactMode::stuck) open_phase(k, t, b);
     }
@@ -468,6 +476,15 @@ class HybridRun final : public EventSystem, public StepObserver {
   }
 
   void time_event(double t) {
+    // A brake applied now while its body moves starts a slip phase (it was released so far).
+    for (int k = 0; k < nc_; ++k) {
+      const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+      const ContactMode md = sys_.contact_mode(k);
+      if (c.brake && t == c.t_apply && md != ContactMode::stuck && open_phase_[static_cast<size_t>(k)] < 0) {
+        record(t, "applied", nl_ + k, "released", to_string(md));
+        open_phase(k, t, md);
+      }
+    }
     std::vector<int> Z;
     for (int k = 0; k < nc_; ++k)
       if (sys_.contact_mode(k) == ContactMode::stuck) Z.push_back(k);

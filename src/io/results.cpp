@@ -1,5 +1,7 @@
 #include "machdyn/io/results.hpp"
 
+#include "machdyn/analysis/hybrid_stats.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <fmt/format.h>
@@ -65,24 +67,20 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
   // the slips in the second half of the run) and the largest link loads as multiples of the
   // contact's static limit.
   nlohmann::json contacts = nlohmann::json::object();
-  for (const auto& c : m.contacts) {
-    std::vector<double> starts;
-    for (const auto& p : h.slip_phases)
-      if (p.contact == c.name) starts.push_back(p.t_start);
-    std::vector<double> late;
-    for (double t : starts)
-      if (t >= 0.5 * m.simulation.t_end) late.push_back(t);
-    nlohmann::json period;
-    if (late.size() >= 2) period = (late.back() - late.front()) / static_cast<double>(late.size() - 1);
+  const std::vector<ContactStatistics> stats = contact_statistics(m, r);
+  for (size_t k = 0; k < m.contacts.size(); ++k) {
+    const FrictionContact& c = m.contacts[k];
+    const ContactStatistics& st = stats[k];
     nlohmann::json ratio = nlohmann::json::object();
-    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = r.links[l].max / c.static_limit;
+    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = number_or_null(st.link_max_over_static_limit[l]);
     contacts[c.name] = {{"kind", c.brake ? "brake" : "contact"},
                         {"static_limit", c.static_limit},
                         {"kinetic_at_rest", c.kinetic_level(0.0)},
-                        {"slips", starts.size()},
-                        {"period_s", period},
+                        {"slips", st.slips},
+                        {"period_s", number_or_null(st.period_s)},
                         {"link_max_over_static_limit", ratio},
                         {"unit", load_unit(m.bodies[static_cast<size_t>(c.a)].kind)}};
+    if (c.brake) contacts[c.name]["applied_at_s"] = c.t_apply;
   }
   j["contacts"] = contacts;
   const EnergyBalance& E = h.energy;

@@ -1,6 +1,7 @@
 // The exact hybrid simulation (analysis/hybrid.hpp): every claim against a closed form derived in
 // its comment, a second algorithm or a published number.
 #include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/hybrid_stats.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -116,15 +117,55 @@ loads: {M: {type: constant, body: J, value: 50 N*m}}
 simulation: {t_end: 2, dt_out: 0.1, rtol: 1e-10, atol: 1e-12}
 )");
   const SimulationResult r = run(m, GetParam());
-  const auto ev = events_of(r, "T");
+  const auto ev = events_of(r, "T", "stick");
   ASSERT_EQ(ev.size(), 1u);
-  EXPECT_EQ(ev[0].kind, "stick");
   EXPECT_NEAR(ev[0].t, 0.4, 1e-11);
+  EXPECT_TRUE(events_of(r, "T", "slip").empty());
   for (double t : {0.5, 1.0, 2.0}) {
     EXPECT_EQ(at(r, "J.velocity_rad_s", t), 0.0) << t;
     EXPECT_NEAR(at(r, "T.force_N_m", t), 50.0, 1e-9) << t;
   }
   EXPECT_NEAR(at(r, "J.velocity_rad_s", 0.3), 7.5, 1e-9);
+  // Before 0.1 s the brake is released, not slipping: its one slip phase starts when it is applied
+  // (an `applied` event) and ends at the stop; the initial mode says `released`.
+  size_t phases = 0;
+  for (const auto& p : r.hybrid.slip_phases)
+    if (p.contact == "T") {
+      ++phases;
+      EXPECT_EQ(p.t_start, 0.1);
+      EXPECT_NEAR(p.t_end, 0.4, 1e-11);
+    }
+  EXPECT_EQ(phases, 1u);
+  ASSERT_EQ(events_of(r, "T", "applied").size(), 1u);
+  EXPECT_EQ(events_of(r, "T", "applied")[0].t, 0.1);
+  EXPECT_EQ(r.hybrid.events[0].to, "released");
+}
+
+// Claim: a contact's ratio F_max / F_s0 is formed only between like units: a drum (rotational, a
+// brake torque in N·m) winding a rope to a load (translational, the rope force in N) gets no ratio
+// (NaN, JSON null) for the rope; a brake on the load's own motion would.
+TEST_P(Hybrid, ContactRatiosOnlyBetweenLikeUnits) {
+  const Model m = model_of(R"(
+bodies:
+  drum: {inertia: 2, velocity: 1}
+  load: {type: translational, mass: 100}
+links: {rope: {type: spring, between: [drum, load], ratio: 4 rad/m, stiffness: 1e5 N/m}}
+brakes:
+  T: {body: drum, holding: 300 N*m, braking: 200 N*m}
+contacts:
+  guide: {between: [load, ground], static: 1000 N, kinetic: 800 N}
+simulation: {t_end: 0.1, dt_out: 0.01}
+)");
+  const SimulationResult r = run(m, GetParam());
+  const auto st = contact_statistics(m, r);
+  ASSERT_EQ(st.size(), 2u);
+  for (const auto& c : st) {
+    if (c.name == "T") {
+      EXPECT_TRUE(std::isnan(c.link_max_over_static_limit[0])) << "N over N·m";
+    } else {
+      EXPECT_EQ(c.link_max_over_static_limit[0], r.links[0].max / 1000.0);
+    }
+  }
 }
 
 // Claim: two friction elements locking one motion do not make the constraint singular: they share
