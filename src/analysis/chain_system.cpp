@@ -93,17 +93,19 @@ double ChainSystem::link_load(int l, const double* y) const {
   return k.c * s.delta + k.d * s.rate;
 }
 
-std::vector<double> ChainSystem::link_load_weights(int l) const {
+SparseWeights ChainSystem::link_load_weights(int l) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
-  std::vector<double> w(static_cast<size_t>(2 * n_), 0.0);
-  if (k.a >= 0) {
-    w[static_cast<size_t>(k.a)] += k.c * k.inv_ratio;
-    w[static_cast<size_t>(n_ + k.a)] += k.d * k.inv_ratio;
-  }
-  if (k.b >= 0) {
-    w[static_cast<size_t>(k.b)] -= k.c;
-    w[static_cast<size_t>(n_ + k.b)] -= k.d;
-  }
+  SparseWeights w;
+  auto add = [&](int i, double v) {
+    for (size_t j = 0; j < w.idx.size(); ++j)
+      if (w.idx[j] == i) {
+        w.w[j] += v;
+        return;
+      }
+    w.idx.push_back(i), w.w.push_back(v);
+  };
+  if (k.a >= 0) add(k.a, k.c * k.inv_ratio), add(n_ + k.a, k.d * k.inv_ratio);
+  if (k.b >= 0) add(k.b, -k.c), add(n_ + k.b, -k.d);
   return w;
 }
 

@@ -6,14 +6,13 @@
 
 namespace machdyn {
 
-PeakTracker::PeakTracker(const std::vector<std::vector<double>>& weights) {
+PeakTracker::PeakTracker(int state_size, const std::vector<SparseWeights>& weights)
+    : y_(static_cast<size_t>(state_size)), dy_(static_cast<size_t>(state_size)) {
   for (const auto& w : weights) {
     Signal g;
-    for (size_t i = 0; i < w.size(); ++i)
-      if (w[i] != 0.0) g.idx.push_back(static_cast<int>(i)), g.w.push_back(w[i]);
+    for (size_t i = 0; i < w.idx.size(); ++i)
+      if (w.w[i] != 0.0) g.idx.push_back(w.idx[i]), g.w.push_back(w.w[i]);
     sig_.push_back(std::move(g));
-    y_.resize(w.size());  // every weight vector has the size of the state
-    dy_.resize(w.size());
   }
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/chain_system.hpp"
@@ -77,15 +78,19 @@ class Recorder final : public StepObserver {
  public:
   Recorder(const Model& m, ChainSystem& sys, SimulationResult& out, const SimulateOptions& opt,
            detail::MachineRun& run)
-      : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
-        loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)), loads_at_min_(loads_at_max_) {
+      : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(sys.size(), weights(m, sys)),
+        varying_(varying_loads(m)),
+        loads_at_max_(m.links.size(), std::vector<double>(varying_.size(), 0.0)), loads_at_min_(loads_at_max_) {
     out_.column_names = chain_column_names(m);
     out_.columns.resize(out_.column_names.size());
     const auto rows = static_cast<size_t>(m.simulation.t_end / m.simulation.dt_out) + 2;
     for (auto& col : out_.columns) col.reserve(rows);
     on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
       auto& vals = (is_max ? loads_at_max_ : loads_at_min_)[static_cast<size_t>(l)];
-      for (size_t k = 0; k < m_.loads.size(); ++k) vals[k] = m_.loads[k].evaluate(t, y[m_.dof() + m_.loads[k].body]);
+      for (size_t k = 0; k < varying_.size(); ++k) {
+        const Load& ld = m_.loads[varying_[k]];
+        vals[k] = ld.evaluate(t, y[m_.dof() + ld.body]);
+      }
     };
   }
 
@@ -136,17 +141,31 @@ class Recorder final : public StepObserver {
   }
 
   const PeakTracker& peaks() const { return peaks_; }
-  /// The generalized forces of the loads acting when link l had its maximum (or minimum).
-  Eigen::VectorXd forces_at(size_t l, bool at_max) const {
-    const auto& vals = (at_max ? loads_at_max_ : loads_at_min_)[l];
+  /// The values of the time- or speed-dependent loads when link l had its maximum (or minimum);
+  /// the constant loads are the same at every instant.
+  const std::vector<double>& varying_at(size_t l, bool at_max) const {
+    return (at_max ? loads_at_max_ : loads_at_min_)[l];
+  }
+  /// The generalized forces of all loads for the varying loads' values `vals`.
+  Eigen::VectorXd forces(const std::vector<double>& vals) const {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(m_.dof());
-    for (size_t k = 0; k < m_.loads.size(); ++k) f(m_.loads[k].body) += vals[k];
+    size_t v = 0;
+    for (size_t k = 0; k < m_.loads.size(); ++k) {
+      const Load& ld = m_.loads[k];
+      f(ld.body) += v < varying_.size() && varying_[v] == k ? vals[v++] : ld.evaluate(0.0, 0.0);
+    }
     return f;
   }
 
  private:
-  static std::vector<std::vector<double>> weights(const Model& m, const ChainSystem& sys) {
-    std::vector<std::vector<double>> w;
+  static std::vector<size_t> varying_loads(const Model& m) {
+    std::vector<size_t> v;
+    for (size_t k = 0; k < m.loads.size(); ++k)
+      if (m.loads[k].kind != LoadKind::constant) v.push_back(k);
+    return v;
+  }
+  static std::vector<SparseWeights> weights(const Model& m, const ChainSystem& sys) {
+    std::vector<SparseWeights> w;
     for (size_t l = 0; l < m.links.size(); ++l) w.push_back(sys.link_load_weights(static_cast<int>(l)));
     return w;
   }
@@ -159,6 +178,7 @@ class Recorder final : public StepObserver {
   long steps_ = 0;
   double next_report_ = 0.0;
   PeakTracker peaks_;
+  std::vector<size_t> varying_;  // indices of the loads that depend on t or v
   std::vector<std::vector<double>> loads_at_max_, loads_at_min_;
   PeakTracker::NewMax on_new_max_;
 };
@@ -204,8 +224,15 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
   rec.finish();
   out.machines = run.reports();
 
-  // Quasi-static loads at each link's peak time.
+  // Quasi-static loads at each link's extremes: one sparse factorization, one solve per distinct
+  // load vector (constant loads: a single solve for every link).
   const ParticularSolver particular(m);
+  std::map<std::vector<double>, Eigen::VectorXd> solved;
+  auto static_loads = [&](const std::vector<double>& vals) -> const Eigen::VectorXd& {
+    auto it = solved.find(vals);
+    if (it == solved.end()) it = solved.emplace(vals, particular.solve(rec.forces(vals))).first;
+    return it->second;
+  };
   for (size_t l = 0; l < m.links.size(); ++l) {
     const int j = static_cast<int>(l);
     LinkSummary s;
@@ -213,8 +240,8 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
     s.min = rec.peaks().min(j);
     s.t_max = rec.peaks().t_max(j);
     s.t_min = rec.peaks().t_min(j);
-    s.static_at_max = particular.solve(rec.forces_at(l, true))(j);
-    s.static_at_min = particular.solve(rec.forces_at(l, false))(j);
+    s.static_at_max = static_loads(rec.varying_at(l, true))(j);
+    s.static_at_min = static_loads(rec.varying_at(l, false))(j);
     set_peak(s);
     out.links.push_back(s);
   }

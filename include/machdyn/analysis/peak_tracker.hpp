@@ -12,10 +12,16 @@
 
 namespace machdyn {
 
+/// The nonzero weights of a signal s = Σ_k w[k] y[idx[k]].
+struct SparseWeights {
+  std::vector<int> idx;
+  std::vector<double> w;
+};
+
 class PeakTracker {
  public:
-  /// `weights[j]` has the size of the state.
-  explicit PeakTracker(const std::vector<std::vector<double>>& weights);
+  /// One signal per entry of `weights`, over a state of `state_size`.
+  PeakTracker(int state_size, const std::vector<SparseWeights>& weights);
 
   /// Called when signal j reaches a new maximum (is_max) or minimum at time t with state y.
   using NewMax = std::function<void(int j, bool is_max, double t, const double* y)>;
