@@ -89,7 +89,9 @@ int run_all_cases(const std::string& model_path, const std::vector<std::string>&
                                   "link", "max", "min", "peak", "t_peak [s]", "static", "dyn.factor", "events", "", "unit");
   for (size_t c = 0; c < names.size(); ++c) {
     const Model& m = models[c];
-    const SimulationResult r = simulate_hybrid(m);  // event-driven for every case, smooth or not
+    SimulateOptions every_case;
+    every_case.event_driven = true;  // event-driven for every case, smooth or not
+    const SimulationResult r = simulate(m, every_case);
     const auto summary = simulation_summary(m, r);
     const auto dir = std::filesystem::path(out_dir) / names[c];
     write_file_atomic((dir / "timeseries.csv").string(), timeseries_csv(r));

@@ -197,10 +197,11 @@ void set_peak(LinkSummary& s) {
 SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
 
 SimulationResult simulate(const Model& m, const SimulateOptions& options) {
-  if (m.is_hybrid()) {
+  if (m.is_hybrid() || options.event_driven) {
     HybridOptions hybrid;
     hybrid.progress = options.progress;
     hybrid.progress_interval_s = options.progress_interval_s;
+    hybrid.record_series = options.record_series;
     return simulate_hybrid(m, hybrid);
   }
   SimulationResult out;

@@ -91,10 +91,18 @@ using ProgressCallback = std::function<void(const SimulationProgress&)>;
 struct SimulateOptions {
   ProgressCallback progress;
   double progress_interval_s = 0.1;
+  /// Run the event-driven path (analysis/hybrid.hpp) even for a model without gaps, contacts or
+  /// brakes, as every load case of a file runs (`--all-cases`, case sweeps, the report): the cases
+  /// are then computed alike, with the energy books and zero events.
+  bool event_driven = false;
+  /// false: no time series on the output grid for an event-driven run (summaries only, as sweeps
+  /// need); the peaks, events, slip phases and energies are the same bytes.
+  bool record_series = true;
 };
 
-/// Runs the model's simulation settings. Throws SolverError on numerical failure. A model with a
-/// gap, a friction contact or a brake runs event-driven (analysis/hybrid.hpp).
+/// Runs the model's simulation settings: the one entry point of the CLI, the report and sweeps.
+/// Throws SolverError on numerical failure. A model with a gap, a friction contact or a brake (or
+/// options.event_driven) runs event-driven (analysis/hybrid.hpp); both go through the one driver.
 SimulationResult simulate(const Model& m);
 SimulationResult simulate(const Model& m, const SimulateOptions& options);
 
