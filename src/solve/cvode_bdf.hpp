@@ -28,6 +28,8 @@ class CvodeBdf final : public Stepper {
   [[nodiscard]] std::string name() const override { return "cvode-bdf"; }
 
   struct Impl;
+  /// From this many states on, a system with a sparse Jacobian is solved with KLU.
+  static constexpr int kSparseFrom = 64;
 
  private:
   Impl* impl_;

@@ -31,6 +31,9 @@ class ChainSystem final : public EventSystem {  // no events of its own
   void rhs(double t, const double* y, double* dydt) override;
   [[nodiscard]] bool has_jacobian() const override { return true; }
   void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override;
+  /// The linear chain's J sparsely (O(n) nonzeros); machines have none (finite differences, dense).
+  [[nodiscard]] bool has_sparse_jacobian() const override { return !nonlinear_; }
+  void sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override;
   [[nodiscard]] std::string state_name(int i) const override;
 
   /// y0 from the bodies' initial positions and velocities.
