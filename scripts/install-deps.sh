@@ -7,7 +7,7 @@
 #                report is skipped, and says so
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
-          libeigen3-dev libsundials-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
+          libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core)
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 # MPI sweeps (`mpirun -np N machdyn sweep`): OpenMPI is installed unless MACHDYN_WITH_MPI=0 (it pulls
