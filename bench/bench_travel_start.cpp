@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+#include <Eigen/Dense>
 
 #include "solve/dopri5.hpp"
 #include "machdyn/analysis/hybrid.hpp"
@@ -215,5 +216,24 @@ int main(int argc, char** argv) {
   std::printf("hand-written event loop : %8.3f ms  %ld events  F_max %.6g N at %.9g s (machdyn: at %.9g s)\n",
               t_hand * 1e3, ev_hand, ho.Fmax, ho.t_Fmax, r.links[0].t_max);
   std::printf("ratio machdyn / hand    : %8.2f\n", t_md / t_hand);
+  // Cost per step and per event: summary-only runs to t_end = 0.25, 0.5, …, 2 s (events and steps
+  // grow at different rates over the start-up), fitted by least squares as
+  // wall = fixed + c_step · steps + c_event · events.
+  SimulateOptions lean;
+  lean.record_series = false;
+  Eigen::MatrixXd X(8, 3);
+  Eigen::VectorXd y(8);
+  for (int i = 0; i < 8; ++i) {
+    Model part = m;
+    part.simulation.t_end = 0.25 * (i + 1);
+    SimulationResult rp;
+    y(i) = best([&] { rp = simulate(part, lean); });
+    long ev = 0;
+    for (const auto& e : rp.hybrid.events) ev += e.kind != "initial";
+    X(i, 0) = 1.0, X(i, 1) = static_cast<double>(rp.stats.stepper.steps), X(i, 2) = static_cast<double>(ev);
+  }
+  const Eigen::Vector3d c = X.colPivHouseholderQr().solve(y);
+  std::printf("cost per step           : %8.3f us   cost per event: %.3f us   fixed: %.3f ms (fit over 8 runs of 0.25..2 s, residual %.2g ms)\n",
+              c(1) * 1e6, c(2) * 1e6, c(0) * 1e3, (X * c - y).norm() * 1e3);
   return 0;
 }

@@ -9,7 +9,7 @@
 #                report is skipped, and says so
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
-          libeigen3-dev libsundials-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
+          libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core
           pybind11-dev python3-dev python3-pytest python3-numpy python3-pandas python3-matplotlib
           python3-nbconvert python3-ipykernel)

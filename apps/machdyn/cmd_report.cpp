@@ -84,16 +84,10 @@ int run_report(const ReportArgs& a) {
   }
   for (auto& run : runs) {
     ProgressBar bar(a.quiet);
-    if (a.all_cases) {
-      // Event-driven for every case, as `simulate --all-cases`: the same peaks and static loads.
-      HybridOptions options;
-      options.progress = bar.callback();
-      run.result = simulate_hybrid(run.model, options);
-    } else {
-      SimulateOptions options;
-      options.progress = bar.callback();
-      run.result = simulate(run.model, options);
-    }
+    SimulateOptions options;
+    options.progress = bar.callback();
+    options.event_driven = a.all_cases;  // every case alike, as `simulate --all-cases`
+    run.result = simulate(run.model, options);
     bar.clear();
     run.modes = compute_modes(run.model);
     run.energy = machine_energy(run.model);

@@ -100,7 +100,9 @@ int run_all_cases(const SimulateArgs& a) {
   std::vector<SimulationResult> results;
   for (size_t c = 0; c < names.size(); ++c) {
     try {
-      results.push_back(simulate_hybrid(models[c]));  // event-driven for every case, smooth or not
+      SimulateOptions every_case;
+      every_case.event_driven = true;  // event-driven for every case, smooth or not
+      results.push_back(simulate(models[c], every_case));
     } catch (const SolverError&) {
       std::cerr << fmt::format("machdyn: case '{}' ({} of {}) failed; no result of this run was written\n", names[c],
                                c + 1, names.size());
@@ -127,11 +129,10 @@ int run_all_cases(const SimulateArgs& a) {
       long events = 0;
       for (const auto& e : r.hybrid.events) events += e.kind != "initial";
       for (size_t l = 0; l < m.links.size(); ++l) {
-        const auto& s = r.links[l];
-        const LinkPeak p = link_peak(r, l);
+        const LinkSummary& s = r.links[l];
         table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
-                             l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, p.peak, p.t_peak, p.static_load,
-                             p.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+                             l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, s.peak, s.t_peak, s.static_load,
+                             s.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
       }
     }
     written.push_back(out_dir / "cases.json");

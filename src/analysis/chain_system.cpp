@@ -93,17 +93,19 @@ double ChainSystem::link_load(int l, const double* y) const {
   return k.c * s.delta + k.d * s.rate;
 }
 
-std::vector<double> ChainSystem::link_load_weights(int l) const {
+SparseWeights ChainSystem::link_load_weights(int l) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
-  std::vector<double> w(static_cast<size_t>(2 * n_), 0.0);
-  if (k.a >= 0) {
-    w[static_cast<size_t>(k.a)] += k.c * k.inv_ratio;
-    w[static_cast<size_t>(n_ + k.a)] += k.d * k.inv_ratio;
-  }
-  if (k.b >= 0) {
-    w[static_cast<size_t>(k.b)] -= k.c;
-    w[static_cast<size_t>(n_ + k.b)] -= k.d;
-  }
+  SparseWeights w;
+  auto add = [&](int i, double v) {
+    for (size_t j = 0; j < w.idx.size(); ++j)
+      if (w.idx[j] == i) {
+        w.w[j] += v;
+        return;
+      }
+    w.idx.push_back(i), w.w.push_back(v);
+  };
+  if (k.a >= 0) add(k.a, k.c * k.inv_ratio), add(n_ + k.a, k.d * k.inv_ratio);
+  if (k.b >= 0) add(k.b, -k.c), add(n_ + k.b, -k.d);
   return w;
 }
 
@@ -207,6 +209,34 @@ void ChainSystem::jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd
     }
   }
   for (int i = 0; i < n_; ++i) J.row(n_ + i) *= inv_mass_[static_cast<size_t>(i)];
+}
+
+void ChainSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) {
+  // The entries of jacobian(), as triplets (duplicates summed, zeros kept: a fixed pattern).
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<size_t>(2 * n_ + 8 * static_cast<int>(links_.size()) + static_cast<int>(m_.loads.size())));
+  for (int i = 0; i < n_; ++i) trip.emplace_back(i, n_ + i, 1.0);
+  // Every diagonal entry present (zero for positions): CVODE forms I − γJ in place on this pattern;
+  // a missing diagonal makes it rebuild the whole matrix at every setup.
+  for (int i = 0; i < 2 * n_; ++i) trip.emplace_back(i, i, 0.0);
+  auto im = [&](int i) { return inv_mass_[static_cast<size_t>(i)]; };
+  for (const auto& ld : m_.loads)
+    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[n_ + ld.body]) * im(ld.body));
+  for (const auto& k : links_) {
+    const int idx[2] = {k.a, k.b};
+    const double w[2] = {k.inv_ratio, -1.0};
+    for (int r = 0; r < 2; ++r) {
+      if (idx[r] < 0) continue;
+      for (int c = 0; c < 2; ++c) {
+        if (idx[c] < 0) continue;
+        trip.emplace_back(n_ + idx[r], idx[c], -k.c * w[r] * w[c] * im(idx[r]));
+        trip.emplace_back(n_ + idx[r], n_ + idx[c], -k.d * w[r] * w[c] * im(idx[r]));
+      }
+    }
+  }
+  J.resize(2 * n_, 2 * n_);
+  J.setFromTriplets(trip.begin(), trip.end());
+  J.makeCompressed();
 }
 
 std::string ChainSystem::state_name(int i) const {

@@ -1,5 +1,6 @@
-// The event loop of the hybrid simulation: step, detect sign changes of the event functions, locate
-// the earliest on the dense output, decide the new modes of all elements together, restart.
+// The hybrid simulation as an event system of the one driver (solve/driver.hpp): its event
+// functions and breakpoints, the decision of the new modes of all elements together at an event,
+// and the observers (outputs, peaks, slip phases, energy books, progress).
 #include "machdyn/analysis/hybrid.hpp"
 
 #include <algorithm>
@@ -11,13 +12,14 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/solve/driver.hpp"
 #include "machdyn/solve/roots.hpp"
 
 namespace machdyn {
 namespace {
 
 /// Times in (0, t_end) where a load, a brake or a surface-velocity table has a kink or a jump.
-std::vector<double> breakpoints(const Model& m) {
+std::vector<double> model_breakpoints(const Model& m) {
   std::vector<double> t;
   for (const auto& ld : m.loads) {
     if (ld.kind == LoadKind::step) t.push_back(ld.t0);
@@ -34,15 +36,13 @@ std::vector<double> breakpoints(const Model& m) {
   return t;
 }
 
-class HybridRun {
+class HybridRun final : public EventSystem, public StepObserver {
  public:
   HybridRun(const Model& m, const HybridOptions& opt, SimulationResult& out)
       : m_(m), opt_(opt), out_(out), sys_(m), n_(m.dof()), N_(sys_.size()), nl_(static_cast<int>(m.links.size())),
         nc_(static_cast<int>(m.contacts.size())) {
     y_.assign(static_cast<size_t>(N_), 0.0);
     ytmp_ = dtmp_ = ya_ = yb_ = da_ = db_ = y_;
-    g_prev_.assign(static_cast<size_t>(sys_.event_slots()), 0.0);
-    g_new_ = g_tmp_ = g_prev_;
     acc_.assign(static_cast<size_t>(n_), 0.0);
     fc_.assign(static_cast<size_t>(nc_), 0.0);
     open_phase_.assign(static_cast<size_t>(nc_), -1);
@@ -56,7 +56,7 @@ class HybridRun {
     const auto start = std::chrono::steady_clock::now();
     const auto& s = m_.simulation;
     out_.hybrid.active = true;
-    out_.hybrid.breakpoints = breakpoints(m_);
+    out_.hybrid.breakpoints = model_breakpoints(m_);
     const Method method = choose_method(m_, &out_.method_reason);
     sys_.initial_state(y_.data());
     initial_modes();
@@ -69,68 +69,16 @@ class HybridRun {
     so.rtol = s.rtol;
     so.atol = s.atol;
     so.max_steps = s.max_steps;
-    auto stepper = make_stepper(method, sys_, so);
+    auto stepper = make_stepper(method, *this, so);
     Stepper& st = *stepper;
-
+    DriveOptions drive;
+    drive.dt_out = s.dt_out;
+    drive.outputs = opt_.record_series;
     const double t_end = s.t_end;
-    n_out_ = std::max(1L, std::lround(std::ceil(t_end / s.dt_out - 1e-9)));
-    double t = 0.0;
-    st.reset(t, y_.data());
-    sys_.event_functions(t, y_.data(), g_prev_.data());
-    if (opt_.record_series) output(0.0, y_.data());
-    k_out_ = 1;
-    size_t next_bp = 0;
-    const auto& bps = out_.hybrid.breakpoints;
-    while (t < t_end) {
-      while (next_bp < bps.size() && bps[next_bp] <= t) ++next_bp;
-      const bool to_bp = next_bp < bps.size();
-      const double t_limit = to_bp ? bps[next_bp] : t_end;
-      st.step(t_limit);
-      report_progress(st, start, false);
-      const double t0 = st.t_prev(), t1 = st.t();
-      const bool at_bp = to_bp && t1 == t_limit;
-      // Left limit at a breakpoint: the loads there already jumped.
-      const double tg = at_bp ? std::nextafter(t1, -1.0) : t1;
-      sys_.event_functions(tg, st.y(), g_new_.data());
-      int first = -1;
-      double lo_best = 0, hi_best = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < sys_.event_slots(); ++k) {
-        if (!(g_prev_[static_cast<size_t>(k)] >= 0.0 && g_new_[static_cast<size_t>(k)] < 0.0)) continue;
-        double lo = t0, hi = tg;
-        locate(st, k, g_prev_[static_cast<size_t>(k)], g_new_[static_cast<size_t>(k)], lo, hi);
-        if (hi < hi_best) hi_best = hi, lo_best = lo, first = k;
-      }
-      if (first < 0) {
-        segment(st, t0, t1);
-        g_prev_.swap(g_new_);
-        t = t1;
-        if (at_bp && t1 < t_end) {
-          std::copy(st.y(), st.y() + N_, y_.begin());
-          time_event(t1);
-          st.reset(t1, y_.data());
-          seg_end_ = -1.0;  // loads may jump at a breakpoint: no reuse across a restart
-          sys_.event_functions(t1, y_.data(), g_prev_.data());
-        }
-        continue;
-      }
-      (void)lo_best;
-      // An event at hi_best: the solution up to it belongs to the old modes.
-      const double te = hi_best;
-      segment(st, t0, te);
-      st.interpolate(te, y_.data());
-      sys_.event_functions(te, y_.data(), g_tmp_.data());
-      std::vector<int> fired;
-      for (int k = 0; k < sys_.event_slots(); ++k)
-        if (g_prev_[static_cast<size_t>(k)] >= 0.0 && g_tmp_[static_cast<size_t>(k)] < 0.0) fired.push_back(k);
-      if (std::find(fired.begin(), fired.end(), first) == fired.end()) fired.push_back(first);
-      handle_event(te, fired);
-      st.reset(te, y_.data());
-      seg_end_ = -1.0;
-      sys_.event_functions(te, y_.data(), g_prev_.data());
-      t = te;
-    }
-    // Close the books.
+    start_ = start;
+    out_.stats = integrate(st, *this, 0.0, y_.data(), t_end, drive, *this);
     std::copy(st.y(), st.y() + N_, y_.begin());
+    // Close the books.
     for (int k = 0; k < nc_; ++k) close_phase(k, t_end);
     E.kinetic_end = sys_.kinetic_energy(y_.data());
     E.elastic_end = sys_.elastic_energy(y_.data());
@@ -146,11 +94,32 @@ class HybridRun {
             std::copy_n(acc_rows_.begin() + static_cast<long>(row) * n_, n_, acc);
           },
           {});
-    out_.stats.stepper = st.stats();
-    out_.stats.method = st.name();
     out_.stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report_progress(st, start, true);
   }
+
+  // ---- the event system the driver integrates: HybridSystem in its current modes ----
+  [[nodiscard]] int size() const override { return sys_.size(); }
+  void rhs(double t, const double* y, double* dydt) override { sys_.rhs(t, y, dydt); }
+  [[nodiscard]] std::string state_name(int i) const override { return sys_.state_name(i); }
+  [[nodiscard]] int event_count() const override { return sys_.event_slots(); }
+  void event_functions(double t, const double* y, double* g) override { sys_.event_functions(t, y, g); }
+  [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
+  bool handle_events(double t, double* y, const std::vector<int>& fired) override {
+    std::copy(y, y + N_, y_.begin());
+    if (fired.empty())
+      time_event(t);
+    else
+      handle_event(t, fired);
+    std::copy(y_.begin(), y_.end(), y);
+    return true;
+  }
+
+  // ---- the observer of the driver ----
+  void on_step(const Stepper& st) override { report_progress(st, start_, false); }
+  void on_segment(const Stepper& st, double ta, double tb) override { segment(st, ta, tb); }
+  void on_output(double t, const double* y) override { output(t, y); }
+  void on_event(double, const double*, const std::vector<int>&) override { seg_end_ = -1.0; }
 
  private:
   // ---- output ----
@@ -166,10 +135,6 @@ class HybridRun {
     for (const auto& l : m_.links)
       if (l.has_gap) names.push_back(l.name + ".gap_mode");
     out_.columns.resize(names.size());
-  }
-
-  double out_time(long k) const {
-    return k >= n_out_ ? m_.simulation.t_end : static_cast<double>(k) * m_.simulation.dt_out;
   }
 
   void output(double t, const double* y) {
@@ -195,15 +160,6 @@ class HybridRun {
 
   // ---- the solution on [ta, tb] inside the last step, in the current modes ----
   void segment(const Stepper& st, double ta, double tb) {
-    for (; opt_.record_series && k_out_ <= n_out_ && out_time(k_out_) <= tb; ++k_out_) {
-      const double tk = out_time(k_out_);
-      if (tk == st.t()) {
-        output(tk, st.y());
-      } else {
-        st.interpolate(tk, ytmp_.data());
-        output(tk, ytmp_.data());
-      }
-    }
     if (nl_ == 0) return;
     // The start of a step that continues the last one was already seen: reuse its state and rate.
     const bool continued = ta == seg_end_;
@@ -292,29 +248,14 @@ class HybridRun {
       s.max = p.max, s.min = p.min, s.t_max = p.t_max, s.t_min = p.t_min;
       const Eigen::VectorXd F =
           static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_max.data(), n_));
-      s.static_load = F(l);
-      out_.hybrid.static_at_min.push_back(
-          static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_min.data(), n_))(l));
-      const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
-      s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
-                                                                 : std::numeric_limits<double>::quiet_NaN();
+      s.static_at_max = F(l);
+      s.static_at_min = static_link_loads(m_, modes, Eigen::Map<const Eigen::VectorXd>(p.f_at_min.data(), n_))(l);
+      set_peak(s);
       out_.links.push_back(s);
     }
   }
 
   // ---- events ----
-  /// Slot k's sign change over [lo, hi] (g(lo) = g0 ≥ 0 > g1 = g(hi)); returns the final bracket.
-  void locate(const Stepper& st, int k, double g0, double g1, double& lo, double& hi) {
-    const Bracket br = illinois(
-        [&](double tm) {
-          st.interpolate(tm, ytmp_.data());
-          sys_.event_functions(tm, ytmp_.data(), g_tmp_.data());
-          return g_tmp_[static_cast<size_t>(k)];
-        },
-        lo, g0, hi, g1, 1e-13 * std::max(1.0, std::abs(hi)));
-    lo = br.lo, hi = br.hi;
-  }
-
   /// Progress: the clock is read every 32 steps only; a report at most every progress_interval_s.
   void report_progress(const Stepper& st, std::chrono::steady_clock::time_point start, bool finished) {
     if (!opt_.progress) return;
@@ -356,7 +297,14 @@ class HybridRun {
     }
   }
 
+  /// A brake before its application time is released, not slipping: no slip phase.
+  bool released(int k, double t) const {
+    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    return c.brake && t < c.t_apply;
+  }
+
   void open_phase(int k, double t, ContactMode md) {
+    if (released(k, t)) return;
     SlipPhase p;
     p.contact = m_.contacts[static_cast<size_t>(k)].name;
     p.direction = static_cast<int>(md);
@@ -463,7 +411,8 @@ class HybridRun {
       const ContactMode a = old_modes[static_cast<size_t>(k)], b = modes[static_cast<size_t>(k)];
       if (!initial && a == b) continue;
       const char* kind = initial ? "initial" : b == ContactMode::stuck ? "stick" : a == ContactMode::stuck ? "slip" : "reversal";
-      record(t, kind, nl_ + k, initial ? "" : to_string(a), to_string(b));
+      record(t, kind, nl_ + k, initial ? "" : released(k, t) ? "released" : to_string(a),
+             released(k, t) ? "released" : to_string(b));
       close_phase(k, t);
       if (b != ContactMode::stuck) open_phase(k, t, b);
     }
@@ -516,12 +465,26 @@ class HybridRun {
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
+    // A contact whose sliding speed reached zero is decided at zero speed: the located time lies a
+    // rounding error past the crossing, so its u is set to exactly 0 first (a slide that goes on,
+    // or reverses, then starts on its event function's zero, not past it).
+    for (int k : Z)
+      if (old[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
     const std::vector<ContactMode> now = decide_contacts(t, Z);
     strict_.clear();
     apply_contact_modes(t, old, now, false);
   }
 
   void time_event(double t) {
+    // A brake applied now while its body moves starts a slip phase (it was released so far).
+    for (int k = 0; k < nc_; ++k) {
+      const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+      const ContactMode md = sys_.contact_mode(k);
+      if (c.brake && t == c.t_apply && md != ContactMode::stuck && open_phase_[static_cast<size_t>(k)] < 0) {
+        record(t, "applied", nl_ + k, "released", to_string(md));
+        open_phase(k, t, md);
+      }
+    }
     std::vector<int> Z;
     for (int k = 0; k < nc_; ++k)
       if (sys_.contact_mode(k) == ContactMode::stuck) Z.push_back(k);
@@ -535,14 +498,14 @@ class HybridRun {
   SimulationResult& out_;
   HybridSystem sys_;
   int n_, N_, nl_, nc_;
-  std::vector<double> y_, ytmp_, dtmp_, ya_, yb_, da_, db_, g_prev_, g_new_, g_tmp_, acc_, fc_;
+  std::vector<double> y_, ytmp_, dtmp_, ya_, yb_, da_, db_, acc_, fc_;
   double seg_end_ = -1.0;          // end of the last segment if the next step continues it, else −1
   std::vector<double> rate_end_;   // link-load rates there
   std::vector<int> open_phase_;
   std::vector<std::vector<double>> switches_;
   std::vector<Peak> peak_;
   std::vector<int> strict_;  // stuck contacts whose limit event fired
-  long n_out_ = 1, k_out_ = 1;
+  std::chrono::steady_clock::time_point start_;
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
   double release_loss_ = 0.0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 
 namespace machdyn {
 
@@ -33,8 +34,12 @@ std::vector<ContactStatistics> contact_statistics(const Model& m, const Simulati
     }
     s.period_s = late.size() >= 2 ? (late.back() - late.front()) / static_cast<double>(late.size() - 1)
                                   : std::numeric_limits<double>::quiet_NaN();
+    // A ratio of like quantities only: a force in N over a brake torque in N·m is no F_max/F_sc.
+    const std::string unit = load_unit(m.bodies[static_cast<size_t>(c.a)].kind);
     for (size_t l = 0; l < m.links.size() && l < r.links.size(); ++l)
-      s.link_max_over_static_limit.push_back(r.links[l].max / c.static_limit);
+      s.link_max_over_static_limit.push_back(unit == link_load_unit(m, m.links[l])
+                                                 ? r.links[l].max / c.static_limit
+                                                 : std::numeric_limits<double>::quiet_NaN());
     out.push_back(std::move(s));
   }
   return out;

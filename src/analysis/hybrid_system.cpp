@@ -157,6 +157,18 @@ double HybridSystem::sliding_velocity(int k, double t, const double* y) const {
   return y[n_ + c.a] - (c.b >= 0 ? y[n_ + c.b] : c.surface_velocity(t));
 }
 
+void HybridSystem::zero_sliding_velocity(int k, double t, double* y) const {
+  const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+  std::vector<double> im(static_cast<size_t>(n_));
+  inverse_inertias(y, im.data());
+  const double u = sliding_velocity(k, t, y);
+  const double ia = im[static_cast<size_t>(c.a)], ib = c.b >= 0 ? im[static_cast<size_t>(c.b)] : 0.0;
+  y[n_ + c.a] -= u * ia / (ia + ib);
+  if (c.b >= 0) y[n_ + c.b] += u * ib / (ia + ib);
+  // Exact zero (rounding of the split above): the contact's own body takes the remainder.
+  y[n_ + c.a] -= sliding_velocity(k, t, y);
+}
+
 GapMode HybridSystem::natural_gap_mode(int l, const double* y) const {
   const FlatLink& k = links_[static_cast<size_t>(l)];
   if (!k.gap) return GapMode::open;

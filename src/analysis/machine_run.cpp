@@ -36,15 +36,16 @@ void MachineRun::sample(Trace& tr, double t, double q, double v) {
 
 void MachineRun::start(double t0, const double* y0) {
   for (auto& tr : traces_) sample(tr, t0, y0[tr.body], y0[n_ + tr.body]);
+  arm(t0, y0);
 }
 
-void MachineRun::on_step(const Stepper& s) {
+void MachineRun::on_segment(const Stepper& s, double ta, double tb) {
   if (traces_.empty()) return;
-  const double t0 = s.t_prev(), h = s.t() - s.t_prev();
+  const double t0 = ta, h = tb - ta;
   for (int j = 1; j <= 4; ++j) {
-    const double t = j == 4 ? s.t() : t0 + 0.25 * j * h;
+    const double t = j == 4 ? tb : t0 + 0.25 * j * h;
     const double* y = s.y();
-    if (j < 4) {
+    if (j < 4 || tb != s.t()) {
       s.interpolate(t, y_.data());
       y = y_.data();
     }
@@ -74,51 +75,39 @@ void MachineRun::arm(double /*t*/, const double* y) {
   }
 }
 
-double MachineRun::locate(const Stepper& s) {
-  double best = std::nan("");
+void MachineRun::event_functions(double /*t*/, const double* y, double* g) {
   for (size_t k = 0; k < jumpers_.size(); ++k) {
     const Jumper& J = jumpers_[k];
-    const double q1 = s.y()[J.body];
-    const int dir = q1 > J.up ? +1 : q1 < J.down ? -1 : 0;
-    if (dir == 0) continue;
-    const double b = dir > 0 ? J.up : J.down;
-    // Bisection on the dense output for the first time with dir·(q − b) > 0; q(t_prev) is on the
-    // near side (arm() put the boundaries beyond it).
-    double lo = s.t_prev(), hi = s.t();
-    for (int it = 0; it < 200 && hi - lo > 4e-16 * std::max(1.0, std::abs(hi)); ++it) {
-      const double mid = 0.5 * (lo + hi);
-      s.interpolate(mid, y_.data());
-      (dir * (y_[static_cast<size_t>(J.body)] - b) > 0 ? hi : lo) = mid;
-    }
-    if (std::isnan(best) || hi < best) {
-      best = hi;
-      pending_ = static_cast<int>(k);
-      pending_dir_ = dir;
-      pending_q_ = b;
-    }
+    const double q = y[J.body];
+    g[2 * k] = J.up - q;
+    g[2 * k + 1] = q - J.down;
   }
-  return best;
 }
 
-void MachineRun::apply(double t, double* y) {
-  if (pending_ < 0) return;
-  Jumper& J = jumpers_[static_cast<size_t>(pending_)];
+bool MachineRun::handle_events(double t, double* y, const std::vector<int>& fired) {
+  if (fired.empty()) return false;
+  // The earliest crossing (the driver lists it first): one jump at a time.
+  const auto k = static_cast<size_t>(fired[0] / 2);
+  const int dir = fired[0] % 2 == 0 ? +1 : -1;
+  Jumper& J = jumpers_[k];
+  const double qb = dir > 0 ? J.up : J.down;
   Trace& tr = traces_[static_cast<size_t>(J.trace)];
   const double w = y[n_ + J.body];
   // Samples just before and after, a hair on each side of the jump position so that the point
   // speed uses the ratio of that side (the stepwise extremes are here).
-  const double side = pending_dir_ * side_offset(pending_q_);
-  sample(tr, t, pending_q_ - side, w);
+  const double side = dir * side_offset(qb);
+  sample(tr, t, qb - side, w);
   double loss = 0.0;
-  y[J.body] = pending_q_;  // on the boundary exactly (the located time is within ~1e-15 s of it)
-  y[n_ + J.body] = J.machine->velocity_after_jump(pending_q_, pending_dir_, w, &loss);
-  sample(tr, t, pending_q_ + side, y[n_ + J.body]);
-  J.last_dir = pending_dir_;
-  J.last_q = pending_q_;
+  y[J.body] = qb;  // on the boundary exactly (the located time is within ~1e-15 s of it)
+  y[n_ + J.body] = J.machine->velocity_after_jump(qb, dir, w, &loss);
+  sample(tr, t, qb + side, y[n_ + J.body]);
+  J.last_dir = dir;
+  J.last_q = qb;
   tr.jump_t.push_back(t);
   tr.jump_loss.push_back(loss);
   ++jumps_;
-  pending_ = -1;
+  arm(t, y);
+  return true;
 }
 
 namespace {

@@ -9,27 +9,37 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/model/machine.hpp"
 #include "machdyn/solve/driver.hpp"
+#include "machdyn/solve/event_system.hpp"
 
 namespace machdyn::detail {
 
-class MachineRun final : public StepEvents {
+/// The chain system with the velocity jumps of its machines as events: for each stepwise gear the
+/// next jump positions above and below q are event functions g = q_up − q ≥ 0, g = q − q_down ≥ 0;
+/// at a crossing the speed jumps (Machine::velocity_after_jump). Also samples the traced bodies for
+/// their MachineRunReport.
+class MachineRun final : public EventSystem {
  public:
   /// Sets the evaluation windows of `sys` (ChainSystem::set_evaluation_window) as it arms jumps.
   MachineRun(const Model& m, ChainSystem& sys);
-  /// Whether any body has velocity jumps (then simulate() passes this object to integrate()).
+  /// Whether any body has velocity jumps (then simulate() integrates this system, else `sys`).
   [[nodiscard]] bool has_jumps() const { return !jumpers_.empty(); }
   /// Whether there is anything to report (jumps or a point-speed report).
   [[nodiscard]] bool active() const { return !traces_.empty(); }
   [[nodiscard]] long jumps() const { return jumps_; }
 
-  /// Samples the traced bodies at four points of the stepper's last step (its end included).
-  void on_step(const Stepper& s);
-  /// The first sample, at the start.
+  /// Samples the traced bodies at four points of the piece [ta, tb] of the stepper's last step.
+  void on_segment(const Stepper& s, double ta, double tb);
+  /// The first sample, at the start; arms the first jumps.
   void start(double t0, const double* y0);
 
-  void arm(double t, const double* y) override;
-  double locate(const Stepper& s) override;
-  void apply(double t, double* y) override;
+  [[nodiscard]] int size() const override { return sys_.size(); }
+  void rhs(double t, const double* y, double* dydt) override { sys_.rhs(t, y, dydt); }
+  [[nodiscard]] bool has_jacobian() const override { return true; }
+  void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override { sys_.jacobian(t, y, J); }
+  [[nodiscard]] std::string state_name(int i) const override { return sys_.state_name(i); }
+  [[nodiscard]] int event_count() const override { return 2 * static_cast<int>(jumpers_.size()); }
+  void event_functions(double t, const double* y, double* g) override;
+  bool handle_events(double t, double* y, const std::vector<int>& fired) override;
 
   [[nodiscard]] std::vector<MachineRunReport> reports() const;
 
@@ -50,15 +60,13 @@ class MachineRun final : public StepEvents {
     double last_q = 0.0;          ///< its position: the boundary behind the motion right after it
   };
   void sample(Trace& tr, double t, double q, double v);
+  void arm(double t, const double* y);
 
   ChainSystem& sys_;
   int n_ = 0;
   std::vector<Trace> traces_;
   std::vector<Jumper> jumpers_;
   std::vector<double> y_;  ///< scratch, size 2n
-  // The event found by locate(), applied by apply().
-  int pending_ = -1, pending_dir_ = 0;
-  double pending_q_ = 0.0;
   long jumps_ = 0;
 };
 

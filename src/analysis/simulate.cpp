@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/chain_system.hpp"
@@ -40,6 +41,17 @@ Method choose_method(const Model& m, std::string* reason) {
       }
     }
   }
+  // A kinetic friction table rising with the sliding speed acts as a damper of its steepest rising
+  // slope while the contact slides (dF_k/du: 7e9 N·s/m for 0.2 → 0.9 of 10 N over 1e-9 m/s).
+  for (const auto& c : m.contacts) {
+    double slope = 0.0;
+    for (size_t i = 0; i + 1 < c.speeds.size() && i + 1 < c.kinetic.size(); ++i)
+      slope = std::max(slope, (c.kinetic[i + 1] - c.kinetic[i]) / (c.speeds[i + 1] - c.speeds[i]));
+    const int idx[2] = {c.a, c.b};
+    for (int r = 0; r < 2; ++r)
+      for (int k = 0; k < 2; ++k)
+        if (idx[r] >= 0 && idx[k] >= 0) rowD[static_cast<size_t>(idx[r])] += slope;
+  }
   double rho_D = 0.0, omega_K = 0.0;
   for (int i = 0; i < m.dof(); ++i) {
     const double I = m.bodies[static_cast<size_t>(i)].inertia;
@@ -60,27 +72,35 @@ Method choose_method(const Model& m, std::string* reason) {
 
 namespace {
 
-/// Collects the output grid and the link-load peaks; at each new maximum of link l it keeps the
-/// values of the loads then (O(#loads)), for the quasi-static load at t_max.
+/// Collects the output grid and the link-load peaks; at each new maximum or minimum of link l it
+/// keeps the values of the loads then (O(#loads)), for the quasi-static loads at t_max and t_min.
 class Recorder final : public StepObserver {
  public:
   Recorder(const Model& m, ChainSystem& sys, SimulationResult& out, const SimulateOptions& opt,
            detail::MachineRun& run)
-      : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(weights(m, sys)),
-        loads_at_max_(m.links.size(), std::vector<double>(m.loads.size(), 0.0)) {
+      : m_(m), sys_(sys), out_(out), opt_(opt), run_(run), start_(std::chrono::steady_clock::now()), peaks_(sys.size(), weights(m, sys)),
+        varying_(varying_loads(m)),
+        loads_at_max_(m.links.size(), std::vector<double>(varying_.size(), 0.0)), loads_at_min_(loads_at_max_) {
     out_.column_names = chain_column_names(m);
     out_.columns.resize(out_.column_names.size());
     const auto rows = static_cast<size_t>(m.simulation.t_end / m.simulation.dt_out) + 2;
     for (auto& col : out_.columns) col.reserve(rows);
-    on_new_max_ = [this](int l, double t, const double* y) {
-      auto& vals = loads_at_max_[static_cast<size_t>(l)];
-      for (size_t k = 0; k < m_.loads.size(); ++k) vals[k] = m_.loads[k].evaluate(t, y[m_.dof() + m_.loads[k].body]);
+    on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
+      auto& vals = (is_max ? loads_at_max_ : loads_at_min_)[static_cast<size_t>(l)];
+      for (size_t k = 0; k < varying_.size(); ++k) {
+        const Load& ld = m_.loads[varying_[k]];
+        vals[k] = ld.evaluate(t, y[m_.dof() + ld.body]);
+      }
     };
   }
 
+  void on_segment(const Stepper& s, double ta, double tb) override {
+    peaks_.on_segment(s, ta, tb, on_new_max_);
+    run_.on_segment(s, ta, tb);
+  }
+  void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
+
   void on_step(const Stepper& s) override {
-    peaks_.on_step(s, on_new_max_);
-    run_.on_step(s);
     // Progress: look at the clock every 32 steps only, report every progress_interval_s.
     if (opt_.progress && (++steps_ & 31) == 0) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -121,16 +141,31 @@ class Recorder final : public StepObserver {
   }
 
   const PeakTracker& peaks() const { return peaks_; }
-  /// The generalized forces of the loads acting when link l had its maximum.
-  Eigen::VectorXd forces_at_max(size_t l) const {
+  /// The values of the time- or speed-dependent loads when link l had its maximum (or minimum);
+  /// the constant loads are the same at every instant.
+  const std::vector<double>& varying_at(size_t l, bool at_max) const {
+    return (at_max ? loads_at_max_ : loads_at_min_)[l];
+  }
+  /// The generalized forces of all loads for the varying loads' values `vals`.
+  Eigen::VectorXd forces(const std::vector<double>& vals) const {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(m_.dof());
-    for (size_t k = 0; k < m_.loads.size(); ++k) f(m_.loads[k].body) += loads_at_max_[l][k];
+    size_t v = 0;
+    for (size_t k = 0; k < m_.loads.size(); ++k) {
+      const Load& ld = m_.loads[k];
+      f(ld.body) += v < varying_.size() && varying_[v] == k ? vals[v++] : ld.evaluate(0.0, 0.0);
+    }
     return f;
   }
 
  private:
-  static std::vector<std::vector<double>> weights(const Model& m, const ChainSystem& sys) {
-    std::vector<std::vector<double>> w;
+  static std::vector<size_t> varying_loads(const Model& m) {
+    std::vector<size_t> v;
+    for (size_t k = 0; k < m.loads.size(); ++k)
+      if (m.loads[k].kind != LoadKind::constant) v.push_back(k);
+    return v;
+  }
+  static std::vector<SparseWeights> weights(const Model& m, const ChainSystem& sys) {
+    std::vector<SparseWeights> w;
     for (size_t l = 0; l < m.links.size(); ++l) w.push_back(sys.link_load_weights(static_cast<int>(l)));
     return w;
   }
@@ -143,33 +178,30 @@ class Recorder final : public StepObserver {
   long steps_ = 0;
   double next_report_ = 0.0;
   PeakTracker peaks_;
-  std::vector<std::vector<double>> loads_at_max_;
+  std::vector<size_t> varying_;  // indices of the loads that depend on t or v
+  std::vector<std::vector<double>> loads_at_max_, loads_at_min_;
   PeakTracker::NewMax on_new_max_;
 };
 
 }  // namespace
 
-LinkPeak link_peak(const SimulationResult& r, std::size_t l) {
-  const LinkSummary& s = r.links.at(l);
+void set_peak(LinkSummary& s) {
   const bool neg = std::abs(s.min) > std::abs(s.max);
-  LinkPeak p;
-  p.peak = neg ? s.min : s.max;
-  p.t_peak = neg ? s.t_min : s.t_max;
-  p.static_load = !neg ? s.static_load
-                       : l < r.hybrid.static_at_min.size() ? r.hybrid.static_at_min[l]
-                                                           : std::numeric_limits<double>::quiet_NaN();
-  p.dynamic_factor = std::abs(p.static_load) > 1e-9 * std::abs(p.peak) ? p.peak / p.static_load
+  s.peak = neg ? s.min : s.max;
+  s.t_peak = neg ? s.t_min : s.t_max;
+  s.static_load = neg ? s.static_at_min : s.static_at_max;
+  s.dynamic_factor = std::abs(s.static_load) > 1e-9 * std::abs(s.peak) ? s.peak / s.static_load
                                                                        : std::numeric_limits<double>::quiet_NaN();
-  return p;
 }
 
 SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
 
 SimulationResult simulate(const Model& m, const SimulateOptions& options) {
-  if (m.is_hybrid()) {
+  if (m.is_hybrid() || options.event_driven) {
     HybridOptions hybrid;
     hybrid.progress = options.progress;
     hybrid.progress_interval_s = options.progress_interval_s;
+    hybrid.record_series = options.record_series;
     return simulate_hybrid(m, hybrid);
   }
   SimulationResult out;
@@ -181,17 +213,27 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
   opt.rtol = m.simulation.rtol;
   opt.atol = m.simulation.atol;
   opt.max_steps = m.simulation.max_steps;
-  auto stepper = make_stepper(method, sys, opt);
   detail::MachineRun run(m, sys);  // velocity jumps (stepwise gears) and the point-speed report
   run.start(0.0, y0.data());
+  EventSystem& events = run.has_jumps() ? static_cast<EventSystem&>(run) : sys;
+  auto stepper = make_stepper(method, events, opt);
   Recorder rec(m, sys, out, options, run);
-  out.stats = integrate(*stepper, 0.0, y0.data(), m.simulation.t_end, m.simulation.dt_out, rec,
-                        run.has_jumps() ? &run : nullptr);
+  DriveOptions drive;
+  drive.dt_out = m.simulation.dt_out;
+  drive.event_tol = 4e-16;  // jump positions of stepwise gears: to the last bits of t
+  out.stats = integrate(*stepper, events, 0.0, y0.data(), m.simulation.t_end, drive, rec);
   rec.finish();
   out.machines = run.reports();
 
-  // Quasi-static loads at each link's peak time.
+  // Quasi-static loads at each link's extremes: one sparse factorization, one solve per distinct
+  // load vector (constant loads: a single solve for every link).
   const ParticularSolver particular(m);
+  std::map<std::vector<double>, Eigen::VectorXd> solved;
+  auto static_loads = [&](const std::vector<double>& vals) -> const Eigen::VectorXd& {
+    auto it = solved.find(vals);
+    if (it == solved.end()) it = solved.emplace(vals, particular.solve(rec.forces(vals))).first;
+    return it->second;
+  };
   for (size_t l = 0; l < m.links.size(); ++l) {
     const int j = static_cast<int>(l);
     LinkSummary s;
@@ -199,10 +241,9 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options) {
     s.min = rec.peaks().min(j);
     s.t_max = rec.peaks().t_max(j);
     s.t_min = rec.peaks().t_min(j);
-    s.static_load = particular.solve(rec.forces_at_max(l))(j);
-    const double scale = std::max({std::abs(s.max), std::abs(s.min), 1e-300});
-    s.dynamic_factor = std::abs(s.static_load) > 1e-12 * scale ? s.max / s.static_load
-                                                               : std::numeric_limits<double>::quiet_NaN();
+    s.static_at_max = static_loads(rec.varying_at(l, true))(j);
+    s.static_at_min = static_loads(rec.varying_at(l, false))(j);
+    set_peak(s);
     out.links.push_back(s);
   }
   append_machine_outputs(m, sys, out);  // variable-inertia series (analysis/machine_outputs.hpp)

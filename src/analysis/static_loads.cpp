@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
@@ -71,6 +72,7 @@ struct ParticularSolver::Impl {
   Eigen::MatrixXd R, MR;
   Eigen::LDLT<Eigen::MatrixXd> rigid;  // Rᵀ M R
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  std::vector<int> pins;  // pinned coordinates (q_p = 0), or empty: the bordered system
   explicit Impl(const Model& model) : m(model) {}
 };
 
@@ -84,7 +86,26 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
   s.MR = M.asDiagonal() * s.R;
   if (r > 0) s.rigid.compute(s.R.transpose() * s.MR);
 
-  // Saddle-point system [K  MR; (MR)ᵀ 0] [q_e; μ] = [f_e; 0], K = Σ c_l b_l b_lᵀ assembled sparse.
+  // The link loads do not see rigid motions (K R = 0), so any solution of K q = f_e serves: pin one
+  // coordinate per rigid motion (q_p = 0) where R restricted to the pinned rows is nonsingular.
+  // Then the pinned rows' equations hold too (Rᵀ f_e = 0 and Rᵀ K = 0 leave R_pᵀ·residual_p = 0),
+  // and the matrix stays as sparse as K: O(n) for a chain. R's columns walk disjoint spring graphs,
+  // so the largest entry of each column gives independent pins; if not (checked), the bordered
+  // saddle-point system [K MR; (MR)ᵀ 0] below, whose dense border fills in (O(n²) for long chains).
+  std::vector<int> pin(static_cast<size_t>(r), -1);
+  std::vector<char> pinned(static_cast<size_t>(n), 0);
+  bool pins_ok = r > 0;
+  for (Eigen::Index k = 0; k < r && pins_ok; ++k) {
+    Eigen::Index i = 0;
+    s.R.col(k).cwiseAbs().maxCoeff(&i);
+    pins_ok = !pinned[static_cast<size_t>(i)];
+    pin[static_cast<size_t>(k)] = static_cast<int>(i), pinned[static_cast<size_t>(i)] = 1;
+  }
+  if (pins_ok) {
+    Eigen::MatrixXd Rp(r, r);
+    for (Eigen::Index k = 0; k < r; ++k) Rp.row(k) = s.R.row(pin[static_cast<size_t>(k)]);
+    pins_ok = Eigen::FullPivLU<Eigen::MatrixXd>(Rp).rank() == r;
+  }
   std::vector<Eigen::Triplet<double>> trip;
   for (const auto& l : m.links) {
     if (l.c <= 0.0) continue;
@@ -92,7 +113,17 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
     const double w[2] = {1.0 / l.ratio, -1.0};
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
-        if (idx[a] >= 0 && idx[b] >= 0) trip.emplace_back(idx[a], idx[b], l.c * w[a] * w[b]);
+        if (idx[a] >= 0 && idx[b] >= 0 &&
+            !(pins_ok && (pinned[static_cast<size_t>(idx[a])] || pinned[static_cast<size_t>(idx[b])])))
+          trip.emplace_back(idx[a], idx[b], l.c * w[a] * w[b]);
+  }
+  if (pins_ok) {
+    for (int i : pin) trip.emplace_back(i, i, 1.0);
+    s.pins = pin;
+    Eigen::SparseMatrix<double> A(n, n);
+    A.setFromTriplets(trip.begin(), trip.end());
+    s.lu.compute(A);
+    return;
   }
   for (Eigen::Index k = 0; k < r; ++k)
     for (int i = 0; i < n; ++i)
@@ -112,9 +143,10 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   const Impl& s = *impl_;
   const Model& m = s.m;
   const int n = m.dof();
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + s.R.cols());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(s.pins.empty() ? n + s.R.cols() : n);
   rhs.head(n) = f;
   if (s.R.cols() > 0) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
+  for (int p : s.pins) rhs(p) = 0.0;
   const Eigen::VectorXd sol = s.lu.solve(rhs);
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t k = 0; k < m.links.size(); ++k) {

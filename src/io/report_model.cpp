@@ -191,7 +191,7 @@ Table cases_table(const std::vector<Case>& cases) {
     long events = 0;
     for (const auto& e : r.hybrid.events) events += e.kind != "initial";
     for (std::size_t l = 0; l < m.links.size() && l < r.links.size(); ++l) {
-      const LinkPeak p = link_peak(r, l);
+      const LinkSummary& p = r.links[l];
       t.rows.push_back({l == 0 ? c.name : "", m.links[l].name, num(r.links[l].max), num(r.links[l].min), num(p.peak),
                         num(p.t_peak), num(p.static_load), p.dynamic_factor == p.dynamic_factor ? fmt::format("{:.3g}", p.dynamic_factor) : "–",
                         pretty_unit(link_load_unit(m, m.links[l])), l == 0 ? fmt::format("{}", events) : ""});

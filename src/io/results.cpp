@@ -1,5 +1,7 @@
 #include "machdyn/io/results.hpp"
 
+#include "machdyn/analysis/hybrid_stats.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <fmt/format.h>
@@ -81,24 +83,20 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
   // the slips in the second half of the run) and the largest link loads as multiples of the
   // contact's static limit.
   nlohmann::json contacts = nlohmann::json::object();
-  for (const auto& c : m.contacts) {
-    std::vector<double> starts;
-    for (const auto& p : h.slip_phases)
-      if (p.contact == c.name) starts.push_back(p.t_start);
-    std::vector<double> late;
-    for (double t : starts)
-      if (t >= 0.5 * m.simulation.t_end) late.push_back(t);
-    nlohmann::json period;
-    if (late.size() >= 2) period = (late.back() - late.front()) / static_cast<double>(late.size() - 1);
+  const std::vector<ContactStatistics> stats = contact_statistics(m, r);
+  for (size_t k = 0; k < m.contacts.size(); ++k) {
+    const FrictionContact& c = m.contacts[k];
+    const ContactStatistics& st = stats[k];
     nlohmann::json ratio = nlohmann::json::object();
-    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = r.links[l].max / c.static_limit;
+    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = number_or_null(st.link_max_over_static_limit[l]);
     contacts[c.name] = {{"kind", c.brake ? "brake" : "contact"},
                         {"static_limit", c.static_limit},
                         {"kinetic_at_rest", c.kinetic_level(0.0)},
-                        {"slips", starts.size()},
-                        {"period_s", period},
+                        {"slips", st.slips},
+                        {"period_s", number_or_null(st.period_s)},
                         {"link_max_over_static_limit", ratio},
                         {"unit", load_unit(m.bodies[static_cast<size_t>(c.a)].kind)}};
+    if (c.brake) contacts[c.name]["applied_at_s"] = c.t_apply;
   }
   j["contacts"] = contacts;
   const EnergyBalance& E = h.energy;
@@ -125,6 +123,10 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
                               {"min", L.min},
                               {"t_max", L.t_max},
                               {"t_min", L.t_min},
+                              {"static_at_max", L.static_at_max},
+                              {"static_at_min", L.static_at_min},
+                              {"peak", L.peak},
+                              {"t_peak", L.t_peak},
                               {"static", L.static_load},
                               {"dynamic_factor", number_or_null(L.dynamic_factor)},
                               {"unit", link_load_unit(m, m.links[l])}};

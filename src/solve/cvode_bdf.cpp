@@ -3,7 +3,9 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +24,8 @@ struct CvodeBdf::Impl {
   OdeSystem* sys = nullptr;
   bool initialized = false;
   bool finite = true;
+  bool sparse = false;               // KLU on the system's sparse Jacobian
+  Eigen::SparseMatrix<double> Js;    // its last evaluation
   int bad_component = -1;
 };
 
@@ -50,6 +54,20 @@ int jac_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_V
   return 0;
 }
 
+int sparse_jac_cb(realtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector, N_Vector, N_Vector) {
+  auto* impl = static_cast<CvodeBdf::Impl*>(user);
+  impl->sys->sparse_jacobian(t, N_VGetArrayPointer(y), impl->Js);
+  const auto& A = impl->Js;
+  if (A.nonZeros() > SM_NNZ_S(J)) return -1;  // the pattern grew: not allowed
+  const auto n = A.outerSize();
+  for (Eigen::Index c = 0; c <= n; ++c) SM_INDEXPTRS_S(J)[c] = static_cast<sunindextype>(A.outerIndexPtr()[c]);
+  for (Eigen::Index k = 0; k < A.nonZeros(); ++k) {
+    SM_INDEXVALS_S(J)[k] = static_cast<sunindextype>(A.innerIndexPtr()[k]);
+    SM_DATA_S(J)[k] = A.valuePtr()[k];
+  }
+  return 0;
+}
+
 }  // namespace
 
 CvodeBdf::CvodeBdf(OdeSystem& system, const StepperOptions& options)
@@ -59,8 +77,18 @@ CvodeBdf::CvodeBdf(OdeSystem& system, const StepperOptions& options)
   if (SUNContext_Create(nullptr, &impl_->ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
   impl_->y = N_VNew_Serial(n, impl_->ctx);
   impl_->dky = N_VNew_Serial(n, impl_->ctx);
-  impl_->A = SUNDenseMatrix(n, n, impl_->ctx);
-  impl_->LS = SUNLinSol_Dense(impl_->y, impl_->A, impl_->ctx);
+  // Large systems with a sparse Jacobian: KLU on a compressed-column matrix (O(nonzeros) memory),
+  // else the dense direct solver.
+  impl_->sparse = system.has_sparse_jacobian() && system.size() >= kSparseFrom;
+  if (impl_->sparse) {
+    std::vector<double> y0(static_cast<size_t>(system.size()), 0.0);
+    system.sparse_jacobian(0.0, y0.data(), impl_->Js);
+    impl_->A = SUNSparseMatrix(n, n, std::max<sunindextype>(1, impl_->Js.nonZeros()), CSC_MAT, impl_->ctx);
+    impl_->LS = SUNLinSol_KLU(impl_->y, impl_->A, impl_->ctx);
+  } else {
+    impl_->A = SUNDenseMatrix(n, n, impl_->ctx);
+    impl_->LS = SUNLinSol_Dense(impl_->y, impl_->A, impl_->ctx);
+  }
   impl_->mem = CVodeCreate(CV_BDF, impl_->ctx);
   if (!impl_->y || !impl_->A || !impl_->LS || !impl_->mem) throw std::runtime_error("CVODE allocation failed");
 }
@@ -85,12 +113,17 @@ void CvodeBdf::reset(double t0, const double* y0) {
     CVodeSetUserData(impl_->mem, impl_);
     CVodeSStolerances(impl_->mem, opt_.rtol, opt_.atol);
     CVodeSetLinearSolver(impl_->mem, impl_->LS, impl_->A);
-    if (sys_.has_jacobian()) CVodeSetJacFn(impl_->mem, jac_cb);
+    if (impl_->sparse)
+      CVodeSetJacFn(impl_->mem, sparse_jac_cb);
+    else if (sys_.has_jacobian())
+      CVodeSetJacFn(impl_->mem, jac_cb);
     CVodeSetMaxNumSteps(impl_->mem, 100000);
     CVodeSetErrHandlerFn(impl_->mem, [](int, const char*, const char*, char*, void*) {}, nullptr);
     if (opt_.h_max > 0) CVodeSetMaxStep(impl_->mem, opt_.h_max);
     impl_->initialized = true;
   } else {
+    // CVodeReInit zeroes CVODE's counters: keep what the run took so far (stats() adds them).
+    done_ = stats();
     CVodeReInit(impl_->mem, t0, impl_->y);
   }
 }
@@ -142,21 +175,21 @@ void CvodeBdf::derivative(double t, double* dy_out) const {
 }
 
 StepperStats CvodeBdf::stats() const {
-  StepperStats s;
+  StepperStats s = done_;
   long v = 0;
   CVodeGetNumSteps(impl_->mem, &v);
-  s.steps = v;
+  s.steps += v;
   CVodeGetNumRhsEvals(impl_->mem, &v);
-  s.rhs_evals = v;
+  s.rhs_evals += v;
   long lsrhs = 0;
   CVodeGetNumLinRhsEvals(impl_->mem, &lsrhs);
   s.rhs_evals += lsrhs;
   CVodeGetNumJacEvals(impl_->mem, &v);
-  s.jac_evals = v;
+  s.jac_evals += v;
   long ef = 0, cf = 0;
   CVodeGetNumErrTestFails(impl_->mem, &ef);
   CVodeGetNumNonlinSolvConvFails(impl_->mem, &cf);
-  s.rejected = ef + cf;
+  s.rejected += ef + cf;
   return s;
 }
 

@@ -28,6 +28,8 @@ class CvodeBdf final : public Stepper {
   [[nodiscard]] std::string name() const override { return "cvode-bdf"; }
 
   struct Impl;
+  /// From this many states on, a system with a sparse Jacobian is solved with KLU.
+  static constexpr int kSparseFrom = 64;
 
  private:
   Impl* impl_;
@@ -35,6 +37,7 @@ class CvodeBdf final : public Stepper {
   StepperOptions opt_;
   double t_ = 0.0, t_old_ = 0.0;
   std::vector<double> y_, dy_;
+  StepperStats done_;  // counts before the last CVodeReInit
 };
 
 }  // namespace machdyn

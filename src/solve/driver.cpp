@@ -3,80 +3,112 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <vector>
+#include <limits>
+
+#include "machdyn/solve/roots.hpp"
 
 namespace machdyn {
+namespace {
 
-RunStats integrate(Stepper& stepper, double t0, const double* y0, double t_end, double dt_out,
-                   StepObserver& observer) {
-  return integrate(stepper, t0, y0, t_end, dt_out, observer, nullptr);
+StepperStats minus(StepperStats a, const StepperStats& b) {
+  a.steps -= b.steps, a.rejected -= b.rejected, a.rhs_evals -= b.rhs_evals, a.jac_evals -= b.jac_evals;
+  return a;
 }
 
-RunStats integrate(Stepper& stepper, double t0, const double* y0, double t_end, double dt_out,
-                   StepObserver& observer, StepEvents* events) {
+}  // namespace
+
+RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, double t_end,
+                   const DriveOptions& opt, StepObserver& obs) {
   const auto start = std::chrono::steady_clock::now();
-  stepper.reset(t0, y0);
-  if (events) events->arm(t0, y0);
-  const long n_out = std::max(1L, std::lround(std::ceil((t_end - t0) / dt_out - 1e-9)));
-  auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * dt_out; };
-  observer.on_output(t0, y0);
-  long k = 1;
-  const auto n = static_cast<size_t>(stepper.size());
-  std::vector<double> y(n), y_prev(n);
-  StepperStats done;  // counts before restarts of a stepper whose reset() clears them (CVODE)
-  auto add = [](StepperStats& a, const StepperStats& b) {
-    a.steps += b.steps, a.rejected += b.rejected, a.rhs_evals += b.rhs_evals, a.jac_evals += b.jac_evals;
-  };
-  auto restart = [&](double t, const double* yr) {
-    const StepperStats before = stepper.stats();
-    stepper.reset(t, yr);
-    if (stepper.stats().steps < before.steps) add(done, before);
-  };
-  // Outputs inside the stepper's last step, up to t_limit.
-  auto emit = [&](double t_limit) {
-    for (; k <= n_out && out_time(k) <= t_limit; ++k) {
-      const double tk = out_time(k);
-      if (tk == stepper.t()) {
-        observer.on_output(tk, stepper.y());
+  const StepperStats before = st.stats();  // a stepper reused for a second run
+  const auto n = static_cast<size_t>(st.size());
+  const auto ne = static_cast<size_t>(sys.event_count());
+  std::vector<double> y(y0, y0 + n), ytmp(n);
+  std::vector<double> g_prev(ne), g_new(ne), g_tmp(ne);
+  const std::vector<double> bps = sys.breakpoints(t0, t_end);
+  const long n_out = std::max(1L, std::lround(std::ceil((t_end - t0) / opt.dt_out - 1e-9)));
+  auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * opt.dt_out; };
+  long k_out = 1;
+  // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
+  auto segment = [&](double ta, double tb) {
+    for (; opt.outputs && k_out <= n_out && out_time(k_out) <= tb; ++k_out) {
+      const double tk = out_time(k_out);
+      if (tk == st.t()) {
+        obs.on_output(tk, st.y());
       } else {
-        stepper.interpolate(tk, y.data());
-        observer.on_output(tk, y.data());
+        st.interpolate(tk, ytmp.data());
+        obs.on_output(tk, ytmp.data());
       }
     }
+    obs.on_segment(st, ta, tb);
   };
-  while (stepper.t() < t_end) {
-    const double t_prev = stepper.t();
-    if (events) std::copy(stepper.y(), stepper.y() + n, y_prev.begin());
-    stepper.step(t_end);
-    const double te = events ? events->locate(stepper) : std::nan("");
-    if (std::isnan(te)) {
-      observer.on_step(stepper);
-      emit(stepper.t());
+  RunStats stats;
+  st.reset(t0, y.data());
+  if (ne) sys.event_functions(t0, y.data(), g_prev.data());
+  if (opt.outputs) obs.on_output(t0, y.data());
+  double t = t0;
+  size_t next_bp = 0;
+  std::vector<int> fired;
+  while (t < t_end) {
+    while (next_bp < bps.size() && bps[next_bp] <= t) ++next_bp;
+    const bool to_bp = next_bp < bps.size() && bps[next_bp] < t_end;
+    const double t_limit = to_bp ? bps[next_bp] : t_end;
+    st.step(t_limit);
+    obs.on_step(st);
+    const double ta = st.t_prev(), t1 = st.t();
+    const bool at_bp = to_bp && t1 == t_limit;
+    // The earliest sign change from ≥ 0 to < 0 in the step. At a breakpoint the functions are taken
+    // at its left limit: the loads there have already jumped.
+    int first = -1;
+    double te = std::numeric_limits<double>::infinity();
+    if (ne) {
+      sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
+                          g_new.data());
+      for (size_t k = 0; k < ne; ++k) {
+        if (!(g_prev[k] >= 0.0 && g_new[k] < 0.0)) continue;
+        const Bracket br = illinois(
+            [&](double tm) {
+              st.interpolate(tm, ytmp.data());
+              sys.event_functions(tm, ytmp.data(), g_tmp.data());
+              return g_tmp[k];
+            },
+            ta, g_prev[k], t1, g_new[k], opt.event_tol * std::max(1.0, std::abs(t1)));
+        if (br.hi < te) te = br.hi, first = static_cast<int>(k);
+      }
+    }
+    if (first < 0) {
+      segment(ta, t1);
+      g_prev.swap(g_new);
+      t = t1;
+      if (at_bp) {  // loads may jump here: the system looks at its modes, the stepper restarts
+        std::copy(st.y(), st.y() + n, y.begin());
+        fired.clear();
+        sys.handle_events(t1, y.data(), fired);
+        obs.on_event(t1, y.data(), fired);
+        st.reset(t1, y.data());
+        if (ne) sys.event_functions(t1, y.data(), g_prev.data());
+      }
       continue;
     }
-    // An event at te in (t_prev, t]: integrate [t_prev, te] again, stopping exactly at te.
-    if (te < stepper.t()) {
-      restart(t_prev, y_prev.data());
-      while (stepper.t() < te) {
-        stepper.step(te);
-        observer.on_step(stepper);
-        emit(stepper.t());
-      }
-    } else {
-      observer.on_step(stepper);
-      emit(stepper.t());
-    }
-    std::copy(stepper.y(), stepper.y() + n, y.begin());
-    events->apply(te, y.data());
-    restart(te, y.data());
-    events->arm(te, y.data());
+    // An event at te (the right end of the final bracket: the crossing has happened there). The
+    // solution up to te belongs to the old modes.
+    segment(ta, te);
+    st.interpolate(te, y.data());
+    sys.event_functions(te, y.data(), g_tmp.data());
+    fired.assign(1, first);
+    for (size_t k = 0; k < ne; ++k)
+      if (static_cast<int>(k) != first && g_prev[k] >= 0.0 && g_tmp[k] < 0.0) fired.push_back(static_cast<int>(k));
+    ++stats.events;
+    sys.handle_events(te, y.data(), fired);
+    obs.on_event(te, y.data(), fired);
+    st.reset(te, y.data());
+    sys.event_functions(te, y.data(), g_prev.data());
+    t = te;
   }
-  RunStats s;
-  add(done, stepper.stats());
-  s.stepper = done;
-  s.method = stepper.name();
-  s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return s;
+  stats.stepper = minus(st.stats(), before);
+  stats.method = st.name();
+  stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
 }
 
 }  // namespace machdyn

@@ -73,7 +73,7 @@ SummaryColumns peak_summary_columns() {
   g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
     if (!runs_event_driven(m)) return;
     for (size_t l = 0; l < r.links.size(); ++l) {  // as the table of `simulate --all-cases`
-      const LinkPeak p = link_peak(r, l);
+      const LinkSummary& p = r.links[l];
       v.insert(v.end(), {p.peak, p.t_peak, p.static_load, p.dynamic_factor});
     }
   };
@@ -200,9 +200,10 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     // of a case sweep is computed alike and has the quasi-static load at a negative peak.
     // The table needs the summaries only: event-driven runs skip the time series (a third of a
     // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs).
-    HybridOptions summaries_only;
+    SimulateOptions summaries_only;
     summaries_only.record_series = false;
-    const SimulationResult r = runs_event_driven(m) ? simulate_hybrid(m, summaries_only) : simulate(m);
+    summaries_only.event_driven = runs_event_driven(m);
+    const SimulationResult r = simulate(m, summaries_only);
     // Each group's values, in the table's columns: a column the run's model has no element for
     // (a brake of another case) stays empty.
     std::vector<std::string> cells;

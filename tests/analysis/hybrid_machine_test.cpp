@@ -45,18 +45,33 @@ double gauss(const std::function<double(double)>& f, double a, double b, int pan
 
 const std::string kCrank = test::kCrankSliderBody;
 
+// Every claim holds on both integrators (BDF with the finite-difference Jacobian of the machine).
+std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
+  return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
+}
+class HybridMachine : public ::testing::TestWithParam<IntegratorChoice> {};
+INSTANTIATE_TEST_SUITE_P(Integrators, HybridMachine,
+                         ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
+                         integrator_name);
+
+Model with_integrator(Model m, IntegratorChoice ic) {
+  m.simulation.integrator = ic;
+  return m;
+}
+SimulationResult run(const Model& m, IntegratorChoice ic) { return simulate(with_integrator(m, ic)); }
+
 // Claim: a crank-slider braked from 50 rad/s (braking torque M_b = 30 N·m, a constant gas force
 // 500 N on the piston, so Q(φ) = F ds/dφ) stops where the energy integral says,
 //   ½ I(φ0) ω0² + ∫_{φ0}^{φs} Q dφ − M_b (φs − φ0) = 0   (first root),
 // to 1e-8 rad, at the time t_s = ∫ dφ/ω(φ), ω = √(2E(φ)/I(φ)), to 1e-8 relative (both by
 // Gauss–Legendre quadrature here, not by the solver); afterwards it stays exactly at rest, since
 // the holding torque 40 N·m exceeds |Q(φs)|.
-TEST(HybridMachine, CrankBrakedToRestStopsWhereTheEnergyIntegralSays) {
+TEST_P(HybridMachine, CrankBrakedToRestStopsWhereTheEnergyIntegralSays) {
   const std::string yaml = std::string("bodies:") + kCrank +
                            "    piston_force: {against: position, points: [[0, 500 N], [1 m, 500 N]]}\n"
                            "    velocity: 50 rad/s\n"
                            "brakes:\n  B: {body: crank, holding: 40 N*m, braking: 30 N*m}\n"
-                           "simulation: {t_end: 0.4 s, dt_out: 1 ms, rtol: 1e-12, atol: 1e-12, integrator: dopri5}\n";
+                           "simulation: {t_end: 0.4 s, dt_out: 1 ms, rtol: 1e-12, atol: 1e-12}\n";
   const Model m = load_model(test::write_temp("crank-brake.yaml", yaml));
   const Machine& mach = *m.bodies[0].machine;
   const double Mb = 30.0, w0 = 50.0, q0 = 0.0;
@@ -91,7 +106,7 @@ TEST(HybridMachine, CrankBrakedToRestStopsWhereTheEnergyIntegralSays) {
   };
   const double ts = gauss(integrand, 0.0, std::sqrt(qs - q0), 200);
 
-  const SimulationResult r = simulate(m);
+  const SimulationResult r = run(m, GetParam());
   const auto stick = events_of(r, "B", "stick");
   ASSERT_EQ(stick.size(), 1u);
   EXPECT_TRUE(events_of(r, "B", "slip").empty());
@@ -118,7 +133,7 @@ TEST(HybridMachine, CrankBrakedToRestStopsWhereTheEnergyIntegralSays) {
 // torques exceed its limit), then a ramped brake on the crank stopping it and holding it while the
 // clutch slips: the work of the sources (motor and gas force Q) equals ΔT + friction losses to 1e-8
 // of the source work, with T = ½ I_m ω_m² + ½ I(φ) ω².
-TEST(HybridMachine, ClutchStickSlipAndBrakeKeepTheEnergyBalance) {
+TEST_P(HybridMachine, ClutchStickSlipAndBrakeKeepTheEnergyBalance) {
   const std::string yaml =
       std::string("bodies:\n  motor: {inertia: 0.3 kg*m^2, velocity: 100 rad/s}") + kCrank +
       "    velocity: 100 rad/s\n"
@@ -127,9 +142,9 @@ TEST(HybridMachine, ClutchStickSlipAndBrakeKeepTheEnergyBalance) {
       "contacts:\n  clutch: {between: [motor, crank], static: 20 N*m, kinetic: 15 N*m}\n"
       "brakes:\n  B: {body: crank, holding: 70 N*m, braking: 60 N*m, time: 0.3 s, ramp: 20 ms}\n"
       "loads:\n  M: {type: motor-linear, body: motor, stall_torque: 100 N*m, no_load_speed: 120 rad/s}\n"
-      "simulation: {t_end: 0.6 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12, integrator: dopri5}\n";
+      "simulation: {t_end: 0.6 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}\n";
   const Model m = load_model(test::write_temp("clutch-crank.yaml", yaml));
-  const SimulationResult r = simulate(m);
+  const SimulationResult r = run(m, GetParam());
   EXPECT_GE(events_of(r, "clutch", "slip").size(), 2u);
   EXPECT_GE(events_of(r, "clutch", "stick").size(), 2u);
   ASSERT_EQ(events_of(r, "B", "stick").size(), 1u) << "the brake stops the crank";
@@ -149,7 +164,7 @@ TEST(HybridMachine, ClutchStickSlipAndBrakeKeepTheEnergyBalance) {
 // Claim: a link with a gap and damping to the crank's piston (δ = s(φ) − x) drives a slider held by
 // ground friction: gap events and stick/slip happen, and the energy balance (source work = ΔT +
 // ΔV + friction + damping losses + gap release) holds to 1e-8 of the source work.
-TEST(HybridMachine, GapLinkToThePistonKeepsTheEnergyBalance) {
+TEST_P(HybridMachine, GapLinkToThePistonKeepsTheEnergyBalance) {
   const std::string yaml = std::string("bodies:") + kCrank +
                            "    velocity: 30 rad/s\n"
                            "  slider: {type: translational, mass: 2 kg}\n"
@@ -157,9 +172,9 @@ TEST(HybridMachine, GapLinkToThePistonKeepsTheEnergyBalance) {
                            " damping: 20 N*s/m, gap: 2 mm, gap_start: 1 mm}\n"
                            "contacts:\n  guide: {between: [slider, ground], static: 200 N, kinetic: 150 N}\n"
                            "loads:\n  drive: {type: constant, body: crank, value: 8 N*m}\n"
-                           "simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, integrator: dopri5}\n";
+                           "simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}\n";
   const Model m = load_model(test::write_temp("crank-gap.yaml", yaml));
-  const SimulationResult r = simulate(m);
+  const SimulationResult r = run(m, GetParam());
   EXPECT_GE(events_of(r, "rod", "gap_closed").size(), 2u);
   EXPECT_GE(events_of(r, "rod", "gap_opened").size(), 2u);
   EXPECT_GE(events_of(r, "guide", "stick").size() + events_of(r, "guide", "slip").size(), 2u);
@@ -187,11 +202,11 @@ TEST(HybridMachine, GapLinkToThePistonKeepsTheEnergyBalance) {
 // of the largest value in angle, speed, I(φ) and piston travel at every output row; the acceleration
 // series (the right-hand side at states that differ by the integration error, sharpened by the
 // gas-force table's kinks) to 1e-7.
-TEST(HybridMachine, WithoutEventsTheHybridPathMatchesTheSmoothOne) {
+TEST_P(HybridMachine, WithoutEventsTheHybridPathMatchesTheSmoothOne) {
   const Model m = load_model(test::example("crank-slider.yaml"), {"simulation.t_end=0.2 s"});
   ASSERT_FALSE(m.is_hybrid());
-  const SimulationResult smooth = simulate(m);
-  const SimulationResult hyb = simulate_hybrid(m);
+  const SimulationResult smooth = run(m, GetParam());
+  const SimulationResult hyb = simulate_hybrid(with_integrator(m, GetParam()));
   const std::pair<const char*, double> checks[] = {{"crank.position_rad", 1e-8},    {"crank.velocity_rad_s", 1e-8},
                                                     {"crank.inertia_kg_m2", 1e-8},   {"crank.piston_m", 1e-8},
                                                     {"crank.acceleration_rad_s2", 1e-7}};

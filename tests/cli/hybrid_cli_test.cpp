@@ -64,7 +64,25 @@ TEST(HybridCli, HoistCasesOneAndAll) {
     EXPECT_TRUE(fs::exists(all_dir / c / "summary.json")) << c;
   }
   EXPECT_NE(a.out.find("dyn.factor"), std::string::npos);
-  EXPECT_EQ(nlohmann::json::parse(std::ifstream(all_dir / "cases.json")).size(), 11u);
+  const auto cases = nlohmann::json::parse(std::ifstream(all_dir / "cases.json"));
+  EXPECT_EQ(cases.size(), 11u);
+  // One dynamic factor (LinkSummary): c2 in brake_I2_lifting is loaded mostly negatively (max 75.9,
+  // min −204.1 N·m); its factor is min / quasi-static load at t_min, the same number in the single
+  // case's JSON, the --all-cases JSON and both printouts — not max / static at t_max (once 85.53).
+  const auto& c2 = j["links"]["c2"];
+  EXPECT_EQ(c2["peak"].get<double>(), c2["min"].get<double>());
+  EXPECT_EQ(c2["t_peak"].get<double>(), c2["t_min"].get<double>());
+  EXPECT_EQ(c2["static"].get<double>(), c2["static_at_min"].get<double>());
+  EXPECT_NEAR(c2["dynamic_factor"].get<double>(), c2["min"].get<double>() / c2["static_at_min"].get<double>(), 1e-12);
+  EXPECT_NEAR(c2["dynamic_factor"].get<double>(), 1.701, 5e-4);
+  for (const auto& cj : cases)
+    if (cj["case"] == "brake_I2_lifting") {
+      EXPECT_EQ(cj["links"]["c2"]["dynamic_factor"], c2["dynamic_factor"]);
+    }
+  const auto printed = test::run_cli("simulate '" + test::example("hoist-modes.yaml") + "' --case brake_I2_lifting -o '" +
+                                     (test::temp_dir() / "hoist-case-print").string() + "'");
+  EXPECT_NE(printed.out.find("1.701"), std::string::npos) << printed.out;
+  EXPECT_EQ(printed.out.find("85.53"), std::string::npos) << printed.out;
   const auto bad = test::run_cli("simulate '" + test::example("hoist-modes.yaml") + "' --case nosuch");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("no case named 'nosuch'"), std::string::npos) << bad.err;

@@ -217,7 +217,7 @@ TEST(PaperFigures, ModeShapesOfTwentyMassChainStayReadable) {
 
 // Claim: the report's events table lists every event of a hybrid run ({t, kind, element, from,
 // to}); the slip-phase table has one row per phase with the breakaway load; the cases table has one
-// row per case and link with the peak and its dynamic factor from link_peak().
+// row per case and link with the peak and its dynamic factor from LinkSummary (set_peak).
 TEST(PaperFigures, ReportTablesOfEventsSlipPhasesAndCases) {
   const Model m = load_model(test::example("travel-start.yaml"), {"simulation.t_end=0.3"});
   const SimulationResult r = simulate(m);
@@ -238,7 +238,7 @@ TEST(PaperFigures, ReportTablesOfEventsSlipPhasesAndCases) {
   EXPECT_EQ(ct.rows[0][0], "travel");
   EXPECT_EQ(ct.rows[1][0], "hoist");
   EXPECT_EQ(ct.rows[2][0], "");
-  const LinkPeak p = link_peak(hr, 0);
+  const LinkSummary& p = hr.links[0];
   EXPECT_EQ(ct.rows[1][4], fmt::format("{:.6g}", p.peak));
   EXPECT_EQ(ct.rows[1][7], fmt::format("{:.3g}", p.dynamic_factor));
 }

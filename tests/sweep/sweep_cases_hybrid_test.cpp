@@ -48,8 +48,12 @@ SweepRequest modes_request(std::vector<std::string> cases) {
 // Claim: every row of a case sweep equals the event-driven run of `simulate --case NAME --set ...`
 // at the same point (as `simulate --all-cases` runs every case): the spec is file, case, --set,
 // varied values (so a --set overrides a field the case also sets).
-TEST(SweepCases, RowsEqualSimulateOfTheCase) {
+class SweepCasesBoth : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(BothIntegrators, SweepCasesBoth, ::testing::Values("dopri5", "bdf"));
+
+TEST_P(SweepCasesBoth, RowsEqualSimulateOfTheCase) {
   auto req = modes_request({"accel_down", "brake_I2_lifting"});  // accel_down sets t_end 0.3 s; --set 0.5 s wins
+  req.sets.push_back("simulation.integrator=" + GetParam());
   const auto plan = make_sweep_plan(req);
   ASSERT_EQ(plan.runs.size(), 4u);
   EXPECT_EQ(plan.description, "grid 2 = 2 runs × 2 cases = 4 runs");
@@ -175,8 +179,12 @@ TEST(SweepHybrid, ColumnsMatchSimulateSummary) {
 
 // Claim: a hybrid run without the time series (as sweeps run it) has the same peaks, events, slip
 // phases, energies and solver statistics as with it, and no rows.
-TEST(SweepHybrid, RunWithoutSeriesHasTheSameSummary) {
-  const Model m = load_model(test::example("travel-start.yaml"), {"adhesion.mu_k=0.10"});
+class SweepHybridBoth : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(BothIntegrators, SweepHybridBoth, ::testing::Values("dopri5", "bdf"));
+
+TEST_P(SweepHybridBoth, RunWithoutSeriesHasTheSameSummary) {
+  const Model m =
+      load_model(test::example("travel-start.yaml"), {"adhesion.mu_k=0.10", "simulation.integrator=" + GetParam()});
   HybridOptions lean;
   lean.record_series = false;
   const SimulationResult full = simulate_hybrid(m), summary = simulate_hybrid(m, lean);

@@ -17,11 +17,12 @@
 #include <vector>
 
 #include "machdyn/model/model.hpp"
-#include "machdyn/solve/ode_system.hpp"
+#include "machdyn/analysis/peak_tracker.hpp"
+#include "machdyn/solve/event_system.hpp"
 
 namespace machdyn {
 
-class ChainSystem final : public OdeSystem {
+class ChainSystem final : public EventSystem {  // no events of its own
  public:
   /// Keeps a reference: `model` must outlive the system.
   explicit ChainSystem(const Model& model);
@@ -30,16 +31,20 @@ class ChainSystem final : public OdeSystem {
   void rhs(double t, const double* y, double* dydt) override;
   [[nodiscard]] bool has_jacobian() const override { return true; }
   void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override;
+  /// The linear chain's J sparsely (O(n) nonzeros); machines have none (finite differences, dense).
+  [[nodiscard]] bool has_sparse_jacobian() const override { return !nonlinear_; }
+  void sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override;
   [[nodiscard]] std::string state_name(int i) const override;
 
   /// y0 from the bodies' initial positions and velocities.
   void initial_state(double* y) const;
   /// The load F of link l for state y.
   [[nodiscard]] double link_load(int l, const double* y) const;
-  /// Weights w with F_l = wᵀ y (size 2n): F_l is linear in the state. For a link to a machine's
+  /// Weights w with F_l = wᵀ y (over the 2n states): F_l is linear in the state. For a link to a machine's
   /// output point (nonlinear) these are the weights of the ratio alone; simulate() takes that
   /// link's extremes from the output grid instead.
-  [[nodiscard]] std::vector<double> link_load_weights(int l) const;
+  /// Sparse: the nonzero entries only (at most four), so n links cost O(n), not O(n²).
+  [[nodiscard]] SparseWeights link_load_weights(int l) const;
   /// The external loads as generalized forces f(t, v) (size n).
   void generalized_loads(double t, const double* y, double* f) const;
   /// Evaluates body i's machine (inertia, force, point) at q clamped to [lo, hi]. For machines with

@@ -109,6 +109,11 @@ class HybridSystem final : public OdeSystem {
   [[nodiscard]] bool slot_is_link(int slot) const { return slot < 2 * nl_; }
   [[nodiscard]] int slot_element(int slot) const { return slot < 2 * nl_ ? slot / 2 : (slot - 2 * nl_) / 2; }
 
+  /// Sets the sliding velocity of contact k to exactly 0 by the M-orthogonal (momentum-keeping)
+  /// velocity change Δv_a = −u/(m_a (1/m_a + 1/m_b)), Δv_b = +u/(m_b (…)): a contact decided at zero
+  /// speed (stick, or slide/reverse from rest) starts its new mode at u = 0, not at the ~1e-13 s
+  /// location error beyond it — else a sliding mode would start already past its own event.
+  void zero_sliding_velocity(int k, double t, double* y) const;
   /// Projects the velocities onto the stuck constraints (M-orthogonally): u_k = 0 exactly.
   void project_velocities(double t, double* y) const;
 

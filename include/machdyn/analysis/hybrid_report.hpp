@@ -50,9 +50,6 @@ struct HybridReport {
   std::vector<SlipPhase> slip_phases; ///< in order of start
   EnergyBalance energy;
   std::vector<double> breakpoints;    ///< times where a load, brake or surface table has a kink, s
-  /// Per link, the quasi-static load at t_min (LinkSummary has the one at t_max), for the dynamic
-  /// factor of a link loaded mostly in the negative direction.
-  std::vector<double> static_at_min;
 };
 
 }  // namespace machdyn

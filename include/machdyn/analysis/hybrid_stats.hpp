@@ -28,7 +28,8 @@ struct ContactStatistics {
   /// Self-oscillation period, s: the mean interval between the starts of the slips in the second
   /// half of the run (t ≥ t_end/2, after the start-up); NaN with fewer than two such slips.
   double period_s = 0.0;
-  /// Per link (Model::links order): its largest load over the run / the contact's static limit F_s0.
+  /// Per link (Model::links order): its largest load over the run / the contact's static limit F_s0;
+  /// NaN when the two have different units (a link force in N and a brake torque in N·m).
   std::vector<double> link_max_over_static_limit;
 };
 

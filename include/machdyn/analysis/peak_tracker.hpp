@@ -12,15 +12,24 @@
 
 namespace machdyn {
 
+/// The nonzero weights of a signal s = Σ_k w[k] y[idx[k]].
+struct SparseWeights {
+  std::vector<int> idx;
+  std::vector<double> w;
+};
+
 class PeakTracker {
  public:
-  /// `weights[j]` has the size of the state.
-  explicit PeakTracker(const std::vector<std::vector<double>>& weights);
+  /// One signal per entry of `weights`, over a state of `state_size`.
+  PeakTracker(int state_size, const std::vector<SparseWeights>& weights);
 
-  /// Called when signal j reaches a new maximum at time t with state y.
-  using NewMax = std::function<void(int j, double t, const double* y)>;
-  /// After each accepted step.
-  void on_step(const Stepper& s, const NewMax& on_new_max);
+  /// Called when signal j reaches a new maximum (is_max) or minimum at time t with state y.
+  using NewMax = std::function<void(int j, bool is_max, double t, const double* y)>;
+  /// The solution on [ta, tb] ⊂ [s.t_prev(), s.t()] (a driver piece, solve/driver.hpp). A piece
+  /// that starts where the last one ended continues it (its start was seen, its rate is known).
+  void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max);
+  /// After an event or a restart: the next piece starts afresh (the state or the rate may jump).
+  void restart() { last_end_ = -1.0; }
 
   [[nodiscard]] double max(int j) const { return sig_[static_cast<size_t>(j)].max; }
   [[nodiscard]] double min(int j) const { return sig_[static_cast<size_t>(j)].min; }
@@ -39,7 +48,8 @@ class PeakTracker {
 
   std::vector<Signal> sig_;
   bool started_ = false;
-  std::vector<double> y_, dy_;
+  double last_end_ = -1.0;  // end of the last piece when it ended its step, else −1
+  std::vector<double> y_, dy_, yb_, db_;
 };
 
 }  // namespace machdyn

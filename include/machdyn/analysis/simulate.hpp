@@ -14,17 +14,26 @@
 
 namespace machdyn {
 
-/// Extremes of one link load over the run. `t_max`/`t_min` are located to ~1e-12 relative on the
-/// dense output (the load rate F' = wᵀ y' changes sign there), not only on output points.
+/// Extremes of one link load over the run and its dynamic factor — the one definition used by the
+/// CLI, the load-case table, the report, sweeps and JSON. `t_max`/`t_min` are located to ~1e-12
+/// relative on the dense output (the load rate changes sign there), not only on output points.
+/// Each extreme has its own quasi-static load: the particular solution (static_loads.hpp) for the
+/// loads acting at its instant — the load of rigid acceleration. The peak is the extreme of larger
+/// magnitude (the maximum on a tie), and
+///   dynamic_factor = peak / static_load,  static_load = the quasi-static load at t_peak,
+/// NaN when |static_load| ≤ 1e-9 |peak| (no quasi-static load to compare with).
 struct LinkSummary {
   double max = 0.0, min = 0.0;      ///< N·m or N
   double t_max = 0.0, t_min = 0.0;  ///< s
-  /// Quasi-static load at t_max: the particular solution (static_loads.hpp) for the loads acting
-  /// at t_max — the load of rigid acceleration.
-  double static_load = 0.0;
-  /// max / static_load; NaN when the static load is zero.
-  double dynamic_factor = 0.0;
+  double static_at_max = 0.0, static_at_min = 0.0;  ///< quasi-static loads at t_max and t_min
+  double peak = 0.0, t_peak = 0.0;  ///< the extreme of larger magnitude and its time
+  double static_load = 0.0;         ///< quasi-static load at t_peak
+  double dynamic_factor = 0.0;      ///< peak / static_load (NaN, see above)
 };
+
+/// Fills peak, t_peak, static_load and dynamic_factor of `s` from its extremes and their
+/// quasi-static loads (the definition above).
+void set_peak(LinkSummary& s);
 
 /// For a machine body whose output point advances with q (the gear drive's travel X, model/
 /// gear_drive.hpp): the uniformity of the point's speed V = p′(q) q' and of q' over the last whole
@@ -59,18 +68,10 @@ struct SimulationResult {
   std::vector<MachineRunReport> machines;     ///< machines with velocity jumps or a point-speed report
 };
 
-/// The peak of link l for a table over runs or load cases: the extreme of larger magnitude, its time,
-/// the quasi-static load then (LinkSummary::static_load at t_max; HybridReport::static_at_min at
-/// t_min when the hybrid run recorded it, else NaN) and the dynamic factor peak / static (NaN when
-/// |static| <= 1e-9 |peak|).
-struct LinkPeak {
-  double peak = 0.0, t_peak = 0.0, static_load = 0.0, dynamic_factor = 0.0;
-};
-LinkPeak link_peak(const SimulationResult& r, std::size_t l);
-
 /// The integrator `auto` picks, from O(n) Gershgorin bounds ρ_D ≥ |Re λ| of M⁻¹D and ω_K ≥ ω_max:
 /// CVODE BDF when the fastest motion is damping-dominated (ρ_D ≥ ω_K) and ρ_D · t_end > 2e4 (an
 /// explicit method would spend > 2e4 steps on stability alone), else dopri5. `reason` says which.
+/// A rising kinetic friction table counts as a damper of its steepest slope dF_k/du.
 Method choose_method(const Model& m, std::string* reason);
 
 /// Where a running simulation is, for a progress display (the CLI draws a bar; the library only
@@ -90,10 +91,18 @@ using ProgressCallback = std::function<void(const SimulationProgress&)>;
 struct SimulateOptions {
   ProgressCallback progress;
   double progress_interval_s = 0.1;
+  /// Run the event-driven path (analysis/hybrid.hpp) even for a model without gaps, contacts or
+  /// brakes, as every load case of a file runs (`--all-cases`, case sweeps, the report): the cases
+  /// are then computed alike, with the energy books and zero events.
+  bool event_driven = false;
+  /// false: no time series on the output grid for an event-driven run (summaries only, as sweeps
+  /// need); the peaks, events, slip phases and energies are the same bytes.
+  bool record_series = true;
 };
 
-/// Runs the model's simulation settings. Throws SolverError on numerical failure. A model with a
-/// gap, a friction contact or a brake runs event-driven (analysis/hybrid.hpp).
+/// Runs the model's simulation settings: the one entry point of the CLI, the report and sweeps.
+/// Throws SolverError on numerical failure. A model with a gap, a friction contact or a brake (or
+/// options.event_driven) runs event-driven (analysis/hybrid.hpp); both go through the one driver.
 SimulationResult simulate(const Model& m);
 SimulationResult simulate(const Model& m, const SimulateOptions& options);
 

@@ -22,9 +22,10 @@ void timeseries_csv(const SimulationResult& r, const ChunkSink& sink);
 /// Writes the CSV to `path` atomically, in pieces (io/output_file.hpp); throws OutputError.
 void write_timeseries_csv(const std::filesystem::path& path, const SimulationResult& r);
 
-/// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static, dynamic_factor,
-/// unit}}, solver: {method, reason, steps, rejected_steps, rhs_evals, jac_evals, wall_time_s}}`.
-/// dynamic_factor is null when the static load is zero.
+/// `{model, integrator, settings, links: {NAME: {max, min, t_max, t_min, static_at_max,
+/// static_at_min, peak, t_peak, static, dynamic_factor, unit}}, solver: {method, reason, steps,
+/// rejected_steps, rhs_evals, jac_evals, wall_time_s}}`. `static` is the quasi-static load at the
+/// peak and dynamic_factor = peak / static (LinkSummary), null when the static load is ~0.
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
 
 /// Which topology `modes` analyses: `{bodies, links, gaps_closed: [link names], contacts_ignored:

@@ -1,10 +1,17 @@
 #pragma once
 /// @file
-/// Drives a Stepper from t0 to t_end: after each accepted step the observer sees the step (for
-/// peaks or events on the dense output) and every output time inside it.
+/// The one driver loop of every simulation: drives a Stepper from t0 to t_end over an EventSystem
+/// (solve/event_system.hpp). It never steps across a breakpoint; after each step it looks for
+/// event functions that went from ≥ 0 to < 0, locates the earliest crossing on the dense output
+/// (Illinois, solve/roots.hpp), truncates the step there, lets the system decide its modes and map
+/// the state, and restarts the stepper. Observers see the solution piece by piece (each piece lies
+/// in one mode), the output grid and the events; they never see the solution beyond an event.
+/// Statistics are summed over the whole run; StepperOptions::max_steps bounds the whole run.
 
 #include <string>
+#include <vector>
 
+#include "machdyn/solve/event_system.hpp"
 #include "machdyn/solve/stepper.hpp"
 
 namespace machdyn {
@@ -12,40 +19,36 @@ namespace machdyn {
 class StepObserver {
  public:
   virtual ~StepObserver() = default;
-  /// After each accepted step [stepper.t_prev(), stepper.t()].
+  /// After each accepted step, before events in it are looked for (progress reports).
   virtual void on_step(const Stepper& /*stepper*/) {}
-  /// At each output time t_k = t0 + k·dt_out (and t_end), with the state there.
+  /// The solution on [ta, tb] ⊂ [stepper.t_prev(), stepper.t()] belongs to the current modes (the
+  /// whole step, or its part up to an event). Consecutive pieces of one mode share their ends:
+  /// tb of one piece is ta of the next unless an event or breakpoint lies between.
+  virtual void on_segment(const Stepper& /*stepper*/, double /*ta*/, double /*tb*/) {}
+  /// At each output time t_k = t0 + k·dt_out (and t_end), with the state there. An output time at
+  /// an event gets the state before it.
   virtual void on_output(double t, const double* y) = 0;
-};
-
-/// State jumps at events (the speed jump of a stepwise gear at a sector boundary). The driver
-/// asks after every step whether an event lies inside it; if so it integrates that stretch again up
-/// to the event time exactly (so observers never see the solution beyond an event), applies the
-/// jump and restarts the stepper there.
-class StepEvents {
- public:
-  virtual ~StepEvents() = default;
-  /// Prepares the events ahead of the state (t, y), after the start and after every jump.
-  virtual void arm(double t, const double* y) = 0;
-  /// The first event time in (t_prev, t] of the stepper's last step, or NaN if there is none.
-  virtual double locate(const Stepper& stepper) = 0;
-  /// Maps the state just before the event at t to the state just after, in place.
-  virtual void apply(double t, double* y) = 0;
+  /// After the system handled an event or a breakpoint at t (`fired` empty), before the stepper
+  /// restarts: y is the state after it. The next piece starts a new mode.
+  virtual void on_event(double /*t*/, const double* /*y*/, const std::vector<int>& /*fired*/) {}
 };
 
 struct RunStats {
-  StepperStats stepper;
+  StepperStats stepper;  ///< summed over every restart of the run
+  long events = 0;       ///< located events (not breakpoints)
   std::string method;
   double wall_time_s = 0.0;
 };
 
-/// Integrates from (t0, y0) to t_end. Outputs are interpolated, so dt_out does not limit steps.
-/// Throws SolverError from the stepper.
-RunStats integrate(Stepper& stepper, double t0, const double* y0, double t_end, double dt_out,
-                   StepObserver& observer);
-/// The same with state jumps at events (null: none). Output times at an event get the state
-/// before the jump.
-RunStats integrate(Stepper& stepper, double t0, const double* y0, double t_end, double dt_out,
-                   StepObserver& observer, StepEvents* events);
+struct DriveOptions {
+  double dt_out = 0.0;       ///< output grid step, s (> 0)
+  bool outputs = true;       ///< false: on_output is never called (summaries only)
+  double event_tol = 1e-13;  ///< final bracket of an event time, relative to max(1, |t|)
+};
+
+/// Integrates `system` (the one the stepper was made for) from (t0, y0) to t_end. Throws
+/// SolverError from the stepper.
+RunStats integrate(Stepper& stepper, EventSystem& system, double t0, const double* y0, double t_end,
+                   const DriveOptions& options, StepObserver& observer);
 
 }  // namespace machdyn

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 namespace machdyn {
 
@@ -20,6 +21,11 @@ class OdeSystem {
   [[nodiscard]] virtual bool has_jacobian() const { return false; }
   /// J = ∂f/∂y (n × n), when has_jacobian().
   virtual void jacobian(double /*t*/, const double* /*y*/, Eigen::Ref<Eigen::MatrixXd> /*J*/) {}
+  /// Whether sparse_jacobian() is available: then a stiff solver for a large system factors J
+  /// sparsely (KLU) instead of as a dense n × n matrix.
+  [[nodiscard]] virtual bool has_sparse_jacobian() const { return false; }
+  /// J = ∂f/∂y in compressed columns; the same nonzero pattern (explicit zeros kept) at every call.
+  virtual void sparse_jacobian(double /*t*/, const double* /*y*/, Eigen::SparseMatrix<double>& /*J*/) {}
   /// What state i means, for error messages: e.g. "body 'I2' (velocity)".
   [[nodiscard]] virtual std::string state_name(int i) const { return "state " + std::to_string(i); }
 };

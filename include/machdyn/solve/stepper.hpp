@@ -44,6 +44,8 @@ class Stepper {
   /// The time derivative of the dense-output solution at t ∈ [t_prev(), t()]; at the step ends it
   /// equals f(t, y).
   virtual void derivative(double t, double* dy_out) const = 0;
+  /// Counts over the stepper's whole life, summed across reset() (a run restarted at every event
+  /// reports all its steps); max_steps bounds the same count, so it holds per run.
   [[nodiscard]] virtual StepperStats stats() const = 0;
   [[nodiscard]] virtual std::string name() const = 0;
 };

@@ -7,7 +7,8 @@
 /// thread or rank that computed it, so tables are byte-identical whatever the parallelism.
 ///
 /// Summary columns come in groups (SummaryColumns). The standard groups are the link peaks
-/// (`L.max_U`, `L.min_U`, `L.t_max_s`, `L.static_U`, `L.dynamic_factor` for every link L, U its load
+/// (`L.max_U`, `L.min_U`, `L.t_max_s`, `L.static_U` at the peak, `L.dynamic_factor` = peak / static
+/// (LinkSummary) for every link L, U its load
 /// unit `N_m` or `N`), for event-driven runs (runs_event_driven()) the peaks of larger magnitude
 /// (peak_summary_columns()) and the hybrid figures (hybrid_summary_columns()), and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). A new
 /// analysis adds a group: a header function over a model and a value function over one run's model
@@ -44,8 +45,8 @@ bool runs_event_driven(const Model& m);
 
 /// For event-driven runs, per link L (U its load unit), as the table of `simulate --all-cases`:
 /// `L.peak_U` the extreme of larger magnitude (max or min), `L.t_peak_s` its time,
-/// `L.peak_static_U` the quasi-static load there (HybridReport::static_at_min for a negative peak)
-/// and `L.peak_dynamic_factor` their ratio (nan when the static load is ~0). The dynamic factor of
+/// `L.peak_static_U` the quasi-static load there and `L.peak_dynamic_factor` their ratio
+/// (LinkSummary: the one definition; nan when the static load is ~0). The dynamic factor of
 /// a link loaded mostly in the negative direction (hoist mode 6). No columns for a smooth run.
 SummaryColumns peak_summary_columns();
 

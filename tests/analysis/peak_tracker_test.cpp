@@ -1,0 +1,71 @@
+// The peak tracker (analysis/peak_tracker.hpp) on a known solution, fed by the one driver: the
+// extremes lie between output points and between steps, and the pieces a breakpoint cuts a step
+// into must give the same extremes.
+#include <cmath>
+#include <numbers>
+#include <vector>
+#include <gtest/gtest.h>
+
+#include "machdyn/analysis/peak_tracker.hpp"
+#include "machdyn/solve/driver.hpp"
+
+namespace machdyn {
+namespace {
+
+/// y'' = −ω² y, y(0) = 1, y'(0) = 0: y = cos ωt, signal s = 2 y − 0.5 y' (w = [2, −0.5]) =
+/// 2 cos ωt + 0.5 ω sin ωt = A cos(ωt − φ) with A = sqrt(4 + ω²/4), tan φ = ω/4: maximum A at
+/// t = φ/ω, minimum −A at t = (φ + π)/ω. Optional breakpoints cut the steps into pieces.
+class Oscillator final : public EventSystem {
+ public:
+  explicit Oscillator(double w) : w_(w) {}
+  int size() const override { return 2; }
+  void rhs(double, const double* y, double* dy) override {
+    dy[0] = y[1];
+    dy[1] = -w_ * w_ * y[0];
+  }
+  std::vector<double> breakpoints(double, double) const override { return bps; }
+  std::vector<double> bps;
+
+ private:
+  double w_;
+};
+
+struct Feed final : StepObserver {
+  explicit Feed(PeakTracker& p) : peaks(p) {}
+  void on_segment(const Stepper& s, double ta, double tb) override { peaks.on_segment(s, ta, tb, {}); }
+  void on_event(double, const double*, const std::vector<int>&) override { peaks.restart(); }
+  void on_output(double, const double*) override {}
+  PeakTracker& peaks;
+};
+
+class Peaks : public ::testing::TestWithParam<Method> {};
+INSTANTIATE_TEST_SUITE_P(BothIntegrators, Peaks, ::testing::Values(Method::dopri5, Method::bdf));
+
+// Claim: the extremes of a linear signal are located on the dense output to ~1e-8 in value and
+// ~1e-6 s in time (a maximum is flat: its time is conditioned by sqrt of the value error), with and
+// without breakpoints cutting steps into pieces (0.3 s and one just before the minimum).
+TEST_P(Peaks, ExtremesOfAKnownSignal) {
+  const double w = 3.0, A = std::sqrt(4 + w * w / 4), phi = std::atan2(w / 2, 2.0);
+  for (int cut = 0; cut < 2; ++cut) {
+    Oscillator osc(w);
+    if (cut) osc.bps = {0.3, (phi + std::numbers::pi) / w - 1e-3};
+    StepperOptions o;
+    o.rtol = 1e-11;
+    o.atol = 1e-13;
+    auto st = make_stepper(GetParam(), osc, o);
+    PeakTracker peaks(2, {SparseWeights{{0, 1}, {2.0, -0.5}}});
+    Feed feed(peaks);
+    DriveOptions d;
+    d.dt_out = 0.5;  // coarse: the extremes are not on the output grid
+    const double y0[2] = {1.0, 0.0};
+    integrate(*st, osc, 0.0, y0, 1.5, d, feed);
+    const double tol = GetParam() == Method::dopri5 ? 1e-8 : 1e-6;
+    EXPECT_NEAR(peaks.max(0), A, tol * A) << cut;
+    EXPECT_NEAR(peaks.t_max(0), phi / w, 1e-4) << cut;
+    EXPECT_NEAR(peaks.min(0), -A, tol * A) << cut;
+    EXPECT_NEAR(peaks.t_min(0), (phi + std::numbers::pi) / w, 1e-4) << cut;
+  }
+}
+
+}  // namespace
+}  // namespace machdyn
