@@ -12,6 +12,7 @@
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/figures.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/cases.hpp"

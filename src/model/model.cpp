@@ -46,8 +46,18 @@ double Load::slope(double /*t*/, double v) const {
   }
 }
 
+void Model::index_bodies() {
+  body_lookup.clear();
+  body_lookup.reserve(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) body_lookup.try_emplace(bodies[i].name, static_cast<int>(i));
+}
+
 int Model::body_index(const std::string& n) const {
   if (n == "ground") return kGround;
+  if (body_lookup.size() == bodies.size() && !bodies.empty()) {  // the index is current
+    auto it = body_lookup.find(n);
+    return it == body_lookup.end() ? -2 : it->second;
+  }
   for (size_t i = 0; i < bodies.size(); ++i)
     if (bodies[i].name == n) return static_cast<int>(i);
   return -2;

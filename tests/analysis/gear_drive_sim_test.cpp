@@ -8,6 +8,7 @@
 
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/gears/synthesis.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 

@@ -9,6 +9,7 @@
 
 #include "machdyn/analysis/travel_start.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/three_mass_hoist.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 

@@ -6,6 +6,7 @@
 
 #include "machdyn/analysis/three_mass_hoist.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 

@@ -11,6 +11,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/travel_start.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"

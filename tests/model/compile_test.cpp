@@ -1,3 +1,4 @@
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
 #include <gtest/gtest.h>

@@ -25,9 +25,6 @@ std::vector<std::string> case_names(const SpecNode& root);
 /// malformed (with the place of each problem).
 void apply_case(SpecNode& root, const std::string& name);
 
-/// Reads `path`, applies case `case_name` (if not empty), then the `--set` overrides, compiles.
-/// The model's name gets " [case]" appended and Model::load_case is set.
-Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
-                      const std::string& case_name);
+// Reading a model file with a case: load_model_case in io/model_file.hpp.
 
 }  // namespace machdyn

@@ -17,6 +17,7 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace machdyn {
@@ -139,8 +140,12 @@ struct Model {
   SimulationSettings simulation;
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
-  /// Index of the body called `name`, kGround for "ground", or -2 if none.
+  /// Index of the body called `name`, kGround for "ground", or -2 if none. A hashed look-up once
+  /// index_bodies() has run (compile does), so compiling N links is O(N), not O(N²).
   [[nodiscard]] int body_index(const std::string& name) const;
+  /// Builds the name index of `bodies` for body_index(); call again after changing `bodies`.
+  void index_bodies();
+  std::unordered_map<std::string, int> body_lookup;  ///< name → index (index_bodies())
   /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
   [[nodiscard]] bool is_hybrid() const;
 };
