@@ -1,5 +1,6 @@
 #include "machdyn/io/model_file.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
 
@@ -38,13 +39,17 @@ void resolve_in_bodies(SpecNode* bodies, Diagnostics& diag) {
 
 }  // namespace
 
-void resolve_gear_includes(SpecNode& root) {
+void resolve_gear_includes(SpecNode& root, Diagnostics& diag) {
   if (!root.is_map()) return;
-  Diagnostics diag;
   resolve_in_bodies(root.find("bodies"), diag);
   if (SpecNode* cases = root.find("cases"); cases && cases->is_map())
     for (auto& [name, c] : cases->fields)
       if (c.is_map()) resolve_in_bodies(c.find("bodies"), diag);
+}
+
+void resolve_gear_includes(SpecNode& root) {
+  Diagnostics diag;
+  resolve_gear_includes(root, diag);
   diag.throw_if_any();
 }
 
@@ -57,8 +62,22 @@ Model load_model_case(const std::string& path, const std::vector<std::string>& o
   SpecNode root = read_yaml_file(path);
   if (!case_name.empty()) apply_case(root, case_name);
   for (const auto& o : overrides) apply_set(root, o);
-  resolve_gear_includes(root);
-  Model m = compile_model(root, path);
+  // Every problem at once: those of reading included files and those of compiling, one per place
+  // (a file that could not be read is not reported again as an unread `gears:` by the compiler).
+  Diagnostics diag;
+  resolve_gear_includes(root, diag);
+  Model m;
+  try {
+    m = compile_model(root, path);
+  } catch (const InputError& e) {
+    for (const Diagnostic& d : e.diagnostics()) {
+      const bool seen = std::any_of(diag.list().begin(), diag.list().end(), [&](const Diagnostic& r) {
+        return r.where.file == d.where.file && r.where.line == d.where.line && r.where.column == d.where.column;
+      });
+      if (!seen) diag.error(d.where, d.message);
+    }
+  }
+  diag.throw_if_any();
   if (!case_name.empty()) {
     m.load_case = case_name;
     m.name += " [" + case_name + "]";

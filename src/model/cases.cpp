@@ -80,6 +80,7 @@ void apply_case(SpecNode& root, const std::string& name) {
     }
   }
   diag.throw_if_any();
+  root.erase("cases");  // applied: the result is a plain model (compile checks no other case of it)
 }
 
 

@@ -280,7 +280,6 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
     SpecNode copy = root;
     try {
       apply_case(copy, name);
-      copy.erase("cases");
       (void)compile_model(copy, source);
     } catch (const InputError& e) {
       for (const Diagnostic& d : e.diagnostics())

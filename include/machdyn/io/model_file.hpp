@@ -14,8 +14,11 @@ namespace machdyn {
 
 /// Replaces every `gears: FILE` of a body (in `bodies:` and in each case's `bodies:`) by the gear spec
 /// that FILE holds, read as YAML. FILE is relative to the file the value came from (the model file;
-/// the working directory for a `--set` value). Throws InputError naming each field whose file
-/// cannot be read, with its place; a problem inside an included file carries that file's place.
+/// the working directory for a `--set` value). Records in `diag` each field whose file cannot be
+/// read, with its place (the field is left as it is); a problem inside an included file carries
+/// that file's place.
+void resolve_gear_includes(SpecNode& root, Diagnostics& diag);
+/// As above; throws InputError with every problem found.
 void resolve_gear_includes(SpecNode& root);
 
 /// Reads `path`, applies the `--set` overrides in order, reads included gear specs, compiles.

@@ -21,8 +21,9 @@ namespace machdyn {
 /// The case names in file order (empty if the file has no `cases:`).
 std::vector<std::string> case_names(const SpecNode& root);
 
-/// Applies case `name` to the spec. Throws InputError if there is no such case or the case is
-/// malformed (with the place of each problem).
+/// Applies case `name` to the spec and removes its `cases:` section (the result is a plain model;
+/// compile_model checks every case of a file that still has them). Throws InputError if there is no
+/// such case or the case is malformed (with the place of each problem).
 void apply_case(SpecNode& root, const std::string& name);
 
 // Reading a model file with a case: load_model_case in io/model_file.hpp.
