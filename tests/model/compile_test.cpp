@@ -1,8 +1,8 @@
-#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
 #include <gtest/gtest.h>
 
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "support/support.hpp"
 
