@@ -9,7 +9,7 @@
 #include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
-#include "machdyn/analysis/travel_start.hpp"
+#include "support/travel_start.hpp"
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
