@@ -3,20 +3,23 @@
 #   gnuplot-nox, fonts-dejavu-core: the static figures of --plot (SVG, PNG)
 #   nodejs, npm: CMake installs the report's charting library (uPlot, report/package-lock.json) with
 #                `npm ci` at configure time; installed only when no npm is on PATH already
-#   chromium:    only with MACHDYN_WITH_CHROMIUM=1 (large); without it the browser test of the HTML
-#                report is skipped, and says so
+#   chromium:    the browser test of the HTML report; installed unless MACHDYN_WITH_CHROMIUM=0 (large;
+#                without it that test is skipped, and says so)
+#   clang-14, libclang-rt-14-dev: the sanitizer build and the libFuzzer harnesses of `make test`
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
           libeigen3-dev libsundials-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core)
+          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core clang-14 libclang-rt-14-dev)
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 # MPI sweeps (`mpirun -np N machdyn sweep`): OpenMPI is installed unless MACHDYN_WITH_MPI=0 (it pulls
 # in ~150 MB: gfortran, UCX, libfabric); without it the MPI test skips with a message.
 if [ "${MACHDYN_WITH_MPI:-1}" = 1 ]; then
   packages+=(libopenmpi-dev openmpi-bin)
 fi
-# The report's browser test needs Chromium (large): opt in with MACHDYN_WITH_CHROMIUM=1.
-[ "${MACHDYN_WITH_CHROMIUM:-0}" = 1 ] && ! command -v chromium >/dev/null 2>&1 && packages+=(chromium)
+# The report's browser test needs Chromium (large): installed by default, opt out with MACHDYN_WITH_CHROMIUM=0.
+if [ "${MACHDYN_WITH_CHROMIUM:-1}" = 1 ] && ! command -v chromium >/dev/null 2>&1; then
+  packages+=(chromium)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -22,7 +22,11 @@ class SpecBuilder final : public YAML::EventHandler {
  public:
   explicit SpecBuilder(const std::string& source) : source_(std::make_shared<const std::string>(source)) {}
 
-  SpecNode take_root() { return std::move(root_); }
+  SpecNode take_root() {
+    // An empty document is a null value at the start of the file: errors about it still have a place.
+    if (!root_.loc.file) root_.loc = root_.key_loc = SpecLoc(source_, 1, 1);
+    return std::move(root_);
+  }
   Diagnostics& diagnostics() { return diag_; }
 
   void OnDocumentStart(const YAML::Mark&) override {}

@@ -45,7 +45,7 @@ bool wrong_section(const SpecNode& spec, std::string_view section, const std::st
 
 /// Element names are unique across every section (`--set NAME.FIELD` must find one element) and free
 /// of '.' (it separates NAME from FIELD, and BODY.piston names a machine's output point).
-void check_names(const SpecNode& root, Diagnostics& diag) {
+void check_names(const SpecNode& root, Model& m, Diagnostics& diag) {
   std::unordered_map<std::string_view, std::pair<std::string_view, const SpecNode*>> seen;
   for (const std::string& section : element_sections()) {
     const SpecNode* sec = root.find(section);
@@ -54,6 +54,7 @@ void check_names(const SpecNode& root, Diagnostics& diag) {
       if (name.find('.') != std::string::npos)
         diag.error(spec.key_loc, fmt::format("{} name '{}' contains '.', which separates NAME.FIELD in --set; "
                                              "expected a name without '.'", section, name));
+      m.element_where.try_emplace(name, Location(spec.key_loc));
       auto [it, fresh] = seen.try_emplace(name, section, &spec);
       if (!fresh)
         diag.error(spec.key_loc, fmt::format("the name '{}' (under '{}') is already used under '{}' at {}; names must "
@@ -308,7 +309,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   FieldReader top(root, "model", diag);
   m.name = top.text("name", std::filesystem::path(source).stem().string()).value_or("");
   m.description = top.text("description", "").value_or("");
-  check_names(root, diag);
+  check_names(root, m, diag);
   const SpecNode* bodies = top.node("bodies");
   compile_bodies(bodies, m, diag);
   m.index_bodies();
@@ -327,6 +328,15 @@ Model compile_model(const SpecNode& root, const std::string& source) {
     diag.error(bodies ? bodies->loc : Location{source, 1, 1},
                "a body has velocity jumps (stepwise gear ratio), which cannot be combined with gaps, contacts or "
                "brakes yet");
+  if (diag.empty() && output_bytes_bound(m) > kMaxOutputBytes) {
+    const SpecNode* sim = root.find("simulation");
+    const SpecNode* at = sim && sim->is_map() ? (sim->find("dt_out") ? sim->find("dt_out") : sim) : nullptr;
+    const double rows = m.simulation.t_end / m.simulation.dt_out + 2.0;
+    diag.error(at ? Location(at->loc) : Location{source, 1, 1},
+               fmt::format("simulation: the output needs {:.3g} rows x {} columns = {:.3g} GB in memory, more than the "
+                           "limit of {:.3g} GB; raise 'dt_out' or shorten 't_end'", rows, output_columns_bound(m),
+                           output_bytes_bound(m) / 1e9, kMaxOutputBytes / 1e9));
+  }
   if (diag.empty()) check_cases(root, source, diag);
   diag.throw_if_any();
   return m;

@@ -100,5 +100,13 @@ TEST(YamlReader, SpecNodesAreLean) {
   EXPECT_EQ(a.loc.file.get(), b.loc.file.get());
 }
 
+// Claim: an empty file is a null value placed at its line 1, column 1 (so "expected a gear spec"
+// or "expected a model" about it is located).
+TEST(YamlReader, EmptyFileIsPlacedAtItsStart) {
+  const SpecNode root = parse_yaml_string("", "empty.yaml");
+  EXPECT_EQ(root.kind, SpecNode::Kind::Null);
+  EXPECT_EQ(root.loc.str(), "empty.yaml:1:1");
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -98,5 +98,15 @@ TEST(Names, LargeModelsResolveNamesByIndex) {
   EXPECT_EQ(m.body_index("nope"), -2);
 }
 
+// Claim: the memory the output grid needs is checked at compile, before anything is reserved:
+// 5 s at dt_out = 0.1 µs is 5·10^7 rows × 6 columns × 8 B = 2.4 GB > 2 GiB, a located error at
+// dt_out (it used to pass the row limit and end in std::bad_alloc); half the rows (1.2 GB) compile.
+TEST(Limits, OutputMemoryIsCheckedBeforeTheRun) {
+  const std::string e = errors(kBase + "simulation:\n  t_end: 5 s\n  dt_out: 1e-7 s\n");
+  EXPECT_NE(e.find("m.yaml:10:11: error: simulation: the output needs 5e+07 rows x 6 columns = 2.4 GB"),
+            std::string::npos) << e;
+  EXPECT_EQ(errors(kBase + "simulation:\n  t_end: 5 s\n  dt_out: 2e-7 s\n"), "accepted");
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -15,7 +15,7 @@ namespace machdyn {
 /// (scalars, lists and maps together), and values copied by aliases (`*name`).
 inline constexpr std::size_t kSpecMaxDepth = 64;
 inline constexpr std::size_t kSpecMaxValues = 10'000'000;
-inline constexpr std::size_t kSpecMaxAliasValues = 1'000'000;
+inline constexpr std::size_t kSpecMaxAliasValues = 200'000;
 
 /// Reads a YAML file. Throws InputError (with line and column) if it cannot be opened or parsed,
 /// or if it exceeds a limit above. Anchors and aliases are expanded (a self-reference is an error).
