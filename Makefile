@@ -34,7 +34,8 @@ build-test: deps
 build-asan: deps
 	@cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=Asan -DCMAKE_CXX_COMPILER=$(ASAN_CXX) \
 	  -DCMAKE_CXX_FLAGS_ASAN="-O1 -gline-tables-only" -DMACHDYN_FUZZ=ON -DMACHDYN_MPI=OFF >/dev/null
-	@cmake --build $(BUILD_ASAN) -j $(JOBS)
+	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli \
+	  fuzz_model_file fuzz_units fuzz_expression fuzz_gear_spec
 
 demo: build-release
 	@$(BUILD_RELEASE)/apps/machdyn/machdyn demo

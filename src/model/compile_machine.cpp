@@ -62,7 +62,8 @@ std::optional<Expression> read_expression(FieldReader& f, std::string_view key, 
   try {
     return Expression(*text, "q");
   } catch (const std::invalid_argument& e) {
-    f.error_at(key, fmt::format("field '{}': expression '{}': {}", key, *text, e.what()));
+    const std::string shown = text->size() > 80 ? text->substr(0, 77) + "..." : *text;
+    f.error_at(key, fmt::format("field '{}': expression '{}': {}", key, shown, e.what()));
     return std::nullopt;
   }
 }

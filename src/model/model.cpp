@@ -46,8 +46,8 @@ double Load::slope(double /*t*/, double v) const {
   }
 }
 
-Location Model::where(const std::string& name) const {
-  auto it = element_where.find(name);
+Location Model::where(const std::string& element) const {
+  auto it = element_where.find(element);
   return it == element_where.end() ? Location{source, 0, 0} : it->second;
 }
 

@@ -152,8 +152,8 @@ struct Model {
   /// Where each element (body, link, load, contact, brake) is defined: name → its key's place in
   /// the file. Compile fills it, so a check after compile (energy, steady running) can be located.
   std::unordered_map<std::string, Location> element_where;
-  /// The place of element `name`, or the model file without a line if unknown.
-  [[nodiscard]] Location where(const std::string& name) const;
+  /// The place of `element` (a name), or the model file without a line if unknown.
+  [[nodiscard]] Location where(const std::string& element) const;
   /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
   [[nodiscard]] bool is_hybrid() const;
 };
