@@ -32,7 +32,7 @@ std::string chain(int n) {
   for (int k = 1; k < n; ++k)
     t += fmt::format("  c{}: {{type: spring-damper, between: [m{}, m{}], stiffness: 1 kN/m, damping: 1 N*s/m}}\n", k,
                      k - 1, k);
-  return t;
+  return t + "simulation: {t_end: 1 s, dt_out: 0.1 s}\n";
 }
 
 }  // namespace

@@ -331,7 +331,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   if (diag.empty() && output_bytes_bound(m) > kMaxOutputBytes) {
     const SpecNode* sim = root.find("simulation");
     const SpecNode* at = sim && sim->is_map() ? (sim->find("dt_out") ? sim->find("dt_out") : sim) : nullptr;
-    const double rows = m.simulation.t_end / m.simulation.dt_out + 2.0;
+    const double rows = output_bytes_bound(m) / static_cast<double>(output_columns_bound(m) * sizeof(double));
     diag.error(at ? Location(at->loc) : Location{source, 1, 1},
                fmt::format("simulation: the output needs {:.3g} rows x {} columns = {:.3g} GB in memory, more than the "
                            "limit of {:.3g} GB; raise 'dt_out' or shorten 't_end'", rows, output_columns_bound(m),
