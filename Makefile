@@ -43,7 +43,7 @@ demo: build-release
 # The whole suite (release build), then the same suite and each fuzzer for 20 s under ASan + UBSan.
 test: build-test build-asan
 	@cd $(BUILD_TEST) && ctest --output-on-failure -j $(JOBS)
-	@command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed, so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"
+	@command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed (MACHDYN_WITH_CHROMIUM=0?), so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"
 	@$(MAKE) --no-print-directory test-asan
 
 test-asan: build-asan
