@@ -3,31 +3,62 @@
 
 BUILD_RELEASE := build/release
 BUILD_TEST    := build/test
+BUILD_ASAN    := build/asan
+# The sanitizer build: clang (libFuzzer needs it), -O1 for speed, ASan + UBSan halting on the first report.
+ASAN_CXX      ?= $(shell command -v clang++-14 || command -v clang++)
+FUZZ_SECONDS  ?= 300
+# LeakSanitizer: OpenMPI's own allocations are not ours (the MPI sweep test starts ranks).
+SAN_ENV       := ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:abort_on_error=0 \
+                 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+                 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0
+# ccache, when installed, keeps rebuilds of the same sources cheap (paths relative to this tree).
+CCACHE        := $(if $(shell command -v ccache 2>/dev/null),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test deps deps-browser build-release build-test bench package clean
+.PHONY: demo test test-asan fuzz deps deps-browser build-release build-test build-asan bench package clean
 
 deps:
 	@bash scripts/install-deps.sh
 
-# Chromium for the browser test of the HTML report (large; without it that test is skipped).
+# Chromium (the browser test of the HTML report) is installed by default; MACHDYN_WITH_CHROMIUM=0 opts out.
 deps-browser:
 	@MACHDYN_WITH_CHROMIUM=1 bash scripts/install-deps.sh
 
 build-release: deps
-	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_RELEASE) -j $(JOBS)
 
 build-test: deps
-	@cmake -S . -B $(BUILD_TEST) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_WERROR=ON >/dev/null
+	@cmake -S . -B $(BUILD_TEST) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_WERROR=ON $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_TEST) -j $(JOBS)
+
+# The test suite and the fuzzers under AddressSanitizer + UBSan (clang, -O1, line tables only).
+build-asan: deps
+	@cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=Asan -DCMAKE_CXX_COMPILER=$(ASAN_CXX) \
+	  -DCMAKE_CXX_FLAGS_ASAN="-O1 -gline-tables-only" -DMACHDYN_FUZZ=ON -DMACHDYN_MPI=OFF \
+	  -DMACHDYN_PYTHON=OFF -DMACHDYN_PACKAGE_TESTS=OFF $(CCACHE) >/dev/null
+	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli \
+	  fuzz_model_file fuzz_units fuzz_expression fuzz_gear_spec
 
 demo: build-release
 	@$(BUILD_RELEASE)/apps/machdyn/machdyn demo
 
-test: build-test
+# The whole suite (release build), then the same suite and each fuzzer for 20 s under ASan + UBSan.
+test: build-test build-asan
 	@cd $(BUILD_TEST) && ctest --output-on-failure -j $(JOBS)
-	@command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed, so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"
+	@command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed (MACHDYN_WITH_CHROMIUM=0?), so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"
+	@$(MAKE) --no-print-directory test-asan
+
+test-asan: build-asan
+	@cd $(BUILD_ASAN) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS)
+
+# Each fuzzer for FUZZ_SECONDS (300 s by default); findings are written to build/asan as crash-*.
+fuzz: build-asan
+	@cd $(BUILD_ASAN) && cmake -DMACHDYN_FUZZ_SECONDS=$(FUZZ_SECONDS) . >/dev/null && \
+	  $(SAN_ENV) ctest --output-on-failure -L fuzz -j $(JOBS); rc=$$?; \
+	  cmake -DMACHDYN_FUZZ_SECONDS=20 . >/dev/null; exit $$rc
 
 bench: build-release
 	@bash bench/run.sh $(BUILD_RELEASE)

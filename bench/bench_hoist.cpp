@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 

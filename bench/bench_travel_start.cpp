@@ -14,6 +14,7 @@
 
 #include "solve/dopri5.hpp"
 #include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
 using namespace machdyn;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
 namespace {

@@ -26,6 +26,7 @@
 #include "machdyn/gears/tooth_profile.hpp"
 #include "machdyn/io/energy_results.hpp"
 #include "machdyn/io/gears_output.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"

@@ -5,12 +5,14 @@
 #                `npm ci` at configure time; installed only when no npm is on PATH already
 #   pybind11-dev, python3-dev: the Python module (python/, built for Debian's /usr/bin/python3);
 #   python3-pytest, -numpy, -pandas, -matplotlib, -nbconvert, -ipykernel: its tests and the notebook
-#   chromium:    only with MACHDYN_WITH_CHROMIUM=1 (large); without it the browser test of the HTML
-#                report is skipped, and says so
+#   chromium:    the browser test of the HTML report; installed unless MACHDYN_WITH_CHROMIUM=0 (large;
+#                without it that test is skipped, and says so)
+#   clang-14, libclang-rt-14-dev: the sanitizer build and the libFuzzer harnesses of `make test`
+#   libsuitesparse-dev: KLU, CVODE's sparse linear solver for large models
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config
           libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core
+          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core clang-14 libclang-rt-14-dev
           pybind11-dev python3-dev python3-pytest python3-numpy python3-pandas python3-matplotlib
           python3-nbconvert python3-ipykernel)
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
@@ -19,8 +21,10 @@ command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 if [ "${MACHDYN_WITH_MPI:-1}" = 1 ]; then
   packages+=(libopenmpi-dev openmpi-bin)
 fi
-# The report's browser test needs Chromium (large): opt in with MACHDYN_WITH_CHROMIUM=1.
-[ "${MACHDYN_WITH_CHROMIUM:-0}" = 1 ] && ! command -v chromium >/dev/null 2>&1 && packages+=(chromium)
+# The report's browser test needs Chromium (large): installed by default, opt out with MACHDYN_WITH_CHROMIUM=0.
+if [ "${MACHDYN_WITH_CHROMIUM:-1}" = 1 ] && ! command -v chromium >/dev/null 2>&1; then
+  packages+=(chromium)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -15,6 +15,7 @@
 #include "machdyn/common/units.hpp"
 #include "machdyn/io/energy_results.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn::cli {

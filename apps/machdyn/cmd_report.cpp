@@ -16,6 +16,7 @@
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/io/output_file.hpp"

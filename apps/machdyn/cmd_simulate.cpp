@@ -13,6 +13,7 @@
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/cases.hpp"

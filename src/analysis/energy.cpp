@@ -100,24 +100,28 @@ double integrate_gk15(const std::function<double(double)>& f, double a, double b
 EnergyIntegral::EnergyIntegral(const Model& m, double added_inertia, double extra_torque)
     : added_(added_inertia), constant_torque_(extra_torque) {
   Diagnostics diag;
-  const Location where{m.source, 0, 0};
+  // Each problem at the element that causes it (the second body, the first link, the contact...).
+  const Location where = m.dof() > 1  ? m.where(m.bodies[1].name)
+                         : !m.links.empty() ? m.where(m.links.front().name)
+                         : m.dof() == 1     ? m.where(m.bodies[0].name)
+                                            : Location{m.source, 0, 0};
   if (m.dof() != 1 || !m.links.empty())
     diag.error(where, fmt::format("the energy integral needs a model with one body and no links; '{}' has {} "
                                   "bodies and {} links",
                                   m.name, m.dof(), m.links.size()));
   if (!m.contacts.empty())
-    diag.error(where, fmt::format("'{}' has friction contacts or brakes ('{}'), whose modes switch, so the motion has "
+    diag.error(m.where(m.contacts.front().name), fmt::format("'{}' has friction contacts or brakes ('{}'), whose modes switch, so the motion has "
                                   "no single energy integral; simulate it instead",
                                   m.name, m.contacts.front().name));
   for (const auto& ld : m.loads) {
     if (ld.kind == LoadKind::constant) constant_torque_ += ld.value;
     else
-      diag.error(where, fmt::format("load '{}' depends on time or speed, so the motion has no energy integral; "
+      diag.error(m.where(ld.name), fmt::format("load '{}' depends on time or speed, so the motion has no energy integral; "
                                     "only constant loads and the machine's own forces can be used",
                                     ld.name));
   }
   if (m.dof() == 1 && m.bodies[0].machine && m.bodies[0].machine->has_jumps())
-    diag.error(where, fmt::format("body '{}' has velocity jumps (a stepwise gear ratio): kinetic energy is lost at "
+    diag.error(m.where(m.bodies[0].name), fmt::format("body '{}' has velocity jumps (a stepwise gear ratio): kinetic energy is lost at "
                                   "every jump, so the energy integral does not hold; use `simulate`",
                                   m.bodies[0].name));
   diag.throw_if_any();
@@ -375,7 +379,7 @@ SteadyResult steady_running(const Model& m, double omega_mean, double delta_targ
   const Machine* mach = base.body().machine.get();
   const double P = mach ? mach->period() : 0.0;
   if (P <= 0)
-    throw InputError(Location{m.source, 0, 0},
+    throw InputError(m.dof() > 0 ? m.where(m.bodies[0].name) : Location{m.source, 0, 0},
                      "steady running needs a periodic machine (crank-slider, periodic table, or an expression with "
                      "a period)");
   if (!(omega_mean > 0)) throw InputError(Location{"--mean-speed", 0, 0}, "the mean speed must be positive");

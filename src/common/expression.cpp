@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
 #include <numbers>
 
@@ -66,10 +67,31 @@ class ExpressionParser {
     }
     return false;
   }
+  // Evaluation recurses over the tree and parsing over the nesting, so both are bounded: a
+  // hostile or runaway text (20 000 parentheses, a chain of 10^5 '^') is an error, not a stack overflow.
   int add(Op op, int a = -1, int b = -1, double v = 0.0) {
+    int h = 1;
+    for (int k : {a, b})
+      if (k >= 0) h = std::max(h, 1 + height_[static_cast<std::size_t>(k)]);
+    if (h > Expression::kMaxDepth)
+      fail("the expression is nested deeper than " + std::to_string(Expression::kMaxDepth) +
+           " operations; split it or simplify it");
     e_.nodes_.push_back({op, v, a, b});
+    height_.push_back(h);
     return static_cast<int>(e_.nodes_.size()) - 1;
   }
+  /// Counts one level of parser recursion for the lifetime of a nested call.
+  struct Nest {
+    explicit Nest(ExpressionParser& p) : p_(p) {
+      if (++p_.nesting_ > Expression::kMaxDepth)
+        p_.fail("the expression is nested deeper than " + std::to_string(Expression::kMaxDepth) +
+                " levels (parentheses, signs or powers)");
+    }
+    ~Nest() { --p_.nesting_; }
+    Nest(const Nest&) = delete;
+    Nest& operator=(const Nest&) = delete;
+    ExpressionParser& p_;
+  };
   int expr() {
     int l = term();
     for (;;) {
@@ -87,13 +109,22 @@ class ExpressionParser {
     }
   }
   int unary() {
-    if (eat('-')) return add(Op::Neg, unary());
-    if (eat('+')) return unary();
+    if (eat('-')) {
+      Nest nest(*this);
+      return add(Op::Neg, unary());
+    }
+    if (eat('+')) {
+      Nest nest(*this);
+      return unary();
+    }
     return power();
   }
   int power() {
     int b = primary();
-    if (eat('^')) return add(Op::Pow, b, unary());
+    if (eat('^')) {
+      Nest nest(*this);
+      return add(Op::Pow, b, unary());
+    }
     return b;
   }
   int primary() {
@@ -102,6 +133,7 @@ class ExpressionParser {
     const char c = s_[p_];
     if (c == '(') {
       ++p_;
+      Nest nest(*this);
       int r = expr();
       if (!eat(')')) fail("expected ')'");
       return r;
@@ -128,6 +160,7 @@ class ExpressionParser {
       for (const auto& [fname, op] : funcs) {
         if (name == fname) {
           if (!eat('(')) fail("expected '(' after " + name);
+          Nest nest(*this);
           int a = expr();
           if (!eat(')')) fail("expected ')'");
           return add(op, a);
@@ -144,6 +177,8 @@ class ExpressionParser {
   std::string_view s_;
   const std::string& var_;
   std::size_t p_ = 0;
+  int nesting_ = 0;
+  std::vector<int> height_;  ///< height of each node's subtree
 };
 
 Expression::Expression(std::string_view text, std::string variable) : text_(text) {

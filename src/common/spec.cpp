@@ -24,6 +24,13 @@ void SpecNode::set(const std::string& key, SpecNode value) {
   else fields.emplace_back(key, std::move(value));
 }
 
+bool SpecNode::erase(std::string_view key) {
+  auto it = std::find_if(fields.begin(), fields.end(), [&](const SpecField& f) { return f.first == key; });
+  if (it == fields.end()) return false;
+  fields.erase(it);
+  return true;
+}
+
 FieldReader::FieldReader(const SpecNode& map, std::string what, Diagnostics& diag)
     : map_(map), what_(std::move(what)), diag_(diag) {
   if (!map.is_map()) diag_.error(map.loc, fmt::format("{}: expected a map of fields", what_));

@@ -2,7 +2,9 @@
 
 #include <cctype>
 #include <cmath>
+#include <cerrno>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
 #include <fmt/format.h>
 
@@ -26,7 +28,8 @@ constexpr UnitDef kUnits[] = {
     {"W", 1.0, {1, 2, -3}, true},        {"Pa", 1.0, {1, -1, -2}, true},
     {"Hz", 1.0, {0, 0, -1}, true},       {"rad", 1.0, dim::none, true},
     {"deg", pi / 180.0, dim::none, false}, {"rev", 2.0 * pi, dim::none, false},
-    {"rpm", 2.0 * pi / 60.0, {0, 0, -1}, false}, {"%", 0.01, dim::none, false},
+    {"rpm", 2.0 * pi / 60.0, {0, 0, -1}, false}, {"rps", 2.0 * pi, {0, 0, -1}, false},
+    {"%", 0.01, dim::none, false},
     {"Nm", 1.0, dim::torque, false},     {"kNm", 1e3, dim::torque, false},
 };
 
@@ -39,14 +42,26 @@ constexpr Prefix kPrefixes[] = {{"n", 1e-9}, {"u", 1e-6}, {"µ", 1e-6}, {"m", 1e
 
 std::optional<Quantity> lookup_unit(std::string_view name) {
   for (const auto& u : kUnits)
-    if (u.name == name) return Quantity{u.factor, u.dim};
+    if (u.name == name) return Quantity{u.factor, u.dim, true, u.name == "Hz"};
   for (const auto& pr : kPrefixes) {
     if (name.size() <= pr.p.size() || name.substr(0, pr.p.size()) != pr.p) continue;
     auto base = name.substr(pr.p.size());
     for (const auto& u : kUnits)
-      if (u.prefixable && u.name == base) return Quantity{pr.f * u.factor, u.dim};
+      if (u.prefixable && u.name == base) return Quantity{pr.f * u.factor, u.dim, true, u.name == "Hz"};
   }
   return std::nullopt;
+}
+
+// Bounds that keep unit arithmetic exact and finite: no SI unit needs an exponent beyond 12, and
+// parentheses nest a few levels in practice (the bound keeps a hostile text off the stack).
+constexpr long kMaxExponent = 12;
+constexpr int kMaxDimExponent = 64;
+constexpr int kMaxNesting = 16;
+
+bool starts_unit(std::string_view s, size_t i) {
+  if (i >= s.size()) return false;
+  const auto c = static_cast<unsigned char>(s[i]);
+  return std::isalpha(c) || c == '%' || c == '(' || (c >= 0x80 && s.substr(i, 2) != "·");
 }
 
 /// Recursive-descent parser of a unit expression; positions are byte offsets into the text.
@@ -55,20 +70,28 @@ class UnitParser {
   UnitParser(std::string_view s, size_t pos) : s_(s), i_(pos) {}
 
   std::optional<Quantity> expr(std::string* err) {
+    if (++depth_ > kMaxNesting) return fail(err, fmt::format("units nested deeper than {} parentheses", kMaxNesting));
     auto q = factor(err);
     if (!q) return q;
     for (;;) {
+      const size_t before = i_;
       skip_ws();
       char op = 0;
       if (at("*")) op = '*', i_ += 1;
       else if (at("/")) op = '/', i_ += 1;
       else if (at("·")) op = '*', i_ += std::string_view("·").size();
       else if (at(".") ) op = '*', i_ += 1;
-      else return q;
+      else if (i_ > before && starts_unit(s_, i_)) op = '*';  // `kg m^2`: a space multiplies
+      else {
+        --depth_;
+        return q;
+      }
       auto r = factor(err);
       if (!r) return r;
-      if (op == '*') q = Quantity{q->value * r->value, q->dim * r->dim};
-      else q = Quantity{q->value / r->value, q->dim / r->dim};
+      const Dim d = op == '*' ? q->dim * r->dim : q->dim / r->dim;
+      if (std::abs(d.kg) > kMaxDimExponent || std::abs(d.m) > kMaxDimExponent || std::abs(d.s) > kMaxDimExponent)
+        return fail(err, "unit exponents out of range");
+      q = Quantity{op == '*' ? q->value * r->value : q->value / r->value, d, true, q->hertz || r->hertz};
     }
   }
   [[nodiscard]] size_t pos() const { return i_; }
@@ -89,6 +112,9 @@ class UnitParser {
       skip_ws();
       if (!at(")")) return fail(err, "expected ')'");
       ++i_;
+    } else if (at("1") && !(i_ + 1 < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_ + 1])))) {
+      ++i_;  // `1/m`: a one as the numerator of a reciprocal unit
+      q = Quantity{1.0, dim::none, true};
     } else {
       size_t start = i_;
       while (i_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[i_])) || s_[i_] == '%' ||
@@ -108,8 +134,11 @@ class UnitParser {
       ++i_;
       char* end = nullptr;
       std::string rest(s_.substr(i_));
+      errno = 0;
       long v = std::strtol(rest.c_str(), &end, 10);
       if (end == rest.c_str()) return fail(err, "expected an integer exponent after '^'");
+      if (errno == ERANGE || v > kMaxExponent || v < -kMaxExponent)
+        return fail(err, fmt::format("expected an exponent from -{0} to {0} after '^'", kMaxExponent));
       i_ += static_cast<size_t>(end - rest.c_str());
       p = static_cast<int>(v);
     } else if (at("²")) {
@@ -119,7 +148,10 @@ class UnitParser {
       i_ += std::string_view("³").size();
       p = 3;
     }
-    return Quantity{std::pow(q->value, p), q->dim.pow(p)};
+    const Dim d = q->dim.pow(p);
+    if (std::abs(d.kg) > kMaxDimExponent || std::abs(d.m) > kMaxDimExponent || std::abs(d.s) > kMaxDimExponent)
+      return fail(err, "unit exponents out of range");
+    return Quantity{std::pow(q->value, p), d, true, q->hertz};
   }
 
   std::optional<Quantity> fail(std::string* err, const std::string& what) {
@@ -129,6 +161,7 @@ class UnitParser {
 
   std::string_view s_;
   size_t i_;
+  int depth_ = 0;
 };
 
 }  // namespace
@@ -191,12 +224,28 @@ std::optional<Quantity> parse_quantity(std::string_view text, std::string* error
                                     p.pos() + 1, text);
     return std::nullopt;
   }
-  return Quantity{v * u->value, u->dim, true};
+  // `5 km^400`, `1e308 kN`, `0 (km/m)^400`: a value that does not survive scaling is an input error,
+  // not an infinity or NaN that fails later in a run.
+  const double scaled = v * u->value;
+  if (!std::isfinite(u->value) || u->value == 0.0 || !std::isfinite(scaled) || (v != 0.0 && scaled == 0.0)) {
+    if (error) *error = fmt::format("'{}' is out of range in SI units (beyond ±{:g} or below {:g})", text,
+                                    std::numeric_limits<double>::max(), std::numeric_limits<double>::min());
+    return std::nullopt;
+  }
+  return Quantity{scaled, u->dim, true, u->hertz};
 }
 
 std::optional<double> parse_as(std::string_view text, const Dim& expected, std::string* error) {
   auto q = parse_quantity(text, error);
   if (!q) return std::nullopt;
+  if (q->hertz && expected == dim::angular_velocity) {
+    // Hz is cycles per second, but 1 Hz as an angular speed is 2π rad/s or 1 rad/s depending on the
+    // reader: never guess a factor 2π.
+    if (error)
+      *error = fmt::format("'{}': Hz is ambiguous for an angular speed; write rpm, rps (revolutions per "
+                           "second) or rad/s", text);
+    return std::nullopt;
+  }
   if (q->has_unit && !(q->dim == expected)) {
     if (error)
       *error = fmt::format("expected {}, got {} in '{}'", describe(expected), describe(q->dim), text);

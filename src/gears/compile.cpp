@@ -32,7 +32,9 @@ std::optional<Expression> read_expression(FieldReader& fr, const char* key, bool
     return Expression(n->scalar, "phi");
   } catch (const ExpressionError& e) {
     Location at = n->loc;
-    fr.diagnostics().error(at, fmt::format("{}: field '{}': {} in '{}'", fr.what(), key, e.what(), n->scalar));
+    // Quote a long text by its start only (a runaway expression may be megabytes).
+    const std::string shown = n->scalar.size() > 80 ? n->scalar.substr(0, 77) + "..." : n->scalar;
+    fr.diagnostics().error(at, fmt::format("{}: field '{}': {} in '{}'", fr.what(), key, e.what(), shown));
     return std::nullopt;
   }
 }

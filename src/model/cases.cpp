@@ -4,13 +4,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
-namespace {
-const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes"};
-}
 
 std::vector<std::string> case_names(const SpecNode& root) {
   std::vector<std::string> out;
@@ -42,20 +38,19 @@ void apply_case(SpecNode& root, const std::string& name) {
       }
       for (const auto& item : body.items) {
         bool found = false;
-        for (const auto& sec : kSections) {
+        for (const auto& sec : element_sections()) {
           SpecNode* s = root.find(sec);
           if (!s || !s->is_map()) continue;
-          auto it = std::find_if(s->fields.begin(), s->fields.end(), [&](const auto& kv) { return kv.first == item.scalar; });
-          if (it != s->fields.end()) s->fields.erase(it), found = true;
+          if (s->erase(item.scalar)) found = true;
         }
         if (!found) diag.error(item.loc, fmt::format("case '{}': cannot remove '{}': no such element", name, item.scalar));
       }
       continue;
     }
     const bool is_sim = section == "simulation";
-    if (!is_sim && std::find(kSections.begin(), kSections.end(), section) == kSections.end()) {
+    if (!is_sim && std::find(element_sections().begin(), element_sections().end(), section) == element_sections().end()) {
       diag.error(body.key_loc, fmt::format("case '{}': unknown section '{}'; known: description, remove, {}, simulation",
-                                           name, section, fmt::join(kSections, ", ")));
+                                           name, section, fmt::join(element_sections(), ", ")));
       continue;
     }
     if (!body.is_map()) {
@@ -85,23 +80,7 @@ void apply_case(SpecNode& root, const std::string& name) {
     }
   }
   diag.throw_if_any();
-}
-
-Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
-                      const std::string& case_name) {
-  return compile_model_case(read_yaml_file(path), path, overrides, case_name);
-}
-
-Model compile_model_case(SpecNode root, const std::string& source, const std::vector<std::string>& overrides,
-                         const std::string& case_name) {
-  if (!case_name.empty()) apply_case(root, case_name);
-  for (const auto& o : overrides) apply_set(root, o);
-  Model m = compile_model(root, source);
-  if (!case_name.empty()) {
-    m.load_case = case_name;
-    m.name += " [" + case_name + "]";
-  }
-  return m;
+  root.erase("cases");  // applied: the result is a plain model (compile checks no other case of it)
 }
 
 }  // namespace machdyn

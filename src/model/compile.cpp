@@ -2,9 +2,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
-#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/cases.hpp"
 #include "machdyn/model/machine.hpp"
 #include "compile_hybrid.hpp"
 #include "model/compile_machine.hpp"
@@ -15,6 +19,50 @@ namespace {
 Dim position_dim(BodyKind k) { return k == BodyKind::rotational ? dim::none : dim::length; }
 Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
 Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
+
+/// The section an element of this `type` belongs in, or "" (a hint for `type: brake` under loads).
+std::string_view section_of_type(std::string_view type) {
+  static const std::pair<std::string_view, std::string_view> kTypes[] = {
+      {"rotational", "bodies"}, {"translational", "bodies"}, {"spring", "links"},      {"damper", "links"},
+      {"spring-damper", "links"}, {"constant", "loads"},     {"step", "loads"},        {"ramp", "loads"},
+      {"table", "loads"},       {"motor-linear", "loads"},   {"motor-kloss", "loads"}, {"brake", "brakes"},
+      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}};
+  for (const auto& [t, sec] : kTypes)
+    if (t == type) return sec;
+  return {};
+}
+
+/// Reports a `type` that belongs to another section (true: reported; the element is skipped).
+bool wrong_section(const SpecNode& spec, std::string_view section, const std::string& what, Diagnostics& diag) {
+  const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr;
+  if (!t || !t->is_scalar()) return false;
+  const std::string_view home = section_of_type(t->scalar);
+  if (home.empty() || home == section) return false;
+  diag.error(t->loc, fmt::format("{}: type '{}' is not a kind of {}; a {} goes under '{}:'", what, t->scalar,
+                                 section, t->scalar, home));
+  return true;
+}
+
+/// Element names are unique across every section (`--set NAME.FIELD` must find one element) and free
+/// of '.' (it separates NAME from FIELD, and BODY.piston names a machine's output point).
+void check_names(const SpecNode& root, Model& m, Diagnostics& diag) {
+  std::unordered_map<std::string_view, std::pair<std::string_view, const SpecNode*>> seen;
+  for (const std::string& section : element_sections()) {
+    const SpecNode* sec = root.find(section);
+    if (!sec || !sec->is_map()) continue;
+    for (const auto& [name, spec] : sec->fields) {
+      if (name.find('.') != std::string::npos)
+        diag.error(spec.key_loc, fmt::format("{} name '{}' contains '.', which separates NAME.FIELD in --set; "
+                                             "expected a name without '.'", section, name));
+      m.element_where.try_emplace(name, Location(spec.key_loc));
+      auto [it, fresh] = seen.try_emplace(name, section, &spec);
+      if (!fresh)
+        diag.error(spec.key_loc, fmt::format("the name '{}' (under '{}') is already used under '{}' at {}; names must "
+                                             "be unique across {}", name, section, it->second.first,
+                                             it->second.second->key_loc.str(), fmt::join(element_sections(), ", ")));
+    }
+  }
+}
 
 void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
   if (!section) return;
@@ -27,6 +75,7 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
       m.bodies.push_back(compile_machine_body(name, spec, diag));
       continue;
     }
+    if (wrong_section(spec, "bodies", fmt::format("body '{}'", name), diag)) continue;
     FieldReader f(spec, fmt::format("body '{}'", name), diag);
     if (name == "ground") diag.error(spec.loc, "'ground' is reserved for the fixed frame; name the body otherwise");
     Body b;
@@ -50,6 +99,7 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     return;
   }
   for (const auto& [name, spec] : section->fields) {
+    if (wrong_section(spec, "links", fmt::format("link '{}'", name), diag)) continue;
     FieldReader f(spec, fmt::format("link '{}'", name), diag);
     Link l;
     l.name = name;
@@ -122,6 +172,7 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
     return;
   }
   for (const auto& [name, spec] : section->fields) {
+    if (wrong_section(spec, "loads", fmt::format("load '{}'", name), diag)) continue;
     FieldReader f(spec, fmt::format("load '{}'", name), diag);
     Load ld;
     ld.name = name;
@@ -223,7 +274,28 @@ void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
   if (s.dt_out == 0.0) s.dt_out = s.t_end / 1000.0;
 }
 
+/// Every load case compiles, whichever case a command runs: a case that overrides a field no element
+/// has, or names an element that does not exist, is an error in `simulate` of the base model too.
+void check_cases(const SpecNode& root, const std::string& source, Diagnostics& diag) {
+  for (const std::string& name : case_names(root)) {
+    SpecNode copy = root;
+    try {
+      apply_case(copy, name);
+      (void)compile_model(copy, source);
+    } catch (const InputError& e) {
+      for (const Diagnostic& d : e.diagnostics())
+        diag.error(d.where, d.message.rfind("case '", 0) == 0 ? d.message
+                                                               : fmt::format("case '{}': {}", name, d.message));
+    }
+  }
+}
+
 }  // namespace
+
+const std::vector<std::string>& element_sections() {
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes"};
+  return kSections;
+}
 
 Model compile_model(const SpecNode& root, const std::string& source) {
   Diagnostics diag;
@@ -237,8 +309,10 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   FieldReader top(root, "model", diag);
   m.name = top.text("name", std::filesystem::path(source).stem().string()).value_or("");
   m.description = top.text("description", "").value_or("");
+  check_names(root, m, diag);
   const SpecNode* bodies = top.node("bodies");
   compile_bodies(bodies, m, diag);
+  m.index_bodies();
   if (m.bodies.empty())
     diag.error(bodies ? bodies->loc : Location{source, 1, 1},
                "the model has no body with mass or inertia: add at least one under 'bodies'");
@@ -254,14 +328,19 @@ Model compile_model(const SpecNode& root, const std::string& source) {
     diag.error(bodies ? bodies->loc : Location{source, 1, 1},
                "a body has velocity jumps (stepwise gear ratio), which cannot be combined with gaps, contacts or "
                "brakes yet");
+  if (diag.empty() && output_bytes_bound(m) > kMaxOutputBytes) {
+    const SpecNode* sim = root.find("simulation");
+    const SpecNode* at = sim && sim->is_map() ? (sim->find("dt_out") ? sim->find("dt_out") : sim) : nullptr;
+    const double rows = output_bytes_bound(m) / static_cast<double>(output_columns_bound(m) * sizeof(double));
+    diag.error(at ? Location(at->loc) : Location{source, 1, 1},
+               fmt::format("simulation: the output needs {:.3g} rows x {} columns = {:.3g} GB in memory, more than the "
+                           "limit of {:.3g} GB; raise 'dt_out' or shorten 't_end'", rows, output_columns_bound(m),
+                           output_bytes_bound(m) / 1e9, kMaxOutputBytes / 1e9));
+  }
+  if (diag.empty()) check_cases(root, source, diag);
   diag.throw_if_any();
   return m;
 }
 
-Model load_model(const std::string& path, const std::vector<std::string>& overrides) {
-  SpecNode root = read_yaml_file(path);
-  for (const auto& o : overrides) apply_set(root, o);
-  return compile_model(root, path);
-}
 
 }  // namespace machdyn

@@ -205,10 +205,6 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       m.contacts.push_back(c);
     }
   }
-  for (size_t k = 0; k < m.contacts.size(); ++k)
-    for (size_t j = 0; j < m.links.size(); ++j)
-      if (m.contacts[k].name == m.links[j].name)
-        diag.error(Location{m.source, 0, 0}, fmt::format("contact or brake '{}' has the name of a link", m.contacts[k].name));
 }
 
 }  // namespace machdyn::detail

@@ -1,14 +1,12 @@
 #include "model/compile_machine.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 #include <stdexcept>
 #include <fmt/format.h>
 
 #include "machdyn/gears/gear_model.hpp"
 #include "machdyn/gears/synthesis.hpp"
-#include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/gear_drive.hpp"
 #include "machdyn/model/machine.hpp"
 
@@ -64,7 +62,8 @@ std::optional<Expression> read_expression(FieldReader& f, std::string_view key, 
   try {
     return Expression(*text, "q");
   } catch (const std::invalid_argument& e) {
-    f.error_at(key, fmt::format("field '{}': expression '{}': {}", key, *text, e.what()));
+    const std::string shown = text->size() > 80 ? text->substr(0, 77) + "..." : *text;
+    f.error_at(key, fmt::format("field '{}': expression '{}': {}", key, shown, e.what()));
     return std::nullopt;
   }
 }
@@ -213,18 +212,12 @@ std::optional<gears::GearModel> read_gear_spec(FieldReader& f, gears::GearSynthe
   try {
     SpecNode spec;
     if (g->is_scalar()) {
-      std::filesystem::path path(g->scalar);
-      // Relative to the model file (the body's own file; a `--set` value has no file).
-      const std::string& model_file = f.map().loc.file;
-      if (path.is_relative() && !model_file.empty() && model_file.rfind("--set", 0) != 0)
-        path = std::filesystem::path(model_file).parent_path() / path;
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(path, ec)) {
-        f.error_at("gears", fmt::format("field 'gears': cannot open the gear spec '{}' (looked for {})", g->scalar,
-                                        path.string()));
-        return std::nullopt;
-      }
-      spec = read_yaml_file(path.string());
+      // The model layer reads no files: io (load_model, resolve_gear_includes) puts the included
+      // spec in place of the file name before compile. A bare compile_model() of such a tree lands here.
+      f.error_at("gears", fmt::format("field 'gears': the gear spec file '{}' was not read; load the model with "
+                                      "load_model() or call resolve_gear_includes() before compile_model()",
+                                      g->scalar));
+      return std::nullopt;
     } else if (g->is_map()) {
       spec = *g;
     } else {

@@ -46,8 +46,23 @@ double Load::slope(double /*t*/, double v) const {
   }
 }
 
+Location Model::where(const std::string& element) const {
+  auto it = element_where.find(element);
+  return it == element_where.end() ? Location{source, 0, 0} : it->second;
+}
+
+void Model::index_bodies() {
+  body_lookup.clear();
+  body_lookup.reserve(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) body_lookup.try_emplace(bodies[i].name, static_cast<int>(i));
+}
+
 int Model::body_index(const std::string& n) const {
   if (n == "ground") return kGround;
+  if (body_lookup.size() == bodies.size() && !bodies.empty()) {  // the index is current
+    auto it = body_lookup.find(n);
+    return it == body_lookup.end() ? -2 : it->second;
+  }
   for (size_t i = 0; i < bodies.size(); ++i)
     if (bodies[i].name == n) return static_cast<int>(i);
   return -2;
@@ -72,6 +87,18 @@ std::vector<std::string> chain_column_names(const Model& m) {
   }
   for (const auto& l : m.links) names.push_back(l.name + ".load_" + unit_suffix(link_load_unit(m, l)));
   return names;
+}
+
+std::size_t output_columns_bound(const Model& m) {
+  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size();
+  for (const auto& l : m.links) n += l.has_gap ? 1 : 0;
+  for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
+  return n;
+}
+
+double output_bytes_bound(const Model& m) {
+  const double rows = m.simulation.dt_out > 0.0 ? m.simulation.t_end / m.simulation.dt_out + 2.0 : 1002.0;
+  return rows * static_cast<double>(output_columns_bound(m)) * static_cast<double>(sizeof(double));
 }
 
 const char* link_load_unit(const Model& m, const Link& l) {

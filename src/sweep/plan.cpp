@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -97,6 +98,7 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
                                                    : parse_yaml_string(request.model_text, request.model_path);
   plan.base = file;
   for (const auto& o : request.sets) apply_set(plan.base, o);
+  resolve_gear_includes(plan.base);  // `gears: FILE` is read once here, not per run
   plan.base_model = compile_model(plan.base, request.model_path);
 
   // Parse the axes; check each against its field.
@@ -149,6 +151,7 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
       SpecNode s = file;
       request.apply_case(s, name);
       for (const auto& o : request.sets) apply_set(s, o);
+      resolve_gear_includes(s);
       Model m = compile_model(s, request.model_path);
       m.load_case = name;
       plan.case_bases.push_back(std::move(s));

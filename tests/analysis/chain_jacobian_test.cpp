@@ -10,6 +10,7 @@
 #include "machdyn/analysis/chain_system.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/model/machine.hpp"
 #include "support/support.hpp"

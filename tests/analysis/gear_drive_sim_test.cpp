@@ -8,6 +8,7 @@
 
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/gears/synthesis.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -31,7 +32,9 @@ bodies:
 simulation: {{t_end: {}, dt_out: 0.001, rtol: {}, atol: 1e-13, integrator: dopri5}}
 )",
                                        kGearSpec, d.ratio, d.I_p, d.I_H, d.m, d.F_r, d.v0, d.loads, d.t_end, d.rtol);
-  return compile_model(parse_yaml_string(text, "drive.yaml"), "drive.yaml");
+  SpecNode root = parse_yaml_string(text, "drive.yaml");
+  resolve_gear_includes(root);
+  return compile_model(root, "drive.yaml");
 }
 
 const std::vector<double>& column(const SimulationResult& r, const std::string& name) {

@@ -11,6 +11,7 @@
 
 #include "machdyn/analysis/hybrid.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/model/machine.hpp"
 #include "support/support.hpp"

@@ -8,8 +8,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "machdyn/analysis/travel_start.hpp"
+#include "support/travel_start.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"

@@ -11,6 +11,7 @@
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/model/machine.hpp"
 #include "support/support.hpp"

@@ -4,7 +4,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "machdyn/analysis/three_mass_hoist.hpp"
+#include "support/three_mass_hoist.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 

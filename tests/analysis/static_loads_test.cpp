@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/modes.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 

@@ -128,6 +128,9 @@ TEST(EnergyCli, RefusesModelsWithoutEnergyIntegral) {
   const auto r = test::run_cli("energy '" + test::example("hoist-3mass.yaml") + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("needs a model with one body and no links"), std::string::npos) << r.err;
+  // Located at the element that is too many: the second body of hoist-3mass.yaml, I2 (line 16).
+  EXPECT_NE(r.err.find(test::example("hoist-3mass.yaml") + ":"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(test::example("hoist-3mass.yaml") + ": error"), std::string::npos) << r.err;
   const auto motor = test::write_temp("motor-crank.yaml", R"Y(bodies:
   crank: {type: crank-slider, crank_radius: 0.05, rod_length: 0.2, piston_mass: 1, crank_inertia: 0.1}
 loads:
@@ -135,7 +138,7 @@ loads:
 )Y");
   const auto m = test::run_cli("energy '" + motor + "'");
   EXPECT_EQ(m.exit_code, 2);
-  EXPECT_NE(m.err.find("load 'M' depends on time or speed"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find(motor + ":4:3: error: load 'M' depends on time or speed"), std::string::npos) << m.err;
   EXPECT_EQ(test::run_cli("energy '" + test::example("hoist-3mass.yaml") + "' --points 1").exit_code, 2);
   EXPECT_EQ(test::run_cli("energy '" + test::example("crank-slider.yaml") + "' --to '-1 rad'").exit_code, 2);
 }

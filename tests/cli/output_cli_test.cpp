@@ -10,6 +10,7 @@
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/output_file.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
 

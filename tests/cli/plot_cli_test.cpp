@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"

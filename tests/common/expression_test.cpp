@@ -51,5 +51,40 @@ TEST(Expression, BadTextNamesThePlace) {
   EXPECT_NE(message("q 2").find("unexpected '2'"), std::string::npos);
 }
 
+// Claim: nesting is bounded (Expression::kMaxDepth), so deep or long texts are a syntax error
+// with a place, never a stack overflow while parsing or evaluating (the fuzzer's cases: 20 000
+// parentheses, a chain of 200 000 '^', 400 000 unary minus, a left-deep sum of 10^5 terms).
+TEST(Expression, DeepNestingIsAnErrorNotAStackOverflow) {
+  auto rejected = [](const std::string& text) {
+    try {
+      Expression e(text, "q");
+    } catch (const ExpressionError& ex) {
+      return std::string(ex.what()).find("nested deeper than 200") != std::string::npos;
+    }
+    return false;
+  };
+  auto wrapped = [](std::size_t n) {
+    std::string t(n, '(');
+    t += 'q';
+    t.append(n, ')');
+    return t;
+  };
+  EXPECT_TRUE(rejected(wrapped(20000)));
+  std::string pow_chain = "q";
+  for (int i = 0; i < 200000; ++i) pow_chain += "^q";
+  EXPECT_TRUE(rejected(pow_chain));
+  std::string minus(400000, '-');
+  minus += 'q';
+  EXPECT_TRUE(rejected(minus));
+  std::string sum = "q";
+  for (int i = 0; i < 100000; ++i) sum += "+q";
+  EXPECT_TRUE(rejected(sum));
+  // Just inside the bound: a sum of 200 terms has height 199 and evaluates to 200 q.
+  std::string ok = "q";
+  for (int i = 1; i < 200; ++i) ok += "+q";
+  EXPECT_DOUBLE_EQ(Expression(ok, "q")(0.5), 100.0);
+  EXPECT_DOUBLE_EQ(Expression(wrapped(150), "q")(2.0), 2.0);
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -57,5 +57,50 @@ TEST(Units, RejectsUnknownUnitsJunkAndNonFinite) {
   }
 }
 
+// Claim: an angular speed in Hz is refused with a hint (never a silent factor 2π or 1), while rps
+// is revolutions per second by definition: 25 rps = 25·2π rad/s = 1500 rpm.
+TEST(Units, HertzIsRejectedForAngularSpeedsAndRpsIsRevolutionsPerSecond) {
+  std::string err;
+  EXPECT_FALSE(parse_as("25 Hz", dim::angular_velocity, &err));
+  EXPECT_NE(err.find("rpm"), std::string::npos) << err;
+  EXPECT_NE(err.find("rad/s"), std::string::npos) << err;
+  EXPECT_FALSE(parse_as("0.025 kHz", dim::angular_velocity, &err));
+  EXPECT_FALSE(parse_as("25 rad*Hz", dim::angular_velocity, &err));
+  EXPECT_DOUBLE_EQ(si("25 rps", dim::angular_velocity), si("1500 rpm", dim::angular_velocity));
+  EXPECT_DOUBLE_EQ(si("25 rps", dim::angular_velocity), 25 * 2 * std::numbers::pi);
+  EXPECT_DOUBLE_EQ(si("25 rev/s", dim::angular_velocity), 25 * 2 * std::numbers::pi);
+}
+
+// Claim: exponents are bounded (no int overflow, no wrap-around: 4294967298 = 2^32 + 2 used to
+// read as 2) and a value that does not survive scaling to SI is an error, not inf or NaN.
+TEST(Units, ExponentsAreBoundedAndScaledValuesFinite) {
+  for (const char* bad : {"1 kg*m^4294967298", "1 N^6555565656", "5 km^400", "0 (km/m)^400*rad", "1e308 kN",
+                          "1e308 t", "1e-300 nm^12", "1 m^13", "1 ((((((((((((((((((m))))))))))))))))))"}) {
+    std::string err;
+    EXPECT_FALSE(parse_quantity(bad, &err)) << bad;
+    EXPECT_FALSE(err.empty()) << bad;
+  }
+  std::string deep = "1 ";
+  deep.append(100000, '(');
+  deep += 'm';
+  std::string err;
+  EXPECT_FALSE(parse_quantity(deep, &err));
+  EXPECT_DOUBLE_EQ(si("2 m^12/m^11", dim::length), 2.0);
+  EXPECT_DOUBLE_EQ(si("1e300 N", dim::force), 1e300);
+  EXPECT_DOUBLE_EQ(si("0 kN", dim::force), 0.0);
+}
+
+// Claim: what the messages suggest is accepted: `1/m` (describe(dim::inv_length) offers it) and a
+// space between units multiplies, as in print: 1.2 kg m^2 = 1.2 kg*m^2.
+TEST(Units, AcceptsReciprocalUnitsAndSpacesAsProducts) {
+  EXPECT_DOUBLE_EQ(si("4 1/m", dim::inv_length), 4.0);
+  EXPECT_DOUBLE_EQ(si("4 1/mm", dim::inv_length), 4000.0);
+  EXPECT_DOUBLE_EQ(si("4 rad/m", dim::inv_length), 4.0);
+  EXPECT_DOUBLE_EQ(si("1.2 kg m^2", dim::inertia), 1.2);
+  EXPECT_DOUBLE_EQ(si("3 kN m / rad", dim::torque), 3000.0);
+  EXPECT_DOUBLE_EQ(si("2 N s/m", dim::damping_lin), 2.0);
+  EXPECT_NE(describe(dim::inv_length).find("1/m"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -138,6 +138,8 @@ TEST(GearsCli, BadInputsExitWith2AndTheirPlace) {
        ":4:4: error: gears: the pinion is too small"},
       {"corner_continuous", kGood + "profile:\n  basis: continuous\n", "",
        ":10:10: error: gears.profile: basis 'continuous' needs pitch curves without corners"},
+      // an empty spec is located at its start (it used to have no line and column)
+      {"empty", "", "", "empty.yaml:1:1: error: gears: expected a map of fields"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);

@@ -1,5 +1,6 @@
 // The plotting layer: what goes to gnuplot (data, script), what comes back (SVG with the legend,
 // PNG), the papers' figures built from real results, and the checks on a Figure.
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/plot.hpp"
 
 #include <cmath>

@@ -1,5 +1,6 @@
 // The HTML report: self-contained (nothing loaded from the network), the model and results as
 // tables, every figure's data as one JSON block the page's charts read.
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
 
 #include <cmath>

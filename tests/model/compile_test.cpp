@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "support/support.hpp"
 

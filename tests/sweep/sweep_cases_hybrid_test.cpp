@@ -10,6 +10,7 @@
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"

@@ -7,6 +7,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/sweep/runner.hpp"
 #include "support/support.hpp"

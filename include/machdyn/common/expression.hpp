@@ -12,7 +12,8 @@
 ///   primary := number | 'pi' | 'e' | variable | func '(' expr ')' | '(' expr ')'
 /// Functions: sin cos tan asin acos atan sinh cosh tanh exp log sqrt abs. Numbers are plain (no
 /// units, the value is SI); angles are in radians.
-/// Nothing else is accepted: no assignment, no other names, no I/O.
+/// Nothing else is accepted: no assignment, no other names, no I/O. Nesting and tree height are
+/// bounded by Expression::kMaxDepth (200), so evaluation cannot exhaust the stack.
 
 #include <stdexcept>
 #include <string>
@@ -52,6 +53,9 @@ class ExpressionError : public std::invalid_argument {
 /// (domain errors give NaN, which the callers check).
 class Expression {
  public:
+  /// Bound on both the nesting of the text (parentheses, signs, powers) and the height of the
+  /// parsed tree (a sum of n terms has height n); deeper texts throw ExpressionError.
+  static constexpr int kMaxDepth = 200;
   /// Parses `text` with variable name `variable` (e.g. "phi", "q"). Throws ExpressionError.
   Expression(std::string_view text, std::string variable);
   [[nodiscard]] Jet eval(const Jet& x) const;

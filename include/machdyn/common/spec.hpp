@@ -4,6 +4,8 @@
 /// checking. Model files and gear spec files both read into it; `--set` edits it; the compilers
 /// (model/compile.hpp, gears) turn it into validated, immutable objects and report every problem.
 
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,14 +17,33 @@
 
 namespace machdyn {
 
+/// A place in a spec, kept small because a spec holds one per value (a 10^6-point table has 3·10^6):
+/// the source name is shared by every node of a file instead of copied. Converts to and from Location.
+struct SpecLoc {
+  std::shared_ptr<const std::string> file;
+  int line = 0;
+  int column = 0;
+  SpecLoc() = default;
+  SpecLoc(std::shared_ptr<const std::string> f, int l, int c) : file(std::move(f)), line(l), column(c) {}
+  explicit SpecLoc(const Location& l)
+      : file(std::make_shared<const std::string>(l.file)), line(l.line), column(l.column) {}
+  operator Location() const { return {file ? *file : std::string(), line, column}; }  // NOLINT
+  [[nodiscard]] std::string str() const { return Location(*this).str(); }
+};
+
+struct SpecField;
+
+/// One value of the spec. A map keeps its fields in file order; keys are unique (the reader
+/// rejects duplicates with a hashed set, so reading stays linear in the size of the file).
+/// find() is a linear scan: it serves element maps of a few fields, not sections of 10^5 elements.
 struct SpecNode {
-  enum class Kind { Null, Scalar, Sequence, Map };
+  enum class Kind : unsigned char { Null, Scalar, Sequence, Map };
   Kind kind = Kind::Null;
-  Location loc;      ///< where the value starts
-  Location key_loc;  ///< where its key starts, for a value inside a map (else = loc)
-  std::string scalar;                                    ///< Kind::Scalar
-  std::vector<SpecNode> items;                           ///< Kind::Sequence
-  std::vector<std::pair<std::string, SpecNode>> fields;  ///< Kind::Map, in file order
+  SpecLoc loc;      ///< where the value starts
+  SpecLoc key_loc;  ///< where its key starts, for a value inside a map (else = loc)
+  std::string scalar;             ///< Kind::Scalar
+  std::vector<SpecNode> items;    ///< Kind::Sequence
+  std::vector<SpecField> fields;  ///< Kind::Map, in file order
 
   [[nodiscard]] bool is_map() const { return kind == Kind::Map; }
   [[nodiscard]] bool is_seq() const { return kind == Kind::Sequence; }
@@ -31,6 +52,16 @@ struct SpecNode {
   SpecNode* find(std::string_view key);
   /// Sets (or adds) a map field.
   void set(const std::string& key, SpecNode value);
+  /// Removes a map field; false if there was none.
+  bool erase(std::string_view key);
+};
+
+/// A key and its value. (A struct of its own rather than std::pair, which must not be instantiated
+/// while SpecNode is incomplete: clang with libstdc++ rejects that.)
+struct SpecField {
+  std::string first;  ///< the key
+  SpecNode second;    ///< the value
+  SpecField(std::string k, SpecNode v) : first(std::move(k)), second(std::move(v)) {}
 };
 
 /// Reads the fields of one map node with checks, recording problems in `diag` instead of throwing.

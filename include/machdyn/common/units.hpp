@@ -5,10 +5,14 @@
 ///
 /// Dimensions are exponents of kilogram, metre and second. The radian is dimensionless (as in SI),
 /// so `N*m/rad` is a torque per unit angle and `rpm` is 2π/60 s⁻¹. Grammar:
-///   quantity := number [unit-expr];  unit-expr := factor (('*' | '/' | '·') factor)*
-///   factor := unit ['^' integer] | '(' unit-expr ')' ['^' integer]
-/// `a/b*c` is `(a/b)*c`. Units: m g t s min h N J W Pa Hz rad deg rev rpm %, SI prefixes
-/// (n u µ m c d k M G) on m g s N J W Pa Hz rad, and `Nm`, `kNm` for N*m.
+///   quantity := number [unit-expr];  unit-expr := factor (('*' | '/' | '·' | '.' | ' ') factor)*
+///   factor := unit ['^' integer] | '1' | '(' unit-expr ')' ['^' integer]
+/// `a/b*c` is `(a/b)*c`; a space multiplies (`1.2 kg m^2`); `1/m` is a reciprocal unit. Units: m g t
+/// s min h N J W Pa Hz rad deg rev rpm rps %, SI prefixes (n u µ m c d k M G) on m g s N J W Pa Hz
+/// rad, and `Nm`, `kNm` for N*m. `rps` is revolutions per second (2π rad/s).
+/// Limits: exponents after '^' from -12 to 12, at most 16 nested parentheses, and the value in SI
+/// must be finite and, unless zero, not underflow to zero (`1e308 kN` is an error, not infinity).
+/// An angular speed in Hz is rejected (cycles or radians per second?) with a hint: rpm, rps, rad/s.
 
 #include <array>
 #include <optional>
@@ -50,6 +54,7 @@ struct Quantity {
   double value = 0.0;
   Dim dim;
   bool has_unit = false;  ///< false for a plain number, which is SI in whatever dimension is expected
+  bool hertz = false;     ///< the unit contains Hz (ambiguous as an angular speed: parse_as rejects it there)
 };
 
 /// Parses `text`. Returns nullopt and sets `error` (what was expected at which character) on failure.

@@ -3,6 +3,7 @@
 /// YAML input into the spec tree (common/spec.hpp), keeping the line and column of every value,
 /// and the `--set NAME.FIELD=VALUE` overrides that edit it.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -10,7 +11,14 @@
 
 namespace machdyn {
 
-/// Reads a YAML file. Throws InputError (with line and column) if it cannot be opened or parsed.
+/// Limits on what a file may hold, each a located InputError when exceeded: nesting depth, values
+/// (scalars, lists and maps together), and values copied by aliases (`*name`).
+inline constexpr std::size_t kSpecMaxDepth = 64;
+inline constexpr std::size_t kSpecMaxValues = 10'000'000;
+inline constexpr std::size_t kSpecMaxAliasValues = 200'000;
+
+/// Reads a YAML file. Throws InputError (with line and column) if it cannot be opened or parsed,
+/// or if it exceeds a limit above. Anchors and aliases are expanded (a self-reference is an error).
 SpecNode read_yaml_file(const std::string& path);
 
 /// Parses YAML text; `source` names it in messages.

@@ -21,18 +21,12 @@ namespace machdyn {
 /// The case names in file order (empty if the file has no `cases:`).
 std::vector<std::string> case_names(const SpecNode& root);
 
-/// Applies case `name` to the spec. Throws InputError if there is no such case or the case is
-/// malformed (with the place of each problem).
+/// Applies case `name` to the spec and removes its `cases:` section (the result is a plain model;
+/// compile_model checks every case of a file that still has them). Throws InputError if there is no
+/// such case or the case is malformed (with the place of each problem).
 void apply_case(SpecNode& root, const std::string& name);
 
-/// Reads `path`, applies case `case_name` (if not empty), then the `--set` overrides, compiles.
-/// The model's name gets " [case]" appended and Model::load_case is set.
-Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
-                      const std::string& case_name);
+// Reading a model file with a case: load_model_case in io/model_file.hpp.
 
-/// The same for a spec already read (a file's or a string's; `source` names it in messages and in
-/// Model::source): applies the case, then the overrides, compiles. Throws InputError.
-Model compile_model_case(SpecNode root, const std::string& source, const std::vector<std::string>& overrides,
-                         const std::string& case_name);
 
 }  // namespace machdyn

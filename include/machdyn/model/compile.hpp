@@ -19,10 +19,14 @@
 
 namespace machdyn {
 
-/// Compiles a spec tree. Throws InputError listing every problem found.
+/// The sections whose entries are named elements: bodies, links, loads, contacts, brakes. A name is
+/// unique across all of them and contains no '.'.
+const std::vector<std::string>& element_sections();
+
+/// Compiles a spec tree. Throws InputError listing every problem found, including those of every
+/// load case under `cases:` (each compiled on a copy), so a broken case fails every command.
 Model compile_model(const SpecNode& root, const std::string& source);
 
-/// Reads `path`, applies the `--set` overrides in order, compiles. Throws InputError.
-Model load_model(const std::string& path, const std::vector<std::string>& overrides = {});
+// Reading a model file (and its overrides, cases, gear includes): io/model_file.hpp.
 
 }  // namespace machdyn

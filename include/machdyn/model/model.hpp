@@ -15,9 +15,13 @@
 /// A gear stage with ratio i = ω_a/ω_b and an elastic output shaft, or a rope drum (i in rad/m, the
 /// drum's 1/R) are links with a ratio. A link to the ground has i = 1.
 
+#include <cstddef>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
+
+#include "machdyn/common/diagnostics.hpp"
 
 namespace machdyn {
 
@@ -139,8 +143,17 @@ struct Model {
   SimulationSettings simulation;
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
-  /// Index of the body called `name`, kGround for "ground", or -2 if none.
+  /// Index of the body called `name`, kGround for "ground", or -2 if none. A hashed look-up once
+  /// index_bodies() has run (compile does), so compiling N links is O(N), not O(N²).
   [[nodiscard]] int body_index(const std::string& name) const;
+  /// Builds the name index of `bodies` for body_index(); call again after changing `bodies`.
+  void index_bodies();
+  std::unordered_map<std::string, int> body_lookup;  ///< name → index (index_bodies())
+  /// Where each element (body, link, load, contact, brake) is defined: name → its key's place in
+  /// the file. Compile fills it, so a check after compile (energy, steady running) can be located.
+  std::unordered_map<std::string, Location> element_where;
+  /// The place of `element` (a name), or the model file without a line if unknown.
+  [[nodiscard]] Location where(const std::string& element) const;
   /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
   [[nodiscard]] bool is_hybrid() const;
 };
@@ -156,5 +169,14 @@ std::string unit_suffix(const char* unit);
 /// The columns every simulation writes: "t_s", then per body "NAME.position_rad|m" and
 /// "NAME.velocity_rad_s|m_s", then per link "NAME.load_N_m|N".
 std::vector<std::string> chain_column_names(const Model& m);
+
+/// Output columns a run of `m` holds in memory, at most: the chain columns, three per contact or
+/// brake, one per gap, and up to eight per machine body (its parts' loads, output point, extras).
+std::size_t output_columns_bound(const Model& m);
+/// Bytes the output grid of `m` needs in memory, at most: (t_end/dt_out + 2) rows × output_columns_bound
+/// × 8 bytes. The runs reserve all of it before the first step, so compile checks it against
+/// kMaxOutputBytes first (a located input error at dt_out, instead of std::bad_alloc mid-run).
+double output_bytes_bound(const Model& m);
+inline constexpr double kMaxOutputBytes = 2.0 * 1024 * 1024 * 1024;  ///< 2 GiB
 
 }  // namespace machdyn

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
 int main(int argc, char** argv) {

@@ -1,4 +1,4 @@
-#include "machdyn/analysis/three_mass_hoist.hpp"
+#include "support/three_mass_hoist.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "machdyn/analysis/travel_start.hpp"
+#include "support/travel_start.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,0 +1,92 @@
+#include "machdyn/io/model_file.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/cases.hpp"
+#include "machdyn/model/compile.hpp"
+
+namespace machdyn {
+namespace {
+
+void resolve_in_bodies(SpecNode* bodies, Diagnostics& diag) {
+  if (!bodies || !bodies->is_map()) return;
+  for (auto& [name, body] : bodies->fields) {
+    SpecNode* g = body.is_map() ? body.find("gears") : nullptr;
+    if (!g || !g->is_scalar()) continue;
+    std::filesystem::path path(g->scalar);
+    const Location at = g->loc;
+    // Relative to the file the value is written in; a `--set` value has no file.
+    if (path.is_relative() && !at.file.empty() && at.file.rfind("--", 0) != 0)
+      path = std::filesystem::path(at.file).parent_path() / path;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      diag.error(at, fmt::format("body '{}': field 'gears': cannot open the gear spec '{}' (looked for {})", name,
+                                 g->scalar, path.string()));
+      continue;
+    }
+    try {
+      SpecNode spec = read_yaml_file(path.string());
+      spec.key_loc = g->key_loc;
+      *g = std::move(spec);
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
+    }
+  }
+}
+
+}  // namespace
+
+void resolve_gear_includes(SpecNode& root, Diagnostics& diag) {
+  if (!root.is_map()) return;
+  resolve_in_bodies(root.find("bodies"), diag);
+  if (SpecNode* cases = root.find("cases"); cases && cases->is_map())
+    for (auto& [name, c] : cases->fields)
+      if (c.is_map()) resolve_in_bodies(c.find("bodies"), diag);
+}
+
+void resolve_gear_includes(SpecNode& root) {
+  Diagnostics diag;
+  resolve_gear_includes(root, diag);
+  diag.throw_if_any();
+}
+
+Model load_model(const std::string& path, const std::vector<std::string>& overrides) {
+  return load_model_case(path, overrides, "");
+}
+
+Model load_model_case(const std::string& path, const std::vector<std::string>& overrides,
+                      const std::string& case_name) {
+  return compile_model_case(read_yaml_file(path), path, overrides, case_name);
+}
+
+Model compile_model_case(SpecNode root, const std::string& source, const std::vector<std::string>& overrides,
+                         const std::string& case_name) {
+  if (!case_name.empty()) apply_case(root, case_name);
+  for (const auto& o : overrides) apply_set(root, o);
+  // Every problem at once: those of reading included files and those of compiling, one per place
+  // (a file that could not be read is not reported again as an unread `gears:` by the compiler).
+  Diagnostics diag;
+  resolve_gear_includes(root, diag);
+  Model m;
+  try {
+    m = compile_model(root, source);
+  } catch (const InputError& e) {
+    for (const Diagnostic& d : e.diagnostics()) {
+      const bool seen = std::any_of(diag.list().begin(), diag.list().end(), [&](const Diagnostic& r) {
+        return r.where.file == d.where.file && r.where.line == d.where.line && r.where.column == d.where.column;
+      });
+      if (!seen) diag.error(d.where, d.message);
+    }
+  }
+  diag.throw_if_any();
+  if (!case_name.empty()) {
+    m.load_case = case_name;
+    m.name += " [" + case_name + "]";
+  }
+  return m;
+}
+
+}  // namespace machdyn
