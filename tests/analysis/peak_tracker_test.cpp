@@ -8,6 +8,7 @@
 
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/solve/driver.hpp"
+#include "support/oscillator.hpp"
 
 namespace machdyn {
 namespace {
@@ -15,20 +16,7 @@ namespace {
 /// y'' = −ω² y, y(0) = 1, y'(0) = 0: y = cos ωt, signal s = 2 y − 0.5 y' (w = [2, −0.5]) =
 /// 2 cos ωt + 0.5 ω sin ωt = A cos(ωt − φ) with A = sqrt(4 + ω²/4), tan φ = ω/4: maximum A at
 /// t = φ/ω, minimum −A at t = (φ + π)/ω. Optional breakpoints cut the steps into pieces.
-class Oscillator final : public EventSystem {
- public:
-  explicit Oscillator(double w) : w_(w) {}
-  int size() const override { return 2; }
-  void rhs(double, const double* y, double* dy) override {
-    dy[0] = y[1];
-    dy[1] = -w_ * w_ * y[0];
-  }
-  std::vector<double> breakpoints(double, double) const override { return bps; }
-  std::vector<double> bps;
-
- private:
-  double w_;
-};
+using test::Oscillator;
 
 struct Feed final : StepObserver {
   explicit Feed(PeakTracker& p) : peaks(p) {}

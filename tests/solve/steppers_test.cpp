@@ -3,26 +3,13 @@
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/solve/driver.hpp"
+#include "support/oscillator.hpp"
 #include "machdyn/solve/stepper.hpp"
 
 namespace machdyn {
 namespace {
 
-/// y'' = −ω² y as a first-order system; exact y = cos ωt, y' = −ω sin ωt.
-class Oscillator final : public EventSystem {
- public:
-  explicit Oscillator(double w) : w_(w) {}
-  int size() const override { return 2; }
-  void rhs(double, const double* y, double* dy) override {
-    dy[0] = y[1];
-    dy[1] = -w_ * w_ * y[0];
-  }
-  bool has_jacobian() const override { return true; }
-  void jacobian(double, const double*, Eigen::Ref<Eigen::MatrixXd> J) override {
-    J << 0, 1, -w_ * w_, 0;
-  }
-  double w_;
-};
+using test::Oscillator;
 
 class Steppers : public ::testing::TestWithParam<Method> {};
 
