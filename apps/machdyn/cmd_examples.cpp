@@ -15,8 +15,16 @@ int run_modes(const std::string& model_path, const std::vector<std::string>& set
 
 namespace {
 
+/// MACHDYN_EXAMPLES if set; else the installed examples beside an installed CLI
+/// (PREFIX/bin/machdyn → PREFIX/share/machdyn/examples); else the source tree it was built from.
 std::filesystem::path examples_dir() {
   if (const char* env = std::getenv("MACHDYN_EXAMPLES")) return env;
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto installed = exe.parent_path().parent_path() / "share" / "machdyn" / "examples";
+    if (std::filesystem::is_directory(installed, ec)) return installed;
+  }
   return MACHDYN_EXAMPLES_DIR;
 }
 
