@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/analysis/modes.hpp"
+#include "common/compiler.hpp"
 #include "machdyn/model/machine.hpp"
 
 namespace machdyn {
@@ -110,7 +111,7 @@ SparseWeights ChainSystem::link_load_weights(int l) const {
 }
 
 // Small chains dominate: the vectorizer's prologues cost more than they save at n = 2…20.
-__attribute__((optimize("no-tree-vectorize"))) void ChainSystem::rhs(double t, const double* y, double* dydt) {
+MACHDYN_NO_TREE_VECTORIZE void ChainSystem::rhs(double t, const double* y, double* dydt) {
   if (nonlinear_) return rhs_nonlinear(t, y, dydt);
   if (dense_) {
     dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "common/compiler.hpp"
 #include "machdyn/model/machine.hpp"
 
 namespace machdyn {
@@ -263,7 +264,7 @@ void HybridSystem::inverse_inertias(const double* y, double* im) const {
 
 // Few bodies: the vectorizer's prologues cost more than they save (as in ChainSystem::rhs).
 template <bool kMach>
-__attribute__((optimize("no-tree-vectorize"))) void HybridSystem::forces(double t, const double* y, double* f,
+MACHDYN_NO_TREE_VECTORIZE void HybridSystem::forces(double t, const double* y, double* f,
                                                                          double* fc, double* p_src, double* p_fric,
                           double* p_damp) {
   const double* v = y + n_;
