@@ -20,24 +20,6 @@ void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd
 }
 }  // namespace
 
-const char* to_string(ContactMode m) {
-  switch (m) {
-    case ContactMode::stuck: return "stuck";
-    case ContactMode::slip_pos: return "slip+";
-    case ContactMode::slip_neg: return "slip-";
-  }
-  return "?";
-}
-
-const char* to_string(GapMode m) {
-  switch (m) {
-    case GapMode::open: return "open";
-    case GapMode::closed_pos: return "closed+";
-    case GapMode::closed_neg: return "closed-";
-  }
-  return "?";
-}
-
 HybridSystem::HybridSystem(const Model& model)
     : m_(model), n_(model.dof()), nl_(static_cast<int>(model.links.size())),
       nc_(static_cast<int>(model.contacts.size())) {

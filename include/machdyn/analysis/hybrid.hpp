@@ -39,18 +39,13 @@
 #include <Eigen/Core>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/elements/modes.hpp"
 #include "machdyn/model/model.hpp"
 #include "machdyn/solve/ode_system.hpp"
 
 namespace machdyn {
 
 class Machine;
-
-enum class ContactMode : int { slip_neg = -1, stuck = 0, slip_pos = 1 };
-enum class GapMode : int { closed_neg = -1, open = 0, closed_pos = 1 };
-
-const char* to_string(ContactMode m);
-const char* to_string(GapMode m);
 
 class HybridSystem final : public OdeSystem {
  public:
