@@ -221,7 +221,7 @@ void DriveSystem::inverse_inertias(const double* y, double* im) const {
   }
 }
 
-// Few bodies: the vectorizer's prologues cost more than they save (as in ChainSystem::rhs).
+// Few bodies: the vectorizer's prologues cost more than they save (the chain loops of small models).
 template <bool kMach>
 MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, double* f, double* fc, double* p_src,
                                                     double* p_fric, double* p_damp) {
