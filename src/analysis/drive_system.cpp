@@ -497,7 +497,7 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     const ContactMode md = mode_[static_cast<size_t>(k)];
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck ? 0.0 : c.sliding_velocity(t, y + n_),
-             g + 2 * nl_ + 2 * k);
+             y[c.a], g + 2 * nl_ + 2 * k);
   }
 }
 

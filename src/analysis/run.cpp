@@ -299,7 +299,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   void record(double t, const char* kind, int element, const char* from, const char* to) {
     out_.hybrid.events.push_back({t, kind, element_name(element), from, to});
-    if (std::string_view(kind) == "initial") return;
+    // Impacts are not mode switches: a bouncing body's impacts are bounded by the rest rule of
+    // impact(), not by the chatter guard.
+    if (std::string_view(kind) == "initial" || std::string_view(kind) == "impact") return;
     if (static_cast<long>(out_.hybrid.events.size()) > opt_.max_events)
       throw SolverError(element_name(element), t,
                         fmt::format("more than {} mode events; raise max_events or check the model", opt_.max_events));
@@ -378,6 +380,25 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.project_velocities(t, y_.data());
   }
 
+  /// The impact of end stop k's body at t: on the stop exactly, v⁺ = −e v⁻. It comes to rest (true:
+  /// the stop is then decided like a contact at zero speed) when e = 0 or when the rebound would
+  /// return within the event time resolution (flight 2|v⁺|/|a| ≤ 1e-12·max(1, t) under an
+  /// acceleration a back towards the stop). The kinetic energy lost goes to the impact books.
+  bool impact(int k, double t) {
+    const ContactLaw& c = sys_.contact(k);
+    const auto ia = static_cast<size_t>(c.a);
+    const double T0 = sys_.kinetic_energy(y_.data());
+    y_[ia] = c.stop_position;
+    const double v_in = y_[static_cast<size_t>(n_) + ia], v_out = -c.restitution * v_in;
+    sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
+    const double back = c.lock * acc_[ia];  // > 0: accelerating back towards the stop
+    const bool rest = v_out == 0.0 || (back > 0.0 && 2.0 * std::abs(v_out) <= 1e-12 * std::max(1.0, t) * back);
+    y_[static_cast<size_t>(n_) + ia] = rest ? 0.0 : v_out;
+    out_.hybrid.energy.impact_loss += T0 - sys_.kinetic_energy(y_.data());
+    if (!rest) record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));
+    return rest;
+  }
+
   void initial_modes() {
     for (int l = 0; l < nl_; ++l) {
       if (!m_.links[static_cast<size_t>(l)].has_gap) continue;
@@ -389,7 +410,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::vector<int> Z;
     for (int k = 0; k < nc_; ++k) {
       const double u = sys_.sliding_velocity(k, 0.0, y_.data());
-      if (u == 0.0) Z.push_back(k);
+      const ContactLaw& c = sys_.contact(k);
+      // An end stop off its stop, or leaving it, is free: it "slides" in its free direction −lock.
+      const bool stop_free = c.stop && (c.stop_distance(y_[static_cast<size_t>(c.a)]) > 0.0 || -c.lock * u > 0.0);
+      if (stop_free) modes[static_cast<size_t>(k)] = static_cast<ContactMode>(-c.lock);
+      else if (u == 0.0) Z.push_back(k);
       else modes[static_cast<size_t>(k)] = u > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
     }
     sys_.set_contact_modes(modes);
@@ -411,6 +436,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         sys_.set_gap_mode(e, now);
         gap_changed = true;
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
+      } else if (sys_.contact(e).stop && sys_.contact_mode(e) != ContactMode::stuck) {
+        if (impact(e, t)) Z.push_back(e);  // at rest on the stop: decided with the others
       } else if (sys_.contact_mode(e) != ContactMode::stuck) {
         Z.push_back(e);  // sliding speed reached zero
       } else {

@@ -12,6 +12,9 @@ ContactLaw ContactLaw::of(const FrictionContact& c) {
   k.moving_surface = c.surface_times.size() > 1;
   k.brake = c.brake;
   k.lock = c.lock;
+  k.stop = c.stop;
+  k.stop_position = c.stop_position;
+  k.restitution = c.restitution;
   k.kinetic0 = c.kinetic.empty() ? 0.0 : c.kinetic.front();
   k.surface0 = c.surface_velocities.empty() ? 0.0 : c.surface_velocities.front();
   return k;

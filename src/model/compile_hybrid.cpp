@@ -253,4 +253,53 @@ void compile_freewheels(const SpecNode* freewheels, Model& m, Diagnostics& diag)
   }
 }
 
+void compile_stops(const SpecNode* stops, Model& m, Diagnostics& diag) {
+  if (!stops) return;
+  if (!stops->is_map()) {
+    diag.error(stops->loc, "'stops' must be a map of NAME: {fields}");
+    return;
+  }
+  for (const auto& [name, spec] : stops->fields) {
+    FieldReader f(spec, fmt::format("stop '{}'", name), diag);
+    FrictionContact c;
+    c.name = name;
+    c.stop = true;
+    c.b = kGround;
+    auto body = f.text("body");
+    int i = -2;
+    if (body) {
+      i = m.body_index(*body);
+      if (i < 0) f.error_at("body", fmt::format("unknown body '{}'", *body));
+    }
+    if (i < 0) {
+      for (const auto& [k, v] : spec.fields) f.node(k);
+      continue;
+    }
+    c.a = i;
+    const Body& b = m.bodies[static_cast<size_t>(i)];
+    const Dim qd = b.kind == BodyKind::rotational ? dim::none : dim::length;  // rad or m
+    const bool has_min = spec.find("min") != nullptr, has_max = spec.find("max") != nullptr;
+    if (has_min == has_max) {
+      diag.error(spec.loc, fmt::format("stop '{}': give one of 'min' (a lower stop) or 'max' (an upper stop)", name));
+      for (const auto& [k, v] : spec.fields) f.node(k);
+      continue;
+    }
+    const char* key = has_min ? "min" : "max";
+    c.lock = has_min ? -1 : +1;  // a lower stop pushes up: holds while λ ≤ 0 (model/model.hpp)
+    c.stop_position = f.quantity(key, qd).value_or(0.0);
+    c.restitution = f.quantity("restitution", dim::none, 0.0).value_or(0.0);
+    if (c.restitution < 0.0 || c.restitution > 1.0)
+      f.error_at("restitution", fmt::format("field 'restitution' must lie in [0, 1], got {}", c.restitution));
+    c.static_limit = 1.0;  // unused (a stop has no upper limit)
+    c.kinetic = {0.0};
+    f.finish();
+    const double gap = -c.lock * (b.q0 - c.stop_position);
+    if (gap < 0.0)
+      f.error_at(key, fmt::format("the initial position of '{}' ({}) lies beyond the stop", b.name, b.q0));
+    else if (gap == 0.0 && c.lock * b.v0 > 0.0)
+      f.error_at(key, fmt::format("'{}' starts on the stop moving into it (velocity {})", b.name, b.v0));
+    m.contacts.push_back(c);
+  }
+}
+
 }  // namespace machdyn::detail

@@ -14,5 +14,8 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
 /// Reads the `freewheels:` section (may be null) into m.contacts (FrictionContact::lock ≠ 0).
 /// Checks the initial speeds: a freewheel cannot start turning in its locked direction.
 void compile_freewheels(const SpecNode* freewheels, Model& m, Diagnostics& diag);
+/// Reads the `stops:` section (may be null) into m.contacts (FrictionContact::stop). Checks that
+/// the initial state is on the allowed side and not moving into the stop.
+void compile_stops(const SpecNode* stops, Model& m, Diagnostics& diag);
 
 }  // namespace machdyn::detail

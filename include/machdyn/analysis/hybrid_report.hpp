@@ -37,10 +37,11 @@ struct EnergyBalance {
   double kinetic_start = 0.0, kinetic_end = 0.0;
   double elastic_start = 0.0, elastic_end = 0.0;
   double friction_loss = 0.0, damping_loss = 0.0, release_loss = 0.0;
+  double impact_loss = 0.0;  ///< kinetic energy lost in end-stop impacts, ½ m v⁻² (1 − e²) each, J
   /// W − (ΔT + ΔV + losses).
   [[nodiscard]] double residual() const {
     return source_work - (kinetic_end - kinetic_start + elastic_end - elastic_start + friction_loss + damping_loss +
-                          release_loss);
+                          release_loss + impact_loss);
   }
 };
 

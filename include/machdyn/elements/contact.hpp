@@ -13,7 +13,8 @@
 /// (|λ| ≤ F_s: the event located the crossing on this very function); any other gets a rounding
 /// allowance of 1e-12 F_s0, so a load exactly at the limit holds.
 /// A freewheel (lock = ±1) holds while lock·λ ≥ 0, has no upper limit, and slides only in its free
-/// direction −lock with its drag as kinetic level; its stuck event is lock·λ.
+/// direction −lock with its drag as kinetic level; its stuck event is lock·λ. An end stop is such a
+/// lock to the ground that engages by position: while free its event is the distance to the stop.
 
 #include <cmath>
 
@@ -28,6 +29,8 @@ struct ContactLaw {
   int a = 0, b = kGround;
   bool kinetic_table = false, moving_surface = false, brake = false;
   int lock = 0;  ///< freewheel: +1 or −1, 0 otherwise (model/model.hpp)
+  bool stop = false;  ///< a hard end stop: engages by position (model/model.hpp)
+  double stop_position = 0.0, restitution = 0.0;
   double kinetic0 = 0.0, surface0 = 0.0;  ///< the constant kinetic level and ground velocity
 
   static ContactLaw of(const FrictionContact& c);
@@ -81,9 +84,15 @@ struct ContactLaw {
   /// The weight of this contact in the least-norm share of a redundantly locked load (√F_s0; 1 for
   /// a freewheel, which has no limit to share by).
   [[nodiscard]] double share_weight() const { return lock != 0 ? 1.0 : std::sqrt(spec->static_limit); }
-  /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity.
-  void events(ContactMode md, double t, double lambda, double u, double* ev) const {
-    if (md == ContactMode::stuck && lock != 0) {
+  /// The distance of an end stop's body from the stop, ≥ 0 while off it (q: the body's position).
+  [[nodiscard]] double stop_distance(double q) const { return -lock * (q - stop_position); }
+  /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity, q
+  /// the position of body a (read by end stops only).
+  void events(ContactMode md, double t, double lambda, double u, double q, double* ev) const {
+    if (stop && md != ContactMode::stuck) {
+      ev[0] = stop_distance(q);  // reaches the stop
+      ev[1] = 1.0;
+    } else if (md == ContactMode::stuck && lock != 0) {
       ev[0] = lock * lambda;  // the load turns against the lock: it overruns
       ev[1] = 1.0;
     } else if (md == ContactMode::stuck) {

@@ -78,10 +78,19 @@ struct Link {
 ///   sliding:          only in the free direction, sign(u) = −lock, F = −lock F_k0(|u|) (drag)
 /// lock = +1: A drives B forward and B may overrun (u < 0); written [ground, A] it is a backstop
 /// that lets A move forward only (stored as a = A, b = ground, lock = −1).
+/// A hard end stop (`stop` = true) is a lock to the ground that engages by position: free while the
+/// body is off the stop (no force; its event is the distance −lock·(q − q_stop) reaching 0), at the
+/// stop it holds like a backstop (lock·λ ≥ 0). The impact is an event with the velocity jump
+/// v⁺ = −e v⁻ (e: restitution in [0, 1]); a rebound too slow to leave the stop within the event time
+/// resolution, and every impact with e = 0, ends at rest on the stop. A lower stop (q ≥ q_stop) has
+/// lock = −1, an upper one lock = +1.
 struct FrictionContact {
   std::string name;
   bool brake = false;
   int lock = 0;                      ///< freewheel: +1 or −1 (see above); 0: a friction contact or brake
+  bool stop = false;                 ///< a hard end stop (then lock ≠ 0, b = ground)
+  double stop_position = 0.0;        ///< q_stop, rad or m
+  double restitution = 0.0;          ///< e in [0, 1]
   int a = 0;                         ///< body index
   int b = kGround;                   ///< body index or kGround
   double static_limit = 0.0;         ///< F_s0, N or N·m, > 0
