@@ -1,5 +1,7 @@
 #include "machdyn/elements/link.hpp"
 
+#include <cmath>
+
 namespace machdyn {
 
 LinkLaw LinkLaw::of(const Model& m, const Link& l) {
@@ -8,7 +10,8 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   k.inv_ratio = 1.0 / l.ratio;
   k.c = l.c, k.d = l.d;
   k.gap = l.has_gap;
-  k.lo = -l.gap_start, k.hi = l.gap - l.gap_start;
+  k.lo = l.tension_only ? -HUGE_VAL : -l.gap_start;
+  k.hi = l.gap - l.gap_start;
   if (l.a_point && l.a >= 0) k.pa = m.bodies[static_cast<size_t>(l.a)].machine.get();
   if (l.b_point && l.b >= 0) k.pb = m.bodies[static_cast<size_t>(l.b)].machine.get();
   k.point = k.pa || k.pb;

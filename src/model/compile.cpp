@@ -26,7 +26,7 @@ std::string_view section_of_type(std::string_view type) {
       {"rotational", "bodies"}, {"translational", "bodies"}, {"spring", "links"},      {"damper", "links"},
       {"spring-damper", "links"}, {"constant", "loads"},     {"step", "loads"},        {"ramp", "loads"},
       {"table", "loads"},       {"motor-linear", "loads"},   {"motor-kloss", "loads"}, {"brake", "brakes"},
-      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"},
+      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
@@ -104,7 +104,7 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     FieldReader f(spec, fmt::format("link '{}'", name), diag);
     Link l;
     l.name = name;
-    auto type = f.word("type", {"spring", "damper", "spring-damper"});
+    auto type = f.word("type", {"spring", "damper", "spring-damper", "rope"});
     const SpecNode* between = f.node("between");
     bool ends_ok = false;
     if (!between) {
@@ -152,15 +152,29 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
       l.ratio = r.value_or(1.0);
     }
     const Dim qd = position_dim(side), ld = load_dim(side);
-    bool needs_c = type && (*type == "spring" || *type == "spring-damper");
+    const bool rope = type && *type == "rope";
+    bool needs_c = type && (*type == "spring" || *type == "spring-damper" || rope);
     bool needs_d = type && (*type == "damper" || *type == "spring-damper");
     if (type) l.kind = *type == "spring" ? LinkKind::spring : *type == "damper" ? LinkKind::damper : LinkKind::spring_damper;
+    if (rope) {  // tension only: a spring (and damper, if given) on its positive flank at the slack
+      l.d = f.positive("damping", ld / qd * dim::time, 0.0, true).value_or(0.0);
+      l.tension_only = true;
+      l.has_gap = true;
+      l.gap = f.positive("slack", qd, 0.0, true).value_or(0.0);
+      l.gap_start = 0.0;
+    }
     if (needs_c) l.c = f.positive("stiffness", ld / qd).value_or(0.0);
     else if (type && f.node("stiffness"))
       f.error_at("stiffness", fmt::format("a {} has no stiffness; use type spring-damper", *type));
     if (needs_d) l.d = f.positive("damping", ld / qd * dim::time, std::nullopt, true).value_or(0.0);
     else if (type && f.node("damping")) f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
-    detail::compile_link_gap(f, l, qd);
+    if (rope) {
+      for (const char* k : {"gap", "gap_start"})
+        if (f.map().find(k)) f.error_at(k, fmt::format("a rope has no '{}'; its 'slack' is the free play", k));
+      f.node("gap"), f.node("gap_start");
+    } else {
+      detail::compile_link_gap(f, l, qd);
+    }
     f.finish();
     m.links.push_back(l);
   }

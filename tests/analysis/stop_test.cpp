@@ -87,8 +87,8 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
 
 // Claim (EN 13001-2 φ2, the closed form of crane-standards.md): a drive hoisting at constant speed
 // v_h (a body of 1e15 kg moving at v_h: its speed changes by < 1e-11 relative) lifts a load m resting
-// on the ground through a slack rope of stiffness c (slack s0; a spring with a one-sided flank at
-// δ₊ = s0). The rope tightens at t1 = s0/v_h, its force rises as c v_h (t − t1) until it carries the
+// on the ground through a slack rope of stiffness c (`type: rope`, slack s0: tension only, taut from
+// δ = s0). The rope tightens at t1 = s0/v_h, its force rises as c v_h (t − t1) until it carries the
 // weight at t2 = t1 + m g/(c v_h), when the load leaves the ground with zero speed; then
 // F = m g + (c v_h/ω) sin ω (t − t2), ω = √(c/m): F_max = m g + v_h √(c m) at t2 + π/(2ω), i.e.
 // φ2 = F_max/(m g) = 1 + v_h ω/g.
@@ -99,7 +99,7 @@ bodies:
   drive: {type: translational, mass: 1e15 kg, velocity: 0.5 m/s}
   load: {type: translational, mass: 1000 kg}
 links:
-  rope: {type: spring, between: [drive, load], stiffness: 1e6 N/m, gap: 1000 m, gap_start: 999.99 m}
+  rope: {type: rope, between: [drive, load], stiffness: 1e6 N/m, slack: 10 mm}
 stops: {ground: {body: load, min: 0 m}}
 loads: {weight: {type: constant, body: load, value: -9810 N}}
 simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
@@ -114,6 +114,33 @@ simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
   EXPECT_NEAR(r.links[0].max, F_max, 1e-9 * F_max);
   EXPECT_NEAR(r.links[0].t_max, t2 + std::numbers::pi / (2 * w), 1e-6);
   EXPECT_NEAR(r.links[0].max / (mass * g), 1 + vh * w / g, 1e-9);
+}
+
+// Claim: a rope carries no compression: thrown up past its slack length, a load hanging on a rope
+// from a fixed point flies freely (only its weight acts) until the rope is taut again. Load m = 10 kg
+// at the taut position moving up at 3 m/s (rope c = 1e5 N/m, slack 0): it rises for 3/g s and
+// returns to the taut position at t = 2·3/g with −3 m/s, where the rope takes over.
+TEST_P(Stop, RopeCarriesNoCompression) {
+  Model m = model_of(R"(
+bodies: {load: {type: translational, mass: 10 kg, velocity: 3 m/s}}
+links: {rope: {type: rope, between: [ground, load], stiffness: 1e5 N/m}}
+loads: {weight: {type: constant, body: load, value: -98.1 N}}
+simulation: {t_end: 0.7 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+)");
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  std::vector<ModeEvent> ev;
+  for (const auto& e : r.hybrid.events)
+    if (e.element == "rope" && e.kind != "initial") ev.push_back(e);
+  ASSERT_GE(ev.size(), 1u);
+  EXPECT_EQ(ev[0].kind, "gap_closed");
+  EXPECT_NEAR(ev[0].t, 2 * 3.0 / 9.81, 1e-9);
+  // While slack the rope's load is exactly zero; taut it is never negative beyond the event's own
+  // resolution (it goes slack where F crosses 0, located on the dense output: the piece ends at the
+  // right end of the final bracket, a hair past the crossing).
+  const double res = GetParam() == IntegratorChoice::dopri5 ? 1e-12 : 1e-9;
+  EXPECT_GE(r.links[0].min, -res * r.links[0].max);
+  EXPECT_GT(r.links[0].max, 0.0);
 }
 
 // Claim: bad stops are located input errors, all listed: neither min nor max, a restitution outside

@@ -58,6 +58,9 @@ struct Link {
   /// δ₋ = −gap_start, δ₊ = gap − gap_start. gap_start = 0: the link must take up the whole gap in
   /// the positive direction before it pulls. Initial positions with δ(0) > δ₊ give a preload.
   bool has_gap = false;
+  /// A rope (`type: rope`): tension only. Its only flank is δ₊ = gap (the slack); there is no
+  /// negative flank (δ₋ = −∞): slack, it carries nothing, however far it is compressed.
+  bool tension_only = false;
   double gap = 0.0;        ///< total gap Δ, rad or m (in b's coordinate), >= 0
   double gap_start = 0.0;  ///< position inside the gap at δ = 0, from the negative flank, in [0, Δ]
   /// The end is the machine's output point p(q) (e.g. `crank.piston`) instead of q itself:
