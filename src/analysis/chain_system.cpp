@@ -80,7 +80,7 @@ void ChainSystem::initial_state(double* y) const {
 
 void ChainSystem::generalized_loads(double t, const double* y, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = machine_[static_cast<size_t>(i)] ? machine_[static_cast<size_t>(i)]->force(mq(i, y)) : 0.0;
-  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[ld.body], y[n_ + ld.body]);
 }
 
 void ChainSystem::set_evaluation_window(int body, double lo, double hi) {
@@ -116,7 +116,7 @@ MACHDYN_NO_TREE_VECTORIZE void ChainSystem::rhs(double t, const double* y, doubl
   if (dense_) {
     dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());
     for (const Load* ld : varying_)
-      dydt[n_ + ld->body] += ld->evaluate(t, y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
+      dydt[n_ + ld->body] += ld->evaluate(t, y[ld->body], y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
     return;
   }
   // Local, non-aliased pointers: the stores into acc must not force reloads of the model arrays.
@@ -130,7 +130,7 @@ MACHDYN_NO_TREE_VECTORIZE void ChainSystem::rhs(double t, const double* y, doubl
     dydt[i] = v[i];
     acc[i] = fc[i];
   }
-  for (const Load* ld : varying_) acc[ld->body] += ld->evaluate(t, v[ld->body]);
+  for (const Load* ld : varying_) acc[ld->body] += ld->evaluate(t, q[ld->body], v[ld->body]);
   const FlatLink* __restrict L = between_.data();
   for (size_t j = 0, nl = between_.size(); j < nl; ++j) {
     const FlatLink& k = L[j];
@@ -153,7 +153,7 @@ void ChainSystem::rhs_nonlinear(double t, const double* y, double* dydt) {
     dydt[i] = v[i];
     acc[i] = 0.0;
   }
-  for (const auto& ld : m_.loads) acc[ld.body] += ld.evaluate(t, v[ld.body]);
+  for (const auto& ld : m_.loads) acc[ld.body] += ld.evaluate(t, y[ld.body], v[ld.body]);
   for (const auto& k : links_) {
     const LinkState s = link_state(k, y);
     const double F = k.c * s.delta + k.d * s.rate;
@@ -195,7 +195,10 @@ void ChainSystem::jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd
   J.setZero();
   for (int i = 0; i < n_; ++i) J(i, n_ + i) = 1.0;
   // ∂(M⁻¹ f)/∂v from the motors.
-  for (const auto& ld : m_.loads) J(n_ + ld.body, n_ + ld.body) += ld.slope(t, y[n_ + ld.body]);
+  for (const auto& ld : m_.loads) {
+    J(n_ + ld.body, n_ + ld.body) += ld.slope(t, y[ld.body], y[n_ + ld.body]);
+    J(n_ + ld.body, ld.body) += ld.position_slope(t, y[ld.body], y[n_ + ld.body]);
+  }
   // −Bᵀ C B and −Bᵀ D B, link by link: row l of B has inv_ratio at a and −1 at b.
   for (const auto& k : links_) {
     const int idx[2] = {k.a, k.b};
@@ -221,8 +224,10 @@ void ChainSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   // a missing diagonal makes it rebuild the whole matrix at every setup.
   for (int i = 0; i < 2 * n_; ++i) trip.emplace_back(i, i, 0.0);
   auto im = [&](int i) { return inv_mass_[static_cast<size_t>(i)]; };
-  for (const auto& ld : m_.loads)
-    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[n_ + ld.body]) * im(ld.body));
+  for (const auto& ld : m_.loads) {
+    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
+    trip.emplace_back(n_ + ld.body, ld.body, ld.position_slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
+  }
   for (const auto& k : links_) {
     const int idx[2] = {k.a, k.b};
     const double w[2] = {k.inv_ratio, -1.0};
@@ -238,6 +243,12 @@ void ChainSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   J.resize(2 * n_, 2 * n_);
   J.setFromTriplets(trip.begin(), trip.end());
   J.makeCompressed();
+}
+
+std::vector<double> ChainSystem::breakpoints(double t0, double t_end) const {
+  std::vector<double> b = m_.breakpoints(t_end);
+  std::erase_if(b, [&](double t) { return t <= t0; });
+  return b;
 }
 
 std::string ChainSystem::state_name(int i) const {

@@ -18,24 +18,6 @@
 namespace machdyn {
 namespace {
 
-/// Times in (0, t_end) where a load, a brake or a surface-velocity table has a kink or a jump.
-std::vector<double> model_breakpoints(const Model& m) {
-  std::vector<double> t;
-  for (const auto& ld : m.loads) {
-    if (ld.kind == LoadKind::step) t.push_back(ld.t0);
-    if (ld.kind == LoadKind::ramp) t.push_back(ld.t0), t.push_back(ld.t1);
-    if (ld.kind == LoadKind::table) t.insert(t.end(), ld.times.begin(), ld.times.end());
-  }
-  for (const auto& c : m.contacts) {
-    if (c.brake) t.push_back(c.t_apply), t.push_back(c.t_apply + c.t_ramp);
-    t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
-  }
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  std::erase_if(t, [&](double x) { return !(x > 0.0 && x < m.simulation.t_end); });
-  return t;
-}
-
 class HybridRun final : public EventSystem, public StepObserver {
  public:
   HybridRun(const Model& m, const HybridOptions& opt, SimulationResult& out)
@@ -56,7 +38,7 @@ class HybridRun final : public EventSystem, public StepObserver {
     const auto start = std::chrono::steady_clock::now();
     const auto& s = m_.simulation;
     out_.hybrid.active = true;
-    out_.hybrid.breakpoints = model_breakpoints(m_);
+    out_.hybrid.breakpoints = m_.breakpoints(s.t_end);
     const Method method = choose_method(m_, &out_.method_reason);
     sys_.initial_state(y_.data());
     initial_modes();

@@ -274,7 +274,7 @@ MACHDYN_NO_TREE_VECTORIZE void HybridSystem::forces(double t, const double* y, d
     src += f[i] * v[i];
   }
   for (const Load* ld : varying_) {
-    const double val = ld->evaluate(t, v[ld->body]);
+    const double val = ld->evaluate(t, y[ld->body], v[ld->body]);
     f[ld->body] += val;
     src += val * v[ld->body];
   }
@@ -465,7 +465,7 @@ void HybridSystem::external_forces(double t, const double* y, double* f) {
   std::vector<double> acc(static_cast<size_t>(n_)), fc(static_cast<size_t>(nc_));
   evaluate(t, y, acc.data(), fc.data());
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
-  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[ld.body], y[n_ + ld.body]);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(y[i]);
   for (int k = 0; k < nc_; ++k) {
     const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];

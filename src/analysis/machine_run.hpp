@@ -39,6 +39,9 @@ class MachineRun final : public EventSystem {
   [[nodiscard]] std::string state_name(int i) const override { return sys_.state_name(i); }
   [[nodiscard]] int event_count() const override { return 2 * static_cast<int>(jumpers_.size()); }
   void event_functions(double t, const double* y, double* g) override;
+  [[nodiscard]] std::vector<double> breakpoints(double t0, double t_end) const override {
+    return sys_.breakpoints(t0, t_end);
+  }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override;
 
   [[nodiscard]] std::vector<MachineRunReport> reports() const;

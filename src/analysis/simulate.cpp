@@ -89,7 +89,7 @@ class Recorder final : public StepObserver {
       auto& vals = (is_max ? loads_at_max_ : loads_at_min_)[static_cast<size_t>(l)];
       for (size_t k = 0; k < varying_.size(); ++k) {
         const Load& ld = m_.loads[varying_[k]];
-        vals[k] = ld.evaluate(t, y[m_.dof() + ld.body]);
+        vals[k] = ld.evaluate(t, y[ld.body], y[m_.dof() + ld.body]);
       }
     };
   }
@@ -152,7 +152,7 @@ class Recorder final : public StepObserver {
     size_t v = 0;
     for (size_t k = 0; k < m_.loads.size(); ++k) {
       const Load& ld = m_.loads[k];
-      f(ld.body) += v < varying_.size() && varying_[v] == k ? vals[v++] : ld.evaluate(0.0, 0.0);
+      f(ld.body) += v < varying_.size() && varying_[v] == k ? vals[v++] : ld.evaluate(0.0, 0.0, 0.0);
     }
     return f;
   }

@@ -35,6 +35,8 @@ class ChainSystem final : public EventSystem {  // no events of its own
   [[nodiscard]] bool has_sparse_jacobian() const override { return !nonlinear_; }
   void sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override;
   [[nodiscard]] std::string state_name(int i) const override;
+  /// The model's breakpoints (Model::breakpoints): steps of loads, pulse edges, table kinks.
+  [[nodiscard]] std::vector<double> breakpoints(double t0, double t_end) const override;
 
   /// y0 from the bodies' initial positions and velocities.
   void initial_state(double* y) const;
