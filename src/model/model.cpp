@@ -8,61 +8,65 @@
 namespace machdyn {
 
 namespace {
-/// The motor characteristics f(v) for the forward direction and df/dv.
+/// The motor characteristic f(v) for the forward direction, and df/dv if kD.
+template <bool kD>
 double motor_torque(const Load& l, double v, double* dfdv) {
   switch (l.kind) {
     case LoadKind::motor_linear:
-      *dfdv = -l.value / l.omega0;
+      if constexpr (kD) *dfdv = -l.value / l.omega0;
       return l.value * (1.0 - v / l.omega0);
     case LoadKind::motor_kloss: {
       // M = 2 M_k s s_k/(s² + s_k²); dM/ds = 2 M_k s_k (s_k² − s²)/(s² + s_k²)², ds/dv = −1/ω0
       const double s = (l.omega0 - v) / l.omega0, den = s * s + l.s_k * l.s_k;
-      *dfdv = -2.0 * l.value * l.s_k * (l.s_k * l.s_k - s * s) / (den * den) / l.omega0;
+      if constexpr (kD) *dfdv = -2.0 * l.value * l.s_k * (l.s_k * l.s_k - s * s) / (den * den) / l.omega0;
       return 2.0 * l.value * s * l.s_k / den;
     }
     default:  // motor_table
-      *dfdv = l.signal.slope(v);
+      if constexpr (kD) *dfdv = l.signal.slope(v);
       return l.signal.value(v);
   }
 }
 
-// One switch for the value and both partial derivatives, so that the law is written once.
+/// The load law, written once: M(t, q, v) and, if kD, ∂M/∂q and ∂M/∂v (the value alone on the hot
+/// path of the right-hand side, the derivatives for the Jacobian).
+template <bool kD>
 double load_law(const Load& l, double t, double q, double v, double* dMdq, double* dMdv) {
-  *dMdq = *dMdv = 0.0;
+  if constexpr (kD) *dMdq = *dMdv = 0.0;
   switch (l.kind) {
     case LoadKind::constant: return l.value;
     case LoadKind::signal: return l.signal.value(t);
     case LoadKind::expression: {
       const double x[3] = {t, q, v};
+      if constexpr (!kD) return l.law->eval_at(x, -1).v;
       *dMdq = l.law->eval_at(x, 1).d;
       const Jet j = l.law->eval_at(x, 2);
       *dMdv = j.d;
       return j.v;
     }
     case LoadKind::speed_table:
-      *dMdv = l.signal.slope(v);
+      if constexpr (kD) *dMdv = l.signal.slope(v);
       return l.signal.value(v);
     case LoadKind::position_table:
-      *dMdq = l.signal.slope(q);
+      if constexpr (kD) *dMdq = l.signal.slope(q);
       return l.signal.value(q);
     case LoadKind::drag:  // M = −k v|v|, dM/dv = −2k|v|
-      *dMdv = -2.0 * l.value * std::abs(v);
+      if constexpr (kD) *dMdv = -2.0 * l.value * std::abs(v);
       return -l.value * v * std::abs(v);
     case LoadKind::eddy_current: {
       // M = −2 M_k x/(1 + x²), x = v/ω_k; dM/dv = −2 M_k (1 − x²)/(1 + x²)² / ω_k
       const double x = v / l.omega0, den = 1.0 + x * x;
-      *dMdv = -2.0 * l.value * (1.0 - x * x) / (den * den) / l.omega0;
+      if constexpr (kD) *dMdv = -2.0 * l.value * (1.0 - x * x) / (den * den) / l.omega0;
       return -2.0 * l.value * x / den;
     }
     case LoadKind::motor_linear:
     case LoadKind::motor_kloss:
     case LoadKind::motor_table: {
-      if (!l.switched) return motor_torque(l, v, dMdv);
+      if (!l.switched) return motor_torque<kD>(l, v, dMdv);
       // M = on d f(d v): dM/dv = on d² f'(d v) = on f'(d v)
       const double on = l.on.value(t), d = l.direction.value(t);
       double df = 0.0;
-      const double f = motor_torque(l, d * v, &df);
-      *dMdv = on * d * d * df;
+      const double f = motor_torque<kD>(l, d * v, &df);
+      if constexpr (kD) *dMdv = on * d * d * df;
       return on * d * f;
     }
   }
@@ -70,20 +74,17 @@ double load_law(const Load& l, double t, double q, double v, double* dMdq, doubl
 }
 }  // namespace
 
-double Load::evaluate(double t, double q, double v) const {
-  double dq, dv;
-  return load_law(*this, t, q, v, &dq, &dv);
-}
+double Load::evaluate(double t, double q, double v) const { return load_law<false>(*this, t, q, v, nullptr, nullptr); }
 
 double Load::slope(double t, double q, double v) const {
   double dq, dv;
-  (void)load_law(*this, t, q, v, &dq, &dv);
+  (void)load_law<true>(*this, t, q, v, &dq, &dv);
   return dv;
 }
 
 double Load::position_slope(double t, double q, double v) const {
   double dq, dv;
-  (void)load_law(*this, t, q, v, &dq, &dv);
+  (void)load_law<true>(*this, t, q, v, &dq, &dv);
   return dq;
 }
 
