@@ -7,7 +7,7 @@
 #include <limits>
 #include <fmt/format.h>
 
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/elements/modes.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/compile.hpp"

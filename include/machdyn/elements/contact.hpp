@@ -1,0 +1,86 @@
+#pragma once
+/// @file
+/// The law of a friction contact or brake (model/model.hpp FrictionContact), stated once and used
+/// by the drive system, the mode decision, the outputs and linear models.
+///
+/// Sliding velocity u = v_a − v_b (v_b = w(t), the prescribed surface velocity, for the ground).
+/// The friction load F acts on b with +F and on a with −F (N or N·m):
+///   stuck   (u ≡ 0):  F = λ from the equations of motion, holds while |λ| ≤ F_s(t)
+///   sliding (u ≠ 0):  F = s r(t) F_k0(|u|), s = ±1 the direction of the mode
+/// F_s(t) = r(t) F_s0 (r: the brake's application ramp, 1 for a contact).
+/// Events (≥ 0 while the mode holds): stuck: F_s − λ and F_s + λ; sliding: s u.
+/// The stick rule's tolerance: a contact whose own limit event just fired is judged strictly
+/// (|λ| ≤ F_s: the event located the crossing on this very function); any other gets a rounding
+/// allowance of 1e-12 F_s0, so a load exactly at the limit holds.
+
+#include <cmath>
+
+#include "machdyn/elements/linear_model.hpp"
+#include "machdyn/elements/modes.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn {
+
+struct ContactLaw {
+  const FrictionContact* spec = nullptr;
+  int a = 0, b = kGround;
+  bool kinetic_table = false, moving_surface = false, brake = false;
+  double kinetic0 = 0.0, surface0 = 0.0;  ///< the constant kinetic level and ground velocity
+
+  static ContactLaw of(const FrictionContact& c);
+
+  /// w(t): the velocity of b's side when b is the ground.
+  [[nodiscard]] double surface_velocity(double t) const {
+    return moving_surface ? spec->surface_velocity(t) : surface0;
+  }
+  [[nodiscard]] double surface_acceleration(double t) const {
+    return moving_surface ? spec->surface_acceleration(t) : 0.0;
+  }
+  /// u = v_a − v_b.
+  [[nodiscard]] double sliding_velocity(double t, const double* v) const {
+    return v[a] - (b >= 0 ? v[b] : surface_velocity(t));
+  }
+  /// The sliding acceleration u̇ from the accelerations.
+  [[nodiscard]] double sliding_acceleration(double t, const double* acc) const {
+    return acc[a] - (b >= 0 ? acc[b] : surface_acceleration(t));
+  }
+  /// r(t): the brake's application ramp (1 for a contact).
+  [[nodiscard]] double scale(double t) const { return brake ? spec->scale(t) : 1.0; }
+  /// F_s(t) = r(t) F_s0.
+  [[nodiscard]] double static_limit(double t) const { return scale(t) * spec->static_limit; }
+  /// The kinetic force s r(t) F_k0(|u|) of sliding mode md.
+  [[nodiscard]] double kinetic_force(ContactMode md, double t, double u) const {
+    const double level = kinetic_table ? spec->kinetic_level(std::abs(u)) : kinetic0;
+    return static_cast<double>(static_cast<int>(md)) * scale(t) * level;
+  }
+  /// dF/du of sliding mode md: the slope of the kinetic table at |u| (0 for a constant level).
+  [[nodiscard]] double kinetic_slope(double t, double u) const;
+  /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
+  [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
+    const double Fs = static_limit(t), F = std::abs(lambda);
+    return strict ? F <= Fs : F <= Fs + 1e-12 * spec->static_limit;
+  }
+  /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity.
+  void events(ContactMode md, double t, double lambda, double u, double* ev) const {
+    if (md == ContactMode::stuck) {
+      const double Fs = static_limit(t);
+      ev[0] = Fs - lambda;
+      ev[1] = Fs + lambda;
+    } else {
+      ev[0] = static_cast<double>(static_cast<int>(md)) * u;
+      ev[1] = 1.0;
+    }
+  }
+  /// A brake before its application time is released: it acts with no force and has no phases.
+  [[nodiscard]] bool released(double t) const { return brake && t < spec->t_apply; }
+  /// Adds the generalized forces of load F to f: −F on a, +F on b.
+  void apply(double F, double* f) const {
+    f[a] -= F;
+    if (b >= 0) f[b] += F;
+  }
+  /// Linear terms in mode md at sliding velocity u: a stuck contact is a constraint row of G
+  /// (u = 0), a sliding one adds its kinetic slope to D; `engaged` false adds nothing.
+  void add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const;
+};
+
+}  // namespace machdyn

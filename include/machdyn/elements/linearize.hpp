@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// The linear model of a drive in one topology, element by element (elements/linear_model.hpp):
+/// bodies add M = diag(I(q)), links their K and D (elements/link.hpp), contacts their constraint
+/// rows or kinetic slopes (elements/contact.hpp).
+
+#include "machdyn/elements/linear_model.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn {
+
+/// The linearization of `m` in topology `topo` at time t and state y = [q; v] (2n values; null: the
+/// initial positions and velocities). Throws std::invalid_argument when topo's sizes do not match
+/// the model (gaps: one per link, contacts and engaged: one per contact or empty).
+LinearModel linearize(const Model& m, const Topology& topo, double t = 0.0, const double* y = nullptr);
+
+/// The topology the initial state implies: gaps closed where they press (LinkLaw::natural_mode),
+/// contacts stuck where the sliding velocity is zero, else sliding; brakes engaged when applied at t.
+Topology initial_topology(const Model& m, double t = 0.0);
+
+}  // namespace machdyn

@@ -1,0 +1,44 @@
+#include "machdyn/elements/contact.hpp"
+
+#include <algorithm>
+
+namespace machdyn {
+
+ContactLaw ContactLaw::of(const FrictionContact& c) {
+  ContactLaw k;
+  k.spec = &c;
+  k.a = c.a, k.b = c.b;
+  k.kinetic_table = c.kinetic.size() > 1;
+  k.moving_surface = c.surface_times.size() > 1;
+  k.brake = c.brake;
+  k.kinetic0 = c.kinetic.empty() ? 0.0 : c.kinetic.front();
+  k.surface0 = c.surface_velocities.empty() ? 0.0 : c.surface_velocities.front();
+  return k;
+}
+
+double ContactLaw::kinetic_slope(double t, double u) const {
+  if (!kinetic_table) return 0.0;
+  const auto& x = spec->speeds;
+  const auto& y = spec->kinetic;
+  const double s = std::abs(u);
+  if (x.size() < 2 || s < x.front() || s >= x.back()) return 0.0;  // held constant outside
+  const auto k = static_cast<size_t>(std::upper_bound(x.begin(), x.end(), s) - x.begin());
+  // F = ±r F_k0(|u|): dF/du = r F_k0′(|u|) in either direction.
+  return scale(t) * (y[k] - y[k - 1]) / (x[k] - x[k - 1]);
+}
+
+void ContactLaw::add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const {
+  if (!engaged) return;
+  if (md == ContactMode::stuck) {
+    std::vector<std::pair<int, double>> row{{a, 1.0}};
+    if (b >= 0) row.emplace_back(b, -1.0);
+    lin.G.push_back(std::move(row));
+    lin.constraint_names.push_back(spec->name);
+    return;
+  }
+  const int idx[2] = {a, b};
+  const double j[2] = {1.0, -1.0};
+  LinearModel::add_outer(lin.D, idx, j, b >= 0 ? 2 : 1, kinetic_slope(t, u));
+}
+
+}  // namespace machdyn

@@ -1,0 +1,83 @@
+#include "machdyn/elements/linear_model.hpp"
+
+#include <stdexcept>
+
+#include "machdyn/elements/contact.hpp"
+#include "machdyn/elements/link.hpp"
+#include "machdyn/elements/linearize.hpp"
+
+namespace machdyn {
+
+void LinearModel::add_outer(std::vector<Eigen::Triplet<double>>& to, const int* idx, const double* j, int count,
+                            double w) {
+  if (w == 0.0) return;
+  for (int r = 0; r < count; ++r)
+    for (int s = 0; s < count; ++s) to.emplace_back(idx[r], idx[s], w * j[r] * j[s]);
+}
+
+namespace {
+Eigen::SparseMatrix<double> assemble(int rows, int cols, const std::vector<Eigen::Triplet<double>>& t) {
+  Eigen::SparseMatrix<double> A(rows, cols);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+}  // namespace
+
+Eigen::SparseMatrix<double> LinearModel::stiffness() const { return assemble(n, n, K); }
+Eigen::SparseMatrix<double> LinearModel::damping() const { return assemble(n, n, D); }
+Eigen::SparseMatrix<double> LinearModel::constraints() const {
+  std::vector<Eigen::Triplet<double>> t;
+  for (size_t r = 0; r < G.size(); ++r)
+    for (const auto& [col, w] : G[r]) t.emplace_back(static_cast<int>(r), col, w);
+  return assemble(static_cast<int>(G.size()), n, t);
+}
+
+LinearModel linearize(const Model& m, const Topology& topo, double t, const double* y) {
+  const int n = m.dof();
+  if (topo.gaps.size() != m.links.size() || topo.contacts.size() != m.contacts.size() ||
+      (!topo.engaged.empty() && topo.engaged.size() != m.contacts.size()))
+    throw std::invalid_argument("linearize: the topology does not match the model's links and contacts");
+  std::vector<double> state(static_cast<size_t>(2 * n));
+  for (int i = 0; i < n; ++i) {
+    state[static_cast<size_t>(i)] = y ? y[i] : m.bodies[static_cast<size_t>(i)].q0;
+    state[static_cast<size_t>(n + i)] = y ? y[n + i] : m.bodies[static_cast<size_t>(i)].v0;
+  }
+  const double* q = state.data();
+  const double* v = q + n;
+  LinearModel lin(n);
+  for (int i = 0; i < n; ++i) {
+    const Body& b = m.bodies[static_cast<size_t>(i)];
+    double I = b.inertia, dI;
+    if (b.machine) b.machine->inertia(q[i], &I, &dI);
+    lin.M(i) = I;
+  }
+  for (size_t l = 0; l < m.links.size(); ++l) LinkLaw::of(m, m.links[l]).add_linear(q, topo.gaps[l], lin);
+  for (size_t k = 0; k < m.contacts.size(); ++k) {
+    const ContactLaw c = ContactLaw::of(m.contacts[k]);
+    const bool engaged = topo.engaged.empty() || topo.engaged[k];
+    c.add_linear(topo.contacts[k], engaged, t, c.sliding_velocity(t, v), lin);
+  }
+  return lin;
+}
+
+Topology initial_topology(const Model& m, double t) {
+  const int n = m.dof();
+  std::vector<double> q(static_cast<size_t>(n)), v(q);
+  for (int i = 0; i < n; ++i) q[static_cast<size_t>(i)] = m.bodies[static_cast<size_t>(i)].q0, v[static_cast<size_t>(i)] = m.bodies[static_cast<size_t>(i)].v0;
+  Topology topo;
+  for (const Link& l : m.links) {
+    const LinkLaw k = LinkLaw::of(m, l);
+    const LinkLaw::Kinematics s = k.kinematics(q.data(), v.data());
+    topo.gaps.push_back(k.natural_mode(s.delta, s.rate));
+  }
+  for (const FrictionContact& fc : m.contacts) {
+    const ContactLaw c = ContactLaw::of(fc);
+    const double u = c.sliding_velocity(t, v.data());
+    topo.contacts.push_back(u == 0.0 ? ContactMode::stuck : u > 0 ? ContactMode::slip_pos : ContactMode::slip_neg);
+    topo.engaged.push_back(!c.released(t) && c.static_limit(t) > 0.0);
+  }
+  return topo;
+}
+
+}  // namespace machdyn

@@ -1,0 +1,62 @@
+#include "machdyn/elements/link.hpp"
+
+namespace machdyn {
+
+LinkLaw LinkLaw::of(const Model& m, const Link& l) {
+  LinkLaw k;
+  k.a = l.a, k.b = l.b;
+  k.inv_ratio = 1.0 / l.ratio;
+  k.c = l.c, k.d = l.d;
+  k.gap = l.has_gap;
+  k.lo = -l.gap_start, k.hi = l.gap - l.gap_start;
+  if (l.a_point && l.a >= 0) k.pa = m.bodies[static_cast<size_t>(l.a)].machine.get();
+  if (l.b_point && l.b >= 0) k.pb = m.bodies[static_cast<size_t>(l.b)].machine.get();
+  k.point = k.pa || k.pb;
+  return k;
+}
+
+double LinkLaw::load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
+  if (!transmits(g)) return 0.0;
+  if (!point) return c * linear(v) + d * linear(acc);
+  // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i).
+  double rate = 0, dd = 0, p, dp, ddp;
+  if (a >= 0) {
+    if (pa) pa->point(q[a], &p, &dp, &ddp);
+    else dp = 1.0, ddp = 0.0;
+    rate += dp * v[a] * inv_ratio;
+    dd += (ddp * v[a] * v[a] + dp * acc[a]) * inv_ratio;
+  }
+  if (b >= 0) {
+    if (pb) pb->point(q[b], &p, &dp, &ddp);
+    else dp = 1.0, ddp = 0.0;
+    rate -= dp * v[b];
+    dd -= ddp * v[b] * v[b] + dp * acc[b];
+  }
+  return c * rate + d * dd;
+}
+
+void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
+  if (!transmits(g)) return;
+  // δ ≈ δ0 + jᵀ Δq: the spring adds c j jᵀ, the damper d j jᵀ. A machine's output point also adds
+  // the geometric stiffness of V = ½ c (δ(q) − flank)²: ∂²V/∂q² ∋ c (δ0 − flank) ∂²δ/∂q².
+  int idx[2];
+  double j[2], curv[2];
+  int cnt = 0;
+  double delta0 = 0.0;
+  auto end = [&](int body, const Machine* p_m, double sign, double scale) {
+    if (body < 0) return;
+    double p = q[body], dp = 1.0, ddp = 0.0;
+    if (p_m) p_m->point(q[body], &p, &dp, &ddp);
+    delta0 += sign * scale * p;
+    idx[cnt] = body, j[cnt] = sign * scale * dp, curv[cnt] = sign * scale * ddp;
+    ++cnt;
+  };
+  end(a, pa, 1.0, inv_ratio);
+  end(b, pb, -1.0, 1.0);
+  LinearModel::add_outer(lin.K, idx, j, cnt, c);
+  LinearModel::add_outer(lin.D, idx, j, cnt, d);
+  for (int k = 0; k < cnt; ++k)
+    if (curv[k] != 0.0) lin.K.emplace_back(idx[k], idx[k], c * (delta0 - flank(g)) * curv[k]);
+}
+
+}  // namespace machdyn
