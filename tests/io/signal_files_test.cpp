@@ -5,6 +5,7 @@
 #include <string>
 #include <gtest/gtest.h>
 
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "support/support.hpp"
 
@@ -89,6 +90,20 @@ TEST(SignalFiles, WrongUnitIsLocatedAtTheHeader) {
   EXPECT_NE(all.find("got 'kN'"), std::string::npos) << all;
   EXPECT_NE(all.find(csv + ":1:5: error: load 'sig': field 'unit' expected a unit of a torque (N*m)"),
             std::string::npos) << all;
+}
+
+// Claim: the shipped example (examples/signals.yaml) reads its measured record relative to itself and
+// runs; every row time inside the run, the contactor's closing (0.05 s) and the sine's start (0.1 s,
+// both also row times) are breakpoints of the run: 299 rows at 0.01 … 2.99 s.
+TEST(SignalFiles, ShippedExampleRunsWithItsRecord) {
+  const Model m = load_model(test::example("signals.yaml"));
+  SimulateOptions o;
+  o.record_series = false;
+  const SimulationResult r = simulate(m, o);
+  ASSERT_EQ(r.hybrid.breakpoints.size(), 299u);
+  EXPECT_DOUBLE_EQ(r.hybrid.breakpoints.front(), 0.01);
+  EXPECT_DOUBLE_EQ(r.hybrid.breakpoints.back(), 2.99);
+  EXPECT_GT(r.links[0].max, 0.0);
 }
 
 }  // namespace
