@@ -242,27 +242,29 @@ std::vector<double> Signal::levels() const {
 
 bool Signal::is_constant() const { return levels().size() == 1; }
 
-std::string Signal::describe(const std::string& u) const {
+std::string Signal::describe(const std::string& unit) const {
+  const std::string u = unit.empty() ? "" : " " + unit;  // "5 N" or "5" for a dimensionless signal
   switch (kind_) {
-    case Kind::constant: return fmt::format("{:g} {}", a_, u);
-    case Kind::step: return fmt::format("step {:g} {} → {:g} {} at t = {:g} s", a_, u, b_, u, t0_);
+    case Kind::constant: return fmt::format("{:g}{}", a_, u);
+    case Kind::step: return fmt::format("step {:g}{} → {:g}{} at t = {:g} s", a_, u, b_, u, t0_);
     case Kind::ramp:
-      return fmt::format("{:g} {} until t0 = {:g} s, linear to {:g} {} at t1 = {:g} s", a_, u, t0_, b_, u, t1_);
+      return fmt::format("{:g}{} until t0 = {:g} s, linear to {:g}{} at t1 = {:g} s", a_, u, t0_, b_, u, t1_);
     case Kind::table: {
-      std::string s = fmt::format("piecewise linear ({}, t [s], [{}]):", extrapolate_ ? "extrapolated" : "held", u);
+      std::string s = fmt::format("piecewise linear ({}, t [s], [{}]):", extrapolate_ ? "extrapolated" : "held",
+                                  unit.empty() ? "1" : unit);
       for (std::size_t k = 0; k < x_.size() && k < 8; ++k) s += fmt::format(" ({:g}, {:g})", x_[k], y_[k]);
       if (x_.size() > 8) s += fmt::format(" … {} points", x_.size());
       return s;
     }
     case Kind::sine:
-      return fmt::format("{:g} + {:g} sin({:g} rad/s (t − {:g} s) + {:g} rad) {}", d_, a_, b_, t0_, c_, u);
+      return fmt::format("{:g} + {:g} sin({:g} rad/s (t − {:g} s) + {:g} rad){}", d_, a_, b_, t0_, c_, u);
     case Kind::pulse:
-      return fmt::format("pulses {:g} → {:g} {}, period {:g} s, width {:g} s, from {:g} s{}", a_, b_, u, c_, d_, t0_,
+      return fmt::format("pulses {:g} → {:g}{}, period {:g} s, width {:g} s, from {:g} s{}", a_, b_, u, c_, d_, t0_,
                          count_ >= 0 ? fmt::format(", {} times", count_) : std::string());
-    case Kind::expression: return fmt::format("f(t) = {} [{}]", f_->text(), u);
+    case Kind::expression: return fmt::format("f(t) = {}{}", f_->text(), unit.empty() ? "" : " [" + unit + "]");
     case Kind::sum: {
       std::string s;
-      for (const Signal& term : terms_) s += fmt::format("{}({})", s.empty() ? "" : " + ", term.describe(u));
+      for (const Signal& term : terms_) s += fmt::format("{}({})", s.empty() ? "" : " + ", term.describe(unit));
       return s;
     }
   }
