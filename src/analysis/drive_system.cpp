@@ -113,15 +113,8 @@ const double* DriveSystem::machine_positions(const double* y) const {
   return qw_.data();
 }
 
-LinkLaw::Kinematics DriveSystem::link_kinematics(int l, const double* y) const {
-  const LinkLaw& k = links_[static_cast<size_t>(l)];
-  if (k.point) [[unlikely]] return k.kinematics(machine_positions(y), y + n_);
-  return {k.linear(y), k.linear(y + n_), k.inv_ratio, 1.0};
-}
-
-double DriveSystem::link_load(int l, const double* y) const {
-  const LinkLaw::Kinematics s = link_kinematics(l, y);
-  return links_[static_cast<size_t>(l)].load(s.delta, s.rate, gap_[static_cast<size_t>(l)]);
+LinkLaw::Kinematics DriveSystem::point_kinematics(int l, const double* y) const {
+  return links_[static_cast<size_t>(l)].kinematics(machine_positions(y), y + n_);
 }
 
 double DriveSystem::link_load_rate(int l, const double* y, const double* dy) const {
@@ -228,7 +221,7 @@ void DriveSystem::inverse_inertias(const double* y, double* im) const {
   }
 }
 
-// Few bodies: the vectorizer's prologues cost more than they save (as in ChainSystem::rhs).
+// Few bodies: the vectorizer's prologues cost more than they save (the chain loops of small models).
 template <bool kMach>
 MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, double* f, double* fc, double* p_src,
                                                     double* p_fric, double* p_damp) {

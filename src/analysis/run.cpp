@@ -188,19 +188,33 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   // ---- quasi-static loads at the extremes ----
   /// What the generalized forces at (t, y) are made of beyond the constant loads: the values of the
-  /// time- or speed-dependent loads, the machines' forces Q(q) and the contact forces (in the
-  /// current modes) — O(loads + machines + contacts), not O(n), per new extreme.
-  void ingredients(double t, const double* y, std::vector<double>& out) {
-    out.clear();
+  /// time- or speed-dependent loads and the machines' forces Q(q) — O(loads + machines), not O(n),
+  /// per new extreme. With contacts also the state and the contact modes, whose contact forces are
+  /// formed once at the end (contact_forces).
+  struct Extreme {
+    std::vector<double> vals;
+    double t = 0.0;
+    std::vector<double> y;
+    std::vector<ContactMode> modes;
+  };
+  void ingredients(double t, const double* y, Extreme& out) {
+    out.vals.clear();
     for (size_t k : varying_) {
       const Load& ld = m_.loads[k];
-      out.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
+      out.vals.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
     }
-    for (int i : machine_bodies_) out.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
-    if (nc_ > 0) {
-      sys_.evaluate(t, y, acc_.data(), fc_.data());
-      out.insert(out.end(), fc_.begin(), fc_.end());
-    }
+    for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
+    if (nc_ == 0) return;
+    out.t = t;
+    out.y.assign(y, y + N_);
+    out.modes = sys_.contact_modes();
+  }
+  /// Appends the contact forces of an extreme (in its modes) to its ingredients.
+  void contact_forces(Extreme& e) {
+    if (nc_ == 0 || e.y.empty()) return;
+    sys_.set_contact_modes(e.modes);
+    sys_.evaluate(e.t, e.y.data(), acc_.data(), fc_.data());
+    e.vals.insert(e.vals.end(), fc_.begin(), fc_.end());
   }
   /// The generalized forces f (n) of a set of ingredients.
   Eigen::VectorXd forces(const std::vector<double>& vals) const {
@@ -228,10 +242,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       return it->second;
     };
     for (int l = 0; l < nl_; ++l) {
+      contact_forces(at_max_[static_cast<size_t>(l)]);
+      contact_forces(at_min_[static_cast<size_t>(l)]);
+    }
+    for (int l = 0; l < nl_; ++l) {
       LinkSummary s;
       s.max = peaks_.max(l), s.min = peaks_.min(l), s.t_max = peaks_.t_max(l), s.t_min = peaks_.t_min(l);
-      s.static_at_max = static_loads(at_max_[static_cast<size_t>(l)])(l);
-      s.static_at_min = static_loads(at_min_[static_cast<size_t>(l)])(l);
+      s.static_at_max = static_loads(at_max_[static_cast<size_t>(l)].vals)(l);
+      s.static_at_min = static_loads(at_min_[static_cast<size_t>(l)].vals)(l);
       set_peak(s);
       out_.links.push_back(s);
     }
@@ -427,7 +445,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   PeakTracker::Candidate on_candidate_;
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
   std::vector<int> machine_bodies_;
-  std::vector<std::vector<double>> at_max_, at_min_;  // force ingredients at each link's extremes
+  std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
   std::vector<double> y_, acc_, fc_;
   std::vector<int> open_phase_;
   int phases_open_ = 0;

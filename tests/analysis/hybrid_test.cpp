@@ -1,4 +1,4 @@
-// The exact hybrid simulation (analysis/hybrid.hpp): every claim against a closed form derived in
+// The exact hybrid simulation (analysis/drive_system.hpp, analysis/run.cpp): every claim against a closed form derived in
 // its comment, a second algorithm or a published number.
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"

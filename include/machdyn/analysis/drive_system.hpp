@@ -85,8 +85,15 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] const ContactLaw& contact(int k) const { return contacts_[static_cast<size_t>(k)]; }
 
   // Quantities in the current modes.
-  [[nodiscard]] LinkLaw::Kinematics link_kinematics(int l, const double* y) const;
-  [[nodiscard]] double link_load(int l, const double* y) const;  ///< F of link l
+  [[nodiscard]] LinkLaw::Kinematics link_kinematics(int l, const double* y) const {
+    const LinkLaw& k = links_[static_cast<size_t>(l)];
+    if (k.point) [[unlikely]] return point_kinematics(l, y);
+    return {k.linear(y), k.linear(y + n_), k.inv_ratio, 1.0};
+  }
+  [[nodiscard]] double link_load(int l, const double* y) const {  ///< F of link l
+    const LinkLaw::Kinematics s = link_kinematics(l, y);
+    return links_[static_cast<size_t>(l)].load(s.delta, s.rate, gap_[static_cast<size_t>(l)]);
+  }
   /// The rate dF/dt of link l from the state y and its derivative dy (0 if open).
   [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const;
   /// Whether link l's load depends on q nonlinearly (a machine's output point).
@@ -139,6 +146,8 @@ class DriveSystem final : public OdeSystem {
                      double* damp);
   template <bool kMach>
   void rhs_general(double t, const double* y, double* dydt);
+  /// Kinematics of a link to a machine's output point (out of line: the plain links stay inline).
+  [[nodiscard]] LinkLaw::Kinematics point_kinematics(int l, const double* y) const;
   /// The positions machines are evaluated at (y itself, or clamped into the evaluation windows).
   [[nodiscard]] const double* machine_positions(const double* y) const;
   /// I_i(q_i)⁻¹ of every body into `im` (constant bodies: 1/I).
