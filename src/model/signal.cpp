@@ -76,7 +76,11 @@ namespace {
 /// The period index k of t for a pulse: start + kP ≤ t < start + (k+1)P, with the edges computed
 /// as breakpoints() computes them (so that at an edge the value is the one after it).
 long pulse_period(double t, double start, double period) {
-  auto k = static_cast<long>(std::floor((t - start) / period));
+  // A period index beyond any count (a 1e-300 s period over seconds) must not overflow the cast.
+  const double f = std::floor((t - start) / period);
+  if (!(f < 1e15)) return 1'000'000'000'000'000L;
+  if (!(f > -1e15)) return -1'000'000'000'000'000L;
+  auto k = static_cast<long>(f);
   if (t >= start + static_cast<double>(k + 1) * period) ++k;
   if (t < start + static_cast<double>(k) * period) --k;
   return k;

@@ -84,6 +84,10 @@ TEST(Signal, PulseEdgesAndCount) {
   for (std::size_t k = 0; k < w.size(); ++k) EXPECT_NEAR(w[k], expect[k], 1e-12);
   EXPECT_GE(q.breakpoint_count(1.0, 1.7), static_cast<double>(w.size()));
   EXPECT_THROW(Signal::pulse(0, 1, 0.3, 0.3, 0, -1), std::invalid_argument);  // width = period
+  // A vanishing period with a count: low long after its few pulses, no overflow of the period index.
+  const Signal tiny = Signal::pulse(0.0, 1.0, 1e-300, 5e-301, 0.0, 5);
+  EXPECT_EQ(tiny.value(1.0), 0.0);
+  EXPECT_EQ(tiny.breakpoints(0.5, 2.0).size(), 0u);
 }
 
 // Claim: an expression signal is f(t); a sum is the sum of its terms, with every term's breakpoints.
