@@ -73,7 +73,7 @@ const char* kind_name(LinkKind k) {
 const char* kind_name(LoadKind k) {
   switch (k) {
     case LoadKind::constant: return "constant";
-    case LoadKind::signal: return "signal";
+    case LoadKind::signal: return "signal";  // loads() names the signal's kind instead
     case LoadKind::expression: return "expression";
     case LoadKind::speed_table: return "table-speed";
     case LoadKind::position_table: return "table-position";
@@ -120,7 +120,8 @@ py::list loads(const Model& m) {
   py::list out;
   for (const auto& l : m.loads) {
     py::dict d;
-    d["name"] = l.name, d["type"] = kind_name(l.kind), d["body"] = body_name(m, l.body), d["value"] = l.value;
+    d["name"] = l.name, d["type"] = l.kind == LoadKind::signal ? Signal::kind_name(l.signal.kind()) : kind_name(l.kind),
+    d["body"] = body_name(m, l.body), d["value"] = l.value;
     out.append(d);
   }
   return out;

@@ -259,7 +259,8 @@ std::vector<Table> model_tables(const Model& m) {
                   "u = v_a − v_b (docs/hybrid.md).";
   Table loads = table("Loads", {"load", "type", "body", "definition"});
   for (const auto& L : m.loads)
-    loads.rows.push_back({L.name, load_kind(L.kind), body_name(m, L.body), load_description(m, L)});
+    loads.rows.push_back({L.name, L.kind == LoadKind::signal ? Signal::kind_name(L.signal.kind()) : load_kind(L.kind),
+                          body_name(m, L.body), load_description(m, L)});
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
   if (!m.contacts.empty()) t.push_back(std::move(contacts));

@@ -88,6 +88,20 @@ long pulse_period(double t, double start, double period) {
 
 }  // namespace
 
+const char* Signal::kind_name(Kind k) {
+  switch (k) {
+    case Kind::constant: return "constant";
+    case Kind::step: return "step";
+    case Kind::ramp: return "ramp";
+    case Kind::table: return "table";
+    case Kind::sine: return "sine";
+    case Kind::pulse: return "pulse";
+    case Kind::expression: return "expression";
+    case Kind::sum: return "sum";
+  }
+  return "?";
+}
+
 double Signal::value(double t) const {
   switch (kind_) {
     case Kind::constant: return a_;

@@ -67,6 +67,8 @@ class Signal {
   [[nodiscard]] std::string describe(const std::string& unit) const;
 
   [[nodiscard]] Kind kind() const { return kind_; }
+  /// The kind as the model file spells it: "constant", "step", ..., "sum".
+  static const char* kind_name(Kind k);
   [[nodiscard]] const std::vector<double>& times() const { return x_; }   ///< table
   [[nodiscard]] const std::vector<double>& values() const { return y_; }  ///< table
   [[nodiscard]] const std::vector<Signal>& terms() const { return terms_; }  ///< sum
