@@ -32,7 +32,8 @@ std::string_view section_of_type(std::string_view type) {
       {"sine", "loads"},        {"pulse", "loads"},          {"expression", "loads"},  {"sum", "loads"},
       {"file", "loads"},        {"drag", "loads"},           {"eddy-current-brake", "loads"},
       {"motor-table", "loads"},
-      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}};
+      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"},
+      {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -391,7 +392,7 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 }  // namespace
 
 const std::vector<std::string>& element_sections() {
-  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes"};
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "freewheels"};
   return kSections;
 }
 
@@ -417,6 +418,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   compile_links(top.node("links"), m, diag);
   compile_loads(top.node("loads"), m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
+  detail::compile_freewheels(top.node("freewheels"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);
