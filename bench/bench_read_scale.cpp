@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     const auto m = compile_model(parse_yaml_string(t, "table.yaml"), "table.yaml");
     std::printf("table: %d points, %.1f MB of text: read+compile %.2f s, peak RSS %.0f MB (%.0f MB before reading; "
                 "%zu values kept)\n", n, static_cast<double>(t.size()) / 1e6, seconds_since(t0), peak_rss_mb(), before,
-                m.loads[0].times.size());
+                m.loads[0].signal.times().size());
     return 0;
   }
   std::printf("%10s %10s %12s %12s %14s\n", "bodies", "text MB", "read s", "compile s", "us per body");

@@ -73,11 +73,15 @@ const char* kind_name(LinkKind k) {
 const char* kind_name(LoadKind k) {
   switch (k) {
     case LoadKind::constant: return "constant";
-    case LoadKind::step: return "step";
-    case LoadKind::ramp: return "ramp";
-    case LoadKind::table: return "table";
+    case LoadKind::signal: return "signal";  // loads() names the signal's kind instead
+    case LoadKind::expression: return "expression";
+    case LoadKind::speed_table: return "table-speed";
+    case LoadKind::position_table: return "table-position";
+    case LoadKind::drag: return "drag";
+    case LoadKind::eddy_current: return "eddy-current-brake";
     case LoadKind::motor_linear: return "motor-linear";
     case LoadKind::motor_kloss: return "motor-kloss";
+    case LoadKind::motor_table: return "motor-table";
   }
   return "?";
 }
@@ -116,7 +120,8 @@ py::list loads(const Model& m) {
   py::list out;
   for (const auto& l : m.loads) {
     py::dict d;
-    d["name"] = l.name, d["type"] = kind_name(l.kind), d["body"] = body_name(m, l.body), d["value"] = l.value;
+    d["name"] = l.name, d["type"] = l.kind == LoadKind::signal ? Signal::kind_name(l.signal.kind()) : kind_name(l.kind),
+    d["body"] = body_name(m, l.body), d["value"] = l.value;
     out.append(d);
   }
   return out;

@@ -232,7 +232,7 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
     src += f[i] * v[i];
   }
   for (const Load* ld : varying_) {
-    const double val = ld->evaluate(t, v[ld->body]);
+    const double val = ld->evaluate(t, y[ld->body], v[ld->body]);
     f[ld->body] += val;
     src += val * v[ld->body];
   }
@@ -371,7 +371,7 @@ void DriveSystem::rhs(double t, const double* y, double* dydt) {
   if (dense_) {
     dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());
     for (const Load* ld : varying_)
-      dydt[n_ + ld->body] += ld->evaluate(t, y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
+      dydt[n_ + ld->body] += ld->evaluate(t, y[ld->body], y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
     return;
   }
   if (!affine_eligible_) {
@@ -435,14 +435,16 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   // terms (elements/link.hpp), divided by the inertias. Duplicates are summed and zeros kept, so the
   // pattern is the same at every call.
   std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<size_t>(3 * n_ + 8 * nl_) + m_.loads.size());
+  trip.reserve(static_cast<size_t>(3 * n_ + 8 * nl_) + 2 * m_.loads.size());
   for (int i = 0; i < n_; ++i) trip.emplace_back(i, n_ + i, 1.0);
   // Every diagonal entry present (zero for positions): CVODE forms I − γJ in place on this pattern;
   // a missing diagonal makes it rebuild the whole matrix at every setup.
   for (int i = 0; i < 2 * n_; ++i) trip.emplace_back(i, i, 0.0);
   auto im = [&](int i) { return inv_mass_[static_cast<size_t>(i)]; };
-  for (const auto& ld : m_.loads)
-    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[n_ + ld.body]) * im(ld.body));
+  for (const auto& ld : m_.loads) {
+    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
+    trip.emplace_back(n_ + ld.body, ld.body, ld.position_slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
+  }
   for (int l = 0; l < nl_; ++l)
     links_[static_cast<size_t>(l)].jacobian(n_, gap_[static_cast<size_t>(l)], [&](int r, int c, double v) {
       trip.emplace_back(n_ + r, c, v * im(r));
@@ -454,7 +456,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
 
 void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
-  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[ld.body], y[n_ + ld.body]);
   const double* q = machine_positions(y);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);
   for (int k = 0; k < nc_; ++k) contacts_[static_cast<size_t>(k)].apply(fc[k], f);

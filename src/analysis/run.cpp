@@ -52,7 +52,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const auto start = std::chrono::steady_clock::now();
     const auto& s = m_.simulation;
     out_.hybrid.active = sys_.energy_books();
-    out_.hybrid.breakpoints = model_breakpoints(m_);
+    out_.hybrid.breakpoints = m_.breakpoints(s.t_end);
     const Method method = choose_method(m_, &out_.method_reason);
     sys_.initial_state(y_.data());
     jumps_.start(0.0, y_.data());
@@ -147,24 +147,6 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
 
  private:
-  /// Times in (0, t_end) where a load, a brake or a surface-velocity table has a kink or a jump.
-  static std::vector<double> model_breakpoints(const Model& m) {
-    std::vector<double> t;
-    for (const auto& ld : m.loads) {
-      if (ld.kind == LoadKind::step) t.push_back(ld.t0);
-      if (ld.kind == LoadKind::ramp) t.push_back(ld.t0), t.push_back(ld.t1);
-      if (ld.kind == LoadKind::table) t.insert(t.end(), ld.times.begin(), ld.times.end());
-    }
-    for (const auto& c : m.contacts) {
-      if (c.brake) t.push_back(c.t_apply), t.push_back(c.t_apply + c.t_ramp);
-      t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
-    }
-    std::sort(t.begin(), t.end());
-    t.erase(std::unique(t.begin(), t.end()), t.end());
-    std::erase_if(t, [&](double x) { return !(x > 0.0 && x < m.simulation.t_end); });
-    return t;
-  }
-
   // ---- output ----
   void setup_columns() {
     auto& names = out_.column_names;
@@ -219,7 +201,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out.vals.clear();
     for (size_t k : varying_) {
       const Load& ld = m_.loads[k];
-      out.vals.push_back(ld.evaluate(t, y[n_ + ld.body]));
+      out.vals.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     if (nc_ == 0) return;
@@ -241,7 +223,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (size_t j = 0; j < m_.loads.size(); ++j) {
       const Load& ld = m_.loads[j];
       const bool varies = k < varying_.size() && varying_[k] == j;
-      f(ld.body) += varies ? (v < vals.size() ? vals[v] : 0.0) : ld.evaluate(0.0, 0.0);
+      f(ld.body) += varies ? (v < vals.size() ? vals[v] : 0.0) : ld.evaluate(0.0, 0.0, 0.0);
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <numbers>
+#include <utility>
 
 namespace machdyn {
 
@@ -44,7 +45,7 @@ ExpressionError::ExpressionError(int column, const std::string& message)
 /// Recursive descent over the grammar in the header; builds the node array of an Expression.
 class ExpressionParser {
  public:
-  ExpressionParser(Expression& e, std::string_view s, const std::string& var) : e_(e), s_(s), var_(var) {}
+  ExpressionParser(Expression& e, std::string_view s, const std::vector<std::string>& vars) : e_(e), s_(s), vars_(vars) {}
 
   int parse() {
     int r = expr();
@@ -150,7 +151,12 @@ class ExpressionParser {
       const std::size_t start = p_;
       while (p_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[p_])) || s_[p_] == '_')) ++p_;
       const std::string name(s_.substr(start, p_ - start));
-      if (name == var_) return add(Op::Var);
+      for (std::size_t k = 0; k < vars_.size(); ++k)
+        if (name == vars_[k]) {
+          const int node = add(Op::Var);
+          e_.nodes_.back().a = static_cast<int>(k);  // the variable's index, not a child node
+          return node;
+        }
       if (name == "pi") return add(Op::Num, -1, -1, std::numbers::pi);
       if (name == "e") return add(Op::Num, -1, -1, std::numbers::e);
       static const std::pair<const char*, Op> funcs[] = {
@@ -167,32 +173,54 @@ class ExpressionParser {
         }
       }
       p_ = start;
-      fail("unknown name '" + name + "'; known: " + var_ +
-           ", pi, e, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, exp, log, sqrt, abs");
+      std::string known;
+      for (const auto& v : vars_) known += v + ", ";
+      fail("unknown name '" + name + "'; known: " + known +
+           "pi, e, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, exp, log, sqrt, abs");
     }
     fail(std::string("unexpected '") + c + "'");
   }
 
   Expression& e_;
   std::string_view s_;
-  const std::string& var_;
+  const std::vector<std::string>& vars_;
   std::size_t p_ = 0;
   int nesting_ = 0;
   std::vector<int> height_;  ///< height of each node's subtree
 };
 
-Expression::Expression(std::string_view text, std::string variable) : text_(text) {
-  ExpressionParser p(*this, text_, variable);
+Expression::Expression(std::string_view text, std::string variable)
+    : Expression(text, std::vector<std::string>{std::move(variable)}) {}
+
+Expression::Expression(std::string_view text, std::vector<std::string> variables)
+    : text_(text), variables_(std::move(variables)) {
+  if (variables_.size() > 8) throw std::invalid_argument("an expression has at most 8 variables");
+  ExpressionParser p(*this, text_, variables_);
   root_ = p.parse();
 }
 
-Jet Expression::eval(const Jet& x) const { return eval_node(root_, x); }
+Jet Expression::eval(const Jet& x) const { return eval_node(root_, &x); }
 
-Jet Expression::eval_node(int i, const Jet& x) const {
+Jet Expression::eval_at(const double* x, int wrt) const {
+  // At most a handful of variables (t, q, v): a small array of jets on the stack.
+  Jet j[8];
+  const std::size_t n = std::min<std::size_t>(variables_.size(), 8);
+  for (std::size_t k = 0; k < n; ++k)
+    j[k] = static_cast<int>(k) == wrt ? Jet::variable(x[k]) : Jet::constant(x[k]);
+  return eval_node(root_, j);
+}
+
+bool Expression::uses(int k) const {
+  for (const Node& n : nodes_)
+    if (n.op == Op::Var && n.a == k) return true;
+  return false;
+}
+
+Jet Expression::eval_node(int i, const Jet* x) const {
   const Node& n = nodes_[static_cast<std::size_t>(i)];
   switch (n.op) {
     case Op::Num: return Jet::constant(n.value);
-    case Op::Var: return x;
+    case Op::Var: return x[n.a];
     case Op::Add: return eval_node(n.a, x) + eval_node(n.b, x);
     case Op::Sub: return eval_node(n.a, x) - eval_node(n.b, x);
     case Op::Mul: return eval_node(n.a, x) * eval_node(n.b, x);

@@ -51,27 +51,33 @@ std::string ratio_unit(const Model& m, const Link& l) {
   return std::string(position_unit(ka)) + "/" + position_unit(kb);
 }
 
+/// A motor's contactor and direction, if switched.
+std::string switching(const Load& L) {
+  if (!L.switched) return "";
+  return fmt::format("; on: {}; direction: {}", L.on.describe(""), L.direction.describe(""));
+}
+
 std::string load_description(const Model& m, const Load& L) {
   const auto kind = m.bodies[static_cast<std::size_t>(L.body)].kind;
   const std::string u = pretty_unit(load_unit(kind)), vu = pretty_unit(velocity_unit(kind));
   const char* sym = kind == BodyKind::translational ? "F" : "M";
   switch (L.kind) {
     case LoadKind::constant: return fmt::format("{} = {} {}", sym, num(L.value), u);
-    case LoadKind::step: return fmt::format("{} {} before t0 = {} s, {} {} after", num(L.before), u, num(L.t0), num(L.value), u);
-    case LoadKind::ramp:
-      return fmt::format("{} {} until t0 = {} s, linear to {} {} at t1 = {} s", num(L.before), u, num(L.t0), num(L.value), u,
-                         num(L.t1));
-    case LoadKind::table: {
-      std::string s = fmt::format("piecewise linear (t [s], {} [{}]):", sym, u);
-      for (std::size_t k = 0; k < L.times.size() && k < 8; ++k) s += fmt::format(" ({}, {})", num(L.times[k]), num(L.values[k]));
-      if (L.times.size() > 8) s += fmt::format(" … {} points", L.times.size());
-      return s;
-    }
+    case LoadKind::signal: return fmt::format("{}(t): {}", sym, L.signal.describe(u));
+    case LoadKind::expression: return fmt::format("{} = {} [{}]", sym, L.law->text(), u);
+    case LoadKind::speed_table: return fmt::format("{}(v) over the speed [{}]: {}", sym, vu, L.signal.describe(u));
+    case LoadKind::position_table: return fmt::format("{}(q) over the position: {}", sym, L.signal.describe(u));
+    case LoadKind::drag: return fmt::format("drag {} = −k v|v|, k = {}", sym, num(L.value));
+    case LoadKind::eddy_current:
+      return fmt::format("eddy-current brake: M_k = {} {} at ω_k = {} {}", num(L.value), u, num(L.omega0), vu);
     case LoadKind::motor_linear:
-      return fmt::format("linear motor: stall {} {}, no-load speed ω0 = {} {}", num(L.value), u, num(L.omega0), vu);
+      return fmt::format("linear motor: stall {} {}, no-load speed ω0 = {} {}{}", num(L.value), u, num(L.omega0), vu,
+                         switching(L));
     case LoadKind::motor_kloss:
-      return fmt::format("Kloss motor: breakdown {} {}, slip s_k = {}, synchronous ω0 = {} {}", num(L.value), u, num(L.s_k),
-                         num(L.omega0), vu);
+      return fmt::format("Kloss motor: breakdown {} {}, slip s_k = {}, synchronous ω0 = {} {}{}", num(L.value), u,
+                         num(L.s_k), num(L.omega0), vu, switching(L));
+    case LoadKind::motor_table:
+      return fmt::format("motor, catalogue curve over the speed [{}]: {}{}", vu, L.signal.describe(u), switching(L));
   }
   return "";
 }
@@ -79,11 +85,15 @@ std::string load_description(const Model& m, const Load& L) {
 const char* load_kind(LoadKind k) {
   switch (k) {
     case LoadKind::constant: return "constant";
-    case LoadKind::step: return "step";
-    case LoadKind::ramp: return "ramp";
-    case LoadKind::table: return "table";
+    case LoadKind::signal: return "signal";
+    case LoadKind::expression: return "expression";
+    case LoadKind::speed_table: return "speed_table";
+    case LoadKind::position_table: return "position_table";
+    case LoadKind::drag: return "drag";
+    case LoadKind::eddy_current: return "eddy_current";
     case LoadKind::motor_linear: return "motor_linear";
     case LoadKind::motor_kloss: return "motor_kloss";
+    case LoadKind::motor_table: return "motor_table";
   }
   return "";
 }
@@ -249,7 +259,8 @@ std::vector<Table> model_tables(const Model& m) {
                   "u = v_a − v_b (docs/hybrid.md).";
   Table loads = table("Loads", {"load", "type", "body", "definition"});
   for (const auto& L : m.loads)
-    loads.rows.push_back({L.name, load_kind(L.kind), body_name(m, L.body), load_description(m, L)});
+    loads.rows.push_back({L.name, L.kind == LoadKind::signal ? Signal::kind_name(L.signal.kind()) : load_kind(L.kind),
+                          body_name(m, L.body), load_description(m, L)});
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
   if (!m.contacts.empty()) t.push_back(std::move(contacts));

@@ -1,5 +1,6 @@
 #include "machdyn/model/compile.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string_view>
@@ -10,7 +11,9 @@
 
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/machine.hpp"
+#include "machdyn/common/expression.hpp"
 #include "compile_hybrid.hpp"
+#include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 
 namespace machdyn {
@@ -26,6 +29,9 @@ std::string_view section_of_type(std::string_view type) {
       {"rotational", "bodies"}, {"translational", "bodies"}, {"spring", "links"},      {"damper", "links"},
       {"spring-damper", "links"}, {"constant", "loads"},     {"step", "loads"},        {"ramp", "loads"},
       {"table", "loads"},       {"motor-linear", "loads"},   {"motor-kloss", "loads"}, {"brake", "brakes"},
+      {"sine", "loads"},        {"pulse", "loads"},          {"expression", "loads"},  {"sum", "loads"},
+      {"file", "loads"},        {"drag", "loads"},           {"eddy-current-brake", "loads"},
+      {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"}};
   for (const auto& [t, sec] : kTypes)
@@ -180,6 +186,69 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
   }
 }
 
+/// Types a load may have besides the signal kinds (model/compile_signal.hpp).
+const std::vector<std::string>& load_types() {
+  static const std::vector<std::string> k = [] {
+    std::vector<std::string> v = detail::signal_types();
+    for (const char* t : {"drag", "eddy-current-brake", "motor-linear", "motor-kloss", "motor-table"}) v.emplace_back(t);
+    return v;
+  }();
+  return k;
+}
+
+/// A switching signal of a motor: `on`/`off` times or an `on` signal of 0 and 1; `direction` +1/−1
+/// (or `reverse: TIME`). Sets ld.on, ld.direction, ld.switched.
+void compile_motor_switching(FieldReader& f, Load& ld) {
+  Diagnostics& diag = f.diagnostics();
+  const SpecNode* on = f.node("on");
+  auto off = f.quantity("off", dim::time, -1.0);
+  std::optional<double> t_on;
+  bool ok = true;
+  if (on && on->is_map()) {  // a 0/1 signal
+    auto s = detail::compile_signal(*on, dim::none, f.what() + ": field 'on'", diag);
+    const auto lv = s ? s->levels() : std::vector<double>{};
+    if (s && (lv.empty() || std::any_of(lv.begin(), lv.end(), [](double x) { return x != 0.0 && x != 1.0; }))) {
+      diag.error(on->loc, fmt::format("{}: field 'on' expected a signal that is 0 (open) or 1 (closed): a step, a "
+                                      "pulse or a table of flat pieces", f.what()));
+      ok = false;
+    } else if (s) {
+      ld.on = *s;
+    }
+    if (off && *off >= 0.0) f.error_at("off", "field 'off' is a time; with an 'on' signal, give the opening in it");
+  } else if (on) {
+    std::string e;
+    t_on = on->is_scalar() ? parse_as(on->scalar, dim::time, &e) : std::nullopt;
+    if (!t_on) diag.error(on->loc, fmt::format("{}: field 'on' expected the time the contactor closes or a signal of 0 "
+                                               "and 1{}", f.what(), e.empty() ? "" : ": " + e)), ok = false;
+  }
+  if (ok && !(on && on->is_map()) && (t_on || (off && *off >= 0.0))) {
+    const double a = t_on.value_or(0.0);
+    if (off && *off >= 0.0 && *off <= a) {
+      f.error_at("off", "field 'off' must be later than 'on'");
+    } else if (off && *off >= 0.0) {
+      ld.on = Signal::table({a, a, *off, *off}, {0.0, 1.0, 1.0, 0.0});
+    } else {
+      ld.on = Signal::step(0.0, 1.0, a);
+    }
+  }
+  const SpecNode* dir = f.node("direction");
+  auto reverse = f.quantity("reverse", dim::time, -1.0);
+  if (dir && reverse && *reverse >= 0.0) f.error_at("reverse", "give either 'direction' or 'reverse', not both");
+  if (dir) {
+    auto s = detail::compile_signal(*dir, dim::none, f.what() + ": field 'direction'", diag);
+    const auto lv = s ? s->levels() : std::vector<double>{};
+    if (s && (lv.empty() || std::any_of(lv.begin(), lv.end(), [](double x) { return x != 1.0 && x != -1.0; })))
+      diag.error(dir->loc, fmt::format("{}: field 'direction' expected +1 (forward) or -1 (reversed), or a signal of "
+                                       "those (a step, a pulse or a table of flat pieces)", f.what()));
+    else if (s)
+      ld.direction = *s;
+  } else if (reverse && *reverse >= 0.0) {
+    ld.direction = Signal::step(1.0, -1.0, *reverse);
+  }
+  ld.switched = !(ld.on.kind() == Signal::Kind::constant && ld.on.value(0.0) == 1.0 &&
+                  ld.direction.kind() == Signal::Kind::constant && ld.direction.value(0.0) == 1.0);
+}
+
 void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
   if (!section) return;
   if (!section->is_map()) {
@@ -191,7 +260,7 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
     FieldReader f(spec, fmt::format("load '{}'", name), diag);
     Load ld;
     ld.name = name;
-    auto type = f.word("type", {"constant", "step", "ramp", "table", "motor-linear", "motor-kloss"});
+    auto type = f.word("type", load_types());
     auto body = f.text("body");
     BodyKind kind = BodyKind::rotational;
     bool body_ok = false;
@@ -204,68 +273,97 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
         body_ok = true;
       }
     }
-    const Dim vd = load_dim(kind);
+    const Dim vd = load_dim(kind), wd = velocity_dim(kind), qd = position_dim(kind);
     if (!type || !body_ok) {  // field dimensions depend on both; avoid a cascade of messages
       for (const auto& [k, v] : spec.fields) f.node(k);
       continue;
     }
     const std::string& t = *type;
-    if (t == "constant") {
-      ld.kind = LoadKind::constant;
-      ld.value = f.quantity("value", vd).value_or(0.0);
-    } else if (t == "step") {
-      ld.kind = LoadKind::step;
-      ld.value = f.quantity("value", vd).value_or(0.0);
-      ld.before = f.quantity("before", vd, 0.0).value_or(0.0);
-      ld.t0 = f.quantity("time", dim::time).value_or(0.0);
-    } else if (t == "ramp") {
-      ld.kind = LoadKind::ramp;
-      ld.value = f.quantity("value", vd).value_or(0.0);
-      ld.before = f.quantity("before", vd, 0.0).value_or(0.0);
-      ld.t0 = f.quantity("start", dim::time, 0.0).value_or(0.0);
-      auto t1 = f.quantity("end", dim::time);
-      ld.t1 = t1.value_or(ld.t0 + 1.0);
-      if (t1 && *t1 <= ld.t0) f.error_at("end", "field 'end' must be later than 'start'");
-    } else if (t == "table") {
-      ld.kind = LoadKind::table;
-      const SpecNode* pts = f.node("points");
-      if (!pts) {
-        diag.error(spec.loc, fmt::format("load '{}': missing field 'points' ([[t, value], ...])", name));
-      } else if (!pts->is_seq() || pts->items.empty()) {
-        diag.error(pts->loc, fmt::format("load '{}': 'points' expected a list of [t, value] pairs", name));
-      } else {
-        for (const auto& p : pts->items) {
-          if (!p.is_seq() || p.items.size() != 2 || !p.items[0].is_scalar() || !p.items[1].is_scalar()) {
-            diag.error(p.loc, fmt::format("load '{}': expected a pair [t, value]", name));
-            continue;
-          }
-          std::string e1, e2;
-          auto tv = parse_as(p.items[0].scalar, dim::time, &e1);
-          auto vv = parse_as(p.items[1].scalar, vd, &e2);
-          if (!tv) diag.error(p.items[0].loc, fmt::format("load '{}': {}", name, e1));
-          if (!vv) diag.error(p.items[1].loc, fmt::format("load '{}': {}", name, e2));
-          if (!tv || !vv) continue;
-          if (!ld.times.empty() && *tv <= ld.times.back())
-            diag.error(p.items[0].loc, fmt::format("load '{}': times must increase", name));
-          ld.times.push_back(*tv);
-          ld.values.push_back(*vv);
+    const bool rot = kind == BodyKind::rotational;
+    if (t == "expression") {  // M(t, q, v): a load law, not only a signal of t
+      ld.kind = LoadKind::expression;
+      auto text = f.text("expression");
+      if (text) {
+        try {
+          ld.law = std::make_shared<const Expression>(
+              *text, std::vector<std::string>{"t", rot ? "phi" : "x", rot ? "omega" : "v"});
+        } catch (const ExpressionError& e) {
+          f.error_at("expression", fmt::format("field 'expression' '{}': {} (an expression in t [s], {} and {} in SI; "
+                                               "the value is {})", text->size() > 60 ? text->substr(0, 57) + "..." : *text,
+                                               e.what(), rot ? "phi [rad]" : "x [m]", rot ? "omega [rad/s]" : "v [m/s]",
+                                               describe(vd)));
         }
-        if (ld.times.empty()) ld.times = {0.0}, ld.values = {0.0};
       }
+      if (!ld.law) ld.law = std::make_shared<const Expression>("0", "t");
+    } else if (t == "table" && f.map().find("over") && f.map().find("over")->is_scalar() &&
+               f.map().find("over")->scalar != "time") {
+      auto over = f.word("over", {"time", "speed", "position"});
+      if (over) {
+        const bool speed = *over == "speed";
+        ld.kind = speed ? LoadKind::speed_table : LoadKind::position_table;
+        // Over the state a jump would need an event of its own: the table must be continuous.
+        auto tab = detail::read_table(f, speed ? wd : qd, vd, false, false);
+        if (tab) ld.signal = *tab;
+      }
+    } else if (detail::is_signal_type(t)) {
+      if (t == "table") f.word("over", {"time", "speed", "position"}, "time");
+      auto s = detail::read_signal_fields(f, t, vd);
+      if (s && s->kind() == Signal::Kind::constant) {
+        ld.kind = LoadKind::constant;
+        ld.value = s->value(0.0);
+      } else if (s) {
+        ld.kind = LoadKind::signal;
+      }
+      if (s) ld.signal = *s;
+    } else if (t == "drag") {
+      ld.kind = LoadKind::drag;
+      // k directly, or from one point of the curve: the load M_n at the speed ω_n, k = M_n/ω_n².
+      if (f.map().find("coefficient")) {
+        ld.value = f.positive("coefficient", vd / (wd * wd)).value_or(0.0);
+      } else {
+        auto Mn = f.positive("load", vd);
+        auto wn = f.positive("speed", wd);
+        if (Mn && wn) ld.value = *Mn / (*wn * *wn);
+      }
+    } else if (t == "eddy-current-brake") {
+      ld.kind = LoadKind::eddy_current;
+      ld.value = f.positive("breakdown_torque", vd).value_or(0.0);
+      ld.omega0 = f.positive("breakdown_speed", wd).value_or(1.0);
     } else if (t == "motor-linear") {
       ld.kind = LoadKind::motor_linear;
       ld.value = f.quantity("stall_torque", vd).value_or(0.0);
-      ld.omega0 = f.positive("no_load_speed", velocity_dim(kind)).value_or(1.0);
+      ld.omega0 = f.positive("no_load_speed", wd).value_or(1.0);
+      compile_motor_switching(f, ld);
     } else if (t == "motor-kloss") {
       ld.kind = LoadKind::motor_kloss;
       ld.value = f.positive("breakdown_torque", vd).value_or(0.0);
       auto sk = f.positive("breakdown_slip", dim::none);
       if (sk && *sk >= 1.0) f.error_at("breakdown_slip", "field 'breakdown_slip' must be below 1");
       ld.s_k = sk.value_or(0.2);
-      ld.omega0 = f.positive("synchronous_speed", velocity_dim(kind)).value_or(1.0);
+      ld.omega0 = f.positive("synchronous_speed", wd).value_or(1.0);
+      compile_motor_switching(f, ld);
+    } else if (t == "motor-table") {
+      ld.kind = LoadKind::motor_table;
+      auto tab = detail::read_table(f, wd, vd, false, false);
+      if (tab) ld.signal = *tab;
+      compile_motor_switching(f, ld);
     }
     f.finish();
     m.loads.push_back(ld);
+  }
+}
+
+/// The breakpoints of every load within t_end are listed before the run: bound them (a pulse of
+/// 1 µs period over an hour would be 7·10^9 stops).
+void check_breakpoints(const Model& m, Diagnostics& diag) {
+  constexpr double kMaxBreakpoints = 1e7;
+  for (const auto& ld : m.loads) {
+    double n = ld.kind == LoadKind::signal ? ld.signal.breakpoint_count(0.0, m.simulation.t_end) : 0.0;
+    if (ld.switched)
+      n += ld.on.breakpoint_count(0.0, m.simulation.t_end) + ld.direction.breakpoint_count(0.0, m.simulation.t_end);
+    if (n > kMaxBreakpoints)
+      diag.error(m.where(ld.name), fmt::format("load '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
+                                               "lengthen the period or give a count", ld.name, n, kMaxBreakpoints));
   }
 }
 
@@ -338,6 +436,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_stops(top.node("stops"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
+  check_breakpoints(m, diag);
   top.finish();
   // A velocity jump of a stepwise gear drive does not re-decide stuck contacts or re-check gaps yet
   // (the jump maps one body's speed only), and the energy books do not count its loss: say so

@@ -1,49 +1,104 @@
 #include "machdyn/model/model.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "machdyn/common/expression.hpp"
 
 namespace machdyn {
 
-double Load::evaluate(double t, double v) const {
-  switch (kind) {
-    case LoadKind::constant:
-      return value;
-    case LoadKind::step:
-      return t < t0 ? before : value;
-    case LoadKind::ramp:
-      if (t <= t0) return before;
-      if (t >= t1) return value;
-      return before + (value - before) * (t - t0) / (t1 - t0);
-    case LoadKind::table: {
-      if (t <= times.front()) return values.front();
-      if (t >= times.back()) return values.back();
-      auto it = std::upper_bound(times.begin(), times.end(), t);
-      size_t k = static_cast<size_t>(it - times.begin());
-      double w = (t - times[k - 1]) / (times[k] - times[k - 1]);
-      return values[k - 1] + w * (values[k] - values[k - 1]);
+namespace {
+/// The motor characteristic f(v) for the forward direction, and df/dv if kD.
+template <bool kD>
+double motor_torque(const Load& l, double v, double* dfdv) {
+  switch (l.kind) {
+    case LoadKind::motor_linear:
+      if constexpr (kD) *dfdv = -l.value / l.omega0;
+      return l.value * (1.0 - v / l.omega0);
+    case LoadKind::motor_kloss: {
+      // M = 2 M_k s s_k/(s² + s_k²); dM/ds = 2 M_k s_k (s_k² − s²)/(s² + s_k²)², ds/dv = −1/ω0
+      const double s = (l.omega0 - v) / l.omega0, den = s * s + l.s_k * l.s_k;
+      if constexpr (kD) *dfdv = -2.0 * l.value * l.s_k * (l.s_k * l.s_k - s * s) / (den * den) / l.omega0;
+      return 2.0 * l.value * s * l.s_k / den;
+    }
+    default:  // motor_table
+      if constexpr (kD) *dfdv = l.signal.slope(v);
+      return l.signal.value(v);
+  }
+}
+
+/// The load law, written once: M(t, q, v) and, if kD, ∂M/∂q and ∂M/∂v (the value alone on the hot
+/// path of the right-hand side, the derivatives for the Jacobian).
+template <bool kD>
+double load_law(const Load& l, double t, double q, double v, double* dMdq, double* dMdv) {
+  if constexpr (kD) *dMdq = *dMdv = 0.0;
+  switch (l.kind) {
+    case LoadKind::constant: return l.value;
+    case LoadKind::signal: return l.signal.value(t);
+    case LoadKind::expression: {
+      const double x[3] = {t, q, v};
+      if constexpr (!kD) return l.law->eval_at(x, -1).v;
+      *dMdq = l.law->eval_at(x, 1).d;
+      const Jet j = l.law->eval_at(x, 2);
+      *dMdv = j.d;
+      return j.v;
+    }
+    case LoadKind::speed_table:
+      if constexpr (kD) *dMdv = l.signal.slope(v);
+      return l.signal.value(v);
+    case LoadKind::position_table:
+      if constexpr (kD) *dMdq = l.signal.slope(q);
+      return l.signal.value(q);
+    case LoadKind::drag:  // M = −k v|v|, dM/dv = −2k|v|
+      if constexpr (kD) *dMdv = -2.0 * l.value * std::abs(v);
+      return -l.value * v * std::abs(v);
+    case LoadKind::eddy_current: {
+      // M = −2 M_k x/(1 + x²), x = v/ω_k; dM/dv = −2 M_k (1 − x²)/(1 + x²)² / ω_k
+      const double x = v / l.omega0, den = 1.0 + x * x;
+      if constexpr (kD) *dMdv = -2.0 * l.value * (1.0 - x * x) / (den * den) / l.omega0;
+      return -2.0 * l.value * x / den;
     }
     case LoadKind::motor_linear:
-      return value * (1.0 - v / omega0);
-    case LoadKind::motor_kloss: {
-      double s = (omega0 - v) / omega0;
-      return 2.0 * value * s * s_k / (s * s + s_k * s_k);
+    case LoadKind::motor_kloss:
+    case LoadKind::motor_table: {
+      if (!l.switched) return motor_torque<kD>(l, v, dMdv);
+      // M = on d f(d v): dM/dv = on d² f'(d v) = on f'(d v)
+      const double on = l.on.value(t), d = l.direction.value(t);
+      double df = 0.0;
+      const double f = motor_torque<kD>(l, d * v, &df);
+      if constexpr (kD) *dMdv = on * d * d * df;
+      return on * d * f;
     }
   }
   return 0.0;
 }
+}  // namespace
 
-double Load::slope(double /*t*/, double v) const {
-  switch (kind) {
-    case LoadKind::motor_linear:
-      return -value / omega0;
-    case LoadKind::motor_kloss: {
-      // dM/ds = 2 M_k s_k (s_k² − s²)/(s² + s_k²)², ds/dv = −1/ω0
-      double s = (omega0 - v) / omega0, den = s * s + s_k * s_k;
-      return -2.0 * value * s_k * (s_k * s_k - s * s) / (den * den) / omega0;
+double Load::evaluate(double t, double q, double v) const { return load_law<false>(*this, t, q, v, nullptr, nullptr); }
+
+double Load::slope(double t, double q, double v) const {
+  double dq, dv;
+  (void)load_law<true>(*this, t, q, v, &dq, &dv);
+  return dv;
+}
+
+double Load::position_slope(double t, double q, double v) const {
+  double dq, dv;
+  (void)load_law<true>(*this, t, q, v, &dq, &dv);
+  return dq;
+}
+
+std::vector<double> Load::breakpoints(double t0, double t1) const {
+  std::vector<double> b;
+  if (kind == LoadKind::signal) b = signal.breakpoints(t0, t1);
+  if (switched) {
+    for (const Signal* s : {&on, &direction}) {
+      auto x = s->breakpoints(t0, t1);
+      b.insert(b.end(), x.begin(), x.end());
     }
-    default:
-      return 0.0;
   }
+  // An expression in t has none of its own (model/signal.hpp).
+  return b;
 }
 
 Location Model::where(const std::string& element) const {
@@ -143,6 +198,22 @@ double FrictionContact::surface_acceleration(double t) const {
   auto it = std::upper_bound(x.begin(), x.end(), t);
   size_t k = static_cast<size_t>(it - x.begin());
   return (y[k] - y[k - 1]) / (x[k] - x[k - 1]);
+}
+
+std::vector<double> Model::breakpoints(double t_end) const {
+  std::vector<double> t;
+  for (const auto& ld : loads) {
+    auto b = ld.breakpoints(0.0, t_end);
+    t.insert(t.end(), b.begin(), b.end());
+  }
+  for (const auto& c : contacts) {
+    if (c.brake) t.push_back(c.t_apply), t.push_back(c.t_apply + c.t_ramp);
+    t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  std::erase_if(t, [&](double x) { return !(x > 0.0 && x < t_end); });
+  return t;
 }
 
 bool Model::is_hybrid() const {

@@ -35,7 +35,7 @@ TEST(Compile, ConvertsUnitsAndResolvesNames) {
   EXPECT_DOUBLE_EQ(m.links[0].c, 5000.0);
   EXPECT_EQ(m.links[1].b, kGround);
   EXPECT_DOUBLE_EQ(m.loads[0].omega0, 1500 * 2 * 3.14159265358979323846 / 60);
-  EXPECT_DOUBLE_EQ(m.loads[1].values[1], 2000.0);
+  EXPECT_DOUBLE_EQ(m.loads[1].signal.values()[1], 2000.0);
   EXPECT_DOUBLE_EQ(m.simulation.dt_out, 0.01);
 }
 
@@ -87,7 +87,7 @@ const Broken kCatalogue[] = {
     {"bad integrator", "bodies:\n  A: {inertia: 1}\nsimulation: {integrator: euler}\n",
      {"error: simulation: field 'integrator' is 'euler'; expected one of: auto, dopri5, bdf"}},
     {"table times decrease", "bodies:\n  A: {inertia: 1}\nloads:\n  M: {type: table, body: A, points: [[1, 0], [0, 1]]}\n",
-     {"error: load 'M': times must increase"}},
+     {"error: load 'M': times must not decrease"}},
     {"several problems at once",
      "bodies:\n  A: {inertia: -1}\n  B: {mass: 2}\nlinks:\n  c: {type: spring, between: [A, X], stiffness: 1}\n",
      {"2:16: error: body 'A': field 'inertia' must be positive", "3:6: error: body 'B': missing field 'inertia'",

@@ -58,7 +58,15 @@ class Expression {
   static constexpr int kMaxDepth = 200;
   /// Parses `text` with variable name `variable` (e.g. "phi", "q"). Throws ExpressionError.
   Expression(std::string_view text, std::string variable);
+  /// Parses `text` in several variables (e.g. {"t", "phi", "omega"}); eval_at() takes their values
+  /// in this order. Throws ExpressionError.
+  Expression(std::string_view text, std::vector<std::string> variables);
   [[nodiscard]] Jet eval(const Jet& x) const;
+  /// The value at x[0..n) (n = number of variables) and its derivatives with respect to x[wrt]
+  /// (wrt < 0: none, the jet is constant).
+  [[nodiscard]] Jet eval_at(const double* x, int wrt) const;
+  /// Whether variable k occurs in the text.
+  [[nodiscard]] bool uses(int k) const;
   [[nodiscard]] double operator()(double x) const { return eval(Jet::constant(x)).v; }
   /// The value f(x) and the derivative f'(x).
   void evaluate(double x, double* f, double* df) const {
@@ -72,11 +80,12 @@ class Expression {
   struct Node {
     Op op;
     double value = 0.0;  ///< Op::Num
-    int a = -1, b = -1;  ///< operand node indices
+    int a = -1, b = -1;  ///< operand node indices (Op::Var: a is the variable's index)
   };
   friend class ExpressionParser;
-  [[nodiscard]] Jet eval_node(int i, const Jet& x) const;
+  [[nodiscard]] Jet eval_node(int i, const Jet* x) const;
   std::string text_;
+  std::vector<std::string> variables_;
   std::vector<Node> nodes_;
   int root_ = -1;
 };

@@ -2,7 +2,7 @@
 /// @file
 /// Reading a model file into a compiled Model: YAML → spec tree (io/yaml_reader.hpp), a load case
 /// (model/cases.hpp), `--set` overrides, included gear spec files (`gears: FILE` of a gear-drive
-/// body), then compile (model/compile.hpp). The model layer reads no files; this is where they are read.
+/// body) and measured signals (`type: file`, io/signal_files.hpp), then compile (model/compile.hpp). The model layer reads no files; this is where they are read.
 
 #include <string>
 #include <vector>

@@ -22,9 +22,11 @@
 #include <vector>
 
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/model/signal.hpp"
 
 namespace machdyn {
 
+class Expression;  // common/expression.hpp
 class Machine;  // model/machine.hpp: a body with position-dependent reduced inertia
 
 enum class BodyKind { rotational, translational };
@@ -110,31 +112,52 @@ struct FrictionContact {
   [[nodiscard]] double surface_acceleration(double t) const;  ///< dw/dt (piecewise constant)
 };
 
-enum class LoadKind { constant, step, ramp, table, motor_linear, motor_kloss };
+enum class LoadKind {
+  constant, signal, expression, speed_table, position_table, drag, eddy_current, motor_linear, motor_kloss, motor_table
+};
 
-/// A torque (rotational body) or force (translational body) on one body.
-///   constant:      M = value
-///   step:          M = before for t < t0, value for t >= t0
-///   ramp:          M = before for t <= t0, linear to value at t1, value after
-///   table:         M(t) piecewise linear through (times, values), held constant outside
-///   motor_linear:  M = M_s (1 − ω/ω0)              (M_s stall torque, ω0 no-load speed)
-///   motor_kloss:   M = 2 M_k s s_k / (s² + s_k²),  s = (ω0 − ω)/ω0   (Kloss formula; M_k breakdown
-///                  torque, s_k breakdown slip, ω0 synchronous speed). ω is the body's velocity.
+/// A torque (rotational body) or force (translational body) on one body, the load law
+///   M = M(t, q, v)      (q, v: the body's position and velocity; positive M acts along +q)
+///   constant:        M = value
+///   signal:          M = s(t), any signal (model/signal.hpp): step, ramp, table, sine, pulse,
+///                    expression of t, measured data, sums
+///   expression:      M = f(t, q, v), an expression in t and the body's coordinate and velocity
+///                    (`phi`, `omega` on a rotational body; `x`, `v` on a translational one)
+///   speed_table:     M(v) piecewise linear through (v_k, M_k), held constant outside
+///   position_table:  M(q) piecewise linear through (q_k, M_k), held constant outside
+///   drag:            M = −k v |v|          (fan, air or water drag ∝ v², always against the motion)
+///   eddy_current:    M = −2 M_k (v/ω_k) / (1 + (v/ω_k)²)   (eddy-current brake; M_k its largest
+///                    torque, reached at the speed ω_k; against the motion)
+///   motor_linear:    f(v) = M_s (1 − v/ω0)             (M_s stall torque, ω0 no-load speed)
+///   motor_kloss:     f(v) = 2 M_k s s_k / (s² + s_k²),  s = (ω0 − v)/ω0   (Kloss formula; M_k
+///                    breakdown torque, s_k breakdown slip, ω0 synchronous speed)
+///   motor_table:     f(v) piecewise linear through the catalogue curve (v_k, M_k), held outside
+/// A motor gives M = on(t) · d(t) · f(d(t) · v): `on` is 1 while its contactor is closed and 0 while
+/// it is open, `d` is +1 forward and −1 reversed (the mirror image of the characteristic: the
+/// reversed motor turns the other way with the same torque–speed curve).
 struct Load {
   std::string name;
   LoadKind kind = LoadKind::constant;
   int body = 0;
-  double value = 0.0;     ///< constant, step (after), ramp (end), motor_linear: M_s, motor_kloss: M_k
-  double before = 0.0;    ///< step, ramp: value before t0
-  double t0 = 0.0, t1 = 0.0;
-  double omega0 = 0.0;    ///< motors: no-load or synchronous speed, rad/s (m/s on a translational body)
-  double s_k = 0.0;       ///< motor_kloss: breakdown slip, 0 < s_k < 1
-  std::vector<double> times, values;  ///< table
+  double value = 0.0;   ///< constant: M; motor_linear: M_s; motor_kloss: M_k; drag: k; eddy_current: M_k
+  double omega0 = 0.0;  ///< motor_linear, motor_kloss: ω0; eddy_current: ω_k (rad/s, m/s on a translational body)
+  double s_k = 0.0;     ///< motor_kloss: breakdown slip, 0 < s_k < 1
+  /// signal: s(t). speed_table, position_table, motor_table: the table over v or q (a Signal::table
+  /// whose "time" is the speed or the position).
+  Signal signal;
+  std::shared_ptr<const Expression> law;  ///< expression: f over (t, q, v) in that order
+  Signal on = Signal::constant(1.0);         ///< motors: contactor, 0 or 1
+  Signal direction = Signal::constant(1.0);  ///< motors: +1 or −1
+  bool switched = false;                     ///< motors: `on` or `direction` is not the constant 1
 
-  /// The load at time t for a body moving with velocity v.
-  [[nodiscard]] double evaluate(double t, double v) const;
-  /// ∂M/∂v (nonzero for motors), for the Jacobian.
-  [[nodiscard]] double slope(double t, double v) const;
+  /// The load at time t for a body at position q moving with velocity v.
+  [[nodiscard]] double evaluate(double t, double q, double v) const;
+  /// ∂M/∂v, for the Jacobian.
+  [[nodiscard]] double slope(double t, double q, double v) const;
+  /// ∂M/∂q, for the Jacobian (nonzero for position tables and expressions in q).
+  [[nodiscard]] double position_slope(double t, double q, double v) const;
+  /// Times in (t0, t1) where M jumps or has a kink in t (model/signal.hpp).
+  [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
 };
 
 enum class IntegratorChoice { automatic, dopri5, bdf };
@@ -174,6 +197,9 @@ struct Model {
   [[nodiscard]] Location where(const std::string& element) const;
   /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
   [[nodiscard]] bool is_hybrid() const;
+  /// Times in (0, t_end), increasing without repeats, where a load, a brake's application or a
+  /// surface velocity jumps or has a kink in t: the integrator stops there (solve/event_system.hpp).
+  [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
 
 /// Unit suffixes for output columns: "rad" or "m", "rad/s" or "m/s", "N*m" or "N".

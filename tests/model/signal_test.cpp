@@ -1,0 +1,146 @@
+// Signals (model/signal.hpp): every kind against its closed form, exact breakpoints, slopes against
+// finite differences, the levels of piecewise-constant signals.
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+#include <gtest/gtest.h>
+
+#include "machdyn/common/expression.hpp"
+#include "machdyn/model/signal.hpp"
+
+namespace machdyn {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Claim: constant, step and ramp follow their definitions; a step takes its new value at t0 itself.
+TEST(Signal, ConstantStepRampClosedForms) {
+  EXPECT_EQ(Signal::constant(3.5).value(-7.0), 3.5);
+  EXPECT_EQ(Signal().value(1.0), 0.0);
+  const Signal s = Signal::step(1.0, 5.0, 2.0);
+  EXPECT_EQ(s.value(std::nextafter(2.0, 0.0)), 1.0);
+  EXPECT_EQ(s.value(2.0), 5.0);
+  const Signal r = Signal::ramp(-2.0, 10.0, 1.0, 4.0);
+  EXPECT_EQ(r.value(1.0), -2.0);
+  for (double t : {1.3, 2.0, 3.7}) EXPECT_NEAR(r.value(t), -2.0 + 12.0 * (t - 1.0) / 3.0, 1e-14);
+  EXPECT_EQ(r.value(4.0), 10.0);
+  EXPECT_EQ(r.value(9.0), 10.0);
+  EXPECT_THROW(Signal::ramp(0, 1, 2.0, 2.0), std::invalid_argument);
+}
+
+// Claim: a table interpolates linearly; two points at one time are a jump whose second value holds
+// from that time on; outside it holds the end values, or continues the end segments.
+TEST(Signal, TableJumpsHoldAndExtrapolate) {
+  // 0 → 10 over [0, 1], jump to 4 at 1, 4 → −2 over [1, 3].
+  const std::vector<double> t{0, 1, 1, 3}, v{0, 10, 4, -2};
+  const Signal held = Signal::table(t, v);
+  EXPECT_DOUBLE_EQ(held.value(0.25), 2.5);
+  EXPECT_EQ(held.value(std::nextafter(1.0, 0.0)) > 9.99, true);
+  EXPECT_EQ(held.value(1.0), 4.0);
+  EXPECT_DOUBLE_EQ(held.value(2.0), 1.0);
+  EXPECT_EQ(held.value(-5.0), 0.0);
+  EXPECT_EQ(held.value(3.0), -2.0);
+  EXPECT_EQ(held.value(8.0), -2.0);
+  const Signal ex = Signal::table(t, v, true);
+  EXPECT_DOUBLE_EQ(ex.value(-1.0), -10.0);  // slope 10 of the first segment
+  EXPECT_DOUBLE_EQ(ex.value(5.0), -8.0);    // slope −3 of the last
+  EXPECT_THROW(Signal::table({0, 1, 1, 1}, {0, 1, 2, 3}), std::invalid_argument);  // three at one time
+  EXPECT_THROW(Signal::table({0, 2, 1}, {0, 1, 2}), std::invalid_argument);
+  EXPECT_THROW(Signal::table({0, 1, 1}, {0, 1, 2}, true), std::invalid_argument);  // last segment empty
+}
+
+// Claim: the sine is offset + A sin(ω (t − t_s) + φ) from its start, the offset before.
+TEST(Signal, SineClosedForm) {
+  const double A = 3.0, w = 2 * kPi * 1.5, ph = 0.4, off = -1.0, ts = 0.2;
+  const Signal s = Signal::sine(A, w, ph, off, ts);
+  EXPECT_EQ(s.value(0.1), off);
+  for (double t : {0.2, 0.37, 1.0, 2.55}) EXPECT_NEAR(s.value(t), off + A * std::sin(w * (t - ts) + ph), 1e-14);
+}
+
+// Claim: a pulse train is high for `width` at the start of each period, low otherwise, for `count`
+// periods; at each edge (as listed by breakpoints()) the value is the one after the edge.
+TEST(Signal, PulseEdgesAndCount) {
+  const Signal p = Signal::pulse(-1.0, 2.0, 0.3, 0.1, 0.05, 3);
+  EXPECT_EQ(p.value(0.0), -1.0);
+  EXPECT_EQ(p.value(0.06), 2.0);
+  EXPECT_EQ(p.value(0.2), -1.0);
+  EXPECT_EQ(p.value(0.36), 2.0);
+  EXPECT_EQ(p.value(0.95 + 0.01), -1.0);  // after the third period: low for good
+  const std::vector<double> b = p.breakpoints(0.0, 10.0);
+  ASSERT_EQ(b.size(), 6u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(b[2 * k], 0.05 + 0.3 * static_cast<double>(k));
+    EXPECT_DOUBLE_EQ(b[2 * k + 1], 0.15 + 0.3 * static_cast<double>(k));
+    EXPECT_EQ(p.value(b[2 * k]), 2.0);       // rising edge: high from there
+    EXPECT_EQ(p.value(b[2 * k + 1]), -1.0);  // falling edge: low from there
+  }
+  // An unending train, edges in a window only: (1.0, 1.7) holds rises at 1.25, 1.55 and falls at 1.05, 1.35, 1.65.
+  const Signal q = Signal::pulse(0.0, 1.0, 0.3, 0.1, 0.05, -1);
+  const std::vector<double> w = q.breakpoints(1.0, 1.7);
+  const std::vector<double> expect{1.05, 1.25, 1.35, 1.55, 1.65};
+  ASSERT_EQ(w.size(), expect.size());
+  for (std::size_t k = 0; k < w.size(); ++k) EXPECT_NEAR(w[k], expect[k], 1e-12);
+  EXPECT_GE(q.breakpoint_count(1.0, 1.7), static_cast<double>(w.size()));
+  EXPECT_THROW(Signal::pulse(0, 1, 0.3, 0.3, 0, -1), std::invalid_argument);  // width = period
+  // A vanishing period with a count: low long after its few pulses, no overflow of the period index.
+  const Signal tiny = Signal::pulse(0.0, 1.0, 1e-300, 5e-301, 0.0, 5);
+  EXPECT_EQ(tiny.value(1.0), 0.0);
+  EXPECT_EQ(tiny.breakpoints(0.5, 2.0).size(), 0u);
+}
+
+// Claim: an expression signal is f(t); a sum is the sum of its terms, with every term's breakpoints.
+TEST(Signal, ExpressionAndSum) {
+  const Signal e = Signal::expression(std::make_shared<const Expression>("2*t^2 - 1", "t"));
+  EXPECT_DOUBLE_EQ(e.value(3.0), 17.0);
+  EXPECT_TRUE(e.breakpoints(0, 10).empty());
+  const Signal s = Signal::sum({Signal::constant(1.0), Signal::step(0, 2, 0.5), Signal::ramp(0, 3, 1, 2), e});
+  for (double t : {0.2, 0.5, 1.5, 3.0}) {
+    const double ref = 1.0 + (t >= 0.5 ? 2.0 : 0.0) + (t <= 1 ? 0.0 : t >= 2 ? 3.0 : 3.0 * (t - 1)) + 2 * t * t - 1;
+    EXPECT_DOUBLE_EQ(s.value(t), ref);
+  }
+  EXPECT_EQ(s.breakpoints(0.0, 10.0), (std::vector<double>{0.5, 1.0, 2.0}));
+  EXPECT_EQ(s.breakpoints(0.7, 1.5), (std::vector<double>{1.0}));  // only inside the open interval
+}
+
+// Claim: breakpoints are exactly the jumps and kinks: step t0, ramp ends, table times (a jump once),
+// the sine's start; nothing at the interval's ends.
+TEST(Signal, BreakpointsExact) {
+  EXPECT_EQ(Signal::step(0, 1, 0.3).breakpoints(0, 1), (std::vector<double>{0.3}));
+  EXPECT_TRUE(Signal::step(0, 1, 0.3).breakpoints(0.3, 1).empty());
+  EXPECT_EQ(Signal::ramp(0, 1, 0.2, 0.7).breakpoints(0, 1), (std::vector<double>{0.2, 0.7}));
+  EXPECT_EQ(Signal::table({0, 0.4, 0.4, 2}, {0, 1, 3, 3}).breakpoints(0, 5), (std::vector<double>{0.4, 2.0}));
+  EXPECT_EQ(Signal::sine(1, 1, 0, 0, 0.25).breakpoints(0, 1), (std::vector<double>{0.25}));
+  EXPECT_TRUE(Signal::constant(4).breakpoints(0, 1).empty());
+}
+
+// Claim: slope() is ds/dt: it agrees with a central finite difference away from breakpoints.
+TEST(Signal, SlopesAgreeWithFiniteDifference) {
+  const std::vector<Signal> signals{
+      Signal::ramp(1, 4, 0.5, 2.5), Signal::table({0, 1, 1, 3}, {0, 10, 4, -2}, true), Signal::sine(2, 7, 0.3, 1, 0.1),
+      Signal::expression(std::make_shared<const Expression>("exp(-t)*sin(3*t)", "t")),
+      Signal::sum({Signal::sine(2, 7, 0.3, 1, 0.1), Signal::ramp(1, 4, 0.5, 2.5)})};
+  const double h = 1e-6;
+  for (const Signal& s : signals)
+    for (double t : {-0.5, 0.3, 0.77, 1.6, 2.2, 4.0}) {
+      const double fd = (s.value(t + h) - s.value(t - h)) / (2 * h);
+      EXPECT_NEAR(s.slope(t), fd, 1e-6 * std::max(1.0, std::abs(fd))) << s.describe("") << " at " << t;
+    }
+}
+
+// Claim: levels() lists the values of piecewise-constant signals (what a contactor or a direction
+// may be checked against) and is empty for signals that vary continuously.
+TEST(Signal, LevelsOfPiecewiseConstantSignals) {
+  EXPECT_EQ(Signal::step(1, -1, 2).levels(), (std::vector<double>{-1, 1}));
+  EXPECT_EQ(Signal::pulse(0, 1, 1, 0.5, 0, -1).levels(), (std::vector<double>{0, 1}));
+  EXPECT_EQ(Signal::table({0, 0, 1, 1}, {0, 1, 1, 0}).levels(), (std::vector<double>{0, 1}));
+  EXPECT_TRUE(Signal::table({0, 1}, {0, 1}).levels().empty());
+  EXPECT_TRUE(Signal::sine(1, 1, 0, 0, 0).levels().empty());
+  EXPECT_EQ(Signal::sum({Signal::step(0, 1, 1), Signal::step(0, 1, 2)}).levels(), (std::vector<double>{0, 1, 2}));
+  EXPECT_TRUE(Signal::constant(2).is_constant());
+  EXPECT_FALSE(Signal::step(0, 1, 2).is_constant());
+}
+
+}  // namespace
+}  // namespace machdyn
