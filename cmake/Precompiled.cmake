@@ -10,10 +10,22 @@ set(MACHDYN_PCH_HEADERS
   <optional> <sstream> <stdexcept> <string> <string_view> <vector>
   <Eigen/Core> <Eigen/SparseCore> <fmt/format.h> <nlohmann/json.hpp>)
 
+# ccache caches files compiled with a precompiled header only when it may ignore __DATE__/__TIME__
+# and the header's #defines (its manual, "Precompiled headers"); clang must also leave the timestamp
+# out of the header (see machdyn_precompile). Ninja's dependency files still rebuild the header when
+# any header in it changes.
+if(MACHDYN_PCH AND CMAKE_CXX_COMPILER_LAUNCHER MATCHES "ccache")
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env CCACHE_SLOPPINESS=pch_defines,time_macros
+      ${CMAKE_CXX_COMPILER_LAUNCHER})
+endif()
+
 # machdyn_precompile(TARGET [EXTRA_HEADER...]): the common set plus the target's own heavy headers
 # (gtest for the tests, CLI11 for the CLI).
 function(machdyn_precompile target)
   if(MACHDYN_PCH)
     target_precompile_headers(${target} PRIVATE ${MACHDYN_PCH_HEADERS} ${ARGN})
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+      target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
+    endif()
   endif()
 endfunction()
