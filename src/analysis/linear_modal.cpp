@@ -69,6 +69,72 @@ void normalize_sign(Eigen::MatrixXd& S) {
   }
 }
 
+/// Above this size a tridiagonal problem gets its eigenvectors by inverse iteration (O(r) each)
+/// instead of accumulating the QR rotations (O(r²) each).
+constexpr int kSmallTridiagonal = 200;
+
+/// Eigenvectors of the symmetric tridiagonal T = tridiag(sub, diag, sub) for its eigenvalues λ
+/// (ascending, accurate to ε‖T‖) by inverse iteration, as LAPACK's dstein: (T − λ I) x_{k+1} = x_k
+/// with an LU of partial pivoting, three steps from a fixed start; the vectors of a cluster
+/// (eigenvalues closer than 1e-3 ‖T‖) are orthogonalized against each other at every step.
+/// A zero pivot is replaced by ε‖T‖ (λ is an eigenvalue, so T − λ I is singular to working precision).
+Eigen::MatrixXd tridiagonal_eigenvectors(const Eigen::VectorXd& d, const Eigen::VectorXd& e, const Eigen::VectorXd& lambda) {
+  const Eigen::Index n = d.size();
+  double norm = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    norm = std::max(norm, std::abs(d(i)) + (i > 0 ? std::abs(e(i - 1)) : 0.0) + (i + 1 < n ? std::abs(e(i)) : 0.0));
+  const double tiny = std::max(norm, 1e-300) * std::numeric_limits<double>::epsilon();
+  Eigen::MatrixXd X(n, n);
+  // LU of T − λ I with row interchanges: U has diagonal u0 and two superdiagonals u1, u2; L the
+  // multipliers m and whether rows i, i+1 were swapped.
+  Eigen::VectorXd u0(n), u1(n), u2(n), mult(n), x(n);
+  std::vector<char> swapped(static_cast<size_t>(n));
+  Eigen::Index cluster_start = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (k > 0 && lambda(k) - lambda(k - 1) > 1e-3 * norm) cluster_start = k;
+    const double l = lambda(k);
+    // Factor.
+    double a = d(0) - l, b = n > 1 ? e(0) : 0.0, c = 0.0;  // the current row: a at i, b at i+1, c at i+2
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (i + 1 < n) {
+        const double sub = e(i), d1 = d(i + 1) - l, e1 = i + 2 < n ? e(i + 1) : 0.0;
+        if (std::abs(a) >= std::abs(sub)) {
+          swapped[static_cast<size_t>(i)] = 0;
+          const double m = a != 0.0 ? sub / a : 0.0;
+          mult(i) = m, u0(i) = a, u1(i) = b, u2(i) = c;
+          a = d1 - m * b, b = e1 - m * c, c = 0.0;
+        } else {
+          swapped[static_cast<size_t>(i)] = 1;
+          const double m = a / sub;
+          mult(i) = m, u0(i) = sub, u1(i) = d1, u2(i) = e1;
+          a = b - m * d1, b = c - m * e1, c = 0.0;
+        }
+      } else {
+        u0(i) = a, u1(i) = u2(i) = 0.0;
+      }
+      if (std::abs(u0(i)) < tiny) u0(i) = u0(i) < 0 ? -tiny : tiny;
+    }
+    // A start vector with no special symmetry, then three steps.
+    for (Eigen::Index i = 0; i < n; ++i) x(i) = 1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i + 3 * k) + 1.0);
+    for (int step = 0; step < 3; ++step) {
+      for (Eigen::Index i = 0; i + 1 < n; ++i) {  // L
+        if (swapped[static_cast<size_t>(i)]) std::swap(x(i), x(i + 1));
+        x(i + 1) -= mult(i) * x(i);
+      }
+      for (Eigen::Index i = n - 1; i >= 0; --i) {  // U
+        double v = x(i);
+        if (i + 1 < n) v -= u1(i) * x(i + 1);
+        if (i + 2 < n) v -= u2(i) * x(i + 2);
+        x(i) = v / u0(i);
+      }
+      for (Eigen::Index j = cluster_start; j < k; ++j) x -= X.col(j).dot(x) * X.col(j);
+      x /= x.norm();
+    }
+    X.col(k) = x;
+  }
+  return X;
+}
+
 }  // namespace
 
 ReducedModel reduce_constraints(const LinearModel& lin) {
@@ -110,15 +176,24 @@ UndampedModes undamped_modes(const LinearModel& lin) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
         if (std::abs(it.row() - it.col()) > 1 && it.value() != 0.0) tridiagonal = false;
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
+    Eigen::MatrixXd X;
     if (tridiagonal && r > 0) {
       Eigen::VectorXd diag(r), sub(std::max(r - 1, 0));
       for (int i = 0; i < r; ++i) diag(i) = A.coeff(i, i);
       for (int i = 0; i + 1 < r; ++i) sub(i) = A.coeff(i + 1, i);
-      es.computeFromTridiagonal(diag, sub, Eigen::ComputeEigenvectors);
+      if (r <= kSmallTridiagonal) {
+        es.computeFromTridiagonal(diag, sub, Eigen::ComputeEigenvectors);
+        lambda = es.eigenvalues(), X = es.eigenvectors();
+      } else {
+        es.computeFromTridiagonal(diag, sub, Eigen::EigenvaluesOnly);
+        lambda = es.eigenvalues();
+        X = tridiagonal_eigenvectors(diag, sub, lambda);
+      }
     } else if (r > 0) {
       es.compute(Eigen::MatrixXd(A));
+      lambda = es.eigenvalues(), X = es.eigenvectors();
     }
-    if (r > 0) lambda = es.eigenvalues(), Psi = s.asDiagonal() * es.eigenvectors();
+    if (r > 0) Psi = s.asDiagonal() * X;
   } else if (r > 0) {
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(red.K), Eigen::MatrixXd(red.M));
     lambda = es.eigenvalues(), Psi = es.eigenvectors();
