@@ -61,12 +61,7 @@ std::vector<TopologyModes> analyse(const Model& m, const ModesArgs& a) {
   if (a.from_run) {
     SimulateOptions opt;
     opt.record_series = false;
-    const SimulationResult r = simulate(m, opt);
-    for (const TopologyInterval& ti : run_topologies(m, r.hybrid, m.simulation.t_end)) {
-      TopologyModes t = analyse_topology(m, ti.topology, ti.intervals.front().first);
-      t.intervals = ti.intervals;
-      list.push_back(std::move(t));
-    }
+    list = run_topology_modes(m, simulate(m, opt).hybrid, m.simulation.t_end);
   } else if (!a.topologies.empty()) {
     for (const auto& text : a.topologies) list.push_back(analyse_topology(m, parse_topology(m, text, Location{"--topology", 1, 0})));
   } else {

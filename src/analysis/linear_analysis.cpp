@@ -23,6 +23,32 @@ TopologyModes analyse_topology(const Model& m, const Topology& topo, double t, i
   return out;
 }
 
+std::vector<TopologyModes> run_topology_modes(const Model& m, const HybridReport& report, double t_end) {
+  std::vector<TopologyModes> out;
+  for (const TopologyInterval& ti : run_topologies(m, report, t_end)) {
+    TopologyModes t = analyse_topology(m, ti.topology, ti.intervals.front().first);
+    t.intervals = ti.intervals;
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::unique_ptr<FrequencyResponse> default_frequency_response(const Model& m, const std::vector<TopologyModes>& list,
+                                                              std::string* label) {
+  if (m.loads.empty() || m.links.empty()) return nullptr;
+  for (const TopologyModes& t : list) {
+    if (t.modes.omega.size() == 0) continue;
+    const Location at{m.source, 0, 0};
+    std::vector<LinearSignal> outs;
+    for (const Link& l : m.links) outs.push_back(linear_output(m, t.topology, l.name + ".load", at));
+    const Eigen::VectorXd w = frequency_grid(0.1 * t.modes.omega.minCoeff(), 3.0 * t.modes.omega.maxCoeff(), 400, true);
+    if (label) *label = t.label;
+    return std::make_unique<FrequencyResponse>(
+        frequency_response(linearize(m, t.topology), linear_input(m, m.loads.front().name, at), outs, w));
+  }
+  return nullptr;
+}
+
 PositionFrequencies frequencies_over_position(const Model& m, const Topology& topo, int body,
                                               const Eigen::VectorXd& positions) {
   if (body < 0 || body >= m.dof()) throw std::invalid_argument("frequencies_over_position: no such body");

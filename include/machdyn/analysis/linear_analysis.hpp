@@ -6,11 +6,14 @@
 ///   - the frequencies of a machine with I(q) over its position (frequencies_over_position);
 ///   - the resonance map of a speed range against excitation orders (campbell).
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "machdyn/analysis/frequency_response.hpp"
+#include "machdyn/analysis/hybrid_report.hpp"
 #include "machdyn/analysis/modal.hpp"
 #include "machdyn/analysis/topology.hpp"
 #include "machdyn/model/model.hpp"
@@ -31,6 +34,16 @@ struct TopologyModes {
 /// damped eigenproblem is solved when the linear model has damping and at most `max_damped_dof`
 /// independent coordinates (the dense 2r × 2r eigenproblem costs O(r³)).
 TopologyModes analyse_topology(const Model& m, const Topology& topo, double t = 0.0, int max_damped_dof = 2000);
+
+/// The modes of each topology a run passed through (run_topologies), with their intervals.
+std::vector<TopologyModes> run_topology_modes(const Model& m, const HybridReport& report, double t_end);
+
+/// The frequency response a report shows: from the first load (a force or torque on its body) to
+/// every link load, 400 log-spaced frequencies from 0.1 × the lowest to 3 × the highest natural
+/// frequency, in the first of `list` that has an elastic mode. Null when there is none (or no
+/// load, or no link). *label gets that topology's label.
+std::unique_ptr<FrequencyResponse> default_frequency_response(const Model& m, const std::vector<TopologyModes>& list,
+                                                              std::string* label);
 
 /// Elastic frequencies (rad/s) with body `body` at each position in `positions` (rad or m), the
 /// other bodies at their initial positions, in topology `topo`: row p holds the ascending
