@@ -96,6 +96,7 @@ void print_topology(const Model& m, const TopologyModes& t, size_t index, size_t
     std::cout << fmt::format("  {:>4} {:>16.10g} {:>14.8g}  {}\n", k + 1, t.modes.omega(k), t.modes.omega(k) / kTwoPi, shape);
   }
   if (shown < t.modes.omega.size()) std::cout << fmt::format("  ... {} more (--json)\n", t.modes.omega.size() - shown);
+  if (t.damped_skipped) std::cout << "  damped modes skipped: more than 400 coordinates (docs/modes.md)\n";
   if (t.damped) {
     std::cout << fmt::format("  damped: {:>4} {:>16} {:>16} {:>12} {:>14}\n", "mode", "omega_n [rad/s]", "omega_d [rad/s]",
                              "zeta", "decay [1/s]");
@@ -145,6 +146,10 @@ int run(const ModesArgs& a) {
       orders.push_back({o.substr(0, eq), k});
   }
   if (!a.campbell_range.empty() && orders.empty() && a.orders.empty()) orders.push_back({"1x", 1.0});
+  if (a.campbell_range.empty() && !a.orders.empty()) diag.error(Location{"--order", 1, 1}, "--order needs --campbell LO:HI");
+  if (a.over_body.empty() && !a.position_range.empty()) diag.error(Location{"--range", 1, 1}, "--range needs --over BODY");
+  if (a.from_run && !a.topologies.empty())
+    diag.error(Location{"--from-run", 1, 1}, "give either --from-run (the run's topologies) or --topology");
   diag.throw_if_any();
   const Topology lin_topo = a.topologies.empty() ? initial_topology(m)
                                                  : parse_topology(m, a.topologies.front(), Location{"--topology", 1, 0});

@@ -20,6 +20,7 @@ TopologyModes analyse_topology(const Model& m, const Topology& topo, double t, i
     out.damped = true;
     out.damped_modes = damped_modes(lin);
   }
+  out.damped_skipped = has_damping && !out.damped;
   return out;
 }
 

@@ -43,6 +43,7 @@ nlohmann::json topology_modes_json(const Model& m, const TopologyModes& t) {
   j["frequencies_rad_s"] = w;
   j["frequencies_hz"] = hz;
   j["shapes"] = shapes_json(m, t.modes.omega, t.modes.shapes);
+  if (t.damped_skipped) j["damped_modes_skipped"] = "more coordinates than the dense state-space solver takes";
   if (t.damped) {
     nlohmann::json d = nlohmann::json::array();
     for (const DampedMode& md : t.damped_modes.modes) {
