@@ -73,10 +73,17 @@ void normalize_sign(Eigen::MatrixXd& S) {
 /// instead of accumulating the QR rotations (O(r²) each).
 constexpr int kSmallTridiagonal = 200;
 
+/// Eigenvalues closer than this (relative to ‖T‖) form a cluster whose vectors are orthogonalized.
+/// Inverse iteration alone leaves vectors of eigenvalues a gap g apart orthogonal to about
+/// ε‖T‖/g, so 1e-5 bounds that at 2e-11. (LAPACK's dstein takes 1e-3, which makes a long chain,
+/// whose spectrum is spaced about ‖T‖/r apart, one cluster: O(r³).)
+constexpr double kClusterGap = 1e-5;
+
 /// Eigenvectors of the symmetric tridiagonal T = tridiag(sub, diag, sub) for its eigenvalues λ
 /// (ascending, accurate to ε‖T‖) by inverse iteration, as LAPACK's dstein: (T − λ I) x_{k+1} = x_k
 /// with an LU of partial pivoting, three steps from a fixed start; the vectors of a cluster
-/// (eigenvalues closer than 1e-3 ‖T‖) are orthogonalized against each other at every step.
+/// (eigenvalues closer than kClusterGap ‖T‖) are orthogonalized against each other at every step
+/// (Gram–Schmidt twice).
 /// A zero pivot is replaced by ε‖T‖ (λ is an eigenvalue, so T − λ I is singular to working precision).
 Eigen::MatrixXd tridiagonal_eigenvectors(const Eigen::VectorXd& d, const Eigen::VectorXd& e, const Eigen::VectorXd& lambda) {
   const Eigen::Index n = d.size();
@@ -91,7 +98,7 @@ Eigen::MatrixXd tridiagonal_eigenvectors(const Eigen::VectorXd& d, const Eigen::
   std::vector<char> swapped(static_cast<size_t>(n));
   Eigen::Index cluster_start = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
-    if (k > 0 && lambda(k) - lambda(k - 1) > 1e-3 * norm) cluster_start = k;
+    if (k > 0 && lambda(k) - lambda(k - 1) > kClusterGap * norm) cluster_start = k;
     const double l = lambda(k);
     // Factor.
     double a = d(0) - l, b = n > 1 ? e(0) : 0.0, c = 0.0;  // the current row: a at i, b at i+1, c at i+2
@@ -115,7 +122,7 @@ Eigen::MatrixXd tridiagonal_eigenvectors(const Eigen::VectorXd& d, const Eigen::
       if (std::abs(u0(i)) < tiny) u0(i) = u0(i) < 0 ? -tiny : tiny;
     }
     // A start vector with no special symmetry, then three steps.
-    for (Eigen::Index i = 0; i < n; ++i) x(i) = 1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i + 3 * k) + 1.0);
+    for (Eigen::Index i = 0; i < n; ++i) x(i) = 1.0 + static_cast<double>((i * 7919 + k * 104729) % 1009) / 1009.0;
     for (int step = 0; step < 3; ++step) {
       for (Eigen::Index i = 0; i + 1 < n; ++i) {  // L
         if (swapped[static_cast<size_t>(i)]) std::swap(x(i), x(i + 1));
@@ -127,7 +134,10 @@ Eigen::MatrixXd tridiagonal_eigenvectors(const Eigen::VectorXd& d, const Eigen::
         if (i + 2 < n) v -= u2(i) * x(i + 2);
         x(i) = v / u0(i);
       }
-      for (Eigen::Index j = cluster_start; j < k; ++j) x -= X.col(j).dot(x) * X.col(j);
+      if (k > cluster_start) {  // classical Gram–Schmidt twice (as stable as modified, but BLAS-2)
+        const auto Xc = X.middleCols(cluster_start, k - cluster_start);
+        for (int pass = 0; pass < 2; ++pass) x.noalias() -= Xc * (Xc.transpose() * x);
+      }
       x /= x.norm();
     }
     X.col(k) = x;
