@@ -1,5 +1,6 @@
 #include "machdyn/io/linear_results.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -236,6 +237,15 @@ plot::Figure campbell_figure(const Model& m, const Eigen::VectorXd& omega, const
   }
   f.x.min = x0, f.x.max = x1;
   f.y.min = 0.0;
+  // Every natural frequency in view, the order lines up to 1.5 × the highest (a steep line would
+  // squash the modes).
+  double top = 0.0;
+  for (const auto& o : orders) top = std::max(top, o.order * speed_hi / kTwoPi);
+  if (omega.size() > 0) {
+    const double fmax = omega.maxCoeff() / kTwoPi;
+    top = std::max(1.1 * fmax, std::min(top, 1.5 * fmax));
+  }
+  if (top > 0.0) f.y.max = top;
   f.legend = plot::Figure::Legend::below;
   return f;
 }
