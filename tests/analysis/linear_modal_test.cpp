@@ -222,5 +222,30 @@ TEST(LinearModal, TridiagonalAndDensePathsAgree) {
   }
 }
 
+// Claim: a general constraint row (not a stuck contact's ±1 pair; none of today's elements adds one)
+// takes the QR basis of ker G and gives the frequencies of a second algorithm — an LU kernel basis
+// N and the pair (Nᵀ K N, Nᵀ M N) — to 1e-10, with shapes on the constraint (G φ = 0).
+TEST(LinearModal, GeneralConstraintRowUsesQrBasis) {
+  LinearModel lin(4);
+  lin.M << 1.0, 2.0, 0.5, 1.5;
+  const int idx[4] = {0, 1, 2, 3};
+  const double j1[2] = {1.0, -1.0};
+  for (int k = 0; k < 3; ++k) LinearModel::add_outer(lin.K, idx + k, j1, 2, 1000.0 * (k + 1));
+  LinearModel::add_outer(lin.K, idx, j1 + 0, 1, 500.0);  // body 0 to the ground
+  lin.G.push_back({{0, 1.0}, {1, 1.0}, {3, -2.0}});
+  const UndampedModes md = undamped_modes(lin);
+  const Eigen::MatrixXd K(lin.stiffness()), M = lin.M.asDiagonal(), G(lin.constraints());
+  const Eigen::MatrixXd N = Eigen::FullPivLU<Eigen::MatrixXd>(G).kernel();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(N.transpose() * K * N, N.transpose() * M * N);
+  ASSERT_EQ(md.dof, 3);
+  ASSERT_EQ(md.omega.size(), 3);
+  for (int k = 0; k < 3; ++k) {
+    const double w = std::sqrt(es.eigenvalues()(k));
+    EXPECT_NEAR(md.omega(k), w, 1e-10 * w);
+    EXPECT_LT((G * md.shapes.col(k)).norm(), 1e-12);
+    EXPECT_NEAR(md.shapes.col(k).dot(M * md.shapes.col(k)), 1.0, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace machdyn
