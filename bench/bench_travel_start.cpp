@@ -13,7 +13,7 @@
 #include <Eigen/Dense>
 
 #include "solve/dopri5.hpp"
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -206,13 +206,13 @@ int main(int argc, char** argv) {
     return b;
   };
   SimulationResult r;
-  const double t_md = best([&] { r = simulate_hybrid(m); });
+  const double t_md = best([&] { r = simulate(m); });
   long ev_md = 0;
   for (const auto& e : r.hybrid.events) ev_md += e.kind != "initial";
   HandOut ho;
   long ev_hand = 0;
   const double t_hand = best([&] { ev_hand = hand_loop(p, 2.0, m.simulation.dt_out, ho); });
-  std::printf("machdyn simulate_hybrid : %8.3f ms  %ld events  %ld steps  F_max %.6g N (incl. CSV rows every %g s)\n",
+  std::printf("machdyn simulate        : %8.3f ms  %ld events  %ld steps  F_max %.6g N (incl. CSV rows every %g s)\n",
               t_md * 1e3, ev_md, r.stats.stepper.steps, r.links[0].max, m.simulation.dt_out);
   std::printf("hand-written event loop : %8.3f ms  %ld events  F_max %.6g N at %.9g s (machdyn: at %.9g s)\n",
               t_hand * 1e3, ev_hand, ho.Fmax, ho.t_Fmax, r.links[0].t_max);

@@ -1,5 +1,5 @@
 // Benchmark (not a test): the crank-slider of examples/crank-slider.yaml running 100 revolutions,
-//   (1) machdyn: load_model + simulate (DOPRI5, the library's stepper, ChainSystem with a machine),
+//   (1) machdyn: load_model + simulate (DOPRI5, the library's stepper, DriveSystem with a machine),
 //   (2) a hand-written DOPRI5 loop (Hairer's step control with the same PI constants) on the same
 //       equation I(φ) φ'' + ½ I′(φ) φ'² = M + F(φ) s′(φ), written out inline.
 // Prints one line per variant: name, wall time per run (best of N), steps, final φ and ω.

@@ -11,7 +11,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "machdyn/analysis/energy.hpp"
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/elements/modes.hpp"
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"

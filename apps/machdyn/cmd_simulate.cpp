@@ -7,7 +7,7 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/elements/modes.hpp"
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/figures.hpp"

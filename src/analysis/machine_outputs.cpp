@@ -19,21 +19,8 @@ size_t find_column(const SimulationResult& r, const std::string& prefix) {
 }
 }  // namespace
 
-void append_machine_outputs(const Model& m, ChainSystem& sys, SimulationResult& r) {
-  std::vector<double> dy(static_cast<size_t>(sys.size()));
-  const int n = m.dof();
-  append_machine_outputs(
-      m, r,
-      [&](size_t row, const double* y, double* acc) {
-        sys.rhs(r.columns[0][row], y, dy.data());
-        for (int i = 0; i < n; ++i) acc[i] = dy[static_cast<size_t>(n + i)];
-      },
-      [&](int l, const double* y) { return sys.link_load(l, y); });
-}
-
 void append_machine_outputs(const Model& m, SimulationResult& r,
-                            const std::function<void(size_t row, const double* y, double* acc)>& accel,
-                            const std::function<double(int l, const double* y)>& link_load) {
+                            const std::function<void(size_t row, const double* y, double* acc)>& accel) {
   if (!has_machines(m) || r.columns.empty()) return;
   const int n = m.dof();
   const size_t rows = r.columns[0].size();
@@ -89,17 +76,6 @@ void append_machine_outputs(const Model& m, SimulationResult& r,
     for (size_t c = 0; c < names.size(); ++c) {
       r.column_names.push_back(names[c]);
       r.columns.push_back(std::move(cols[c]));
-    }
-  }
-  // Links to a machine's output point: extremes from the grid.
-  if (!link_load) return;
-  for (size_t l = 0; l < m.links.size() && l < r.links.size(); ++l) {
-    if (!m.links[l].a_point && !m.links[l].b_point) continue;
-    LinkSummary& s = r.links[l];
-    for (size_t k = 0; k < rows; ++k) {
-      const double F = link_load(static_cast<int>(l), Y[k].data());
-      if (k == 0 || F > s.max) s.max = F, s.t_max = r.columns[0][k];
-      if (k == 0 || F < s.min) s.min = F, s.t_min = r.columns[0][k];
     }
   }
 }

@@ -7,6 +7,8 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include "machdyn/elements/link.hpp"
+
 namespace machdyn {
 
 Eigen::MatrixXd rigid_motions(const Model& m) {
@@ -106,16 +108,15 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
     for (Eigen::Index k = 0; k < r; ++k) Rp.row(k) = s.R.row(pin[static_cast<size_t>(k)]);
     pins_ok = Eigen::FullPivLU<Eigen::MatrixXd>(Rp).rank() == r;
   }
+  // K from the links' own Jacobian terms (elements/link.hpp): ∂(acc·M)/∂q = −K. Every link counts
+  // as a closed spring; the rows and columns of pinned coordinates are left out.
   std::vector<Eigen::Triplet<double>> trip;
   for (const auto& l : m.links) {
     if (l.c <= 0.0) continue;
-    const int idx[2] = {l.a, l.b};
-    const double w[2] = {1.0 / l.ratio, -1.0};
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
-        if (idx[a] >= 0 && idx[b] >= 0 &&
-            !(pins_ok && (pinned[static_cast<size_t>(idx[a])] || pinned[static_cast<size_t>(idx[b])])))
-          trip.emplace_back(idx[a], idx[b], l.c * w[a] * w[b]);
+    LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int row, int col, double v) {
+      if (col >= n || (pins_ok && (pinned[static_cast<size_t>(row)] || pinned[static_cast<size_t>(col)]))) return;
+      trip.emplace_back(row, col, -v);
+    });
   }
   if (pins_ok) {
     for (int i : pin) trip.emplace_back(i, i, 1.0);
@@ -150,11 +151,8 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   const Eigen::VectorXd sol = s.lu.solve(rhs);
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t k = 0; k < m.links.size(); ++k) {
-    const Link& l = m.links[k];
-    double delta = 0;
-    if (l.a >= 0) delta += sol(l.a) / l.ratio;
-    if (l.b >= 0) delta -= sol(l.b);
-    F(static_cast<Eigen::Index>(k)) = l.c * delta;
+    const LinkLaw law = LinkLaw::of(m, m.links[k]);
+    F(static_cast<Eigen::Index>(k)) = law.spring_load(law.linear(sol.data()));
   }
   return F;
 }

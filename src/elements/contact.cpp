@@ -27,6 +27,15 @@ double ContactLaw::kinetic_slope(double t, double u) const {
   return scale(t) * (y[k] - y[k - 1]) / (x[k] - x[k - 1]);
 }
 
+double ContactLaw::steepest_kinetic_slope() const {
+  double slope = 0.0;
+  const auto& x = spec->speeds;
+  const auto& y = spec->kinetic;
+  for (size_t i = 0; i + 1 < x.size() && i + 1 < y.size(); ++i)
+    slope = std::max(slope, (y[i + 1] - y[i]) / (x[i + 1] - x[i]));
+  return slope;
+}
+
 void ContactLaw::add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const {
   if (!engaged) return;
   if (md == ContactMode::stuck) {

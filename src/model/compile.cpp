@@ -322,8 +322,9 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   top.finish();
-  // The event-driven solver (gaps, contacts, brakes) does not apply the velocity jumps of a
-  // machine with jumps (a stepwise gear drive): say so instead of simulating it without them.
+  // A velocity jump of a stepwise gear drive does not re-decide stuck contacts or re-check gaps yet
+  // (the jump maps one body's speed only), and the energy books do not count its loss: say so
+  // instead of simulating such a model wrongly.
   if (diag.empty() && m.is_hybrid() && has_velocity_jumps(m))
     diag.error(bodies ? bodies->loc : Location{source, 1, 1},
                "a body has velocity jumps (stepwise gear ratio), which cannot be combined with gaps, contacts or "

@@ -176,6 +176,7 @@ void CvodeBdf::derivative(double t, double* dy_out) const {
 
 StepperStats CvodeBdf::stats() const {
   StepperStats s = done_;
+  if (!impl_->initialized) return s;  // before the first reset() CVODE has no counters yet
   long v = 0;
   CVodeGetNumSteps(impl_->mem, &v);
   s.steps += v;

@@ -7,7 +7,7 @@
 #include <limits>
 #include <fmt/format.h>
 
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/elements/modes.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/compile.hpp"
@@ -53,8 +53,8 @@ std::vector<SummaryColumns> standard_summary_columns() {
 }
 
 bool runs_event_driven(const Model& m) {
-  // Case sweeps run event-driven like `simulate --all-cases`, except a stepwise gear drive, whose
-  // velocity jumps only the smooth path applies (the compiler keeps those out of hybrid models).
+  // Case sweeps keep the energy books like `simulate --all-cases`, except a stepwise gear drive,
+  // whose velocity jumps the books do not count (the compiler keeps those out of hybrid models).
   return m.is_hybrid() || (!m.load_case.empty() && !has_velocity_jumps(m));
 }
 

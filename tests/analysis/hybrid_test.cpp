@@ -1,6 +1,6 @@
-// The exact hybrid simulation (analysis/hybrid.hpp): every claim against a closed form derived in
+// The exact hybrid simulation (analysis/drive_system.hpp, analysis/run.cpp): every claim against a closed form derived in
 // its comment, a second algorithm or a published number.
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 
 #include <cmath>
@@ -407,11 +407,11 @@ bodies: {{A: {{type: translational, mass: 1}}}}
 contacts: {{belt: {{between: [A, ground], static: 1 N, kinetic: 0.8 N, surface_velocity: {}}}}}
 simulation: {{t_end: 0.2, dt_out: 0.01}}
 )", table));
-  HybridOptions opt;
+  SimulateOptions opt;
   opt.chatter_count = 10;
   opt.chatter_window = 0.01;
   try {
-    simulate_hybrid(with_integrator(m, GetParam()), opt);
+    simulate(with_integrator(m, GetParam()), opt);
     FAIL() << "no chattering reported";
   } catch (const SolverError& e) {
     EXPECT_EQ(e.element(), "belt");

@@ -41,7 +41,8 @@ TEST_P(Peaks, ExtremesOfAKnownSignal) {
     o.rtol = 1e-11;
     o.atol = 1e-13;
     auto st = make_stepper(GetParam(), osc, o);
-    PeakTracker peaks(2, {SparseWeights{{0, 1}, {2.0, -0.5}}});
+    const LinearSignals signal({SparseWeights{{0, 1}, {2.0, -0.5}}});
+    PeakTracker peaks(2, signal);
     Feed feed(peaks);
     DriveOptions d;
     d.dt_out = 0.5;  // coarse: the extremes are not on the output grid

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/energy.hpp"
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "support/travel_start.hpp"
@@ -108,8 +108,7 @@ simulation: {t_end: 0.1}
                                              "contacts_torques/T: force", "contacts_torques/T: sliding velocity"}));
 }
 
-// Claim: simulate() with a progress callback routes a hybrid model through simulate_hybrid with
-// that callback: it reports the mode events so far, and the last report (finished) counts every
+// Claim: simulate() with a progress callback on a hybrid model reports the mode events so far, and the last report (finished) counts every
 // event of the result except the `initial` entries.
 TEST(PaperFigures, HybridRunReportsProgressWithEvents) {
   const Model m = load_model(test::example("travel-start.yaml"), {"simulation.t_end=0.5"});

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <gtest/gtest.h>
 
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
@@ -69,7 +69,9 @@ TEST_P(SweepCasesBoth, RowsEqualSimulateOfTheCase) {
     auto sets = req.sets;
     sets.push_back("MB.value=" + run.values[0].text);
     const Model m = load_model_case(req.model_path, sets, name);
-    const SimulationResult r = simulate_hybrid(m);
+    SimulateOptions all_cases;
+    all_cases.event_driven = true;  // as `simulate --all-cases` runs every case
+    const SimulationResult r = simulate(m, all_cases);
     EXPECT_EQ(std::stod(row[column(header, "c1.max_N_m")]), r.links[0].max) << name;
     EXPECT_EQ(std::stod(row[column(header, "c2.min_N_m")]), r.links[1].min) << name;
     if (name == "accel_down") {
@@ -186,9 +188,9 @@ INSTANTIATE_TEST_SUITE_P(BothIntegrators, SweepHybridBoth, ::testing::Values("do
 TEST_P(SweepHybridBoth, RunWithoutSeriesHasTheSameSummary) {
   const Model m =
       load_model(test::example("travel-start.yaml"), {"adhesion.mu_k=0.10", "simulation.integrator=" + GetParam()});
-  HybridOptions lean;
+  SimulateOptions lean;
   lean.record_series = false;
-  const SimulationResult full = simulate_hybrid(m), summary = simulate_hybrid(m, lean);
+  const SimulationResult full = simulate(m), summary = simulate(m, lean);
   ASSERT_FALSE(full.columns[0].empty());
   EXPECT_TRUE(summary.columns.empty() || summary.columns[0].empty());
   auto a = simulation_summary(m, full), b = simulation_summary(m, summary);

@@ -2,7 +2,7 @@
 /// @file
 /// What a hybrid (event-driven) simulation reports besides the time series: the mode events, the
 /// slip phases with the peak link loads inside each, and the energy balance. Plain data, filled by
-/// simulate_hybrid() (analysis/hybrid.hpp) and written by io/results.hpp.
+/// simulate() (analysis/simulate.hpp) and written by io/results.hpp.
 
 #include <string>
 #include <vector>

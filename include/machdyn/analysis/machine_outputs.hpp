@@ -9,12 +9,9 @@
 ///   NAME.POINT_speed_m_s        the point's speed p′(q) q' (gear drive: the travel speed)
 ///   NAME.beta_rad               the rolling wheel's thread angle β
 ///   NAME.phi_rad, NAME.ratio    the gear drive's carrier angle φ and ratio i = dθ/dφ
-/// Links attached to a machine's output point are nonlinear in the state, so their extremes in
-/// the summary are taken from the output grid (not located between output points).
 
 #include <functional>
 
-#include "machdyn/analysis/chain_system.hpp"
 #include "machdyn/analysis/simulate.hpp"
 
 namespace machdyn {
@@ -22,14 +19,9 @@ namespace machdyn {
 /// Whether the model has a body with variable inertia or a link to a machine's output point.
 bool has_machines(const Model& m);
 
-/// Appends the series above to `r` (which holds the standard columns) and corrects link extremes.
-void append_machine_outputs(const Model& m, ChainSystem& sys, SimulationResult& r);
-
-/// The same for any solver: `accel(row, y, acc)` gives the n accelerations at output row `row`
-/// (y = [q; v] there); `link_load`, if set, gives link loads for the extremes of point links
-/// (the hybrid solver locates those itself and passes none).
+/// Appends the series above to `r` (which holds the standard columns): `accel(row, y, acc)` gives
+/// the n accelerations at output row `row` (y = [q; v] there).
 void append_machine_outputs(const Model& m, SimulationResult& r,
-                            const std::function<void(size_t row, const double* y, double* acc)>& accel,
-                            const std::function<double(int l, const double* y)>& link_load);
+                            const std::function<void(size_t row, const double* y, double* acc)>& accel);
 
 }  // namespace machdyn

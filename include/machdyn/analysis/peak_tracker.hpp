@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// Tracks the extremes of signals s_j = w_jᵀ y that are linear in the state (link loads), on the
-/// continuous solution: an interior extremum of a step is where the rate s_j' = w_jᵀ y' changes
-/// sign, located by the Illinois method on the stepper's dense output. One dense derivative per
-/// step serves all signals, so the cost per step is O(n + nonzeros of the weights).
+/// Tracks the extremes of signals s_j(y) (link loads) on the continuous solution: an interior
+/// extremum of a step is where the rate s_j' changes sign, located by the Illinois method on the
+/// stepper's dense output. One dense derivative per step serves all signals, so the cost per step
+/// is O(n + the signals' own cost).
 
 #include <functional>
 #include <vector>
@@ -12,22 +12,55 @@
 
 namespace machdyn {
 
+/// The signals a PeakTracker follows: their values and rates from the state and its derivative.
+class PeakSignals {
+ public:
+  virtual ~PeakSignals() = default;
+  [[nodiscard]] virtual int count() const = 0;
+  /// s_j at state y.
+  [[nodiscard]] virtual double value(int j, const double* y) const = 0;
+  /// ds_j/dt at state y with derivative dy.
+  [[nodiscard]] virtual double rate(int j, const double* y, const double* dy) const = 0;
+  /// Whether rate(j, …) reads y (else only dy: the tracker then skips interpolating y).
+  [[nodiscard]] virtual bool rate_reads_state(int /*j*/) const { return false; }
+};
+
 /// The nonzero weights of a signal s = Σ_k w[k] y[idx[k]].
 struct SparseWeights {
   std::vector<int> idx;
   std::vector<double> w;
 };
 
+/// Signals linear in the state, s_j = w_jᵀ y (rate w_jᵀ y').
+class LinearSignals final : public PeakSignals {
+ public:
+  explicit LinearSignals(std::vector<SparseWeights> weights) : w_(std::move(weights)) {}
+  [[nodiscard]] int count() const override { return static_cast<int>(w_.size()); }
+  [[nodiscard]] double value(int j, const double* y) const override { return dot(j, y); }
+  [[nodiscard]] double rate(int j, const double*, const double* dy) const override { return dot(j, dy); }
+
+ private:
+  [[nodiscard]] double dot(int j, const double* y) const {
+    const SparseWeights& s = w_[static_cast<size_t>(j)];
+    double v = 0;
+    for (size_t k = 0; k < s.idx.size(); ++k) v += s.w[k] * y[s.idx[k]];
+    return v;
+  }
+  std::vector<SparseWeights> w_;
+};
+
 class PeakTracker {
  public:
-  /// One signal per entry of `weights`, over a state of `state_size`.
-  PeakTracker(int state_size, const std::vector<SparseWeights>& weights);
+  /// Follows every signal of `signals` (kept by reference) over a state of `state_size`.
+  PeakTracker(int state_size, const PeakSignals& signals);
 
   /// Called when signal j reaches a new maximum (is_max) or minimum at time t with state y.
   using NewMax = std::function<void(int j, bool is_max, double t, const double* y)>;
+  /// Called for every candidate value (ends of pieces, interior extrema) of signal j, if set.
+  using Candidate = std::function<void(int j, double t, double value)>;
   /// The solution on [ta, tb] ⊂ [s.t_prev(), s.t()] (a driver piece, solve/driver.hpp). A piece
   /// that starts where the last one ended continues it (its start was seen, its rate is known).
-  void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max);
+  void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max, const Candidate& on_candidate = {});
   /// After an event or a restart: the next piece starts afresh (the state or the rate may jump).
   void restart() { last_end_ = -1.0; }
 
@@ -35,21 +68,21 @@ class PeakTracker {
   [[nodiscard]] double min(int j) const { return sig_[static_cast<size_t>(j)].min; }
   [[nodiscard]] double t_max(int j) const { return sig_[static_cast<size_t>(j)].t_max; }
   [[nodiscard]] double t_min(int j) const { return sig_[static_cast<size_t>(j)].t_min; }
+  /// Whether any value was seen (a run of zero length has none).
+  [[nodiscard]] bool started() const { return started_; }
 
  private:
-  struct Signal {
-    std::vector<int> idx;
-    std::vector<double> w;
+  struct Extremes {
     double rate_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
-    [[nodiscard]] double dot(const double* y) const;
   };
-  void consider(int j, double t, const double* y, const NewMax& on_new_max);
-  double locate_extremum(const Stepper& s, const Signal& g, double t0, double r0, double t1, double r1);
+  void consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
+  double locate_extremum(const Stepper& s, int j, double t0, double r0, double t1, double r1);
 
-  std::vector<Signal> sig_;
+  const PeakSignals& signals_;
+  std::vector<Extremes> sig_;
   bool started_ = false;
   double last_end_ = -1.0;  // end of the last piece when it ended its step, else −1
-  std::vector<double> y_, dy_, yb_, db_;
+  std::vector<double> y_, dy_, yb_, db_, ym_;
 };
 
 }  // namespace machdyn

@@ -86,23 +86,31 @@ struct SimulationProgress {
 };
 using ProgressCallback = std::function<void(const SimulationProgress&)>;
 
-/// Optional observers of a run. The progress callback is called at most every `progress_interval_s`
-/// of wall time (checked every few steps, so it costs nothing measurable) and once at the end.
+/// Options of a run beyond the model's simulation settings.
 struct SimulateOptions {
+  /// Progress observer; called at most every `progress_interval_s` of wall time (checked every few
+  /// steps, so it costs nothing measurable) and once at the end.
   ProgressCallback progress;
   double progress_interval_s = 0.1;
-  /// Run the event-driven path (analysis/hybrid.hpp) even for a model without gaps, contacts or
-  /// brakes, as every load case of a file runs (`--all-cases`, case sweeps, the report): the cases
-  /// are then computed alike, with the energy books and zero events.
+  /// Keep the energy books and the event report (HybridReport) for a model without gaps, contacts
+  /// or brakes too, as every load case of a file runs (`--all-cases`, case sweeps, the report): the
+  /// cases are then computed alike, with zero events. Models with them always keep the books.
   bool event_driven = false;
-  /// false: no time series on the output grid for an event-driven run (summaries only, as sweeps
-  /// need); the peaks, events, slip phases and energies are the same bytes.
+  /// false: no time series on the output grid (SimulationResult::columns stay empty, the names are
+  /// set); the peaks, events, slip phases and energies are the same bytes. For callers that need
+  /// only the summaries (sweeps).
   bool record_series = true;
+  long max_events = 1'000'000;  ///< SolverError when exceeded
+  int chatter_count = 50;       ///< switches of one element ...
+  double chatter_window = 1e-6; ///< ... within this fraction of t_end (or of 1 s) mean chattering
 };
 
-/// Runs the model's simulation settings: the one entry point of the CLI, the report and sweeps.
-/// Throws SolverError on numerical failure. A model with a gap, a friction contact or a brake (or
-/// options.event_driven) runs event-driven (analysis/hybrid.hpp); both go through the one driver.
+/// Runs the model's simulation settings: the one entry point of the CLI, the Python module, the
+/// report and sweeps. Every model runs through the one DriveSystem (analysis/drive_system.hpp) and
+/// the one driver (solve/driver.hpp); a model without gaps, contacts, brakes or stepwise gears simply
+/// has no event functions. Throws SolverError on numerical failure (naming the element and the
+/// time), on chattering (the element, the time and the number of switches) and when no consistent
+/// contact mode exists.
 SimulationResult simulate(const Model& m);
 SimulationResult simulate(const Model& m, const SimulateOptions& options);
 

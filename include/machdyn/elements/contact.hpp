@@ -55,6 +55,8 @@ struct ContactLaw {
   }
   /// dF/du of sliding mode md: the slope of the kinetic table at |u| (0 for a constant level).
   [[nodiscard]] double kinetic_slope(double t, double u) const;
+  /// The steepest rising slope of the kinetic table, max dF_k0/d|u| ≥ 0 (a damper while sliding).
+  [[nodiscard]] double steepest_kinetic_slope() const;
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
   [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
     const double Fs = static_limit(t), F = std::abs(lambda);

@@ -71,6 +71,8 @@ struct LinkLaw {
     if (!transmits(g)) return 0.0;
     return c * (delta - flank(g)) + d * rate;
   }
+  /// The spring part of the law, c e, for a deflection e measured from the flank (quasi-static loads).
+  [[nodiscard]] double spring_load(double e) const { return c * e; }
   /// Elastic energy ½ c (δ − flank)² in mode g, J.
   [[nodiscard]] double elastic_energy(double delta, GapMode g) const {
     if (!transmits(g)) return 0.0;

@@ -53,7 +53,7 @@ struct Link {
   double ratio = 1.0;  ///< i, nonzero; dimension of q_a / q_b
   double c = 0.0;      ///< stiffness, N·m/rad or N/m (in b's coordinate), >= 0
   double d = 0.0;      ///< damping, N·m·s/rad or N·s/m, >= 0
-  /// Backlash (analysis/hybrid.hpp). With a gap the link transmits load only on a flank:
+  /// Backlash (law: elements/link.hpp). With a gap the link transmits load only on a flank:
   ///   δ ≥ δ₊: F = max(0, c (δ − δ₊) + d δ̇),  δ ≤ δ₋: F = min(0, c (δ − δ₋) + d δ̇),  else F = 0,
   /// δ₋ = −gap_start, δ₊ = gap − gap_start. gap_start = 0: the link must take up the whole gap in
   /// the positive direction before it pulls. Initial positions with δ(0) > δ₊ give a preload.
@@ -138,7 +138,7 @@ struct Model {
   std::vector<Body> bodies;
   std::vector<Link> links;
   std::vector<Load> loads;
-  std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (analysis/hybrid.hpp)
+  std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (law: elements/contact.hpp)
   std::string load_case;                  ///< the case applied from the file's `cases:`, or empty
   SimulationSettings simulation;
 

@@ -38,7 +38,7 @@ struct SummaryColumns {
 /// then the solver statistics.
 std::vector<SummaryColumns> standard_summary_columns();
 
-/// Whether a run of this model is event-driven (simulate_hybrid): a model with a gap, a contact or
+/// Whether a run of this model keeps the energy books and event report (SimulateOptions::event_driven): a model with a gap, a contact or
 /// a brake, and every run of a case sweep (Model::load_case set), smooth or not, as `simulate
 /// --all-cases` runs its cases.
 bool runs_event_driven(const Model& m);

@@ -1,4 +1,4 @@
-#include "analysis/machine_run.hpp"
+#include "analysis/machine_jumps.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@ namespace {
 double side_offset(double q) { return 1e-11 * (1.0 + std::abs(q)); }
 }  // namespace
 
-MachineRun::MachineRun(const Model& m, ChainSystem& sys)
-    : sys_(sys), n_(m.dof()), y_(static_cast<size_t>(2 * m.dof())) {
+MachineJumps::MachineJumps(const Model& m, DriveSystem& sys)
+    : sys_(sys), n_(m.dof()), y_(static_cast<size_t>(sys.size())) {
   for (int i = 0; i < n_; ++i) {
     const Machine* mach = m.bodies[static_cast<size_t>(i)].machine.get();
     if (!mach || !(mach->has_jumps() || mach->reports_point_speed())) continue;
@@ -28,18 +28,18 @@ MachineRun::MachineRun(const Model& m, ChainSystem& sys)
   }
 }
 
-void MachineRun::sample(Trace& tr, double t, double q, double v) {
+void MachineJumps::sample(Trace& tr, double t, double q, double v) {
   tr.t.push_back(t);
   tr.q.push_back(q);
   tr.v.push_back(v);
 }
 
-void MachineRun::start(double t0, const double* y0) {
+void MachineJumps::start(double t0, const double* y0) {
   for (auto& tr : traces_) sample(tr, t0, y0[tr.body], y0[n_ + tr.body]);
-  arm(t0, y0);
+  arm(y0);
 }
 
-void MachineRun::on_segment(const Stepper& s, double ta, double tb) {
+void MachineJumps::on_segment(const Stepper& s, double ta, double tb) {
   if (traces_.empty()) return;
   const double t0 = ta, h = tb - ta;
   for (int j = 1; j <= 4; ++j) {
@@ -61,7 +61,7 @@ void MachineRun::on_segment(const Stepper& s, double ta, double tb) {
   }
 }
 
-void MachineRun::arm(double /*t*/, const double* y) {
+void MachineJumps::arm(const double* y) {
   for (auto& J : jumpers_) {
     const double q = y[J.body];
     J.up = J.machine->next_jump(q, +1);
@@ -75,7 +75,7 @@ void MachineRun::arm(double /*t*/, const double* y) {
   }
 }
 
-void MachineRun::event_functions(double /*t*/, const double* y, double* g) {
+void MachineJumps::event_functions(const double* y, double* g) const {
   for (size_t k = 0; k < jumpers_.size(); ++k) {
     const Jumper& J = jumpers_[k];
     const double q = y[J.body];
@@ -84,11 +84,9 @@ void MachineRun::event_functions(double /*t*/, const double* y, double* g) {
   }
 }
 
-bool MachineRun::handle_events(double t, double* y, const std::vector<int>& fired) {
-  if (fired.empty()) return false;
-  // The earliest crossing (the driver lists it first): one jump at a time.
-  const auto k = static_cast<size_t>(fired[0] / 2);
-  const int dir = fired[0] % 2 == 0 ? +1 : -1;
+void MachineJumps::jump(double t, double* y, int which) {
+  const auto k = static_cast<size_t>(which / 2);
+  const int dir = which % 2 == 0 ? +1 : -1;
   Jumper& J = jumpers_[k];
   const double qb = dir > 0 ? J.up : J.down;
   Trace& tr = traces_[static_cast<size_t>(J.trace)];
@@ -106,8 +104,7 @@ bool MachineRun::handle_events(double t, double* y, const std::vector<int>& fire
   tr.jump_t.push_back(t);
   tr.jump_loss.push_back(loss);
   ++jumps_;
-  arm(t, y);
-  return true;
+  arm(y);
 }
 
 namespace {
@@ -127,7 +124,7 @@ double crossing_time(const std::vector<double>& t, const std::vector<double>& q,
 
 }  // namespace
 
-std::vector<MachineRunReport> MachineRun::reports() const {
+std::vector<MachineRunReport> MachineJumps::reports() const {
   std::vector<MachineRunReport> out;
   for (const auto& tr : traces_) {
     MachineRunReport r;

@@ -1,5 +1,6 @@
-#include "machdyn/analysis/hybrid.hpp"
+#include "machdyn/analysis/drive_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -20,27 +21,39 @@ void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd
 }
 }  // namespace
 
-HybridSystem::HybridSystem(const Model& model)
+namespace {
+template <int N>
+void dense_rhs(const double* y, double* dydt, const double* Aq, const double* Av, const double* b) {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  using Mat = Eigen::Matrix<double, N, N>;
+  Eigen::Map<const Vec> q(y), v(y + N), bb(b);
+  Eigen::Map<Vec> qd(dydt), acc(dydt + N);
+  qd = v;
+  acc.noalias() = Eigen::Map<const Mat>(Aq) * q + Eigen::Map<const Mat>(Av) * v + bb;
+}
+
+using DenseFn = void (*)(const double*, double*, const double*, const double*, const double*);
+constexpr DenseFn kDense[] = {dense_rhs<1>, dense_rhs<2>, dense_rhs<3>, dense_rhs<4>,
+                              dense_rhs<5>, dense_rhs<6>, dense_rhs<7>, dense_rhs<8>};
+}  // namespace
+
+DriveSystem::DriveSystem(const Model& model, bool energy_books)
     : m_(model), n_(model.dof()), nl_(static_cast<int>(model.links.size())),
-      nc_(static_cast<int>(model.contacts.size())) {
+      nc_(static_cast<int>(model.contacts.size())), energy_(energy_books),
+      q_lo_(static_cast<size_t>(n_), -HUGE_VAL), q_hi_(static_cast<size_t>(n_), HUGE_VAL) {
   for (const auto& b : model.bodies) {
     inv_mass_.push_back(1.0 / b.inertia);
     machine_.push_back(b.machine.get());
     if (b.machine) machine_bodies_.push_back(static_cast<int>(machine_.size()) - 1);
   }
-  has_machines_ = !machine_bodies_.empty();
   im_ = inv_mass_;
   for (const auto& l : model.links) {
-    const Machine* pa = l.a_point && l.a >= 0 ? machine_[static_cast<size_t>(l.a)] : nullptr;
-    const Machine* pb = l.b_point && l.b >= 0 ? machine_[static_cast<size_t>(l.b)] : nullptr;
-    links_.push_back({l.a, l.b, 1.0 / l.ratio, l.c, l.d, l.has_gap, pa || pb, -l.gap_start, l.gap - l.gap_start});
-    link_point_.emplace_back(pa, pb);
+    links_.push_back(LinkLaw::of(model, l));
+    has_machines_ = has_machines_ || links_.back().point;
   }
+  has_machines_ = has_machines_ || !machine_bodies_.empty();
   for (const auto& c : model.contacts) {
-    FlatContact k{c.a, c.b, c.kinetic.size() > 1, c.surface_times.size() > 1, c.brake,
-                  c.kinetic.empty() ? 0.0 : c.kinetic.front(),
-                  c.surface_velocities.empty() ? 0.0 : c.surface_velocities.front()};
-    contacts_.push_back(k);
+    contacts_.push_back(ContactLaw::of(c));
     const double ma = model.bodies[static_cast<size_t>(c.a)].inertia;
     stuck_share_.push_back(c.b >= 0 ? ma / (ma + model.bodies[static_cast<size_t>(c.b)].inertia) : 1.0);
   }
@@ -49,99 +62,68 @@ HybridSystem::HybridSystem(const Model& model)
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
     else varying_.push_back(&ld);
   }
-  affine_eligible_ = varying_.empty() && !has_machines_;  // machines: nonlinear in y
-  for (const auto& l : model.links) affine_eligible_ = affine_eligible_ && l.d == 0.0;
+  affine_eligible_ = varying_.empty() && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
+  for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0;
   for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.brake;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
   f_.assign(static_cast<size_t>(n_), 0.0);
   fc_.assign(static_cast<size_t>(nc_), 0.0);
   set_contact_modes(std::vector<ContactMode>(static_cast<size_t>(nc_), ContactMode::stuck));
+  // The small chain without events: its linear part as dense M⁻¹K and M⁻¹D, from the links' own
+  // Jacobian terms (elements/link.hpp).
+  bool gaps = false;
+  for (const auto& l : links_) gaps = gaps || l.gap;
+  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && n_ >= 1 && n_ <= 8) {
+    Aq_.assign(static_cast<size_t>(n_ * n_), 0.0);
+    Av_ = Aq_;
+    for (const auto& l : links_)
+      l.jacobian(n_, GapMode::open, [&](int r, int c, double v) {
+        if (c < n_) Aq_[static_cast<size_t>(c * n_ + r)] += v;
+        else Av_[static_cast<size_t>((c - n_) * n_ + r)] += v;
+      });
+    // −K and −D summed over the links first, then scaled: the rounding of M⁻¹ (f − K q − D v).
+    for (size_t e = 0; e < Aq_.size(); ++e) {
+      Aq_[e] *= inv_mass_[e % static_cast<size_t>(n_)];
+      Av_[e] *= inv_mass_[e % static_cast<size_t>(n_)];
+    }
+    for (int i = 0; i < n_; ++i) b_.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
+    dense_ = kDense[n_ - 1];
+  }
 }
 
-void HybridSystem::initial_state(double* y) const {
+void DriveSystem::initial_state(double* y) const {
   for (int i = 0; i < n_; ++i) {
     y[i] = m_.bodies[static_cast<size_t>(i)].q0;
     y[n_ + i] = m_.bodies[static_cast<size_t>(i)].v0;
   }
-  y[2 * n_] = y[2 * n_ + 1] = y[2 * n_ + 2] = 0.0;
+  if (energy_) y[2 * n_] = y[2 * n_ + 1] = y[2 * n_ + 2] = 0.0;
 }
 
-// Out of line: the constant-inertia callers (deflection, link_load) stay small enough to inline.
-__attribute__((noinline)) HybridSystem::PointState HybridSystem::point_state(int l, const double* y) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
-  const double* v = y + n_;
-  const LinkDeflection d = link_deflection(k.a, k.b, k.inv_ratio, pa, pb, k.a >= 0 ? y[k.a] : 0.0,
-                                           k.b >= 0 ? y[k.b] : 0.0, k.a >= 0 ? v[k.a] : 0.0, k.b >= 0 ? v[k.b] : 0.0);
-  return {d.delta, d.rate, d.ja, d.jb};
+void DriveSystem::set_evaluation_window(int body, double lo, double hi) {
+  q_lo_[static_cast<size_t>(body)] = lo;
+  q_hi_[static_cast<size_t>(body)] = hi;
+  windows_ = true;
 }
 
-namespace {
-// δ = q_a/i − q_b of a link without output points (also δ̇ from the velocities).
-template <class Link>
-inline double linear_deflection(const Link& k, const double* y) {
-  double d = 0;
-  if (k.a >= 0) d += y[k.a] * k.inv_ratio;
-  if (k.b >= 0) d -= y[k.b];
-  return d;
-}
-}  // namespace
-
-double HybridSystem::deflection(int l, const double* y) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  if (k.point) [[unlikely]] return point_state(l, y).delta;
-  return linear_deflection(k, y);
+const double* DriveSystem::machine_positions(const double* y) const {
+  if (!windows_) return y;
+  qw_.assign(y, y + n_);
+  for (int i : machine_bodies_)
+    qw_[static_cast<size_t>(i)] = std::clamp(y[i], q_lo_[static_cast<size_t>(i)], q_hi_[static_cast<size_t>(i)]);
+  return qw_.data();
 }
 
-double HybridSystem::deflection_rate(int l, const double* y) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  if (k.point) [[unlikely]] return point_state(l, y).rate;
-  return linear_deflection(k, y + n_);
+LinkLaw::Kinematics DriveSystem::point_kinematics(int l, const double* y) const {
+  return links_[static_cast<size_t>(l)].kinematics(machine_positions(y), y + n_);
 }
 
-double HybridSystem::link_load(int l, const double* y) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  const double delta = deflection(l, y), rate = deflection_rate(l, y);
-  if (!k.gap) return k.c * delta + k.d * rate;
-  switch (gap_[static_cast<size_t>(l)]) {
-    case GapMode::open: return 0.0;
-    case GapMode::closed_pos: return k.c * (delta - k.hi) + k.d * rate;
-    case GapMode::closed_neg: return k.c * (delta - k.lo) + k.d * rate;
-  }
-  return 0.0;
+double DriveSystem::link_load_rate(int l, const double* y, const double* dy) const {
+  const LinkLaw& k = links_[static_cast<size_t>(l)];
+  return k.load_rate(k.point ? machine_positions(y) : y, k.point ? y + n_ : dy, dy + n_, gap_[static_cast<size_t>(l)]);
 }
 
-double HybridSystem::link_load_rate(int l, const double* y, const double* dy) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  if (k.gap && gap_[static_cast<size_t>(l)] == GapMode::open) return 0.0;
-  if (!k.point) return k.c * linear_deflection(k, dy) + k.d * linear_deflection(k, dy + n_);
-  const auto [pa, pb] = link_point_[static_cast<size_t>(l)];
-  // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ a) (/i).
-  double rate = 0, acc = 0, p, dp, ddp;
-  if (k.a >= 0) {
-    const double va = y[n_ + k.a], aa = dy[n_ + k.a];
-    if (pa) pa->point(y[k.a], &p, &dp, &ddp);
-    else dp = 1.0, ddp = 0.0;
-    rate += dp * va * k.inv_ratio;
-    acc += (ddp * va * va + dp * aa) * k.inv_ratio;
-  }
-  if (k.b >= 0) {
-    const double vb = y[n_ + k.b], ab = dy[n_ + k.b];
-    if (pb) pb->point(y[k.b], &p, &dp, &ddp);
-    else dp = 1.0, ddp = 0.0;
-    rate -= dp * vb;
-    acc -= ddp * vb * vb + dp * ab;
-  }
-  return k.c * rate + k.d * acc;
-}
-
-double HybridSystem::sliding_velocity(int k, double t, const double* y) const {
-  const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
-  return y[n_ + c.a] - (c.b >= 0 ? y[n_ + c.b] : c.surface_velocity(t));
-}
-
-void HybridSystem::zero_sliding_velocity(int k, double t, double* y) const {
-  const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
+  const ContactLaw& c = contacts_[static_cast<size_t>(k)];
   std::vector<double> im(static_cast<size_t>(n_));
   inverse_inertias(y, im.data());
   const double u = sliding_velocity(k, t, y);
@@ -152,17 +134,12 @@ void HybridSystem::zero_sliding_velocity(int k, double t, double* y) const {
   y[n_ + c.a] -= sliding_velocity(k, t, y);
 }
 
-GapMode HybridSystem::natural_gap_mode(int l, const double* y) const {
-  const FlatLink& k = links_[static_cast<size_t>(l)];
-  if (!k.gap) return GapMode::open;
-  const double delta = deflection(l, y), rate = deflection_rate(l, y);
-  const double Fp = k.c * (delta - k.hi) + k.d * rate, Fn = k.c * (delta - k.lo) + k.d * rate;
-  if ((delta > k.hi && Fp > 0) || (delta == k.hi && rate > 0)) return GapMode::closed_pos;
-  if ((delta < k.lo && Fn < 0) || (delta == k.lo && rate < 0)) return GapMode::closed_neg;
-  return GapMode::open;
+GapMode DriveSystem::natural_gap_mode(int l, const double* y) const {
+  const LinkLaw::Kinematics s = link_kinematics(l, y);
+  return links_[static_cast<size_t>(l)].natural_mode(s.delta, s.rate);
 }
 
-void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
+void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   mode_ = modes;
   affine_ = nullptr;
   stuck_.clear();
@@ -173,7 +150,7 @@ void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   lam_.resize(ns);
   stuck_machine_ = false;
   for (int k : stuck_) {
-    const FlatContact& c = contacts_[static_cast<size_t>(k)];
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     stuck_machine_ = stuck_machine_ || machine_[static_cast<size_t>(c.a)] || (c.b >= 0 && machine_[static_cast<size_t>(c.b)]);
   }
   if (ns == 0) return;
@@ -199,7 +176,7 @@ void HybridSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   if (cacheable) projector_cache_[key] = {P_, Pproj_};
 }
 
-Eigen::MatrixXd HybridSystem::stuck_matrix(const double* im) const {
+Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {
   // A = G M⁻¹ Gᵀ; row j of G has +1 at body a and −1 at body b of stuck contact j.
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(ns, ns);
@@ -217,7 +194,7 @@ Eigen::MatrixXd HybridSystem::stuck_matrix(const double* im) const {
   return A;
 }
 
-void HybridSystem::form_stuck_solution(const double* im) {
+void DriveSystem::form_stuck_solution(const double* im) {
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   const Eigen::MatrixXd A = stuck_matrix(im);
   if (ns == 1 && stuck_machine_) {  // one stuck contact: λ = r / (1/I_a + 1/I_b), no decomposition
@@ -235,20 +212,19 @@ void HybridSystem::form_stuck_solution(const double* im) {
   P_ = w.asDiagonal() * cod.pseudoInverse();
 }
 
-void HybridSystem::inverse_inertias(const double* y, double* im) const {
+void DriveSystem::inverse_inertias(const double* y, double* im) const {
   for (int i = 0; i < n_; ++i) im[i] = inv_mass_[static_cast<size_t>(i)];
   for (int i : machine_bodies_) {
     double I, dI;
-    machine_[static_cast<size_t>(i)]->inertia(y[i], &I, &dI);
+    machine_[static_cast<size_t>(i)]->inertia(machine_positions(y)[i], &I, &dI);
     im[i] = 1.0 / I;
   }
 }
 
-// Few bodies: the vectorizer's prologues cost more than they save (as in ChainSystem::rhs).
+// Few bodies: the vectorizer's prologues cost more than they save (the chain loops of small models).
 template <bool kMach>
-MACHDYN_NO_TREE_VECTORIZE void HybridSystem::forces(double t, const double* y, double* f,
-                                                                         double* fc, double* p_src, double* p_fric,
-                          double* p_damp) {
+MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, double* f, double* fc, double* p_src,
+                                                    double* p_fric, double* p_damp) {
   const double* v = y + n_;
   double src = 0, fric = 0, damp = 0;
   for (int i = 0; i < n_; ++i) {
@@ -260,72 +236,53 @@ MACHDYN_NO_TREE_VECTORIZE void HybridSystem::forces(double t, const double* y, d
     f[ld->body] += val;
     src += val * v[ld->body];
   }
+  const double* q = y;
   if constexpr (kMach) {
+    q = machine_positions(y);
     // I q'' + ½ I′ q'² = Q + ...: the velocity term joins the forces (it does no work on its own:
     // d/dt ½ I v² = v (I v' + ½ I′ v²)); the machine's force Q(q) is a source.
     for (int i : machine_bodies_) {
       const Machine* mach = machine_[static_cast<size_t>(i)];
-      double I, dI;
-      mach->inertia(y[i], &I, &dI);
+      double I, dI, Q;
+      mach->dynamics(q[i], &I, &dI, &Q);
       im_[static_cast<size_t>(i)] = 1.0 / I;
-      const double Q = mach->force(y[i]);
       f[i] += Q - 0.5 * dI * v[i] * v[i];
       src += Q * v[i];
     }
   }
   for (size_t l = 0; l < links_.size(); ++l) {
-    const FlatLink& k = links_[l];
+    const LinkLaw& k = links_[l];
+    const GapMode g = gap_[l];
+    if (!k.transmits(g)) continue;
     if constexpr (kMach) {
-      if (k.point) {  // a machine's output point: δ = p_a/i − p_b, forces −F ja, +F jb
-        const PointState s = point_state(static_cast<int>(l), y);
-        double F;
-        if (!k.gap) {
-          F = k.c * s.delta + k.d * s.rate;
-        } else {
-          const GapMode g = gap_[l];
-          if (g == GapMode::open) continue;
-          F = k.c * (s.delta - (g == GapMode::closed_pos ? k.hi : k.lo)) + k.d * s.rate;
-        }
-        damp += k.d * s.rate * s.rate;
-        if (k.a >= 0) f[k.a] -= F * s.ja;
-        if (k.b >= 0) f[k.b] += F * s.jb;
+      if (k.point) {  // a machine's output point: forces −F j_a, +F j_b
+        const LinkLaw::Kinematics s = k.kinematics(q, v);
+        k.apply(k.load(s.delta, s.rate, g), s, f);
+        damp += k.dissipation(s.rate, g);
         continue;
       }
     }
-    double delta = 0, rate = 0;
-    if (k.a >= 0) delta += y[k.a] * k.inv_ratio, rate += v[k.a] * k.inv_ratio;
-    if (k.b >= 0) delta -= y[k.b], rate -= v[k.b];
-    double F;
-    if (!k.gap) {
-      F = k.c * delta + k.d * rate;
-    } else {
-      const GapMode g = gap_[l];
-      if (g == GapMode::open) continue;
-      F = k.c * (delta - (g == GapMode::closed_pos ? k.hi : k.lo)) + k.d * rate;
-    }
-    damp += k.d * rate * rate;
+    const double delta = k.linear(q), rate = k.linear(v), F = k.load(delta, rate, g);
+    damp += k.dissipation(rate, g);
     if (k.a >= 0) f[k.a] -= F * k.inv_ratio;
     if (k.b >= 0) f[k.b] += F;
   }
   for (int k = 0; k < nc_; ++k) {
     const ContactMode md = mode_[static_cast<size_t>(k)];
     if (md == ContactMode::stuck) continue;
-    const FlatContact& c = contacts_[static_cast<size_t>(k)];
-    const FrictionContact& full = m_.contacts[static_cast<size_t>(k)];
-    const double w = c.b >= 0 ? v[c.b] : c.moving_surface ? full.surface_velocity(t) : c.surface0;
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+    const double w = c.b >= 0 ? v[c.b] : c.surface_velocity(t);
     const double u = v[c.a] - w;
-    const double level = c.kinetic_table ? full.kinetic_level(std::abs(u)) : c.kinetic0;
-    const double F = static_cast<double>(static_cast<int>(md)) * (c.brake ? full.scale(t) : 1.0) * level;
+    const double F = c.kinetic_force(md, t, u);
     fc[k] = F;
-    f[c.a] -= F;
-    if (c.b >= 0) f[c.b] += F;
-    else src -= F * w;
+    c.apply(F, f);
+    if (c.b < 0) src -= F * w;
     fric += F * u;
   }
   if (p_src) *p_src = src, *p_fric = fric, *p_damp = damp;
 }
 
-void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) {
+void DriveSystem::evaluate(double t, const double* y, double* acc, double* fc) {
   double src, fric, damp;
   if (has_machines_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
   else evaluate_impl<false>(t, y, acc, fc, &src, &fric, &damp);
@@ -333,21 +290,19 @@ void HybridSystem::evaluate(double t, const double* y, double* acc, double* fc) 
 
 // Inlined into evaluate(): the constant-inertia call is the same single function as before.
 template <bool kMach>
-__attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t, const double* y, double* acc, double* fc,
+__attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, const double* y, double* acc, double* fc,
                                                                        double* src, double* fric, double* damp) {
   forces<kMach>(t, y, acc, fc, src, fric, damp);
   const double* im = kMach ? im_.data() : inv_mass_.data();
   for (int i = 0; i < n_; ++i) acc[i] *= im[i];
   if (stuck_.empty()) return;
-  for (size_t j = 0; j < stuck_.size(); ++j) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
-    r_(static_cast<Eigen::Index>(j)) = acc[c.a] - (c.b >= 0 ? acc[c.b] : c.surface_acceleration(t));
-  }
+  for (size_t j = 0; j < stuck_.size(); ++j)
+    r_(static_cast<Eigen::Index>(j)) = contacts_[static_cast<size_t>(stuck_[j])].sliding_acceleration(t, acc);
   if constexpr (kMach)
     if (stuck_machine_) form_stuck_solution(im);
   mat_vec(P_, r_, lam_);
   for (size_t j = 0; j < stuck_.size(); ++j) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+    const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));
     fc[stuck_[j]] = lam;
     acc[c.a] -= im[c.a] * lam;
@@ -358,13 +313,13 @@ __attribute__((always_inline)) inline void HybridSystem::evaluate_impl(double t,
   else enforce_stuck(t, acc);
 }
 
-void HybridSystem::enforce_stuck(double t, double* acc) const {
+void DriveSystem::enforce_stuck(double t, double* acc) const {
   // Remove the rounding of λ: stuck bodies get exactly equal accelerations (the momentum-weighted
   // mean; the ground's is the surface acceleration), so u stays exactly zero along a stuck mode.
   for (int k : stuck_) {
-    const FlatContact& c = contacts_[static_cast<size_t>(k)];
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     if (c.b < 0) {
-      acc[c.a] = c.moving_surface ? m_.contacts[static_cast<size_t>(k)].surface_acceleration(t) : 0.0;
+      acc[c.a] = c.surface_acceleration(t);
     } else {
       const double s = stuck_share_[static_cast<size_t>(k)];
       acc[c.a] = acc[c.b] = s * acc[c.a] + (1.0 - s) * acc[c.b];
@@ -372,12 +327,12 @@ void HybridSystem::enforce_stuck(double t, double* acc) const {
   }
 }
 
-void HybridSystem::enforce_stuck_weighted(double t, double* acc, const double* im) const {
+void DriveSystem::enforce_stuck_weighted(double t, double* acc, const double* im) const {
   // As enforce_stuck, with the shares of the current inertias I(q): s = I_a/(I_a + I_b).
   for (int k : stuck_) {
-    const FlatContact& c = contacts_[static_cast<size_t>(k)];
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     if (c.b < 0) {
-      acc[c.a] = c.moving_surface ? m_.contacts[static_cast<size_t>(k)].surface_acceleration(t) : 0.0;
+      acc[c.a] = c.surface_acceleration(t);
     } else {
       const double s = im[c.b] / (im[c.a] + im[c.b]);
       acc[c.a] = acc[c.b] = s * acc[c.a] + (1.0 - s) * acc[c.b];
@@ -385,7 +340,7 @@ void HybridSystem::enforce_stuck_weighted(double t, double* acc, const double* i
   }
 }
 
-const HybridSystem::AffineMode& HybridSystem::compile_affine() {
+const DriveSystem::AffineMode& DriveSystem::compile_affine() {
   std::string key;
   for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
   key += '/';
@@ -412,7 +367,13 @@ const HybridSystem::AffineMode& HybridSystem::compile_affine() {
   return affine_cache_.emplace(std::move(key), std::move(a)).first->second;
 }
 
-void HybridSystem::rhs(double t, const double* y, double* dydt) {
+void DriveSystem::rhs(double t, const double* y, double* dydt) {
+  if (dense_) {
+    dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());
+    for (const Load* ld : varying_)
+      dydt[n_ + ld->body] += ld->evaluate(t, y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
+    return;
+  }
   if (!affine_eligible_) {
     if (has_machines_) rhs_general<true>(t, y, dydt);
     else rhs_general<false>(t, y, dydt);
@@ -434,91 +395,113 @@ void HybridSystem::rhs(double t, const double* y, double* dydt) {
 
 // Out of line: rhs() stays the small affine loop.
 template <bool kMach>
-__attribute__((noinline)) void HybridSystem::rhs_general(double t, const double* y, double* dydt) {
+__attribute__((noinline)) void DriveSystem::rhs_general(double t, const double* y, double* dydt) {
   for (int i = 0; i < n_; ++i) dydt[i] = y[n_ + i];
   double src, fric, damp;
   evaluate_impl<kMach>(t, y, dydt + n_, fc_.data(), &src, &fric, &damp);
+  if (!energy_) return;
   dydt[2 * n_] = src;
   dydt[2 * n_ + 1] = fric;
   dydt[2 * n_ + 2] = damp;
 }
 
-void HybridSystem::external_forces(double t, const double* y, double* f) {
-  std::vector<double> acc(static_cast<size_t>(n_)), fc(static_cast<size_t>(nc_));
-  evaluate(t, y, acc.data(), fc.data());
-  for (int i = 0; i < n_; ++i) f[i] = 0.0;
-  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
-  for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(y[i]);
-  for (int k = 0; k < nc_; ++k) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
-    f[c.a] -= fc[static_cast<size_t>(k)];
-    if (c.b >= 0) f[c.b] += fc[static_cast<size_t>(k)];
+void DriveSystem::numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) {
+  // Central differences, step scaled per state (about the cube root of ε for the 2nd-order scheme).
+  const int n = size();
+  std::vector<double> yp(y, y + n), fp(static_cast<size_t>(n)), fm(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    const double h = 6e-6 * std::max(1.0, std::abs(y[j]));
+    yp[static_cast<size_t>(j)] = y[j] + h;
+    rhs(t, yp.data(), fp.data());
+    yp[static_cast<size_t>(j)] = y[j] - h;
+    rhs(t, yp.data(), fm.data());
+    yp[static_cast<size_t>(j)] = y[j];
+    for (int i = 0; i < n; ++i) J(i, j) = (fp[static_cast<size_t>(i)] - fm[static_cast<size_t>(i)]) / (2 * h);
   }
 }
 
-double HybridSystem::kinetic_energy(const double* y) const {
+void DriveSystem::jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) {
+  if (has_machines_) {
+    numeric_jacobian(t, y, J);
+    return;
+  }
+  Eigen::SparseMatrix<double> S;
+  sparse_jacobian(t, y, S);
+  J = Eigen::MatrixXd(S);
+}
+
+void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) {
+  // q' = v; M v' = f(t, v) − (link terms): the loads' slopes ∂f/∂v and each link's own Jacobian
+  // terms (elements/link.hpp), divided by the inertias. Duplicates are summed and zeros kept, so the
+  // pattern is the same at every call.
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<size_t>(3 * n_ + 8 * nl_) + m_.loads.size());
+  for (int i = 0; i < n_; ++i) trip.emplace_back(i, n_ + i, 1.0);
+  // Every diagonal entry present (zero for positions): CVODE forms I − γJ in place on this pattern;
+  // a missing diagonal makes it rebuild the whole matrix at every setup.
+  for (int i = 0; i < 2 * n_; ++i) trip.emplace_back(i, i, 0.0);
+  auto im = [&](int i) { return inv_mass_[static_cast<size_t>(i)]; };
+  for (const auto& ld : m_.loads)
+    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[n_ + ld.body]) * im(ld.body));
+  for (int l = 0; l < nl_; ++l)
+    links_[static_cast<size_t>(l)].jacobian(n_, gap_[static_cast<size_t>(l)], [&](int r, int c, double v) {
+      trip.emplace_back(n_ + r, c, v * im(r));
+    });
+  J.resize(2 * n_, 2 * n_);
+  J.setFromTriplets(trip.begin(), trip.end());
+  J.makeCompressed();
+}
+
+void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
+  for (int i = 0; i < n_; ++i) f[i] = 0.0;
+  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[n_ + ld.body]);
+  const double* q = machine_positions(y);
+  for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);
+  for (int k = 0; k < nc_; ++k) contacts_[static_cast<size_t>(k)].apply(fc[k], f);
+}
+
+double DriveSystem::kinetic_energy(const double* y) const {
   double T = 0;
+  const double* q = machine_positions(y);
   for (int i = 0; i < n_; ++i) {
     double I = m_.bodies[static_cast<size_t>(i)].inertia, dI;
-    if (const Machine* mach = machine_[static_cast<size_t>(i)]) mach->inertia(y[i], &I, &dI);  // ½ I(q) v²
+    if (const Machine* mach = machine_[static_cast<size_t>(i)]) mach->inertia(q[i], &I, &dI);  // ½ I(q) v²
     T += 0.5 * I * y[n_ + i] * y[n_ + i];
   }
   return T;
 }
 
-double HybridSystem::elastic_energy(const double* y) const {
+double DriveSystem::elastic_energy(const double* y) const {
   double V = 0;
-  for (int l = 0; l < nl_; ++l) {
-    const FlatLink& k = links_[static_cast<size_t>(l)];
-    double e = deflection(l, y);
-    if (k.gap) {
-      const GapMode g = gap_[static_cast<size_t>(l)];
-      if (g == GapMode::open) continue;
-      e -= g == GapMode::closed_pos ? k.hi : k.lo;
-    }
-    V += 0.5 * k.c * e * e;
-  }
+  for (int l = 0; l < nl_; ++l)
+    V += links_[static_cast<size_t>(l)].elastic_energy(link_kinematics(l, y).delta, gap_[static_cast<size_t>(l)]);
   return V;
 }
 
-void HybridSystem::event_functions(double t, const double* y, double* g) {
+void DriveSystem::event_functions(double t, const double* y, double* g) {
   if (!stuck_.empty()) {
     // λ of the stuck contacts, into fc_.
     std::vector<double>& acc = f_;
     evaluate(t, y, acc.data(), fc_.data());
   }
   for (int l = 0; l < nl_; ++l) {
-    const FlatLink& k = links_[static_cast<size_t>(l)];
-    double* gl = g + 2 * l;
-    gl[0] = gl[1] = 1.0;
-    if (!k.gap) continue;
-    const double delta = deflection(l, y), rate = deflection_rate(l, y);
-    const double Fp = k.c * (delta - k.hi) + k.d * rate, Fn = k.c * (delta - k.lo) + k.d * rate;
-    switch (gap_[static_cast<size_t>(l)]) {
-      case GapMode::closed_pos: gl[0] = Fp; break;
-      case GapMode::closed_neg: gl[1] = -Fn; break;
-      case GapMode::open:
-        gl[0] = delta < k.hi ? k.hi - delta : -Fp;  // reaches the positive flank, pressing
-        gl[1] = delta > k.lo ? delta - k.lo : Fn;   // reaches the negative flank, pressing
-        break;
+    const LinkLaw& k = links_[static_cast<size_t>(l)];
+    if (!k.gap) {
+      g[2 * l] = g[2 * l + 1] = 1.0;
+      continue;
     }
+    const LinkLaw::Kinematics s = link_kinematics(l, y);
+    k.events(s.delta, s.rate, gap_[static_cast<size_t>(l)], g + 2 * l);
   }
   for (int k = 0; k < nc_; ++k) {
-    double* gc = g + 2 * nl_ + 2 * k;
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     const ContactMode md = mode_[static_cast<size_t>(k)];
-    if (md == ContactMode::stuck) {
-      const double Fs = c.scale(t) * c.static_limit, lam = fc_[static_cast<size_t>(k)];
-      gc[0] = Fs - lam;
-      gc[1] = Fs + lam;
-    } else {
-      gc[0] = static_cast<double>(static_cast<int>(md)) * sliding_velocity(k, t, y);
-      gc[1] = 1.0;
-    }
+    c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck ? 0.0 : c.sliding_velocity(t, y + n_),
+             g + 2 * nl_ + 2 * k);
   }
 }
 
-void HybridSystem::project_velocities(double t, double* y) const {
+void DriveSystem::project_velocities(double t, double* y) const {
   if (stuck_.empty()) return;
   // Minimal M-norm velocity change that makes every stuck contact's sliding velocity zero:
   // Δv = −M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁺ G v. With machines M = diag(I_i(q_i)) at the current positions.
@@ -541,14 +524,14 @@ void HybridSystem::project_velocities(double t, double* y) const {
   const Eigen::VectorXd mu = *P * r;
   double* v = y + n_;
   for (size_t j = 0; j < stuck_.size(); ++j) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(stuck_[j])];
+    const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
     v[c.a] -= im[c.a] * mu(static_cast<Eigen::Index>(j));
     if (c.b >= 0) v[c.b] += im[c.b] * mu(static_cast<Eigen::Index>(j));
   }
   // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations); the common
   // velocity is the momentum mean (I_a v_a + I_b v_b)/(I_a + I_b).
   for (int k : stuck_) {
-    const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     if (c.b < 0) {
       v[c.a] = c.surface_velocity(t);
     } else {
@@ -558,7 +541,7 @@ void HybridSystem::project_velocities(double t, double* y) const {
   }
 }
 
-std::string HybridSystem::state_name(int i) const {
+std::string DriveSystem::state_name(int i) const {
   if (i >= 2 * n_) return "energy quadrature";
   const bool vel = i >= n_;
   const auto& b = m_.bodies[static_cast<size_t>(vel ? i - n_ : i)];

@@ -1,4 +1,4 @@
-// The analytic Jacobian of the chain system (analysis/chain_system.hpp, used by CVODE BDF) against
+// The analytic Jacobian of the drive system (analysis/drive_system.hpp, used by CVODE BDF) against
 // central finite differences of its own right-hand side.
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
-#include "machdyn/analysis/chain_system.hpp"
+#include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/io/model_file.hpp"
@@ -20,7 +20,7 @@ namespace {
 // ∂f_i/∂y_j ≈ (f_i(y + h e_j) − f_i(y − h e_j)) / 2h with h = 1e-6 (1 + |y_j|): error O(h²) for a
 // smooth f, exact up to rounding for the linear chain; compared to 1e-6 of the largest entry.
 void expect_jacobian_matches_differences(const Model& m) {
-  ChainSystem sys(m);
+  DriveSystem sys(m, /*energy_books=*/false);
   const int N = sys.size();
   ASSERT_TRUE(sys.has_jacobian());
   std::vector<double> y(static_cast<size_t>(N));
@@ -51,7 +51,7 @@ void expect_jacobian_matches_differences(const Model& m) {
 
 // Claim: CVODE BDF with the sparse Jacobian (KLU; a chain of 150 masses, 300 states ≥ the sparse
 // threshold) gives the link peaks of dopri5 on the same model to 1e-6 of the largest.
-TEST(ChainJacobian, SparseBdfMatchesDopri5OnALongChain) {
+TEST(DriveJacobian, SparseBdfMatchesDopri5OnALongChain) {
   std::string yaml = "bodies:\n";
   const int n = 150;
   for (int i = 1; i <= n; ++i) yaml += "  m" + std::to_string(i) + ": {type: translational, mass: 1 kg}\n";
@@ -77,14 +77,14 @@ TEST(ChainJacobian, SparseBdfMatchesDopri5OnALongChain) {
 
 // Claim: the Jacobian of the shipped three-mass hoist and the 20-mass chain equals the finite
 // difference of f (links with ratios, dampers, constant loads).
-TEST(ChainJacobian, ExamplesMatchFiniteDifferences) {
+TEST(DriveJacobian, ExamplesMatchFiniteDifferences) {
   expect_jacobian_matches_differences(load_model(test::example("hoist-3mass.yaml")));
   expect_jacobian_matches_differences(load_model(test::example("chain-20.yaml")));
 }
 
 // Claim: the same with speed-dependent loads (a linear motor characteristic, ∂M/∂ω = −M_s/ω_0), a
 // gear ratio, a rope ratio to a translational body and a link to the ground.
-TEST(ChainJacobian, SpeedDependentLoadsAndRatiosMatchFiniteDifferences) {
+TEST(DriveJacobian, SpeedDependentLoadsAndRatiosMatchFiniteDifferences) {
   const Model m = compile_model(parse_yaml_string(R"(
 bodies:
   motor: {inertia: 0.5}

@@ -1,0 +1,97 @@
+#include "machdyn/analysis/contact_decision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "machdyn/common/diagnostics.hpp"
+
+namespace machdyn {
+namespace {
+
+class Decision {
+ public:
+  Decision(DriveSystem& sys, double t, const double* y, const std::vector<int>& strict)
+      : sys_(sys), t_(t), y_(y), strict_(strict), acc_(static_cast<size_t>(sys.dof())),
+        fc_(sys.model().contacts.size()) {}
+
+  /// The stick rule of contact k on the last evaluation (elements/contact.hpp).
+  bool holds(int k) const {
+    const bool strict = std::find(strict_.begin(), strict_.end(), k) != strict_.end();
+    return sys_.contact(k).holds(fc_[static_cast<size_t>(k)], t_, strict);
+  }
+  void evaluate(const std::vector<ContactMode>& modes) {
+    sys_.set_contact_modes(modes);
+    sys_.evaluate(t_, y_, acc_.data(), fc_.data());
+  }
+  bool consistent(const std::vector<ContactMode>& modes, const std::vector<int>& Z) {
+    evaluate(modes);
+    for (int k : Z) {
+      const ContactMode md = modes[static_cast<size_t>(k)];
+      const double s = static_cast<double>(static_cast<int>(md));
+      if (md == ContactMode::stuck ? !holds(k) : s * sys_.contact(k).sliding_acceleration(t_, acc_.data()) < 0.0)
+        return false;
+    }
+    return true;
+  }
+  double force(int k) const { return fc_[static_cast<size_t>(k)]; }
+
+ private:
+  DriveSystem& sys_;
+  double t_;
+  const double* y_;
+  const std::vector<int>& strict_;
+  std::vector<double> acc_, fc_;
+};
+
+}  // namespace
+
+std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const double* y, const std::vector<int>& Z,
+                                         const std::vector<int>& strict) {
+  Decision d(sys, t, y, strict);
+  const Model& m = sys.model();
+  std::vector<ContactMode> modes = sys.contact_modes();
+  for (int k : Z) modes[static_cast<size_t>(k)] = ContactMode::stuck;
+  // Release the most overloaded stuck contact until the stuck set holds.
+  for (size_t round = 0; round <= Z.size(); ++round) {
+    d.evaluate(modes);
+    int worst = -1;
+    double worst_ratio = 1.0;
+    for (int k : Z) {
+      if (modes[static_cast<size_t>(k)] != ContactMode::stuck || d.holds(k)) continue;
+      const double Fs = sys.contact(k).static_limit(t);
+      const double ratio = Fs > 0 ? std::abs(d.force(k)) / Fs : std::numeric_limits<double>::infinity();
+      if (worst < 0 || ratio > worst_ratio) worst = k, worst_ratio = ratio;
+    }
+    if (worst < 0) break;
+    modes[static_cast<size_t>(worst)] = d.force(worst) > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+  }
+  if (d.consistent(modes, Z)) return modes;
+  // Every combination, fewest sliding contacts first, then in index order.
+  if (Z.size() > 10)
+    throw SolverError(m.contacts[static_cast<size_t>(Z[0])].name, t,
+                      "no consistent stick/slip modes found for more than 10 contacts at rest at once");
+  long total = 1;
+  for (size_t i = 0; i < Z.size(); ++i) total *= 3;
+  std::vector<long> codes(static_cast<size_t>(total));
+  for (long c = 0; c < total; ++c) codes[static_cast<size_t>(c)] = c;
+  auto sliding = [&](long c) {
+    int s = 0;
+    for (size_t i = 0; i < Z.size(); ++i, c /= 3) s += c % 3 != 0;
+    return s;
+  };
+  std::stable_sort(codes.begin(), codes.end(), [&](long x, long y2) { return sliding(x) < sliding(y2); });
+  for (long code : codes) {
+    long c = code;
+    for (size_t i = 0; i < Z.size(); ++i, c /= 3)
+      modes[static_cast<size_t>(Z[i])] =
+          c % 3 == 0 ? ContactMode::stuck : c % 3 == 1 ? ContactMode::slip_pos : ContactMode::slip_neg;
+    if (d.consistent(modes, Z)) return modes;
+  }
+  std::string names;
+  for (int k : Z) names += (names.empty() ? "" : "', '") + m.contacts[static_cast<size_t>(k)].name;
+  throw SolverError(names, t, "no consistent stick/slip modes (the contacts' static limits contradict)");
+}
+
+}  // namespace machdyn
