@@ -30,7 +30,9 @@ class Decision {
     for (int k : Z) {
       const ContactMode md = modes[static_cast<size_t>(k)];
       const double s = static_cast<double>(static_cast<int>(md));
-      if (md == ContactMode::stuck ? !holds(k) : s * sys_.contact(k).sliding_acceleration(t_, acc_.data()) < 0.0)
+      if (md == ContactMode::stuck ? !holds(k)
+                                   : !sys_.contact(k).can_slide(md) ||
+                                         s * sys_.contact(k).sliding_acceleration(t_, acc_.data()) < 0.0)
         return false;
     }
     return true;
@@ -60,8 +62,7 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
     double worst_ratio = 1.0;
     for (int k : Z) {
       if (modes[static_cast<size_t>(k)] != ContactMode::stuck || d.holds(k)) continue;
-      const double Fs = sys.contact(k).static_limit(t);
-      const double ratio = Fs > 0 ? std::abs(d.force(k)) / Fs : std::numeric_limits<double>::infinity();
+      const double ratio = sys.contact(k).overload(d.force(k), t);
       if (worst < 0 || ratio > worst_ratio) worst = k, worst_ratio = ratio;
     }
     if (worst < 0) break;

@@ -204,7 +204,7 @@ void DriveSystem::form_stuck_solution(const double* im) {
   }
   Eigen::VectorXd w(ns);
   for (Eigen::Index i = 0; i < ns; ++i)
-    w(i) = std::sqrt(m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].static_limit);
+    w(i) = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].share_weight();
   // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s0).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   cod.setThreshold(1e-12);

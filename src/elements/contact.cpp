@@ -11,6 +11,7 @@ ContactLaw ContactLaw::of(const FrictionContact& c) {
   k.kinetic_table = c.kinetic.size() > 1;
   k.moving_surface = c.surface_times.size() > 1;
   k.brake = c.brake;
+  k.lock = c.lock;
   k.kinetic0 = c.kinetic.empty() ? 0.0 : c.kinetic.front();
   k.surface0 = c.surface_velocities.empty() ? 0.0 : c.surface_velocities.front();
   return k;

@@ -26,7 +26,8 @@ std::string_view section_of_type(std::string_view type) {
       {"rotational", "bodies"}, {"translational", "bodies"}, {"spring", "links"},      {"damper", "links"},
       {"spring-damper", "links"}, {"constant", "loads"},     {"step", "loads"},        {"ramp", "loads"},
       {"table", "loads"},       {"motor-linear", "loads"},   {"motor-kloss", "loads"}, {"brake", "brakes"},
-      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}};
+      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"},
+      {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -293,7 +294,7 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 }  // namespace
 
 const std::vector<std::string>& element_sections() {
-  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes"};
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "freewheels"};
   return kSections;
 }
 
@@ -319,6 +320,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   compile_links(top.node("links"), m, diag);
   compile_loads(top.node("loads"), m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
+  detail::compile_freewheels(top.node("freewheels"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   top.finish();

@@ -72,6 +72,42 @@ int resolve_body(FieldReader& f, const SpecNode& item, const Model& m, bool allo
   return i;
 }
 
+/// The two ends of `between` of element `name` (a `what`: contact, freewheel): c.a is a body, c.b a
+/// body or the ground (the ground given first is moved to b: *swapped). False if reported bad.
+bool resolve_between(FieldReader& f, const SpecNode& spec, const std::string& name, const char* what, const Model& m,
+                     FrictionContact& c, bool& swapped) {
+  Diagnostics& diag = f.diagnostics();
+  const SpecNode* between = f.node("between");
+  if (!between) {
+    diag.error(spec.loc, fmt::format("{} '{}': missing field 'between' (a body and a body or 'ground')", what, name));
+    return false;
+  }
+  if (!between->is_seq() || between->items.size() != 2 || !between->items[0].is_scalar() ||
+      !between->items[1].is_scalar()) {
+    diag.error(between->loc, fmt::format("{} '{}': 'between' expected two names, e.g. [mk, m2]", what, name));
+    return false;
+  }
+  const int a = resolve_body(f, between->items[0], m, true), b = resolve_body(f, between->items[1], m, true);
+  if (a == -2 || b == -2) return false;
+  if (a == kGround && b == kGround) {
+    diag.error(between->loc, fmt::format("{} '{}': needs at least one body", what, name));
+    return false;
+  }
+  if (a == b) {
+    diag.error(between->loc, fmt::format("{} '{}': joins '{}' to itself", what, name, between->items[0].scalar));
+    return false;
+  }
+  if (a != kGround && b != kGround && m.bodies[static_cast<size_t>(a)].kind != m.bodies[static_cast<size_t>(b)].kind) {
+    diag.error(between->loc, fmt::format("{} '{}': joins a rotational and a translational body", what, name));
+    return false;
+  }
+  // Keep the ground on side b: u = v_a − w.
+  swapped = a == kGround;
+  c.a = swapped ? b : a;
+  c.b = swapped ? kGround : b;
+  return true;
+}
+
 }  // namespace
 
 void compile_link_gap(FieldReader& f, Link& l, const Dim& qd) {
@@ -100,40 +136,14 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       FieldReader f(spec, fmt::format("contact '{}'", name), diag);
       FrictionContact c;
       c.name = name;
-      const SpecNode* between = f.node("between");
-      bool ends_ok = false;
-      if (!between) {
-        diag.error(spec.loc, fmt::format("contact '{}': missing field 'between' (a body and a body or 'ground')", name));
-      } else if (!between->is_seq() || between->items.size() != 2 || !between->items[0].is_scalar() ||
-                 !between->items[1].is_scalar()) {
-        diag.error(between->loc, fmt::format("contact '{}': 'between' expected two names, e.g. [mk, m2]", name));
-      } else {
-        const int a = resolve_body(f, between->items[0], m, true), b = resolve_body(f, between->items[1], m, true);
-        ends_ok = a != -2 && b != -2;
-        if (ends_ok && a == kGround && b == kGround) {
-          diag.error(between->loc, fmt::format("contact '{}': needs at least one body", name));
-          ends_ok = false;
-        } else if (ends_ok && a == b) {
-          diag.error(between->loc, fmt::format("contact '{}': joins '{}' to itself", name, between->items[0].scalar));
-          ends_ok = false;
-        } else if (ends_ok && a != kGround && b != kGround &&
-                   m.bodies[static_cast<size_t>(a)].kind != m.bodies[static_cast<size_t>(b)].kind) {
-          diag.error(between->loc, fmt::format("contact '{}': joins a rotational and a translational body", name));
-          ends_ok = false;
-        }
-        if (ends_ok) {
-          // Keep the ground on side b: u = v_a − w.
-          c.a = a == kGround ? b : a;
-          c.b = a == kGround ? kGround : b;
-          if (a == kGround) diag.error(between->items[0].loc,
-                                       fmt::format("contact '{}': write the body first: [{}, ground]", name,
-                                                   between->items[1].scalar));
-        }
-      }
-      if (!ends_ok) {
+      bool swapped = false;
+      if (!resolve_between(f, spec, name, "contact", m, c, swapped)) {
         for (const auto& [k, v] : spec.fields) f.node(k);
         continue;
       }
+      if (swapped)
+        diag.error(spec.find("between")->items[0].loc, fmt::format("contact '{}': write the body first: [{}, ground]",
+                                                                  name, spec.find("between")->items[1].scalar));
       const BodyKind kind = m.bodies[static_cast<size_t>(c.a)].kind;
       const Dim ld = load_dim(kind), vd = velocity_dim(kind);
       const bool by_mu = spec.find("normal_force") != nullptr;
@@ -204,6 +214,42 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       f.finish();
       m.contacts.push_back(c);
     }
+  }
+}
+
+void compile_freewheels(const SpecNode* freewheels, Model& m, Diagnostics& diag) {
+  if (!freewheels) return;
+  if (!freewheels->is_map()) {
+    diag.error(freewheels->loc, "'freewheels' must be a map of NAME: {fields}");
+    return;
+  }
+  for (const auto& [name, spec] : freewheels->fields) {
+    FieldReader f(spec, fmt::format("freewheel '{}'", name), diag);
+    FrictionContact c;
+    c.name = name;
+    bool swapped = false;
+    if (!resolve_between(f, spec, name, "freewheel", m, c, swapped)) {
+      for (const auto& [k, v] : spec.fields) f.node(k);
+      continue;
+    }
+    // [A, B]: A drives B forward (locked while λ ≥ 0), B may overrun. [ground, A]: a backstop, A
+    // moves forward only; kept as (A, ground) with the lock reversed.
+    c.lock = swapped ? -1 : +1;
+    const BodyKind kind = m.bodies[static_cast<size_t>(c.a)].kind;
+    c.static_limit = 1.0;  // unused by a freewheel's law (no upper limit)
+    if (spec.find("drag")) read_level(f, "drag", load_dim(kind), velocity_dim(kind), c, 1.0);
+    if (c.kinetic.empty()) c.kinetic = {0.0};
+    f.finish();
+    // The initial relative speed must not turn the freewheel in its locked direction (that would be
+    // an impact the model does not describe).
+    const double va = m.bodies[static_cast<size_t>(c.a)].v0, vb = c.b >= 0 ? m.bodies[static_cast<size_t>(c.b)].v0 : 0.0;
+    if (c.lock * (va - vb) > 0.0) {
+      const SpecNode& ends = *spec.find("between");  // as written: the driving side first
+      diag.error(ends.loc, fmt::format("freewheel '{}': the initial speeds turn it in its locked direction ('{}' "
+                                       "faster than '{}'); give equal speeds or let the driven side run ahead",
+                                       name, ends.items[0].scalar, ends.items[1].scalar));
+    }
+    m.contacts.push_back(c);
   }
 }
 

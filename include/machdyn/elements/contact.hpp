@@ -12,6 +12,8 @@
 /// The stick rule's tolerance: a contact whose own limit event just fired is judged strictly
 /// (|λ| ≤ F_s: the event located the crossing on this very function); any other gets a rounding
 /// allowance of 1e-12 F_s0, so a load exactly at the limit holds.
+/// A freewheel (lock = ±1) holds while lock·λ ≥ 0, has no upper limit, and slides only in its free
+/// direction −lock with its drag as kinetic level; its stuck event is lock·λ.
 
 #include <cmath>
 
@@ -25,6 +27,7 @@ struct ContactLaw {
   const FrictionContact* spec = nullptr;
   int a = 0, b = kGround;
   bool kinetic_table = false, moving_surface = false, brake = false;
+  int lock = 0;  ///< freewheel: +1 or −1, 0 otherwise (model/model.hpp)
   double kinetic0 = 0.0, surface0 = 0.0;  ///< the constant kinetic level and ground velocity
 
   static ContactLaw of(const FrictionContact& c);
@@ -58,13 +61,32 @@ struct ContactLaw {
   /// The steepest rising slope of the kinetic table, max dF_k0/d|u| ≥ 0 (a damper while sliding).
   [[nodiscard]] double steepest_kinetic_slope() const;
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
+  /// A freewheel holds while lock·λ ≥ 0 (allowance 1e-9 N or N·m: an unloaded freewheel holds).
   [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
+    if (lock != 0) return strict ? lock * lambda >= 0.0 : lock * lambda >= -1e-9;
     const double Fs = static_limit(t), F = std::abs(lambda);
     return strict ? F <= Fs : F <= Fs + 1e-12 * spec->static_limit;
   }
+  /// Whether sliding mode md can exist at all (a freewheel slides in its free direction only).
+  [[nodiscard]] bool can_slide(ContactMode md) const {
+    return lock == 0 || static_cast<int>(md) == -lock;
+  }
+  /// How far the stuck load λ is beyond what holds, as a ratio (> 1: beyond; ∞ for a freewheel
+  /// loaded against its lock): the mode decision releases the largest first.
+  [[nodiscard]] double overload(double lambda, double t) const {
+    if (lock != 0) return lock * lambda < 0.0 ? HUGE_VAL : 0.0;
+    const double Fs = static_limit(t);
+    return Fs > 0 ? std::abs(lambda) / Fs : HUGE_VAL;
+  }
+  /// The weight of this contact in the least-norm share of a redundantly locked load (√F_s0; 1 for
+  /// a freewheel, which has no limit to share by).
+  [[nodiscard]] double share_weight() const { return lock != 0 ? 1.0 : std::sqrt(spec->static_limit); }
   /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity.
   void events(ContactMode md, double t, double lambda, double u, double* ev) const {
-    if (md == ContactMode::stuck) {
+    if (md == ContactMode::stuck && lock != 0) {
+      ev[0] = lock * lambda;  // the load turns against the lock: it overruns
+      ev[1] = 1.0;
+    } else if (md == ContactMode::stuck) {
       const double Fs = static_limit(t);
       ev[0] = Fs - lambda;
       ev[1] = Fs + lambda;

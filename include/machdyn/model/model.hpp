@@ -73,9 +73,15 @@ struct Link {
 ///   sliding (u ≠ 0): F = sign(u) F_k(t, |u|)
 /// F_s(t) = r(t) F_s0 and F_k(t, s) = r(t) F_k0(s); r(t) = 1 for a contact, the application ramp
 /// of a brake (0 before `t_apply`, linear over `t_ramp`, then 1). F_s0 ≥ F_k0(0) ≥ 0.
+/// A freewheel (one-way clutch, `lock` = ±1) transmits load in one direction only:
+///   stuck   (u ≡ 0):  holds while lock·λ ≥ 0 (no upper limit; static_limit unused)
+///   sliding:          only in the free direction, sign(u) = −lock, F = −lock F_k0(|u|) (drag)
+/// lock = +1: A drives B forward and B may overrun (u < 0); written [ground, A] it is a backstop
+/// that lets A move forward only (stored as a = A, b = ground, lock = −1).
 struct FrictionContact {
   std::string name;
   bool brake = false;
+  int lock = 0;                      ///< freewheel: +1 or −1 (see above); 0: a friction contact or brake
   int a = 0;                         ///< body index
   int b = kGround;                   ///< body index or kGround
   double static_limit = 0.0;         ///< F_s0, N or N·m, > 0
