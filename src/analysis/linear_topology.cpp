@@ -37,6 +37,12 @@ bool contact_word(const std::string& w, bool brake, ContactMode* c, bool* engage
   return false;
 }
 
+/// The direction a contact slides in when the topology says only "sliding": slip+, or a
+/// freewheel's free direction.
+ContactMode free_direction(const FrictionContact& c) {
+  return ContactLaw::of(c).can_slide(ContactMode::slip_pos) ? ContactMode::slip_pos : ContactMode::slip_neg;
+}
+
 std::string names_of(const Model& m) {
   std::vector<std::string> n;
   for (const Link& l : m.links)
@@ -85,7 +91,9 @@ void apply_topology_text(const Model& m, const std::string& text, const Location
       } else if (contact != m.contacts.end()) {
         ContactMode c;
         bool engaged;
-        if (!contact_word(word, contact->brake, &c, &engaged)) {
+        const bool known = contact_word(word, contact->brake, &c, &engaged);
+        if (known && word == "sliding") c = free_direction(*contact);  // a freewheel's free direction
+        if (!known) {
           diag.error(wat, fmt::format("'{}' is not a mode of {} '{}': expected stuck{}, slip+, slip-, sliding or released",
                                       word, contact->brake ? "brake" : "contact", name,
                                       contact->brake ? ", applied" : ""));
@@ -145,7 +153,7 @@ std::vector<Topology> all_topologies(const Model& m, int max_elements) {
     // Closed and stuck first (bit 0): the stiffest topology leads the list.
     for (int l : gap_links) t.gaps[static_cast<size_t>(l)] = (bits >> e++) & 1 ? GapMode::open : GapMode::closed_pos;
     for (size_t c = 0; c < m.contacts.size(); ++c)
-      t.contacts[c] = (bits >> e++) & 1 ? ContactMode::slip_pos : ContactMode::stuck;
+      t.contacts[c] = (bits >> e++) & 1 ? free_direction(m.contacts[c]) : ContactMode::stuck;
     out.push_back(std::move(t));
   }
   return out;

@@ -5,7 +5,8 @@
 ///
 /// Syntax: a comma-separated list of ELEMENT=MODE (spaces allowed around the words):
 ///   link with a gap:   open | closed (= closed+) | closed+ | closed-
-///   contact or brake:  stuck (a brake: also `applied`, holding) | slip+ | slip- | sliding (= slip+)
+///   contact or brake:  stuck (a brake: also `applied`, holding) | slip+ | slip- | sliding (= slip+; a
+///                      freewheel: its free direction)
 ///                      | released (acts with no force: a released brake, an opened clutch)
 /// Elements not named keep the mode of the initial state (elements/linearize.hpp initial_topology).
 /// A stuck contact is a constraint of the linear model, a closed gap a spring, a sliding contact
@@ -38,7 +39,7 @@ std::string topology_label(const Model& m, const Topology& topo);
 int switching_elements(const Model& m);
 
 /// Every topology that matters for the linear model: each gap closed+ or open, each contact and
-/// brake stuck or slip+ (a released brake or opened clutch is linearly the same as a sliding one
+/// brake stuck or sliding (slip+; a freewheel in its free direction) (a released brake or opened clutch is linearly the same as a sliding one
 /// with a constant kinetic level, so it is not listed again). 2^k topologies for k switching
 /// elements; throws InputError (at m.source) for k > max_elements — name the modes then.
 std::vector<Topology> all_topologies(const Model& m, int max_elements = 12);
