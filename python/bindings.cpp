@@ -17,7 +17,9 @@
 #include <pybind11/numpy.h>
 
 #include "machdyn/analysis/energy.hpp"
+#include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
+#include "machdyn/io/linear_results.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
@@ -271,9 +273,16 @@ PYBIND11_MODULE(_machdyn, mod) {
     });
   });
 
-  mod.def("modes", [](const PyModel& p) {
-    const Modes m = compute_modes(*p.model);
-    return py::make_tuple(modes_summary(*p.model, m).dump(), m.omega, m.shapes);
+  // As `machdyn modes [--topology TEXT]`: every topology (or the one named), the first one's
+  // frequencies and shapes as arrays.
+  mod.def("modes", [](const PyModel& p, const std::string& topology) {
+    const Model& m = *p.model;
+    std::vector<TopologyModes> list;
+    if (topology.empty())
+      for (const Topology& t : all_topologies(m)) list.push_back(analyse_topology(m, t));
+    else
+      list.push_back(analyse_topology(m, parse_topology(m, topology, Location{"topology", 1, 0})));
+    return py::make_tuple(linear_modes_json(m, list).dump(), list.front().modes.omega, list.front().modes.shapes);
   });
 
   mod.def("energy", [](const PyModel& p, const std::string& to, int points, double delta,

@@ -11,6 +11,8 @@ trap 'rm -rf "$tmp"' EXIT
 "$machdyn" simulate examples/hoist-3mass.yaml --plot -o "$tmp/hoist" >/dev/null
 "$machdyn" modes examples/hoist-3mass.yaml --plot -o "$tmp/hoist" >/dev/null
 "$machdyn" modes examples/chain-20.yaml --plot -o "$tmp/chain" >/dev/null
+"$machdyn" modes examples/hoist-3mass.yaml --plot -o "$tmp/linear" --frf Msp --output c1.load --output c2.load \
+  --campbell 0:1500 --order pole=2 --order mesh=5 >/dev/null
 "$machdyn" gears examples/walking-drive-gears.yaml --plot -o "$tmp/gears" >/dev/null
 "$machdyn" simulate examples/travel-start.yaml --plot -o "$tmp/travel" >/dev/null
 "$machdyn" simulate examples/hoist-modes.yaml --case brake_I2_lifting --plot -o "$tmp/modes" >/dev/null
@@ -32,13 +34,15 @@ cp "$tmp"/travel/contacts.png docs/img/contacts.png
 cp "$tmp"/chain/mode_shapes.png docs/img/mode_shapes_chain20.png
 for k in 1 2 3; do cp "$tmp/wheel-$k/speed_distance.png" "docs/img/speed_distance_$k.png"; done
 cp "$tmp"/crank/{speed_angle,inertia_moments}.png docs/img/
+cp "$tmp"/linear/{bode_magnitude,campbell}.png docs/img/
 shot() {  # shot HTML PNG HEIGHT: a screenshot of the top of a report
   chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking \
     --disable-component-update --disable-sync --user-data-dir="$tmp/profile-$(basename "$2")" --virtual-time-budget=8000 \
     --hide-scrollbars --window-size=1100,"$3" --screenshot="$PWD/$2" "file://$1" 2>/dev/null
 }
 made=(docs/img/{link_loads,mode_shapes,pitch_curves,ratio,link_loads_brake_case,link_loads_chain20,load_cyclogram}.png
-      docs/img/{contacts,mode_shapes_chain20,speed_distance_1,speed_distance_2,speed_distance_3,speed_angle,inertia_moments}.png)
+      docs/img/{contacts,mode_shapes_chain20,speed_distance_1,speed_distance_2,speed_distance_3,speed_angle,inertia_moments}.png
+      docs/img/{bode_magnitude,campbell}.png)
 if command -v chromium >/dev/null; then
   shot "$tmp/report.html" docs/img/report.png 2600
   shot "$tmp/cases.html" docs/img/report_cases.png 1500

@@ -13,6 +13,7 @@
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/elements/modes.hpp"
 #include "machdyn/analysis/machine_outputs.hpp"
+#include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
@@ -53,6 +54,9 @@ struct CaseRun {
   SimulationResult result;
   Modes modes;
   std::optional<EnergyResult> energy;
+  std::vector<TopologyModes> topologies;  ///< of each topology the run passed through
+  std::unique_ptr<FrequencyResponse> frf;
+  std::string frf_topology;
 };
 
 int run_report(const ReportArgs& a) {
@@ -72,7 +76,7 @@ int run_report(const ReportArgs& a) {
   std::deque<CaseRun> runs;  // stable addresses for report::Case
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
-                           {}, {}, std::nullopt});
+                           {}, {}, std::nullopt, {}, {}, {}});
   // The report embeds every series: the same size limit as simulate's time series, before any run.
   if (!a.large_output) {
     std::uint64_t total = 0;
@@ -92,6 +96,8 @@ int run_report(const ReportArgs& a) {
     bar.clear();
     run.modes = compute_modes(run.model);
     run.energy = machine_energy(run.model);
+    run.topologies = run_topology_modes(run.model, run.result.hybrid, run.model.simulation.t_end);
+    run.frf = default_frequency_response(run.model, run.topologies, &run.frf_topology);
   }
   std::vector<report::Case> cases;
   for (const auto& run : runs) {
@@ -99,6 +105,8 @@ int run_report(const ReportArgs& a) {
     c.name = run.name, c.description = run.description;
     c.model = &run.model, c.result = &run.result, c.modes = &run.modes;
     c.energy = run.energy ? &*run.energy : nullptr;
+    c.topologies = &run.topologies;
+    c.frf = run.frf.get(), c.frf_topology = run.frf_topology;
     cases.push_back(c);
   }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));

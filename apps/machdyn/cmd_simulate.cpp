@@ -1,5 +1,5 @@
 // `machdyn simulate MODEL [-o DIR] [--json] [--plot] [--quiet] [--case NAME | --all-cases]
-// [--set NAME.FIELD=VALUE ...]` and `machdyn modes MODEL [--json] [--plot] [-o DIR]`.
+// [--set NAME.FIELD=VALUE ...]` (`modes`: cmd_modes.cpp).
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -192,40 +192,6 @@ int run_simulate(const std::string& model_path, const std::vector<std::string>& 
   return run_simulate(a);
 }
 
-int run_modes(const std::string& model_path, const std::vector<std::string>& sets, bool json,
-              const std::string& plot_dir) {
-  const Model m = load_model(model_path, sets);
-  const Modes modes = compute_modes(m);
-  if (!plot_dir.empty() && modes.shapes.cols() > 0) {
-    const auto files = write_figures(plot_dir, {mode_shapes_figure(m, modes)});
-    if (!json) std::cout << fmt::format("figures: {}/{{{}}}\n", plot_dir, fmt::join(files, ","));
-  }
-  const auto j = modes_summary(m, modes);
-  if (json) {
-    std::cout << j.dump(2) << '\n';
-    return 0;
-  }
-  std::cout << fmt::format("model: {} ({})\ntopology: {}\nrigid-body modes: {}\n", m.name, m.source,
-                           j["topology"]["note"].get<std::string>(), modes.rigid_body_modes);
-  std::cout << fmt::format("{:>4} {:>16} {:>14}   mass-normalized shape ({})\n", "mode", "omega [rad/s]", "f [Hz]",
-                           [&] {
-                             std::string s;
-                             for (const auto& b : m.bodies) s += (s.empty() ? "" : ", ") + b.name;
-                             return s;
-                           }());
-  for (Eigen::Index k = 0; k < modes.omega.size(); ++k) {
-    std::string shape;
-    for (Eigen::Index i = 0; i < modes.shapes.rows(); ++i) shape += fmt::format(" {:+.4f}", modes.shapes(i, k));
-    std::cout << fmt::format("{:>4} {:>16.8g} {:>14.8g}  {}\n", k + 1, modes.omega(k),
-                             modes.omega(k) / (2 * 3.14159265358979323846), shape);
-  }
-  return 0;
-}
-
-int run_modes(const std::string& model_path, const std::vector<std::string>& sets, bool json) {
-  return run_modes(model_path, sets, json, "");
-}
-
 void register_simulate(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SimulateArgs>();
   auto* cmd = app.add_subcommand("simulate", "Simulate a model: time series, link-load peaks, dynamic factors");
@@ -252,23 +218,6 @@ void register_simulate(CLI::App& app, int& exit_code) {
         throw InputError(Location{"--case", 0, 0}, "give either --case NAME or --all-cases");
       if (args->all_cases) return run_all_cases(*args);
       return run_simulate(*args);
-    });
-  });
-}
-
-void register_modes(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<SimulateArgs>();
-  auto* cmd = app.add_subcommand("modes", "Natural frequencies and mass-normalized mode shapes");
-  cmd->add_option("MODEL", args->model, "Model file (YAML)")->required();
-  cmd->add_flag("--json", args->json, "Print JSON to stdout");
-  cmd->add_flag("--plot", args->plot, "Write mode_shapes.svg/.png (one curve per elastic mode; needs gnuplot)");
-  cmd->add_option("-o,--out", args->out_dir, "Folder for the --plot figures (default out/MODEL)");
-  add_set_option(*cmd, args->sets);
-  cmd->callback([args, &exit_code] {
-    exit_code = guarded([&] {
-      if (args->plot) plot::find_gnuplot();
-      const std::string dir = !args->plot ? "" : args->out_dir.empty() ? default_out_dir(args->model).string() : args->out_dir;
-      return run_modes(args->model, args->sets, args->json, dir);
     });
   });
 }

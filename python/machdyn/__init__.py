@@ -111,13 +111,18 @@ def simulate(model: Model, case: str | None = None) -> Result:
     return Result(_machdyn.simulate(m._core), m)
 
 
-def modes(model: Model) -> Modes:
+def modes(model: Model, topology: str | None = None) -> Modes:
     """Natural frequencies and mass-normalized mode shapes (K φ = ω² M φ), as ``machdyn modes``.
 
+    topology: the mode of each gap, contact and brake, as ``machdyn modes --topology``
+              (e.g. ``"c=closed, adhesion=stuck, W=slip+"``; docs/modes.md). Default: every
+              topology the model can be in, listed in ``summary["topologies"]``.
     Returns :class:`Modes`: ``omega`` (rad/s), ``frequencies_hz`` (Hz), ``shapes`` (bodies × modes,
-    mass-normalized), ``summary`` (the dict of ``machdyn modes --json``).
+    mass-normalized) of the named (or the first listed) topology, ``summary`` (the dict of
+    ``machdyn modes --json``: each topology's frequencies, shapes and damped modes).
+    Raises InputError for an unknown element or mode word.
     """
-    text, omega, shapes = _machdyn.modes(model._core)
+    text, omega, shapes = _machdyn.modes(model._core, "" if topology is None else str(topology))
     return Modes(_json.loads(text), omega, shapes)
 
 

@@ -72,3 +72,18 @@ def test_model_inspection():
     assert {c["name"] for c in m.contacts} == {"adhesion", "W"}
     assert m.is_hybrid and m.simulation["t_end_s"] == 2
     assert "travel" in repr(m).lower() and "<table>" in m._repr_html_()
+
+
+def test_modes_per_topology_equal_the_cli_and_paper_001():
+    # Rolling without slip (adhesion stuck, W sliding, gap closed): m1 against mk + m2,
+    # ω3 = √(c/m1 + c/(mk + m2)) (paper 001).
+    path = example("travel-start.yaml")
+    m = machdyn.load(path)
+    modes = machdyn.modes(m, topology="c=closed, W=slip+")
+    assert modes.summary == cli_json("modes", path, "--json", "--topology", "c=closed, W=slip+")
+    c, m1, mk, m2 = 2.0e6, 3000.0, 300.0, 10000.0
+    assert modes.omega[0] == pytest.approx(math.sqrt(c / m1 + c / (mk + m2)), rel=1e-10)
+    assert modes.rigid_body_modes == 1
+    assert len(machdyn.modes(m).summary["topologies"]) == 8
+    with pytest.raises(machdyn.InputError, match="'shut' is not a mode"):
+        machdyn.modes(m, topology="c=shut")

@@ -62,4 +62,17 @@ void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
     if (curv[k] != 0.0) lin.K.emplace_back(idx[k], idx[k], c * (delta0 - flank(g)) * curv[k]);
 }
 
+void LinkLaw::add_load_gradient(const double* q, const double* v, GapMode g, double* dFdq, double* dFdv) const {
+  if (!transmits(g)) return;
+  auto end = [&](int body, const Machine* p_m, double sign) {
+    if (body < 0) return;
+    double p = q[body], dp = 1.0, ddp = 0.0;
+    if (p_m) p_m->point(q[body], &p, &dp, &ddp);
+    dFdq[body] += sign * (c * dp + d * ddp * v[body]);
+    dFdv[body] += sign * d * dp;
+  };
+  end(a, pa, inv_ratio);
+  end(b, pb, -1.0);
+}
+
 }  // namespace machdyn

@@ -7,6 +7,7 @@
 
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/report.hpp"
+#include "machdyn/io/linear_results.hpp"
 
 namespace machdyn::report {
 
@@ -300,11 +301,16 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
       run.tables.push_back(events_table(r));
       if (!r.hybrid.slip_phases.empty()) run.tables.push_back(slip_phases_table(m, r));
     }
-    if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
+    if (c.topologies) run.tables.push_back(topology_modes_table(m, *c.topologies));
+    else if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
     Section plots;
     plots.title = c.name.empty() ? "Plots" : "Plots — case " + c.name;
     plots.figures = simulation_figures(m, r);
     if (c.modes && c.modes->shapes.cols() > 0) plots.figures.push_back(mode_shapes_figure(m, *c.modes));
+    if (c.frf) {
+      plots.figures.push_back(bode_magnitude_figure(m, *c.frf, c.frf_topology));
+      plots.figures.push_back(bode_phase_figure(m, *c.frf, c.frf_topology));
+    }
     if (c.energy)
       for (auto& f : energy_figures(m, *c.energy)) plots.figures.push_back(std::move(f));
     if (many) {

@@ -170,48 +170,4 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   return j;
 }
 
-nlohmann::json modes_topology(const Model& m) {
-  std::vector<std::string> gaps, contacts, brakes;
-  for (const auto& l : m.links)
-    if (l.has_gap) gaps.push_back(l.name);
-  for (const auto& c : m.contacts) (c.brake ? brakes : contacts).push_back(c.name);
-  std::string note = fmt::format("{} bodies and {} link(s), linearized at the initial position", m.bodies.size(),
-                                 m.links.size());
-  if (!gaps.empty()) note += fmt::format("; gaps taken as closed (the spring acts): {}", fmt::join(gaps, ", "));
-  if (!contacts.empty()) note += fmt::format("; friction contacts left out (bodies free): {}", fmt::join(contacts, ", "));
-  if (!brakes.empty()) note += fmt::format("; brakes left out (not applied): {}", fmt::join(brakes, ", "));
-  const bool exact = gaps.empty() && contacts.empty() && brakes.empty();
-  if (!exact) note += " — the modes of this linear chain, not of every mode of the hybrid model";
-  return {{"bodies", m.bodies.size()},
-          {"links", m.links.size()},
-          {"gaps_closed", gaps},
-          {"contacts_ignored", contacts},
-          {"brakes_ignored", brakes},
-          {"exact", exact},
-          {"note", note}};
-}
-
-nlohmann::json modes_summary(const Model& m, const Modes& modes) {
-  nlohmann::json j;
-  j["model"] = m.name;
-  j["topology"] = modes_topology(m);
-  j["rigid_body_modes"] = modes.rigid_body_modes;
-  std::vector<double> w(modes.omega.data(), modes.omega.data() + modes.omega.size()), hz;
-  for (double x : w) hz.push_back(x / (2.0 * std::numbers::pi));
-  j["frequencies_rad_s"] = w;
-  j["frequencies_hz"] = hz;
-  nlohmann::json bodies = nlohmann::json::array();
-  for (const auto& b : m.bodies) bodies.push_back(b.name);
-  j["bodies"] = bodies;
-  nlohmann::json shapes = nlohmann::json::array();
-  for (Eigen::Index k = 0; k < modes.shapes.cols(); ++k) {
-    nlohmann::json amp = nlohmann::json::object();
-    for (int i = 0; i < m.dof(); ++i) amp[m.bodies[static_cast<size_t>(i)].name] = modes.shapes(i, k);
-    shapes.push_back({{"mode", k + 1}, {"frequency_rad_s", w[static_cast<size_t>(k)]},
-                      {"frequency_hz", hz[static_cast<size_t>(k)]}, {"amplitudes", amp}});
-  }
-  j["shapes"] = shapes;
-  return j;
-}
-
 }  // namespace machdyn

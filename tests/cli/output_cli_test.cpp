@@ -158,35 +158,5 @@ TEST(OutputCli, FullDiskIsAClearErrorAndKeepsTheEarlierFile) {
   EXPECT_TRUE(temp_files(dir).empty());
 }
 
-// Claim: `modes` says which topology it analysed — in a note line and in JSON `topology` — and
-// the note is true: the travel start-up's frequencies are those of the same chain written without
-// its gap and contacts (gap closed, contacts left out); a plain chain is marked exact.
-TEST(ModesCli, SaysWhichTopologyItAnalysed) {
-  const auto r = test::run_cli("modes '" + test::example("travel-start.yaml") + "' --json");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["topology"]["gaps_closed"], nlohmann::json({"c"}));
-  EXPECT_EQ(j["topology"]["contacts_ignored"], nlohmann::json({"adhesion", "W"}));
-  EXPECT_FALSE(j["topology"]["exact"].get<bool>());
-  const auto plain = test::write_temp("travel-plain.yaml", R"(bodies:
-  m1: {type: translational, mass: 3000 kg}
-  mk: {type: translational, mass: 300 kg}
-  m2: {type: translational, mass: 10000 kg}
-links:
-  c: {type: spring, between: [m1, mk], stiffness: 2.0e6 N/m}
-)");
-  const auto p = nlohmann::json::parse(test::run_cli("modes '" + plain + "' --json").out);
-  ASSERT_EQ(p["frequencies_rad_s"].size(), j["frequencies_rad_s"].size());
-  for (size_t k = 0; k < p["frequencies_rad_s"].size(); ++k)
-    EXPECT_NEAR(j["frequencies_rad_s"][k].get<double>(), p["frequencies_rad_s"][k].get<double>(),
-                1e-9 * (1 + p["frequencies_rad_s"][k].get<double>()));
-  EXPECT_TRUE(p["topology"]["exact"].get<bool>());
-  const auto text = test::run_cli("modes '" + test::example("travel-start.yaml") + "'");
-  EXPECT_NE(text.out.find("topology: 3 bodies and 1 link(s), linearized at the initial position; gaps taken as closed "
-                          "(the spring acts): c; friction contacts left out (bodies free): "),
-            std::string::npos)
-      << text.out;
-}
-
 }  // namespace
 }  // namespace machdyn

@@ -1,13 +1,16 @@
 #pragma once
 /// @file
-/// Modal analysis of the linear(ized) drive chain: the generalized eigenproblem
-///   K φ = ω² M φ,   K = Bᵀ C B (link stiffnesses through their ratios), M = diag(I or m).
-/// Elastic modes have ω > 0; rigid-body modes (K φ = 0: the drive turns as a whole) are counted
-/// apart. Shapes are mass-normalized, φᵀ M φ = 1, with the largest-magnitude entry positive.
-/// Dampers and loads do not enter (undamped natural frequencies).
+/// Modal analysis of the elastic chain — every link transmitting (a gap taken as closed), no contact
+/// or brake acting — at the initial position: K φ = ω² M φ. The matrices are linearize()'s for that
+/// topology (elements/linearize.hpp: each element's own law), the eigenproblem is undamped_modes()
+/// (analysis/modal.hpp). For the modes of a definite contact state (stuck, sliding, released; gaps
+/// open or closed), damping and frequency responses use analysis/linear_analysis.hpp (`machdyn
+/// modes`, docs/modes.md); these functions stay for the quasi-static loads of a run and the report.
 ///
+/// Elastic modes have ω > 0; rigid-body modes (ω² at or below 1e-10 of the largest) are counted
+/// apart. Shapes are mass-normalized, φᵀ M φ = 1, with the largest-magnitude entry positive.
 /// Bodies with variable inertia (model/machine.hpp) are linearized at the initial position:
-/// M = diag(I(q0)), a link to a machine's output point has B entries p′(q0) and adds the geometric
+/// M = diag(I(q0)), a link to a machine's output point has entries p′(q0) and adds the geometric
 /// stiffness c δ0 p″(q0). The machines' own forces Q(q) and the velocity terms ½ I′ q'² are not
 /// included (they vanish at rest in an equilibrium).
 
@@ -33,8 +36,8 @@ struct Modes {
   Eigen::MatrixXd rigid_shapes; ///< n × rigid_body_modes, mass-normalized
 };
 
-/// Solves K φ = ω² M φ (Eigen's GeneralizedSelfAdjointEigenSolver, Cholesky of M). An eigenvalue
-/// below 1e-10 · max(λ) (or exactly zero stiffness) counts as a rigid-body mode.
+/// Solves K φ = ω² M φ (undamped_modes of the chain topology). An eigenvalue at or below
+/// 1e-10 · max|λ| (or exactly zero stiffness) counts as a rigid-body mode.
 Modes compute_modes(const Model& m);
 
 /// Link loads of the particular (quasi-static) solution for constant generalized forces f:

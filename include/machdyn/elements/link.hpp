@@ -144,6 +144,11 @@ struct LinkLaw {
   /// K and D terms at positions q (machines' output points linearized there, with the geometric
   /// stiffness c (δ − flank) p″ of a point end), mode g.
   void add_linear(const double* q, GapMode g, LinearModel& lin) const;
+  /// The load's linearization at (q, v) in mode g, the output row of a linear model: adds
+  /// ∂F/∂q_i to dFdq[i] and ∂F/∂v_i to dFdv[i] (arrays of n). F = c (δ − flank) + d δ̇ gives
+  /// ∂F/∂v = d j and ∂F/∂q = c j + d ∂δ̇/∂q (the last nonzero only for a machine's point end in
+  /// motion: d p″ v). Adds nothing when the gap is open.
+  void add_load_gradient(const double* q, const double* v, GapMode g, double* dFdq, double* dFdv) const;
 };
 
 }  // namespace machdyn

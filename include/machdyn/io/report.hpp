@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "machdyn/analysis/energy.hpp"
+#include "machdyn/analysis/frequency_response.hpp"
+#include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/plot.hpp"
@@ -73,7 +75,15 @@ struct Case {
   /// Optional, for a 1-DOF machine: the energy integral, drawn as ω against distance or angle (and
   /// the crank's inertia moments), io/figures.hpp energy_figures().
   const EnergyResult* energy = nullptr;
+  /// Optional: the modes of each topology the run passed through (analysis/linear_analysis.hpp),
+  /// shown instead of `modes`' table, and a frequency response drawn as a Bode plot.
+  const std::vector<TopologyModes>* topologies = nullptr;
+  const FrequencyResponse* frf = nullptr;
+  std::string frf_topology;  ///< the topology label of `frf`
 };
+
+/// The natural frequencies (Hz) and damping ratios of each topology, with its time intervals.
+Table topology_modes_table(const Model& m, const std::vector<TopologyModes>& list);
 
 /// Rows of the events table at most; a longer run says how many were left out.
 inline constexpr std::size_t kMaxEventRows = 400;

@@ -28,14 +28,6 @@ void write_timeseries_csv(const std::filesystem::path& path, const SimulationRes
 /// peak and dynamic_factor = peak / static (LinkSummary), null when the static load is ~0.
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
 
-/// Which topology `modes` analyses: `{bodies, links, gaps_closed: [link names], contacts_ignored:
-/// [names], brakes_ignored: [names], exact, note}`. The linear analysis takes every gap as closed
-/// and leaves friction contacts and brakes out; `exact` is true when the model has none of them,
-/// `note` says it in one line.
-nlohmann::json modes_topology(const Model& m);
-
-/// `{model, topology (modes_topology), frequencies_rad_s, frequencies_hz, rigid_body_modes, shapes:
-/// [{frequency_rad_s, frequency_hz, NAME: amplitude, ...}], bodies: [names]}`.
-nlohmann::json modes_summary(const Model& m, const Modes& modes);
+// `modes` writes its JSON with io/linear_results.hpp (every topology).
 
 }  // namespace machdyn
