@@ -72,6 +72,22 @@ int resolve_body(FieldReader& f, const SpecNode& item, const Model& m, bool allo
   return i;
 }
 
+/// The body named by field `body` of an element acting on one body, or −2 (reported; the other
+/// fields are then marked as seen, so they draw no "unknown field" errors).
+int field_body(FieldReader& f, const SpecNode& spec, const Model& m) {
+  auto body = f.text("body");
+  int i = -2;
+  if (body) {
+    i = m.body_index(*body);
+    if (i < 0) f.error_at("body", fmt::format("unknown body '{}'", *body));
+  }
+  if (i < 0) {
+    for (const auto& [k, v] : spec.fields) f.node(k);
+    return -2;
+  }
+  return i;
+}
+
 /// The two ends of `between` of element `name` (a `what`: contact, freewheel): c.a is a body, c.b a
 /// body or the ground (the ground given first is moved to b: *swapped). False if reported bad.
 bool resolve_between(FieldReader& f, const SpecNode& spec, const std::string& name, const char* what, const Model& m,
@@ -191,16 +207,8 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       FrictionContact c;
       c.name = name;
       c.brake = true;
-      auto body = f.text("body");
-      int i = -2;
-      if (body) {
-        i = m.body_index(*body);
-        if (i < 0) f.error_at("body", fmt::format("unknown body '{}'", *body));
-      }
-      if (i < 0) {
-        for (const auto& [k, v] : spec.fields) f.node(k);
-        continue;
-      }
+      const int i = field_body(f, spec, m);
+      if (i < 0) continue;
       c.a = i;
       c.b = kGround;
       const Dim ld = load_dim(m.bodies[static_cast<size_t>(i)].kind);
@@ -265,16 +273,8 @@ void compile_stops(const SpecNode* stops, Model& m, Diagnostics& diag) {
     c.name = name;
     c.stop = true;
     c.b = kGround;
-    auto body = f.text("body");
-    int i = -2;
-    if (body) {
-      i = m.body_index(*body);
-      if (i < 0) f.error_at("body", fmt::format("unknown body '{}'", *body));
-    }
-    if (i < 0) {
-      for (const auto& [k, v] : spec.fields) f.node(k);
-      continue;
-    }
+    const int i = field_body(f, spec, m);
+    if (i < 0) continue;
     c.a = i;
     const Body& b = m.bodies[static_cast<size_t>(i)];
     const Dim qd = b.kind == BodyKind::rotational ? dim::none : dim::length;  // rad or m
