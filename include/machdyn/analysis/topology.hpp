@@ -39,9 +39,10 @@ std::string topology_label(const Model& m, const Topology& topo);
 int switching_elements(const Model& m);
 
 /// Every topology that matters for the linear model: each gap closed+ or open, each contact and
-/// brake stuck or sliding (slip+; a freewheel in its free direction) (a released brake or opened clutch is linearly the same as a sliding one
-/// with a constant kinetic level, so it is not listed again). 2^k topologies for k switching
-/// elements; throws InputError (at m.source) for k > max_elements — name the modes then.
+/// brake stuck or sliding (slip+; a freewheel or stop in its free direction). A released brake or
+/// an opened clutch is linearly the same as a sliding one with a constant kinetic level, so it is
+/// not listed again. 2^k topologies for k switching elements; throws InputError (at m.source) for
+/// k > max_elements — name the modes then.
 std::vector<Topology> all_topologies(const Model& m, int max_elements = 12);
 
 /// A topology and the time intervals a simulation spent in it.
