@@ -362,19 +362,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.project_velocities(t, y_.data());
   }
 
-  /// The impact of end stop k's body at t: on the stop exactly, v⁺ = −e v⁻. It comes to rest (true:
-  /// the stop is then decided like a contact at zero speed) when e = 0 or when the rebound would
-  /// return within the event time resolution (flight 2|v⁺|/|a| ≤ 1e-12·max(1, t) under an
-  /// acceleration a back towards the stop). The kinetic energy lost goes to the impact books.
+  /// The impact of end stop k's body at t, by the stop's law (elements/contact.hpp: rebound, rests):
+  /// on the stop exactly, then either the rebound or rest (true: the stop is then decided like a
+  /// contact at zero speed). The kinetic energy lost goes to the impact books.
   bool impact(int k, double t) {
     const ContactLaw& c = sys_.contact(k);
     const auto ia = static_cast<size_t>(c.a);
     const double T0 = sys_.kinetic_energy(y_.data());
     y_[ia] = c.stop_position;
-    const double v_in = y_[static_cast<size_t>(n_) + ia], v_out = -c.restitution * v_in;
+    const double v_out = c.rebound(y_[static_cast<size_t>(n_) + ia]);
     sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
-    const double back = c.lock * acc_[ia];  // > 0: accelerating back towards the stop
-    const bool rest = v_out == 0.0 || (back > 0.0 && 2.0 * std::abs(v_out) <= 1e-12 * std::max(1.0, t) * back);
+    const bool rest = c.rests(v_out, c.lock * acc_[ia], t);  // lock·a > 0: back towards the stop
     y_[static_cast<size_t>(n_) + ia] = rest ? 0.0 : v_out;
     out_.hybrid.energy.impact_loss += T0 - sys_.kinetic_energy(y_.data());
     if (!rest) record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));

@@ -143,8 +143,9 @@ simulation: {t_end: 0.7 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
   EXPECT_GT(r.links[0].max, 0.0);
 }
 
-// Claim: bad stops are located input errors, all listed: neither min nor max, a restitution outside
-// [0, 1], a body starting beyond its stop, an unknown body.
+// Claim: bad stops and ropes are located input errors, all listed: neither min nor max, a
+// restitution outside [0, 1], a body starting beyond its stop, an unknown body, a negative rope
+// slack, a gap on a rope.
 TEST(StopInput, ErrorsAreLocatedAndListedTogether) {
   try {
     model_of(R"(
@@ -154,6 +155,9 @@ stops:
   bouncy: {body: b, min: -1 m, restitution: 1.5}
   below: {body: a, min: 0 m}
   lost: {body: c, max: 1 m}
+links:
+  r1: {type: rope, between: [a, b], stiffness: 1e5 N/m, slack: -1 mm}
+  r2: {type: rope, between: [a, b], stiffness: 1e5 N/m, gap: 2 mm}
 )");
     FAIL() << "no error";
   } catch (const InputError& e) {
@@ -163,6 +167,8 @@ stops:
     EXPECT_NE(s.find("must lie in [0, 1]"), std::string::npos) << s;
     EXPECT_NE(s.find("lies beyond the stop"), std::string::npos) << s;
     EXPECT_NE(s.find("unknown body 'c'"), std::string::npos) << s;
+    EXPECT_NE(s.find("slack"), std::string::npos) << s;          // a negative slack
+    EXPECT_NE(s.find("a rope has no 'gap'"), std::string::npos) << s;
   }
 }
 

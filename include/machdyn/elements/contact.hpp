@@ -16,6 +16,7 @@
 /// direction −lock with its drag as kinetic level; its stuck event is lock·λ. An end stop is such a
 /// lock to the ground that engages by position: while free its event is the distance to the stop.
 
+#include <algorithm>
 #include <cmath>
 
 #include "machdyn/elements/linear_model.hpp"
@@ -84,6 +85,14 @@ struct ContactLaw {
   /// The weight of this contact in the least-norm share of a redundantly locked load (√F_s0; 1 for
   /// a freewheel, which has no limit to share by).
   [[nodiscard]] double share_weight() const { return lock != 0 ? 1.0 : std::sqrt(spec->static_limit); }
+  /// An end stop's impact law: the velocity just after an impact at velocity v⁻, v⁺ = −e v⁻.
+  [[nodiscard]] double rebound(double v_in) const { return -restitution * v_in; }
+  /// Whether a body leaving an end stop with v⁺ comes to rest there instead: always for e = 0, and
+  /// when an acceleration `back` > 0 towards the stop would bring it back within the event time
+  /// resolution (flight 2|v⁺|/back ≤ 1e-12·max(1, t) s), so the bounces end after finitely many.
+  [[nodiscard]] bool rests(double v_out, double back, double t) const {
+    return v_out == 0.0 || (back > 0.0 && 2.0 * std::abs(v_out) <= 1e-12 * std::max(1.0, t) * back);
+  }
   /// The distance of an end stop's body from the stop, ≥ 0 while off it (q: the body's position).
   [[nodiscard]] double stop_distance(double q) const { return -lock * (q - stop_position); }
   /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity, q
