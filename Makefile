@@ -31,7 +31,7 @@ build-release: deps
 	@cmake --build $(BUILD_RELEASE) -j $(JOBS)
 
 build-test: deps
-	@cmake -S . -B $(BUILD_TEST) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_WERROR=ON $(CCACHE) >/dev/null
+	@cmake -S . -B $(BUILD_TEST) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_WERROR=ON -DMACHDYN_BENCH=OFF $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_TEST) -j $(JOBS)
 
 # The test suite and the fuzzers under AddressSanitizer + UBSan (clang, -O1, line tables only).
