@@ -9,8 +9,9 @@
 #                without it that test is skipped, and says so)
 #   clang-14, libclang-rt-14-dev: the sanitizer build and the libFuzzer harnesses of `make test`
 #   libsuitesparse-dev: KLU, CVODE's sparse linear solver for large models
+#   ccache:      keeps rebuilds of unchanged sources cheap (the Makefile uses it when present)
 set -euo pipefail
-packages=(cmake ninja-build g++ make pkg-config
+packages=(cmake ninja-build g++ make pkg-config ccache
           libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core clang-14 libclang-rt-14-dev
           pybind11-dev python3-dev python3-pytest python3-numpy python3-pandas python3-matplotlib
