@@ -258,12 +258,12 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
       if (k.point) {  // a machine's output point: forces −F j_a, +F j_b
         const LinkLaw::Kinematics s = k.kinematics(q, v);
         k.apply(k.load(s.delta, s.rate, g), s, f);
-        damp += k.dissipation(s.rate, g);
+        damp += k.dissipation(s.delta, s.rate, g);
         continue;
       }
     }
     const double delta = k.linear(q), rate = k.linear(v), F = k.load(delta, rate, g);
-    damp += k.dissipation(rate, g);
+    damp += k.dissipation(delta, rate, g);
     if (k.a >= 0) f[k.a] -= F * k.inv_ratio;
     if (k.b >= 0) f[k.b] += F;
   }
@@ -445,10 +445,13 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
     trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
     trip.emplace_back(n_ + ld.body, ld.body, ld.position_slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
   }
-  for (int l = 0; l < nl_; ++l)
-    links_[static_cast<size_t>(l)].jacobian(n_, gap_[static_cast<size_t>(l)], [&](int r, int c, double v) {
+  for (int l = 0; l < nl_; ++l) {
+    const LinkLaw& k = links_[static_cast<size_t>(l)];
+    const GapMode g = gap_[static_cast<size_t>(l)];
+    k.jacobian(n_, g, k.on_cap(k.linear(y), k.linear(y + n_), g), [&](int r, int c, double v) {
       trip.emplace_back(n_ + r, c, v * im(r));
     });
+  }
   J.resize(2 * n_, 2 * n_);
   J.setFromTriplets(trip.begin(), trip.end());
   J.makeCompressed();

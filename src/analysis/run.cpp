@@ -135,7 +135,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   [[nodiscard]] double rate(int l, const double* y, const double* dy) const override {
     return sys_.link_load_rate(l, y, dy);
   }
-  [[nodiscard]] bool rate_reads_state(int l) const override { return sys_.link_uses_point(l); }
+  [[nodiscard]] bool rate_reads_state(int l) const override { return sys_.link_rate_reads_state(l); }
 
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override { report_progress(st, start_, false); }

@@ -10,6 +10,7 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   k.inv_ratio = 1.0 / l.ratio;
   k.c = l.c, k.d = l.d;
   k.gap = l.has_gap;
+  k.capped = l.damping_capped;
   k.lo = l.tension_only ? -HUGE_VAL : -l.gap_start;
   k.hi = l.gap - l.gap_start;
   if (l.a_point && l.a >= 0) k.pa = m.bodies[static_cast<size_t>(l.a)].machine.get();
@@ -20,21 +21,27 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
 
 double LinkLaw::load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
   if (!transmits(g)) return 0.0;
-  if (!point) return c * linear(v) + d * linear(acc);
+  if (!point) {
+    if (capped && on_cap(linear(q), linear(v), g)) return 2.0 * c * linear(v);
+    return c * linear(v) + d * linear(acc);
+  }
   // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i).
-  double rate = 0, dd = 0, p, dp, ddp;
+  double delta = 0, rate = 0, dd = 0, p, dp, ddp;
   if (a >= 0) {
     if (pa) pa->point(q[a], &p, &dp, &ddp);
-    else dp = 1.0, ddp = 0.0;
+    else p = q[a], dp = 1.0, ddp = 0.0;
+    delta += p * inv_ratio;
     rate += dp * v[a] * inv_ratio;
     dd += (ddp * v[a] * v[a] + dp * acc[a]) * inv_ratio;
   }
   if (b >= 0) {
     if (pb) pb->point(q[b], &p, &dp, &ddp);
-    else dp = 1.0, ddp = 0.0;
+    else p = q[b], dp = 1.0, ddp = 0.0;
+    delta -= p;
     rate -= dp * v[b];
     dd -= ddp * v[b] * v[b] + dp * acc[b];
   }
+  if (on_cap(delta, rate, g)) return 2.0 * c * rate;
   return c * rate + d * dd;
 }
 

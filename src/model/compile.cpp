@@ -181,6 +181,14 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     } else {
       detail::compile_link_gap(f, l, qd);
     }
+    // The flank law of a gap or rope: `linear` (F = c e + d δ̇) or `elasto-backlash` (damping capped).
+    const bool law_given = f.map().is_map() && f.map().find("flank_law");
+    if (auto law = f.word("flank_law", {"linear", "elasto-backlash"}, "linear")) {
+      l.damping_capped = *law == "elasto-backlash";
+      if (law_given && !l.has_gap)
+        f.error_at("flank_law", "field 'flank_law' applies to a link with a 'gap' or to a rope (it shapes the "
+                                "load on a flank)");
+    }
     f.finish();
     m.links.push_back(l);
   }

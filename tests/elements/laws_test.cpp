@@ -32,8 +32,8 @@ links: {g: {type: spring-damper, between: [a, b], stiffness: 1e5, damping: 20, g
   EXPECT_DOUBLE_EQ(k.load(-0.004, -0.1, GapMode::closed_neg), 1e5 * -0.003 + 20 * -0.1);
   EXPECT_EQ(k.load(0.001, 0.1, GapMode::open), 0.0);
   EXPECT_DOUBLE_EQ(k.elastic_energy(0.005, GapMode::closed_pos), 0.5 * 1e5 * 0.002 * 0.002);
-  EXPECT_EQ(k.dissipation(0.3, GapMode::open), 0.0);
-  EXPECT_DOUBLE_EQ(k.dissipation(0.3, GapMode::closed_neg), 20 * 0.09);
+  EXPECT_EQ(k.dissipation(0.001, 0.3, GapMode::open), 0.0);
+  EXPECT_DOUBLE_EQ(k.dissipation(-0.004, 0.3, GapMode::closed_neg), 20 * 0.09);
 }
 
 // Claim: the open gap's event functions are the distances to the flanks while inside, and the

@@ -97,7 +97,11 @@ class DriveSystem final : public OdeSystem {
   /// The rate dF/dt of link l from the state y and its derivative dy (0 if open).
   [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const;
   /// Whether link l's load depends on q nonlinearly (a machine's output point).
-  [[nodiscard]] bool link_uses_point(int l) const { return links_[static_cast<size_t>(l)].point; }
+  /// Whether link l's load rate needs the state itself (a machine's output point, or the capped
+  /// flank law, whose branch depends on δ and δ̇), not only its derivative.
+  [[nodiscard]] bool link_rate_reads_state(int l) const {
+    return links_[static_cast<size_t>(l)].point || links_[static_cast<size_t>(l)].capped;
+  }
   /// Whether some body has a position-dependent inertia or a link a machine's output point.
   [[nodiscard]] bool has_machines() const { return has_machines_; }
   [[nodiscard]] double sliding_velocity(int k, double t, const double* y) const {

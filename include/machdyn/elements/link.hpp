@@ -13,11 +13,19 @@
 ///   gap, open:     F = 0                         (δ₋ < δ < δ₊)
 ///   closed+:       F = c (δ − δ₊) + d δ̇ ≥ 0      (positive flank δ₊ = Δ − gap_start)
 ///   closed−:       F = c (δ − δ₋) + d δ̇ ≤ 0      (negative flank δ₋ = −gap_start)
+/// Flank law `elasto-backlash` (capped = true; Modelica's ElastoBacklash/ElastoGap): the damping
+/// force on a flank is capped at the spring force, e = δ − flank:
+///   closed+:       F = c e + min(c e, d δ̇)       closed−:  F = c e + max(c e, d δ̇)
+/// so F rises from 0 at first contact (no jump d δ̇) and never exceeds 2 c e. The mode still ends
+/// when c e + d δ̇ reaches 0 (F and c e + d δ̇ vanish together there), so the events below hold for
+/// both laws. The cap's kink (d δ̇ = c e) is a continuous law, not an event: the load is continuous
+/// there and the integrator's error control resolves it, as for any other continuous nonlinearity.
 /// Events (each ≥ 0 while the mode holds): closed+ ends when F reaches 0 (F ≥ 0); closed− when
 /// −F reaches 0; open ends when δ reaches a flank while pressing (δ₊ − δ ≥ 0, δ − δ₋ ≥ 0; beyond the
 /// flank, the pressing force −F₊ or F₋ decides).
 /// Valid for c ≥ 0, d ≥ 0, i ≠ 0, Δ ≥ 0. Nothing is thrown.
 
+#include <algorithm>
 #include <cmath>
 
 #include "machdyn/elements/linear_model.hpp"
@@ -31,6 +39,7 @@ struct LinkLaw {
   int a = kGround, b = kGround;
   double inv_ratio = 1.0, c = 0.0, d = 0.0;
   bool gap = false;
+  bool capped = false;          ///< flank law elasto-backlash (see above)
   bool point = false;           ///< an end is a machine's output point (nonlinear kinematics)
   double lo = 0.0, hi = 0.0;    ///< flanks δ₋, δ₊
   const Machine* pa = nullptr;  ///< a's output point, or null (q_a itself)
@@ -69,7 +78,19 @@ struct LinkLaw {
   /// F in mode g for deflection δ and rate δ̇.
   [[nodiscard]] double load(double delta, double rate, GapMode g) const {
     if (!transmits(g)) return 0.0;
-    return c * (delta - flank(g)) + d * rate;
+    const double Fc = c * (delta - flank(g));
+    return Fc + damping_force(Fc, rate, g);
+  }
+  /// The damper's part of the load for spring part Fc = c e: d δ̇, or with the cap min(Fc, d δ̇) on
+  /// the positive flank and max(Fc, d δ̇) on the negative one.
+  [[nodiscard]] double damping_force(double Fc, double rate, GapMode g) const {
+    const double Fd = d * rate;
+    if (!capped || !gap) return Fd;
+    return g == GapMode::closed_pos ? std::min(Fc, Fd) : g == GapMode::closed_neg ? std::max(Fc, Fd) : Fd;
+  }
+  /// Whether the capped law is on its cap (F = 2 c e: the damper acts as a second spring) at (δ, δ̇).
+  [[nodiscard]] bool on_cap(double delta, double rate, GapMode g) const {
+    return capped && gap && transmits(g) && damping_force(c * (delta - flank(g)), rate, g) != d * rate;
   }
   /// The spring part of the law, c e, for a deflection e measured from the flank (quasi-static loads).
   [[nodiscard]] double spring_load(double e) const { return c * e; }
@@ -79,8 +100,12 @@ struct LinkLaw {
     const double e = delta - flank(g);
     return 0.5 * c * e * e;
   }
-  /// Power dissipated by the damper, d δ̇² (W), in mode g.
-  [[nodiscard]] double dissipation(double rate, GapMode g) const { return transmits(g) ? d * rate * rate : 0.0; }
+  /// Power dissipated by the damper, F_d δ̇ (W; d δ̇² without the cap), in mode g.
+  [[nodiscard]] double dissipation(double delta, double rate, GapMode g) const {
+    if (!transmits(g)) return 0.0;
+    if (!capped) return d * rate * rate;
+    return damping_force(c * (delta - flank(g)), rate, g) * rate;
+  }
 
   /// The two event functions of mode g (both ≥ 0 while g holds; 1 for a link without a gap).
   void events(double delta, double rate, GapMode g, double* ev) const {
@@ -123,21 +148,27 @@ struct LinkLaw {
     if (a >= 0) add(a, c * inv_ratio), add(n + a, d * inv_ratio);
     if (b >= 0) add(b, -c), add(n + b, -d);
   }
-  /// The rate dF/dt from the state (q, v) and its derivative (v, acc), mode g.
+  /// The rate dF/dt from the state (q, v) and its derivative (v, acc), mode g (on the cap: 2 c δ̇).
   [[nodiscard]] double load_rate(const double* q, const double* v, const double* acc, GapMode g) const;
   /// The terms of ∂(acceleration)/∂(q, v) before the division by the inertias: for a plain link
-  /// calls add(row, column, value) with columns < n for q and ≥ n for v. Mode g.
+  /// calls add(row, column, value) with columns < n for q and ≥ n for v. Mode g, off the cap of the
+  /// elasto-backlash law (its Jacobian on the cap is 2c, 0: jacobian(n, g, on_cap, add)).
   template <class Add>
   void jacobian(int n, GapMode g, Add&& add) const {
+    jacobian(n, g, false, add);
+  }
+  template <class Add>
+  void jacobian(int n, GapMode g, bool cap, Add&& add) const {
     if (!transmits(g)) return;
+    const double cs = cap ? 2.0 * c : c, ds = cap ? 0.0 : d;
     const int idx[2] = {a, b};
     const double w[2] = {inv_ratio, -1.0};
     for (int r = 0; r < 2; ++r) {
       if (idx[r] < 0) continue;
       for (int s = 0; s < 2; ++s) {
         if (idx[s] < 0) continue;
-        add(idx[r], idx[s], -c * w[r] * w[s]);
-        add(idx[r], n + idx[s], -d * w[r] * w[s]);
+        add(idx[r], idx[s], -cs * w[r] * w[s]);
+        add(idx[r], n + idx[s], -ds * w[r] * w[s]);
       }
     }
   }

@@ -63,6 +63,10 @@ struct Link {
   /// A rope (`type: rope`): tension only. Its only flank is δ₊ = gap (the slack); there is no
   /// negative flank (δ₋ = −∞): slack, it carries nothing, however far it is compressed.
   bool tension_only = false;
+  /// The flank law of a gap or a rope (`flank_law: elasto-backlash`, Modelica's ElastoBacklash and
+  /// ElastoGap): the damping force on a flank is capped at the spring force, so the load starts from
+  /// 0 at contact instead of jumping to d δ̇ (law: elements/link.hpp).
+  bool damping_capped = false;
   double gap = 0.0;        ///< total gap Δ, rad or m (in b's coordinate), >= 0
   double gap_start = 0.0;  ///< position inside the gap at δ = 0, from the negative flank, in [0, Δ]
   /// The end is the machine's output point p(q) (e.g. `crank.piston`) instead of q itself:
