@@ -242,7 +242,7 @@ struct CoupledClutchesReference {
 // 1e-7 s, speeds within 1e-7 rad/s (dopri5) or 1e-5 rad/s (bdf). The sequence itself is a check
 // of the exact mode logic: clutch2 closes on J2 at T2 and sticks at 0.71 s; clutch1 sticks, breaks
 // away under the 5 Hz torque and sticks again; clutch3 closes at T3 and sticks; clutch1 opens when
-// its normal force turns negative at 1.2504 s.
+// its normal force turns negative at 1.2506 s.
 TEST_P(Clutch, CoupledClutchesMatchesAnIndependentIntegration) {
   Model m = load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/msl/coupled-clutches.yaml");
   m.simulation.integrator = GetParam();
