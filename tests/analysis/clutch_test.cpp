@@ -336,6 +336,27 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
   }
 }
 
+// Claim: a translational brake pressed by a normal-force step (100 N at 0.5 s, μ_k = 0.3, two
+// surfaces: F = 2·0.3·100 = 60 N) stops a 2 kg mass moving at 3 m/s with 30 m/s² after 0.1 s, at
+// t = 0.6 s, and then holds it (no load). Before 0.5 s it is released: the speed stays 3 m/s.
+TEST_P(Clutch, BrakeByNormalForceStopsAtTheClosedFormInstant) {
+  Model m = model_of(R"(
+bodies: {cart: {type: translational, mass: 2 kg, velocity: 3 m/s}}
+brakes: {B: {body: cart, normal_force: {type: step, value: 100 N, time: 0.5 s}, mu_s: 0.4, mu_k: 0.3, surfaces: 2}}
+simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
+)");
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  EXPECT_NEAR(at(r, "cart.velocity_m_s", 0.4), 3.0, 1e-12);
+  EXPECT_NEAR(at(r, "cart.velocity_m_s", 0.55), 3.0 - 30 * 0.05, 1e-8);
+  std::vector<ModeEvent> ev;
+  for (const auto& e : r.hybrid.events)
+    if (e.kind == "stick") ev.push_back(e);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_NEAR(ev[0].t, 0.6, 1e-9);
+  EXPECT_EQ(column(r, "cart.velocity_m_s").back(), 0.0);
+}
+
 // Claim: the Stribeck law μ(s) = μ_c + (μ_s − μ_c) exp(−(s/w_s)^δ) gives μ_s at rest, tends to μ_c,
 // and its slope is the finite difference of the kinetic force.
 TEST(ClutchLaw, StribeckLevelAndSlope) {
