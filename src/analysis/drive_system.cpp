@@ -64,7 +64,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   }
   affine_eligible_ = varying_.empty() && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
   for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0;
-  for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.brake;
+  for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.applied;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
   f_.assign(static_cast<size_t>(n_), 0.0);
   fc_.assign(static_cast<size_t>(nc_), 0.0);

@@ -183,12 +183,13 @@ std::vector<TopologyInterval> run_topologies(const Model& m, const HybridReport&
       if (engaged) topo.contacts[k] = c;
     }
   };
-  // Switch times: the events and each brake's application (a brake acts from t_apply on).
+  // Switch times: the events and where an application of a brake or clutch changes (it acts while
+  // its application is positive).
   std::vector<double> times;
   for (const ModeEvent& e : report.events)
     if (e.kind != "initial") times.push_back(e.t);
   for (const FrictionContact& c : m.contacts)
-    if (c.brake && c.t_apply > 0.0 && c.t_apply < t_end) times.push_back(c.t_apply);
+    for (double t : c.application_times(t_end)) times.push_back(t);
   times.push_back(t_end);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());

@@ -34,6 +34,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     acc_.assign(static_cast<size_t>(n_), 0.0);
     fc_.assign(static_cast<size_t>(nc_), 0.0);
     open_phase_.assign(static_cast<size_t>(nc_), -1);
+    for (int k = 0; k < nc_; ++k) was_released_.push_back(m_.contacts[static_cast<size_t>(k)].released(0.0));
     switches_.resize(static_cast<size_t>(nl_ + nc_));
     at_max_.resize(static_cast<size_t>(nl_));
     at_min_.resize(static_cast<size_t>(nl_));
@@ -442,13 +443,19 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void time_event(double t) {
-    // A brake applied now while its body moves starts a slip phase (it was released so far).
+    // A brake or clutch applied now while it slides starts a slip phase (it was released so far);
+    // one released now ends its phase (its application reached 0: it opens).
     for (int k = 0; k < nc_; ++k) {
-      const FrictionContact& c = m_.contacts[static_cast<size_t>(k)];
       const ContactMode md = sys_.contact_mode(k);
-      if (c.brake && t == c.t_apply && md != ContactMode::stuck && open_phase_[static_cast<size_t>(k)] < 0) {
+      const bool was = was_released_[static_cast<size_t>(k)] != 0, now = released(k, t);
+      was_released_[static_cast<size_t>(k)] = now;
+      if (was == now || md == ContactMode::stuck) continue;
+      if (!now && open_phase_[static_cast<size_t>(k)] < 0) {
         record(t, "applied", nl_ + k, "released", to_string(md));
         open_phase(k, t, md);
+      } else if (now) {
+        record(t, "released", nl_ + k, to_string(md), "released");
+        close_phase(k, t);
       }
     }
     std::vector<int> Z;
@@ -473,6 +480,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
   std::vector<double> y_, acc_, fc_;
   std::vector<int> open_phase_;
+  std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
   int phases_open_ = 0;
   std::vector<std::vector<double>> switches_;
   std::vector<int> strict_;  // stuck contacts whose limit event fired

@@ -8,7 +8,8 @@ ContactLaw ContactLaw::of(const FrictionContact& c) {
   ContactLaw k;
   k.spec = &c;
   k.a = c.a, k.b = c.b;
-  k.kinetic_table = c.kinetic.size() > 1;
+  k.kinetic_table = c.kinetic.size() > 1 || c.stribeck_speed > 0.0;
+  k.applied = c.applied;
   k.moving_surface = c.surface_times.size() > 1;
   k.brake = c.brake;
   k.lock = c.lock;
@@ -22,17 +23,13 @@ ContactLaw ContactLaw::of(const FrictionContact& c) {
 
 double ContactLaw::kinetic_slope(double t, double u) const {
   if (!kinetic_table) return 0.0;
-  const auto& x = spec->speeds;
-  const auto& y = spec->kinetic;
-  const double s = std::abs(u);
-  if (x.size() < 2 || s < x.front() || s >= x.back()) return 0.0;  // held constant outside
-  const auto k = static_cast<size_t>(std::upper_bound(x.begin(), x.end(), s) - x.begin());
   // F = ±r F_k0(|u|): dF/du = r F_k0′(|u|) in either direction.
-  return scale(t) * (y[k] - y[k - 1]) / (x[k] - x[k - 1]);
+  return scale(t) * spec->kinetic_level_slope(u);
 }
 
 double ContactLaw::steepest_kinetic_slope() const {
   double slope = 0.0;
+  if (spec->stribeck_speed > 0.0) return slope;  // falls from F_s0 ≥ F_c
   const auto& x = spec->speeds;
   const auto& y = spec->kinetic;
   for (size_t i = 0; i + 1 < x.size() && i + 1 < y.size(); ++i)

@@ -249,11 +249,15 @@ std::vector<Table> model_tables(const Model& m) {
                                                  : fmt::format("table of {} speeds, {} … {} {}", c.kinetic.size(),
                                                                num(c.kinetic.front()), num(c.kinetic.back()), u);
     std::string details;
-    if (c.brake) details = fmt::format("applied at {} s, ramp {} s", num(c.t_apply), num(c.t_ramp));
+    if (c.applied)
+      details = c.by_normal_force ? "normal force " + c.application.describe("N") : "applied " + c.application.describe("");
+    if (c.stribeck_speed > 0.0)
+      details += fmt::format("{}Stribeck: w_s = {}, δ = {}", details.empty() ? "" : "; ", num(c.stribeck_speed),
+                             num(c.stribeck_exponent));
     if (!c.surface_velocities.empty() && c.b == kGround)
       details = c.surface_times.empty() ? fmt::format("ground surface moves at {}", num(c.surface_velocities[0]))
                                         : "ground surface velocity: a table in t";
-    contacts.rows.push_back({c.name, c.brake ? "brake" : "friction", body_name(m, c.a) + " – " + body_name(m, c.b),
+    contacts.rows.push_back({c.name, c.brake ? "brake" : c.clutch ? "clutch" : "friction", body_name(m, c.a) + " – " + body_name(m, c.b),
                              num(c.static_limit) + " " + u, kinetic, details.empty() ? "–" : details});
   }
   contacts.note = "Stuck while the transmitted force stays within F_s; sliding with F_k against the sliding velocity "

@@ -89,14 +89,14 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
     const ContactStatistics& st = stats[k];
     nlohmann::json ratio = nlohmann::json::object();
     for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = number_or_null(st.link_max_over_static_limit[l]);
-    contacts[c.name] = {{"kind", c.brake ? "brake" : "contact"},
+    contacts[c.name] = {{"kind", c.brake ? "brake" : c.clutch ? "clutch" : "contact"},
                         {"static_limit", c.static_limit},
                         {"kinetic_at_rest", c.kinetic_level(0.0)},
                         {"slips", st.slips},
                         {"period_s", number_or_null(st.period_s)},
                         {"link_max_over_static_limit", ratio},
                         {"unit", load_unit(m.bodies[static_cast<size_t>(c.a)].kind)}};
-    if (c.brake) contacts[c.name]["applied_at_s"] = c.t_apply;
+    if (c.brake || c.applied) contacts[c.name]["applied_at_s"] = c.t_apply;
   }
   j["contacts"] = contacts;
   const EnergyBalance& E = h.energy;

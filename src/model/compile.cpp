@@ -32,7 +32,7 @@ std::string_view section_of_type(std::string_view type) {
       {"sine", "loads"},        {"pulse", "loads"},          {"expression", "loads"},  {"sum", "loads"},
       {"file", "loads"},        {"drag", "loads"},           {"eddy-current-brake", "loads"},
       {"motor-table", "loads"},
-      {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}, {"rope", "links"},
+      {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
@@ -373,6 +373,13 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
       diag.error(m.where(ld.name), fmt::format("load '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
                                                "lengthen the period or give a count", ld.name, n, kMaxBreakpoints));
   }
+  for (const auto& c : m.contacts) {
+    const double n = c.applied ? c.application.breakpoint_count(0.0, m.simulation.t_end) : 0.0;
+    if (n > kMaxBreakpoints)
+      diag.error(m.where(c.name), fmt::format("'{}': its application has {:.3g} jumps and kinks before t_end, more "
+                                              "than {:.0e}; lengthen the period or give a count", c.name, n,
+                                              kMaxBreakpoints));
+  }
 }
 
 void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
@@ -414,7 +421,7 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 }  // namespace
 
 const std::vector<std::string>& element_sections() {
-  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "freewheels", "stops"};
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "clutches", "freewheels", "stops"};
   return kSections;
 }
 
@@ -440,11 +447,13 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   compile_links(top.node("links"), m, diag);
   compile_loads(top.node("loads"), m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
+  detail::compile_clutches(top.node("clutches"), m, diag);
   detail::compile_freewheels(top.node("freewheels"), m, diag);
   detail::compile_stops(top.node("stops"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);
+  if (diag.empty()) detail::finish_applications(m);
   top.finish();
   // A velocity jump of a stepwise gear drive does not re-decide stuck contacts or re-check gaps yet
   // (the jump maps one body's speed only), and the energy books do not count its loss: say so

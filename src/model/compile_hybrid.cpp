@@ -1,6 +1,9 @@
 #include "compile_hybrid.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
+
+#include "model/compile_signal.hpp"
 
 namespace machdyn::detail {
 namespace {
@@ -124,6 +127,92 @@ bool resolve_between(FieldReader& f, const SpecNode& spec, const std::string& na
   return true;
 }
 
+
+/// `stribeck_speed` w_s and `stribeck_exponent` δ (model/model.hpp): the kinetic level falls from
+/// the static limit at rest to the constant level F_c. Needs a constant kinetic level.
+void read_stribeck(FieldReader& f, const SpecNode& spec, const Dim& vd, const char* level_key, FrictionContact& c) {
+  if (!spec.find("stribeck_speed")) {
+    if (spec.find("stribeck_exponent")) f.error_at("stribeck_exponent", "field 'stribeck_exponent' needs 'stribeck_speed'");
+    f.node("stribeck_exponent");
+    return;
+  }
+  auto ws = f.positive("stribeck_speed", vd);
+  auto d = f.quantity("stribeck_exponent", dim::none, 1.0);
+  if (d && !(*d >= 1.0))
+    f.error_at("stribeck_exponent", fmt::format("field 'stribeck_exponent' must be at least 1, got {}", *d));
+  if (c.speeds.size() > 1)
+    f.error_at(level_key, fmt::format("field '{}': a table and 'stribeck_speed' exclude each other; give the "
+                                      "Coulomb level as one number", level_key));
+  if (ws && d && *d >= 1.0) c.stribeck_speed = *ws, c.stribeck_exponent = *d;
+}
+
+/// The levels from coefficients, per newton of normal force: F_s0 = z r μ_s, F_k0 = z r μ_k(s)
+/// (`radius` r on a rotational body only, `surfaces` z ≥ 1).
+void read_coefficients(FieldReader& f, const SpecNode& spec, const std::string& name, BodyKind kind, FrictionContact& c) {
+  double radius = 1.0;
+  if (kind == BodyKind::rotational) radius = f.positive("radius", dim::length).value_or(1.0);
+  else if (spec.find("radius")) f.error_at("radius", "a translational element has no radius");
+  const double z = static_cast<double>(f.integer("surfaces", 1, 1000, 1).value_or(1));
+  const double scale = z * radius;
+  c.static_limit = f.positive("mu_s", dim::none).value_or(1.0) * scale;
+  if (!spec.find("mu_k")) f.diagnostics().error(spec.loc, fmt::format("{}: missing field 'mu_k'", f.what()));
+  read_level(f, "mu_k", dim::none, velocity_dim(kind), c, scale);
+  (void)name;
+}
+
+/// `normal_force`: a force f_N in N, or a signal of it (model/signal.hpp). A positive constant is
+/// folded into the levels; a signal becomes the application r(t) = max(0, f_N(t)) / f_N,ref, scaled
+/// once t_end is known (finish_applications).
+void read_normal_force(FieldReader& f, const SpecNode& spec, FrictionContact& c) {
+  const SpecNode* n = f.node("normal_force");
+  if (!n) {
+    f.diagnostics().error(spec.loc, fmt::format("{}: missing field 'normal_force' (a force in N or a signal of it)", f.what()));
+    return;
+  }
+  auto sig = compile_signal(*n, dim::force, f.what() + ": field 'normal_force'", f.diagnostics());
+  if (!sig) return;
+  if (sig->kind() == Signal::Kind::constant) {
+    const double N = sig->value(0.0);
+    if (!(N > 0.0)) {
+      f.error_at("normal_force", fmt::format("field 'normal_force' must be positive, got {}", N));
+      return;
+    }
+    c.static_limit *= N;
+    for (auto& y : c.kinetic) y *= N;
+    return;
+  }
+  c.applied = true;
+  c.by_normal_force = true;
+  c.application = *sig;
+}
+
+/// F_k0(0) ≤ F_s0 (before a Stribeck law is set: its F_c), reported at `key`.
+void check_levels(FieldReader& f, const char* key, FrictionContact& c) {
+  if (!c.kinetic.empty() && c.kinetic_level(0.0) > c.static_limit)
+    f.error_at(key, fmt::format("the kinetic level at zero sliding speed ({}) exceeds the static limit ({})",
+                                c.kinetic_level(0.0), c.static_limit));
+  if (c.kinetic.empty()) c.kinetic = {0.0};
+}
+
+/// A brake's or clutch's `housing` (brakes) or second body: the body named, or the ground.
+int read_housing(FieldReader& f, const Model& m, int body) {
+  auto h = f.text("housing", "ground");
+  if (!h) return kGround;
+  const int i = m.body_index(*h);
+  if (i == -2) {
+    f.error_at("housing", fmt::format("unknown body '{}' (a body or 'ground')", *h));
+    return kGround;
+  }
+  if (i == body) {
+    f.error_at("housing", fmt::format("the brake joins '{}' to itself", *h));
+    return kGround;
+  }
+  if (i >= 0 && m.bodies[static_cast<size_t>(i)].kind != m.bodies[static_cast<size_t>(body)].kind) {
+    f.error_at("housing", "joins a rotational and a translational body");
+    return kGround;
+  }
+  return i;
+}
 }  // namespace
 
 void compile_link_gap(FieldReader& f, Link& l, const Dim& qd) {
@@ -164,21 +253,15 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       const Dim ld = load_dim(kind), vd = velocity_dim(kind);
       const bool by_mu = spec.find("normal_force") != nullptr;
       if (by_mu) {
-        auto N = f.positive("normal_force", dim::force);
-        double radius = 1.0;
-        if (kind == BodyKind::rotational) radius = f.positive("radius", dim::length).value_or(1.0);
-        else if (spec.find("radius")) f.error_at("radius", "a translational contact has no radius");
-        const double scale = N.value_or(1.0) * radius;
-        c.static_limit = f.positive("mu_s", dim::none).value_or(1.0) * scale;
-        if (!spec.find("mu_k")) diag.error(spec.loc, fmt::format("contact '{}': missing field 'mu_k'", name));
-        read_level(f, "mu_k", dim::none, vd, c, scale);
+        read_coefficients(f, spec, name, kind, c);
+        read_normal_force(f, spec, c);
         for (const char* k : {"static", "kinetic"})
           if (spec.find(k)) f.error_at(k, fmt::format("give either 'normal_force' with mu_s, mu_k or '{}', not both", k));
       } else {
         c.static_limit = f.positive("static", ld).value_or(1.0);
         if (!spec.find("kinetic")) diag.error(spec.loc, fmt::format("contact '{}': missing field 'kinetic'", name));
         read_level(f, "kinetic", ld, vd, c, 1.0);
-        for (const char* k : {"mu_s", "mu_k", "radius"}) {
+        for (const char* k : {"mu_s", "mu_k", "radius", "surfaces"}) {
           if (spec.find(k)) f.error_at(k, fmt::format("field '{}' needs 'normal_force'", k));
           f.node(k);
         }
@@ -192,11 +275,8 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
           read_pairs(*w, f.what(), "surface_velocity", dim::time, vd, -1e300, c.surface_times, c.surface_velocities, diag);
         }
       }
-      if (!c.kinetic.empty() && c.kinetic_level(0.0) > c.static_limit)
-        f.error_at(by_mu ? "mu_k" : "kinetic",
-                   fmt::format("the kinetic level at zero sliding speed ({}) exceeds the static limit ({})",
-                               c.kinetic_level(0.0), c.static_limit));
-      if (c.kinetic.empty()) c.kinetic = {0.0};
+      check_levels(f, by_mu ? "mu_k" : "kinetic", c);
+      read_stribeck(f, spec, vd, by_mu ? "mu_k" : "kinetic", c);
       f.finish();
       m.contacts.push_back(c);
     }
@@ -210,18 +290,106 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       const int i = field_body(f, spec, m);
       if (i < 0) continue;
       c.a = i;
-      c.b = kGround;
-      const Dim ld = load_dim(m.bodies[static_cast<size_t>(i)].kind);
-      c.static_limit = f.positive("holding", ld).value_or(1.0);
-      c.kinetic = {f.positive("braking", ld, c.static_limit).value_or(c.static_limit)};
-      if (c.kinetic[0] > c.static_limit)
-        f.error_at("braking", fmt::format("the braking level ({}) exceeds the holding level ({})", c.kinetic[0],
-                                          c.static_limit));
-      c.t_apply = f.positive("time", dim::time, 0.0, true).value_or(0.0);
-      c.t_ramp = f.positive("ramp", dim::time, 0.0, true).value_or(0.0);
+      c.b = read_housing(f, m, i);
+      const BodyKind kind = m.bodies[static_cast<size_t>(i)].kind;
+      const Dim ld = load_dim(kind), vd = velocity_dim(kind);
+      const bool by_mu = spec.find("normal_force") != nullptr;
+      if (by_mu) {
+        read_coefficients(f, spec, name, kind, c);
+        read_normal_force(f, spec, c);
+        for (const char* k : {"holding", "braking", "time", "ramp", "application"})
+          if (spec.find(k))
+            f.error_at(k, fmt::format("field '{}' and 'normal_force' exclude each other (the normal force is the "
+                                      "application)", k));
+        check_levels(f, "mu_k", c);
+      } else {
+        c.static_limit = f.positive("holding", ld).value_or(1.0);
+        c.kinetic = {f.positive("braking", ld, c.static_limit).value_or(c.static_limit)};
+        if (c.kinetic[0] > c.static_limit)
+          f.error_at("braking", fmt::format("the braking level ({}) exceeds the holding level ({})", c.kinetic[0],
+                                            c.static_limit));
+        for (const char* k : {"mu_s", "mu_k", "radius", "surfaces"}) {
+          if (spec.find(k)) f.error_at(k, fmt::format("field '{}' needs 'normal_force'", k));
+          f.node(k);
+        }
+        if (const SpecNode* app = f.node("application")) {
+          // r(t) directly: 0 released, 1 the full holding level.
+          for (const char* k : {"time", "ramp"})
+            if (spec.find(k)) f.error_at(k, fmt::format("give either 'application' or '{}', not both", k));
+          if (auto sig = compile_signal(*app, dim::none, f.what() + ": field 'application'", diag)) {
+            c.applied = true;
+            c.application = *sig;
+          }
+        } else {
+          // The application time and ramp of old files: r(t) = 0 before t_a, linear to 1 over t_r.
+          const double ta = f.positive("time", dim::time, 0.0, true).value_or(0.0);
+          const double tr = f.positive("ramp", dim::time, 0.0, true).value_or(0.0);
+          if (tr > 0.0) c.application = Signal::ramp(0.0, 1.0, ta, ta + tr), c.applied = true;
+          else if (ta > 0.0) c.application = Signal::step(0.0, 1.0, ta), c.applied = true;
+        }
+      }
+      read_stribeck(f, spec, vd, by_mu ? "mu_k" : "braking", c);
       f.finish();
       m.contacts.push_back(c);
     }
+  }
+}
+
+void compile_clutches(const SpecNode* clutches, Model& m, Diagnostics& diag) {
+  if (!clutches) return;
+  if (!clutches->is_map()) {
+    diag.error(clutches->loc, "'clutches' must be a map of NAME: {fields}");
+    return;
+  }
+  for (const auto& [name, spec] : clutches->fields) {
+    FieldReader f(spec, fmt::format("clutch '{}'", name), diag);
+    FrictionContact c;
+    c.name = name;
+    c.clutch = true;
+    bool swapped = false;
+    if (!resolve_between(f, spec, name, "clutch", m, c, swapped)) {
+      for (const auto& [k, v] : spec.fields) f.node(k);
+      continue;
+    }
+    if (c.b == kGround) {
+      diag.error(spec.find("between")->loc, fmt::format("clutch '{}': a clutch joins two bodies; friction against "
+                                                        "the ground is a brake (section 'brakes', 'housing')", name));
+      for (const auto& [k, v] : spec.fields) f.node(k);
+      continue;
+    }
+    const BodyKind kind = m.bodies[static_cast<size_t>(c.a)].kind;
+    read_coefficients(f, spec, name, kind, c);
+    read_normal_force(f, spec, c);
+    check_levels(f, "mu_k", c);
+    read_stribeck(f, spec, velocity_dim(kind), "mu_k", c);
+    f.finish();
+    m.contacts.push_back(c);
+  }
+}
+
+void finish_applications(Model& m) {
+  const double t_end = m.simulation.t_end;
+  for (FrictionContact& c : m.contacts) {
+    if (!c.applied) continue;
+    if (c.by_normal_force) {
+      // f_N,ref = the largest |f_N|: F_s0 and F_k0 become the levels at that force, r ≤ 1.
+      const double ref = c.application.magnitude_bound(0.0, t_end);
+      if (ref > 0.0 && std::isfinite(ref)) {
+        c.static_limit *= ref;
+        for (auto& y : c.kinetic) y *= ref;
+        c.application_gain = 1.0 / ref;
+      }
+    }
+    c.t_apply = t_end;
+    if (!c.released(0.0)) {
+      c.t_apply = 0.0;
+      continue;
+    }
+    for (double t : c.application_times(t_end))
+      if (!c.released(t)) {
+        c.t_apply = t;
+        break;
+      }
   }
 }
 

@@ -11,6 +11,12 @@ void compile_link_gap(FieldReader& f, Link& l, const Dim& qd);
 
 /// Reads the `contacts:` and `brakes:` sections (either may be null) into m.contacts.
 void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m, Diagnostics& diag);
+/// Reads the `clutches:` section (may be null) into m.contacts (FrictionContact::clutch): friction
+/// between two bodies by a normal force f_N(t), μ_s, μ_k, radius and number of surfaces.
+void compile_clutches(const SpecNode* clutches, Model& m, Diagnostics& diag);
+/// After the simulation settings: scales the levels of contacts applied by a normal-force signal to
+/// its largest magnitude over [0, t_end] and sets FrictionContact::t_apply (the first time r > 0).
+void finish_applications(Model& m);
 /// Reads the `freewheels:` section (may be null) into m.contacts (FrictionContact::lock ≠ 0).
 /// Checks the initial speeds: a freewheel cannot start turning in its locked direction.
 void compile_freewheels(const SpecNode* freewheels, Model& m, Diagnostics& diag);

@@ -179,13 +179,49 @@ double table_value(const std::vector<double>& x, const std::vector<double>& y, d
 }  // namespace
 
 double FrictionContact::scale(double t) const {
-  if (!brake) return 1.0;
-  if (t < t_apply) return 0.0;
-  if (t_ramp <= 0.0 || t >= t_apply + t_ramp) return 1.0;
-  return (t - t_apply) / t_ramp;
+  return applied ? std::max(0.0, application_gain * application.value(t)) : 1.0;
 }
 
-double FrictionContact::kinetic_level(double speed) const { return table_value(speeds, kinetic, speed); }
+bool FrictionContact::released(double t) const {
+  if (!applied) return false;
+  // At a zero crossing (a breakpoint) s is 0 up to rounding: within 1e-12 of 0 (r ≤ 1 near full
+  // application) the side is the slope's.
+  constexpr double eps = 1e-12;
+  const double s = application_gain * application.value(t);
+  return s < -eps || (s <= eps && !(application_gain * application.slope(t) > 0.0));
+}
+
+double FrictionContact::kinetic_level(double speed) const {
+  if (stribeck_speed > 0.0) {
+    const double Fc = kinetic.empty() ? 0.0 : kinetic.front();
+    return Fc + (static_limit - Fc) * std::exp(-std::pow(std::abs(speed) / stribeck_speed, stribeck_exponent));
+  }
+  return table_value(speeds, kinetic, speed);
+}
+
+double FrictionContact::kinetic_level_slope(double speed) const {
+  const double s = std::abs(speed);
+  if (stribeck_speed > 0.0) {
+    // d/ds [F_c + (F_s0 − F_c) e^{−x^δ}], x = s/w_s: −(F_s0 − F_c) δ x^{δ−1} e^{−x^δ} / w_s (δ ≥ 1: finite at 0).
+    const double Fc = kinetic.empty() ? 0.0 : kinetic.front(), x = s / stribeck_speed, d = stribeck_exponent;
+    return -(static_limit - Fc) * d * std::pow(x, d - 1.0) * std::exp(-std::pow(x, d)) / stribeck_speed;
+  }
+  const auto& x = speeds;
+  const auto& y = kinetic;
+  if (x.size() < 2 || s < x.front() || s >= x.back()) return 0.0;  // held constant outside
+  const auto k = static_cast<size_t>(std::upper_bound(x.begin(), x.end(), s) - x.begin());
+  return (y[k] - y[k - 1]) / (x[k] - x[k - 1]);
+}
+
+std::vector<double> FrictionContact::application_times(double t_end) const {
+  if (!applied) return {};
+  std::vector<double> t = application.breakpoints(0.0, t_end);
+  const auto z = application.crossings(0.0, 0.0, t_end);  // max(0, s): a kink where s crosses 0
+  t.insert(t.end(), z.begin(), z.end());
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
 
 double FrictionContact::surface_velocity(double t) const {
   return table_value(surface_times, surface_velocities, t);
@@ -207,7 +243,8 @@ std::vector<double> Model::breakpoints(double t_end) const {
     t.insert(t.end(), b.begin(), b.end());
   }
   for (const auto& c : contacts) {
-    if (c.brake) t.push_back(c.t_apply), t.push_back(c.t_apply + c.t_ramp);
+    auto r = c.application_times(t_end);
+    t.insert(t.end(), r.begin(), r.end());
     t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
   }
   std::sort(t.begin(), t.end());

@@ -218,6 +218,100 @@ double Signal::breakpoint_count(double t0, double t1) const {
   }
 }
 
+std::vector<double> Signal::crossings(double level, double t0, double t1) const {
+  std::vector<double> out;
+  auto add = [&](double t) {
+    if (t > t0 && t < t1) out.push_back(t);
+  };
+  // A crossing of the segment from (xa, ya) to (xb, yb), both ends excluded (they are breakpoints).
+  auto segment = [&](double xa, double ya, double xb, double yb) {
+    if (xb > xa && (ya - level) * (yb - level) < 0.0) add(xa + (level - ya) * (xb - xa) / (yb - ya));
+  };
+  switch (kind_) {
+    case Kind::ramp: segment(t0_, a_, t1_, b_); break;
+    case Kind::table: {
+      const std::size_t n = x_.size();
+      for (std::size_t k = 1; k < n; ++k) segment(x_[k - 1], y_[k - 1], x_[k], y_[k]);
+      if (extrapolate_ && n >= 2) {  // the first and last segments continued outside the table
+        const double s0 = (y_[1] - y_[0]) / (x_[1] - x_[0]), s1 = (y_[n - 1] - y_[n - 2]) / (x_[n - 1] - x_[n - 2]);
+        if (s0 != 0.0 && (y_[0] - level) * s0 > 0.0) add(x_[0] + (level - y_[0]) / s0);
+        if (s1 != 0.0 && (level - y_[n - 1]) * s1 > 0.0) add(x_[n - 1] + (level - y_[n - 1]) / s1);
+      }
+      break;
+    }
+    case Kind::sine: {
+      // d + A sin(θ) = level, θ = ω (t − t_s) + φ: θ = asin(r) + 2πk or π − asin(r) + 2πk, r = (level − d)/A;
+      // |r| ≥ 1 only touches (no change of sign).
+      if (a_ == 0.0 || b_ <= 0.0) break;
+      const double r = (level - d_) / a_;
+      if (!(std::abs(r) < 1.0)) break;
+      const double lo = std::max(t0, t0_), two_pi = 2.0 * std::acos(-1.0);
+      if (lo >= t1) break;
+      const double th0 = b_ * (lo - t0_) + c_, th1 = b_ * (t1 - t0_) + c_, base[2] = {std::asin(r), two_pi / 2 - std::asin(r)};
+      for (double b : base)
+        for (double k = std::floor((th0 - b) / two_pi); b + k * two_pi <= th1; k += 1.0) {
+          const double th = b + k * two_pi;
+          if (th > th0) add(t0_ + (th - c_) / b_);
+        }
+      break;
+    }
+    case Kind::expression:
+    case Kind::sum: {
+      std::vector<double> nodes = breakpoints(t0, t1);
+      constexpr int kSamples = 4096;
+      for (int i = 0; i <= kSamples; ++i) nodes.push_back(t0 + (t1 - t0) * i / kSamples);
+      std::sort(nodes.begin(), nodes.end());
+      for (std::size_t i = 1; i < nodes.size(); ++i) {
+        double a = nodes[i - 1], b = nodes[i];
+        // Inside (a, b): the left value just after a (a jump at a is not a crossing), the right
+        // value just before b.
+        const double fa = value(a) - level, fb = value(std::nextafter(b, a)) - level;
+        if (!(b > a) || !(fa * fb < 0.0)) continue;
+        for (int it = 0; it < 200 && std::nextafter(a, b) < b; ++it) {
+          const double mid = 0.5 * (a + b);
+          if ((value(mid) - level) * fa > 0.0) a = mid;
+          else b = mid;
+        }
+        add(b);
+      }
+      break;
+    }
+    case Kind::constant:
+    case Kind::step:
+    case Kind::pulse: break;
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+double Signal::magnitude_bound(double t0, double t1) const {
+  switch (kind_) {
+    case Kind::constant: return std::abs(a_);
+    case Kind::step:
+    case Kind::ramp:
+    case Kind::pulse: return std::max(std::abs(a_), std::abs(b_));
+    case Kind::table: {
+      double m = 0.0;
+      for (double y : y_) m = std::max(m, std::abs(y));
+      if (extrapolate_) m = std::max({m, std::abs(value(t0)), std::abs(value(t1))});
+      return m;
+    }
+    case Kind::sine: return std::abs(d_) + std::abs(a_);
+    case Kind::expression: {
+      double m = 0.0;
+      for (int i = 0; i <= 1000; ++i) m = std::max(m, std::abs(value(t0 + (t1 - t0) * i / 1000.0)));
+      return m;
+    }
+    case Kind::sum: {
+      double m = 0.0;
+      for (const Signal& term : terms_) m += term.magnitude_bound(t0, t1);
+      return m;
+    }
+  }
+  return 0.0;
+}
+
 std::vector<double> Signal::levels() const {
   std::vector<double> v;
   switch (kind_) {

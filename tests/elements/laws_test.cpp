@@ -96,16 +96,16 @@ TEST(LinkLaw, LinearTermsAreTheEnergyHessian) {
 TEST(ContactLaw, StickRuleAndBrakeRamp) {
   const Model m = model_of(R"(
 bodies: {a: {inertia: 1}}
-brakes: {B: {body: a, holding: 100 N*m, braking: 80 N*m, time: 0.1 s, ramp: 0.2 s}}
+brakes: {B: {body: a, holding: 100 N*m, braking: 80 N*m, time: 0.25 s, ramp: 0.5 s}}
 )");
   const ContactLaw c = ContactLaw::of(m.contacts[0]);
   EXPECT_TRUE(c.released(0.05));
-  EXPECT_FALSE(c.released(0.1));
-  EXPECT_DOUBLE_EQ(c.static_limit(0.2), 50.0);
-  EXPECT_TRUE(c.holds(50.0, 0.2, true));
-  EXPECT_FALSE(c.holds(50.0 + 1e-9, 0.2, true));
-  EXPECT_TRUE(c.holds(50.0 + 0.5e-10, 0.2, false));
-  EXPECT_FALSE(c.holds(50.0 + 1e-9, 0.2, false));
+  EXPECT_FALSE(c.released(0.25));
+  EXPECT_DOUBLE_EQ(c.static_limit(0.5), 50.0);
+  EXPECT_TRUE(c.holds(50.0, 0.5, true));
+  EXPECT_FALSE(c.holds(50.0 + 1e-9, 0.5, true));
+  EXPECT_TRUE(c.holds(50.0 + 0.5e-10, 0.5, false));
+  EXPECT_FALSE(c.holds(50.0 + 1e-9, 0.5, false));
   EXPECT_DOUBLE_EQ(c.kinetic_force(ContactMode::slip_neg, 1.0, -3.0), -80.0);
 }
 

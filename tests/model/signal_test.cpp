@@ -142,5 +142,27 @@ TEST(Signal, LevelsOfPiecewiseConstantSignals) {
   EXPECT_FALSE(Signal::step(0, 1, 2).is_constant());
 }
 
+// Claim: crossings() finds where s crosses a level with a change of sign, in closed form for a
+// ramp (linear interpolation), a table (per segment and on the extrapolated tails) and a sine
+// (A sin(ω t + φ) = L − d: θ = asin r, π − asin r), by bisection for a sum; a jump is no crossing.
+TEST(Signal, CrossingsOfALevel) {
+  EXPECT_EQ(Signal::ramp(-1, 3, 1, 2).crossings(0.0, 0, 5), std::vector<double>{1.25});
+  EXPECT_TRUE(Signal::step(-1, 1, 1).crossings(0.0, 0, 5).empty());
+  const auto tab = Signal::table({0, 1, 2}, {1, -1, 3}, true).crossings(0.0, -5, 5);
+  ASSERT_EQ(tab.size(), 2u);  // the tails move away from 0
+  EXPECT_DOUBLE_EQ(tab[0], 0.5);
+  EXPECT_DOUBLE_EQ(tab[1], 1.25);
+  EXPECT_EQ(Signal::table({0, 1}, {1, 2}, true).crossings(0.0, -5, 5), std::vector<double>{-1.0});  // left tail
+  const double w = 2 * std::numbers::pi;  // 1 Hz, offset 0.5, amplitude 1: sin θ = −0.5
+  const auto sn = Signal::sine(1, w, 0, 0.5, 0).crossings(0.0, 0, 2);
+  const std::vector<double> want{7.0 / 12, 11.0 / 12, 19.0 / 12, 23.0 / 12};
+  ASSERT_EQ(sn.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(sn[i], want[i], 1e-14);
+  const auto sm = Signal::sum({Signal::sine(1, w, 0, 0, 0), Signal::constant(0.5)}).crossings(0.0, 0, 2);
+  ASSERT_EQ(sm.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(sm[i], want[i], 1e-14);
+  EXPECT_DOUBLE_EQ(Signal::sine(2, w, 0, -1, 0).magnitude_bound(0, 1), 3.0);
+}
+
 }  // namespace
 }  // namespace machdyn

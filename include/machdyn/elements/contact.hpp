@@ -7,7 +7,9 @@
 /// The friction load F acts on b with +F and on a with −F (N or N·m):
 ///   stuck   (u ≡ 0):  F = λ from the equations of motion, holds while |λ| ≤ F_s(t)
 ///   sliding (u ≠ 0):  F = s r(t) F_k0(|u|), s = ±1 the direction of the mode
-/// F_s(t) = r(t) F_s0 (r: the brake's application ramp, 1 for a contact).
+/// F_s(t) = r(t) F_s0, r(t) = max(0, g s(t)) the application of a brake or clutch (its normal force
+/// or its 0…1 application signal, model/model.hpp), 1 for a contact with constant levels. F_k0(|u|)
+/// is a constant, a table over the sliding speed or the Stribeck law (model/model.hpp).
 /// Events (≥ 0 while the mode holds): stuck: F_s − λ and F_s + λ; sliding: s u.
 /// The stick rule's tolerance: a contact whose own limit event just fired is judged strictly
 /// (|λ| ≤ F_s: the event located the crossing on this very function); any other gets a rounding
@@ -28,7 +30,9 @@ namespace machdyn {
 struct ContactLaw {
   const FrictionContact* spec = nullptr;
   int a = 0, b = kGround;
-  bool kinetic_table = false, moving_surface = false, brake = false;
+  bool kinetic_table = false;  ///< F_k0 depends on |u| (a table or the Stribeck law)
+  bool moving_surface = false, brake = false;
+  bool applied = false;  ///< r(t) from a signal (brakes, clutches), else r ≡ 1
   int lock = 0;  ///< freewheel: +1 or −1, 0 otherwise (model/model.hpp)
   bool stop = false;  ///< a hard end stop: engages by position (model/model.hpp)
   double stop_position = 0.0, restitution = 0.0;
@@ -51,8 +55,8 @@ struct ContactLaw {
   [[nodiscard]] double sliding_acceleration(double t, const double* acc) const {
     return acc[a] - (b >= 0 ? acc[b] : surface_acceleration(t));
   }
-  /// r(t): the brake's application ramp (1 for a contact).
-  [[nodiscard]] double scale(double t) const { return brake ? spec->scale(t) : 1.0; }
+  /// r(t): the application (1 for a contact with constant levels).
+  [[nodiscard]] double scale(double t) const { return applied ? spec->scale(t) : 1.0; }
   /// F_s(t) = r(t) F_s0.
   [[nodiscard]] double static_limit(double t) const { return scale(t) * spec->static_limit; }
   /// The kinetic force s r(t) F_k0(|u|) of sliding mode md.
@@ -60,9 +64,11 @@ struct ContactLaw {
     const double level = kinetic_table ? spec->kinetic_level(std::abs(u)) : kinetic0;
     return static_cast<double>(static_cast<int>(md)) * scale(t) * level;
   }
-  /// dF/du of sliding mode md: the slope of the kinetic table at |u| (0 for a constant level).
+  /// dF/du of sliding mode md: r(t) F_k0′(|u|), the slope of the table or Stribeck law (0 for a
+  /// constant level).
   [[nodiscard]] double kinetic_slope(double t, double u) const;
-  /// The steepest rising slope of the kinetic table, max dF_k0/d|u| ≥ 0 (a damper while sliding).
+  /// The steepest rising slope of the kinetic table, max dF_k0/d|u| ≥ 0 (a damper while sliding; 0
+  /// for the Stribeck law, which falls from F_s0 to F_c).
   [[nodiscard]] double steepest_kinetic_slope() const;
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
   /// A freewheel holds while lock·λ ≥ 0 (allowance 1e-9 N or N·m: an unloaded freewheel holds).
@@ -113,8 +119,9 @@ struct ContactLaw {
       ev[1] = 1.0;
     }
   }
-  /// A brake before its application time is released: it acts with no force and has no phases.
-  [[nodiscard]] bool released(double t) const { return brake && t < spec->t_apply; }
+  /// A brake or clutch whose application is 0 at t and does not rise just after is released (open):
+  /// it acts with no force and has no slip phases.
+  [[nodiscard]] bool released(double t) const { return applied && spec->released(t); }
   /// Adds the generalized forces of load F to f: −F on a, +F on b.
   void apply(double F, double* f) const {
     f[a] -= F;

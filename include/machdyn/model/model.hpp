@@ -80,8 +80,20 @@ struct Link {
 /// +F and on a with −F (as a link's load):
 ///   stuck  (u ≡ 0):  F from the equations of motion, |F| ≤ F_s(t)
 ///   sliding (u ≠ 0): F = sign(u) F_k(t, |u|)
-/// F_s(t) = r(t) F_s0 and F_k(t, s) = r(t) F_k0(s); r(t) = 1 for a contact, the application ramp
-/// of a brake (0 before `t_apply`, linear over `t_ramp`, then 1). F_s0 ≥ F_k0(0) ≥ 0.
+/// F_s(t) = r(t) F_s0 and F_k(t, s) = r(t) F_k0(s), F_s0 ≥ F_k0(0) ≥ 0. r(t) is the application:
+///   r ≡ 1                        a contact with constant levels (`applied` false)
+///   r(t) = max(0, g s(t))        a signal s (model/signal.hpp): a brake's application (0 released,
+///                                1 full; `time` and `ramp` are the ramp 0 → 1), or the normal force
+///                                f_N(t) of a clutch or brake in N, with g = 1/f_N,ref; a negative
+///                                normal force opens it (as Modelica's Clutch: free while fn ≤ 0).
+/// A clutch or brake given by friction coefficients (Modelica's Rotational.Components.Clutch,
+/// cgeo = z r, fn = f_N):
+///   F_s0 = z r μ_s f_N,ref,   F_k0(s) = z r μ_k(s) f_N,ref    (rotational: N·m; translational: z = r = 1)
+/// z: number of friction surfaces, r: effective radius in m, f_N,ref: the largest |f_N| (a scale only:
+/// the loads depend on f_N(t) alone). μ_k(s) is a constant, a table over the sliding speed, or the
+/// Stribeck law
+///   μ_k(s) = μ_c + (μ_s − μ_c) exp(−(s / w_s)^δ),   w_s > 0, δ ≥ 1  (μ_c: `mu_k`, the Coulomb level)
+/// which falls from μ_s at rest to μ_c while sliding fast (the same law for F_k0 in N or N·m).
 /// A freewheel (one-way clutch, `lock` = ±1) transmits load in one direction only:
 ///   stuck   (u ≡ 0):  holds while lock·λ ≥ 0 (no upper limit; static_limit unused)
 ///   sliding:          only in the free direction, sign(u) = −lock, F = −lock F_k0(|u|) (drag)
@@ -96,6 +108,7 @@ struct Link {
 struct FrictionContact {
   std::string name;
   bool brake = false;
+  bool clutch = false;               ///< from `clutches:` (between two bodies, by its normal force)
   int lock = 0;                      ///< freewheel: +1 or −1 (see above); 0: a friction contact or brake
   bool stop = false;                 ///< a hard end stop (then lock ≠ 0, b = ground)
   double stop_position = 0.0;        ///< q_stop, rad or m
@@ -104,16 +117,27 @@ struct FrictionContact {
   int b = kGround;                   ///< body index or kGround
   double static_limit = 0.0;         ///< F_s0, N or N·m, > 0
   std::vector<double> speeds;        ///< sliding speeds of the kinetic table (ascending from 0), or empty
-  std::vector<double> kinetic;       ///< F_k0: one value (constant) or one per speed
+  std::vector<double> kinetic;       ///< F_k0: one value (constant; μ_c with Stribeck) or one per speed
+  double stribeck_speed = 0.0;       ///< w_s > 0: F_k0 follows the Stribeck law; 0: constant or table
+  double stribeck_exponent = 1.0;    ///< δ ≥ 1
   std::vector<double> surface_times; ///< prescribed ground velocity w(t): table times, or empty (w = const)
   std::vector<double> surface_velocities;  ///< w values (one value if constant; empty: w = 0)
-  double t_apply = 0.0;              ///< brake: start of the application, s
-  double t_ramp = 0.0;               ///< brake: duration of the ramp, s (0: a step)
+  bool applied = false;              ///< r(t) from `application` (else r ≡ 1)
+  Signal application;                ///< s(t): 0…1, or the normal force f_N(t) in N
+  double application_gain = 1.0;     ///< g: 1, or 1/f_N,ref
+  bool by_normal_force = false;      ///< s is a normal force (compile scales by f_N,ref once t_end is known)
+  double t_apply = 0.0;              ///< the first time r > 0 (0: from the start), for displays
 
   [[nodiscard]] double scale(double t) const;             ///< r(t)
-  [[nodiscard]] double kinetic_level(double speed) const;  ///< F_k0(|u|), held constant outside the table
+  /// Whether r is 0 at t and stays 0 just after (r(t) = 0 and no rise on the right): released.
+  [[nodiscard]] bool released(double t) const;
+  [[nodiscard]] double kinetic_level(double speed) const;  ///< F_k0(|u|), a table held constant outside
+  /// dF_k0/ds at sliding speed s ≥ 0 (0 outside a table and for a constant level).
+  [[nodiscard]] double kinetic_level_slope(double speed) const;
   [[nodiscard]] double surface_velocity(double t) const;   ///< w(t)
   [[nodiscard]] double surface_acceleration(double t) const;  ///< dw/dt (piecewise constant)
+  /// Times in (0, t_end) where r(t) jumps or has a kink: the breakpoints of s and its zero crossings.
+  [[nodiscard]] std::vector<double> application_times(double t_end) const;
 };
 
 enum class LoadKind {
@@ -201,8 +225,8 @@ struct Model {
   [[nodiscard]] Location where(const std::string& element) const;
   /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
   [[nodiscard]] bool is_hybrid() const;
-  /// Times in (0, t_end), increasing without repeats, where a load, a brake's application or a
-  /// surface velocity jumps or has a kink in t: the integrator stops there (solve/event_system.hpp).
+  /// Times in (0, t_end), increasing without repeats, where a load, the application of a brake or
+  /// clutch (its normal force) or a surface velocity jumps or has a kink in t: the integrator stops there (solve/event_system.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
 

@@ -58,6 +58,15 @@ class Signal {
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
   /// The number of breakpoints in (t0, t1) without listing them (a bound for the memory check).
   [[nodiscard]] double breakpoint_count(double t0, double t1) const;
+  /// The times in (t0, t1), increasing, where s crosses `level` with a change of sign of s − level
+  /// (the kinks of max(level, s), e.g. a normal force that turns negative: a clutch opens). Exact
+  /// for ramp, table and sine; a jump that passes the level is a breakpoint, not a crossing. For an
+  /// expression or a sum: s − level sampled at 4096 equal steps and at the breakpoints, each sign
+  /// change refined by bisection to the last bit (two crossings within one sample step are missed).
+  [[nodiscard]] std::vector<double> crossings(double level, double t0, double t1) const;
+  /// An upper bound of |s| on [t0, t1]: exact for every kind but an expression, whose |s| is
+  /// sampled at 1001 points (a scale for tolerances, not a limit that is enforced).
+  [[nodiscard]] double magnitude_bound(double t0, double t1) const;
   /// Whether s is the same at every time.
   [[nodiscard]] bool is_constant() const;
   /// The values s takes if it is piecewise constant (constant, step, pulse, a table whose segments
