@@ -144,6 +144,35 @@ crane: {load: load, rope: rope, release: {mass: 300 kg, kind: rapid}}
   EXPECT_NEAR(x.margin, 0.0, 1e-9);
 }
 
+// Claim: with the load on a drum (rope ratio i = 10 rad/m) the φ3 case holds the drum by its holding
+// brake, so the load again oscillates on the rope alone: rope force between m g and (m − 2Δm) g, the
+// drum stays at rest (the brake stuck throughout); slow release compares with β3 = 0.5:
+// 1 − (500/2000)(1.5) = 0.625 against the simulated 1 − 2 · 500/2000 = 0.5 (margin −0.125).
+TEST_P(Crane, Phi3HoldsTheDrumByItsBrake) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {inertia: 50 kg*m^2}
+  load: {type: translational, mass: 2000 kg, vertical: up}
+links: {rope: {type: rope, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}}
+simulation: {t_end: 0.3 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+crane: {load: load, rope: rope, release: {mass: 500 kg, kind: slow}}
+)");
+  m.simulation.integrator = GetParam();
+  const double g = 9.81;
+  const SimulationResult res = simulate(phi3_case_model(m, 500));
+  EXPECT_NEAR(res.links[0].max, 2000 * g, 1e-9 * 2000 * g);
+  EXPECT_NEAR(res.links[0].min, 1000 * g, 1e-9 * 2000 * g);
+  for (size_t c = 0; c < res.column_names.size(); ++c) {
+    if (res.column_names[c] != "drum.position_rad") continue;
+    for (double q : res.columns[c]) ASSERT_EQ(q, 0.0);
+  }
+  const CraneFactorRow x = row(crane_analysis(m), "phi3");
+  EXPECT_NEAR(x.simulated, 0.5, 1e-9);
+  EXPECT_DOUBLE_EQ(x.standard_lo, 0.625);
+  EXPECT_NEAR(x.margin, -0.125, 1e-9);
+}
+
 // Claim (crane-standards.md, closed forms): a rigid mass m at v into a linear buffer c has
 // F_max = v √(c m) (the buffer closes at x_b, then x − x_b = (v/ω) sin ω t, ω = √(c/m)); it is its
 // own rigid-body reference, so φ7 simulated = 1 against 1.25 (ξb = 1/2 of a linear spring).

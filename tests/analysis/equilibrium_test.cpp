@@ -226,6 +226,41 @@ simulation: {initial: equilibrium}
 )", true);
   EXPECT_NE(c.find("eq.yaml:3:"), std::string::npos) << c;
   EXPECT_NE(c.find("contact 'f'"), std::string::npos) << c;
+  // a brake applied at t = 0 holds its body, up to its static limit: the rope's pull m g / i =
+  // 1000 · 9.81 / 10 = 981 N·m on the drum is more than 500 N·m
+  const std::string b = error_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {inertia: 50 kg*m^2}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links: {rope: {type: spring, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}}
+brakes: {hold: {body: drum, holding: 500 N*m}}
+simulation: {initial: equilibrium}
+)", true);
+  EXPECT_NE(b.find("eq.yaml:7:"), std::string::npos) << b;
+  EXPECT_NE(b.find("brake 'hold' would have to hold 981 N*m, more than its static limit 500 N*m"), std::string::npos) << b;
+}
+
+// Claim: a brake that can hold the drum does: the hanging load stretches the rope by m g / c while
+// the drum stays at its given angle, and the run stays there (the brake stuck, nothing moves).
+TEST_P(Equilibrium, BrakeHoldsTheDrumOfAHangingLoad) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {inertia: 50 kg*m^2, position: 0.2 rad}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links: {rope: {type: spring, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}}
+brakes: {hold: {body: drum, holding: 2000 N*m}}
+simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12, initial: equilibrium}
+)");
+  m.simulation.integrator = GetParam();
+  const EquilibriumStart e = static_equilibrium(m);
+  EXPECT_EQ(e.q0[0], 0.2);
+  const double x = 0.2 / 10 - 1000 * 9.81 / 2e6;  // δ = φ/i − x = m g / c
+  EXPECT_NEAR(e.q0[1], x, 1e-15);
+  const SimulationResult r = simulate(m);
+  EXPECT_LT(max_deviation(column(r, "load.position_m"), x), 1e-9);
+  EXPECT_LT(max_deviation(column(r, "drum.position_rad"), 0.2), 1e-12);
 }
 
 }  // namespace
