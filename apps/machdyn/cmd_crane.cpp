@@ -4,6 +4,7 @@
 // --phi2-speeds FROM:TO:N adds φ2(vh) beside the standard's line (DIR/phi2_sweep.csv).
 #include <iostream>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "commands.hpp"
 #include "machdyn/analysis/crane.hpp"
@@ -19,6 +20,7 @@ struct CraneArgs {
   std::string model, out;
   std::string phi2_speeds;  ///< --phi2-speeds FROM:TO:N (m/s)
   bool json = false;
+  bool plot = false;  ///< --plot: one figure per factor (SVG + PNG, gnuplot)
   std::vector<std::string> sets;
 };
 
@@ -59,6 +61,7 @@ std::vector<double> speed_list(const std::string& text) {
 int run_crane(const CraneArgs& a) {
   const std::filesystem::path out_dir = output_dir(a.model, a.out, "");
   const Model m = load_model(a.model, a.sets);
+  if (a.plot) plot::find_gnuplot();  // before the work, not after
   const CraneReport r = crane_analysis(m);
   nlohmann::json j = crane_json(r);
   std::string sweep_csv;
@@ -74,6 +77,7 @@ int run_crane(const CraneArgs& a) {
   }
   write_file_atomic((out_dir / "crane.csv").string(), crane_csv(r));
   if (!sweep_csv.empty()) write_file_atomic((out_dir / "phi2_sweep.csv").string(), sweep_csv);
+  const std::vector<std::string> files = a.plot ? write_figures(out_dir, crane_figures(r)) : std::vector<std::string>{};
   write_file_atomic((out_dir / "crane.json").string(), j.dump(2) + "\n");
   if (a.json) {
     std::cout << j.dump(2) << '\n';
@@ -81,6 +85,7 @@ int run_crane(const CraneArgs& a) {
   }
   std::cout << crane_table(r);
   std::cout << fmt::format("wrote {0}/crane.csv and {0}/crane.json\n", out_dir.string());
+  if (!files.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", out_dir.string(), fmt::join(files, ","));
   return 0;
 }
 
@@ -91,6 +96,8 @@ void register_crane(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("crane", "Crane dynamic factors (phi2, phi3, phi5, phi7) simulated beside EN 13001-2");
   cmd->add_option("MODEL", a->model, "Model file (YAML) with a 'crane:' section (docs/crane-factors.md)")->required();
   cmd->add_flag("--json", a->json, "Print JSON to stdout");
+  cmd->add_flag("--plot", a->plot, "Write crane_FACTOR_K.svg/.png: each factor's time history with the standard's "
+                                   "value dashed (needs gnuplot)");
   cmd->add_option("-o,--out", a->out, "Output folder (default out/MODEL): crane.csv, crane.json");
   cmd->add_option("--phi2-speeds", a->phi2_speeds,
                   "phi2 over hoisting speeds FROM:TO:N (m/s) beside the standard's line: phi2_sweep.csv and "

@@ -34,6 +34,18 @@ Eigen::VectorXd group_motion(const Model& m, int body, Skip&& skip) {
   return {};
 }
 
+/// The load of link `k` on the output grid divided by `reference`: the row's time history.
+void set_history(const Model& m, const SimulationResult& res, int k, double reference, CraneFactorRow& r) {
+  const std::string name = m.links[static_cast<size_t>(k)].name + ".load_";
+  for (size_t c = 0; c < res.column_names.size(); ++c)
+    if (res.column_names[c].rfind(name, 0) == 0 && !res.columns.empty()) {
+      r.t = res.columns[0];
+      r.history = res.columns[c];
+      for (double& x : r.history) x /= reference;
+      return;
+    }
+}
+
 const Body& load_body(const Model& m) { return m.bodies[static_cast<size_t>(m.crane.load)]; }
 double load_weight(const Model& m) { return load_body(m).inertia * m.gravity; }
 
@@ -59,6 +71,7 @@ CraneFactorRow phi2_row(const Model& m) {
   const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
   r.simulated = s.max / load_weight(m);
   r.margin = r.standard_hi - r.simulated;
+  set_history(m, res, c.rope, load_weight(m), r);
   r.note = fmt::format("max rope force {:.6g} N at t = {:.6g} s; weight m g = {:.6g} N", s.max, s.t_max, load_weight(m));
   return r;
 }
@@ -79,6 +92,7 @@ CraneFactorRow phi3_row(const Model& m) {
   const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
   r.simulated = s.min / load_weight(m);
   r.margin = r.simulated - r.standard_lo;
+  set_history(m, res, c.rope, load_weight(m), r);
   r.note = fmt::format("min rope force {:.6g} N at t = {:.6g} s after the release; m g = {:.6g} N", s.min, s.t_min,
                        load_weight(m));
   return r;
@@ -98,6 +112,7 @@ void phi5_rows(const Model& m, const SimulationResult& res, CraneReport& out) {
     r.standard_hi = range.hi;
     r.clause = fmt::format("EN 13001-2 phi5, {} force changes (one source)", to_string(change));
     r.margin = r.standard_hi - r.simulated;
+    if (std::isfinite(s.dynamic_factor)) set_history(m, res, k, s.static_load, r);
     r.note = fmt::format("peak {:.6g} {} at t = {:.6g} s; quasi-static load there {:.6g}", s.peak,
                          link_load_unit(m, m.links[static_cast<size_t>(k)]), s.t_peak, s.static_load);
     out.rows.push_back(r);
@@ -158,6 +173,7 @@ void phi7_rows(const Model& m, const SimulationResult& res, CraneReport& out) {
     r.clause = fmt::format("EN 13001-2 phi7 = 1.25 (xi_b <= 0.5), 1.25 + 0.7 (xi_b - 0.5) above; xi_b = {:.3g}", xi);
     r.simulated = s.max / F_rigid;
     r.margin = r.standard_hi - r.simulated;
+    if (std::isfinite(F_rigid)) set_history(m, res, k, F_rigid, r);
     r.note = fmt::format("peak buffer force {:.6g} N at t = {:.6g} s; rigid-body force {:.6g} N ({})", s.max, s.t_max,
                          F_rigid, rigid_note);
     out.rows.push_back(r);

@@ -67,4 +67,23 @@ std::string crane_table(const CraneReport& r) {
   return s;
 }
 
+std::vector<plot::Figure> crane_figures(const CraneReport& r) {
+  std::vector<plot::Figure> out;
+  for (size_t k = 0; k < r.rows.size(); ++k) {
+    const CraneFactorRow& x = r.rows[k];
+    if (x.history.empty()) continue;
+    plot::Figure f;
+    f.id = fmt::format("crane_{}_{}", x.factor, k);
+    f.title = fmt::format("{}: {}", x.factor, x.case_name);
+    f.x = plot::make_axis("time t", "s");
+    f.y = plot::make_axis(x.factor + " (load / reference)", "");
+    f.series.push_back(plot::make_series("simulated", x.t, x.history));
+    f.ref_lines.push_back(plot::make_ref_line(x.standard_hi, fmt::format("EN 13001-2: {}", standard_text(x)), -1));
+    if (x.standard_lo != x.standard_hi)
+      f.ref_lines.push_back(plot::make_ref_line(x.standard_lo, fmt::format("lower end {:.4g}", x.standard_lo), -1));
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 }  // namespace machdyn

@@ -1,6 +1,7 @@
 // The crane analysis (analysis/crane.hpp) and buffers (`buffers:`, model/compile_crane.cpp) against
 // the closed forms of /work/shared/docs/crane-standards.md ("Closed forms a simulation must
 // reproduce"), on both integrators, and the located errors of the `crane:` and `buffers:` sections.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -238,13 +239,32 @@ crane: {drive: {links: [shaft], force_change: sudden}}
   EXPECT_NEAR(x.margin, 0.0, tol);
 }
 
+// Claim: each simulated row carries its time history (load / reference on the output grid), whose
+// largest value is the simulated φ2 up to the grid (the peak itself is located between output
+// points), and crane_figures draws it with the standard's value as a dashed line.
+TEST(CraneOutput, HistoryAndFigure) {
+  const CraneReport r = crane_analysis(model_of(with_drive_class("HD1")));
+  const CraneFactorRow& x = row(r, "phi2");
+  ASSERT_EQ(x.t.size(), x.history.size());
+  ASSERT_FALSE(x.t.empty());
+  const double top = *std::max_element(x.history.begin(), x.history.end());
+  EXPECT_LE(top, x.simulated + 1e-12);
+  EXPECT_GT(top, x.simulated - 1e-3);
+  const auto figs = crane_figures(r);
+  ASSERT_EQ(figs.size(), 1u);
+  EXPECT_EQ(figs[0].id, "crane_phi2_0");
+  ASSERT_EQ(figs[0].ref_lines.size(), 1u);
+  EXPECT_EQ(figs[0].ref_lines[0].value, x.standard_hi);
+  EXPECT_EQ(figs[0].series[0].y, x.history);
+}
+
 // Claim: the table's three forms carry the same rows: JSON (NaN → null), CSV (header + one line per
 // row), terminal table (one line per row plus header, rule and notes).
 TEST(CraneOutput, JsonCsvAndTableAgree) {
   CraneReport r;
   r.model = "m";
-  r.rows.push_back({"phi2", "a, \"b\"", 1.25, 1.27, 1.27, "EN 13001-2", 0.02, "n"});
-  r.rows.push_back({"phi5", "c", std::nan(""), 1.0, 1.5, "EN 13001-2 phi5", std::nan(""), ""});
+  r.rows.push_back({"phi2", "a, \"b\"", 1.25, 1.27, 1.27, "EN 13001-2", 0.02, "n", {}, {}});
+  r.rows.push_back({"phi5", "c", std::nan(""), 1.0, 1.5, "EN 13001-2 phi5", std::nan(""), "", {}, {}});
   const auto j = crane_json(r);
   EXPECT_EQ(j["rows"][0]["simulated"].get<double>(), 1.25);
   EXPECT_TRUE(j["rows"][1]["simulated"].is_null());

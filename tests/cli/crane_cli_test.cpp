@@ -36,6 +36,15 @@ TEST(CraneCli, MainHoistWritesTheTable) {
   EXPECT_NE(r.out.find("EN 13001-2"), std::string::npos) << r.out;
 }
 
+// Claim: --plot writes one figure per simulated factor (SVG and PNG): crane_phi7_0 for the trolley.
+TEST(CraneCli, PlotWritesAFigurePerFactor) {
+  const auto dir = test::temp_dir() / "crane-plot";
+  const auto r = test::run_cli("crane '" + test::example("crane/trolley-buffers.yaml") + "' --plot -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "crane_phi7_0.svg"));
+  EXPECT_TRUE(fs::exists(dir / "crane_phi7_0.png"));
+}
+
 // Claim: the trolley example's φ7 row compares with 1.25 (a linear buffer, ξb = 1/2).
 TEST(CraneCli, TrolleyBuffersGivePhi7) {
   const auto r = test::run_cli("crane '" + test::example("crane/trolley-buffers.yaml") + "' --json -o '" +

@@ -47,6 +47,10 @@ struct CraneFactorRow {
   std::string clause;        ///< where the standard's value comes from
   double margin = 0.0;       ///< see the file comment
   std::string note;          ///< the inputs of the case (vh, Δm, ξb, peak force, time of the peak)
+  /// The factor's time history on the run's output grid: the link load over the case's reference
+  /// (m g for φ2 and φ3, the quasi-static load at the peak for φ5, the rigid-body peak for φ7).
+  /// Empty when the case was not simulated.
+  std::vector<double> t, history;
 };
 
 struct CraneReport {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "machdyn/analysis/crane.hpp"
+#include "machdyn/io/plot.hpp"
 
 namespace machdyn {
 
@@ -18,5 +19,8 @@ nlohmann::json crane_json(const CraneReport& r);
 std::string crane_csv(const CraneReport& r);
 /// The table for the terminal: numbers to 4 digits, the standard as "1.44" or "1.0-1.5".
 std::string crane_table(const CraneReport& r);
+/// One figure per simulated row (id "crane_FACTOR_K", K its row index): the factor's time history
+/// with the standard's value (both ends of a range) as dashed lines.
+std::vector<plot::Figure> crane_figures(const CraneReport& r);
 
 }  // namespace machdyn
