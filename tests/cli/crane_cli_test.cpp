@@ -80,6 +80,19 @@ TEST(CraneCli, Phi2SpeedsWritesTheCurve) {
   EXPECT_NE(bad.err.find("--phi2-speeds"), std::string::npos) << bad.err;
 }
 
+// Claim: the slewing example's φ5 row compares the ring's dynamic factor with 3.0 ("considerable
+// backlash"); the knock when the backlash closes lifts it above the 2 of a sudden force.
+TEST(CraneCli, SlewingBacklashGivesPhi5) {
+  const auto r = test::run_cli("crane '" + test::example("crane/slewing-backlash.yaml") + "' --json -o '" +
+                               (test::temp_dir() / "crane-slew").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 1u);
+  EXPECT_EQ(j["rows"][0]["factor"], "phi5");
+  EXPECT_EQ(j["rows"][0]["standard_hi"].get<double>(), 3.0);
+  EXPECT_GT(j["rows"][0]["simulated"].get<double>(), 2.0);
+}
+
 // Claim: a model without a `crane:` section is an input error (exit 2) and writes nothing.
 TEST(CraneCli, NoCraneSectionExitsTwo) {
   const auto dir = test::temp_dir() / "crane-none";
