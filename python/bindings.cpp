@@ -27,6 +27,8 @@
 #include "machdyn/gears/synthesis.hpp"
 #include "machdyn/gears/tooth_profile.hpp"
 #include "machdyn/io/energy_results.hpp"
+#include "machdyn/analysis/crane.hpp"
+#include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/gears_output.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
@@ -305,6 +307,9 @@ PYBIND11_MODULE(_machdyn, mod) {
     }
     return j.dump();
   });
+
+  // As `machdyn crane --json`: the crane table (analysis/crane.hpp), GIL released for its runs.
+  mod.def("crane", [](const PyModel& p) { return nogil([&] { return crane_json(crane_analysis(*p.model)).dump(); }); });
 
   mod.def("gears", [](const std::string& path, const std::vector<std::string>& sets) {
     SpecNode root = read_yaml_file(path);
