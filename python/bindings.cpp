@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -330,6 +331,9 @@ PYBIND11_MODULE(_machdyn, mod) {
       report::Case c;
       c.name = p.load_case, c.model = p.model.get(), c.result = &r, c.modes = &modes;
       c.energy = energy ? &*energy : nullptr;
+      std::optional<CraneReport> crane;
+      if (p.model->crane.given) crane = crane_analysis(*p.model);
+      c.crane = crane ? &*crane : nullptr;
       return report::to_html(report::simulation_report({c}, command));
     });
   });
