@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,8 @@
 #include "machdyn/gears/synthesis.hpp"
 #include "machdyn/gears/tooth_profile.hpp"
 #include "machdyn/io/energy_results.hpp"
+#include "machdyn/analysis/crane.hpp"
+#include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/gears_output.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
@@ -306,6 +309,9 @@ PYBIND11_MODULE(_machdyn, mod) {
     return j.dump();
   });
 
+  // As `machdyn crane --json`: the crane table (analysis/crane.hpp), GIL released for its runs.
+  mod.def("crane", [](const PyModel& p) { return nogil([&] { return crane_json(crane_analysis(*p.model)).dump(); }); });
+
   mod.def("gears", [](const std::string& path, const std::vector<std::string>& sets) {
     SpecNode root = read_yaml_file(path);
     for (const auto& s : sets) apply_set(root, s);
@@ -325,6 +331,9 @@ PYBIND11_MODULE(_machdyn, mod) {
       report::Case c;
       c.name = p.load_case, c.model = p.model.get(), c.result = &r, c.modes = &modes;
       c.energy = energy ? &*energy : nullptr;
+      std::optional<CraneReport> crane;
+      if (p.model->crane.given) crane = crane_analysis(*p.model);
+      c.crane = crane ? &*crane : nullptr;
       return report::to_html(report::simulation_report({c}, command));
     });
   });

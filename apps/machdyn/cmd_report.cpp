@@ -57,6 +57,7 @@ struct CaseRun {
   std::vector<TopologyModes> topologies;  ///< of each topology the run passed through
   std::unique_ptr<FrequencyResponse> frf;
   std::string frf_topology;
+  std::optional<CraneReport> crane;  ///< the crane analysis of a model with `crane:`
 };
 
 int run_report(const ReportArgs& a) {
@@ -76,7 +77,7 @@ int run_report(const ReportArgs& a) {
   std::deque<CaseRun> runs;  // stable addresses for report::Case
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
-                           {}, {}, std::nullopt, {}, {}, {}});
+                           {}, {}, std::nullopt, {}, {}, {}, std::nullopt});
   // The report embeds every series: the same size limit as simulate's time series, before any run.
   if (!a.large_output) {
     std::uint64_t total = 0;
@@ -98,6 +99,7 @@ int run_report(const ReportArgs& a) {
     run.energy = machine_energy(run.model);
     run.topologies = run_topology_modes(run.model, run.result.hybrid, run.model.simulation.t_end);
     run.frf = default_frequency_response(run.model, run.topologies, &run.frf_topology);
+    if (run.model.crane.given) run.crane = crane_analysis(run.model);
   }
   std::vector<report::Case> cases;
   for (const auto& run : runs) {
@@ -107,6 +109,7 @@ int run_report(const ReportArgs& a) {
     c.energy = run.energy ? &*run.energy : nullptr;
     c.topologies = &run.topologies;
     c.frf = run.frf.get(), c.frf_topology = run.frf_topology;
+    c.crane = run.crane ? &*run.crane : nullptr;
     cases.push_back(c);
   }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));

@@ -28,7 +28,7 @@ from . import _machdyn
 from ._result import Modes, Result, _Model
 
 __version__ = _machdyn.__version__
-__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "gears", "sweep", "report",
+__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report",
            "InputError", "SolverError", "Model", "Result", "Modes"]
 
 Model = _Model
@@ -145,6 +145,15 @@ def energy(model: Model, to: str | float | None = None, points: int = 201, delta
         raise ValueError("delta: expected a positive number")
     return _json.loads(_machdyn.energy(model._core, "" if to is None else _value_text(to), int(points),
                                        float(delta or 0.0), "" if mean_speed is None else _value_text(mean_speed)))
+
+
+def crane(model: Model) -> dict:
+    """The crane dynamic factors of a model with a ``crane:`` section, as ``machdyn crane --json``
+    (docs/crane-factors.md): ``{"model": NAME, "rows": [{"factor", "case", "simulated",
+    "standard_lo", "standard_hi", "clause", "margin", "note"}, ...]}``, NaN as None.
+    Raises InputError for a model without ``crane:`` or a case it cannot build.
+    """
+    return _json.loads(_machdyn.crane(model._core))
 
 
 def gears(spec: str | _os.PathLike, set: Mapping[str, object] | Iterable[str] | None = None) -> dict:

@@ -87,3 +87,14 @@ def test_modes_per_topology_equal_the_cli_and_paper_001():
     assert len(machdyn.modes(m).summary["topologies"]) == 8
     with pytest.raises(machdyn.InputError, match="'shut' is not a mode"):
         machdyn.modes(m, topology="c=shut")
+
+
+def test_crane_equals_the_cli_and_the_closed_form():
+    path = example("crane/trolley-buffers.yaml")
+    t = machdyn.crane(machdyn.load(path))
+    assert t == cli_json("crane", path, "--json", "-o", str(__import__("tempfile").mkdtemp()))
+    # φ7's rigid reference: the whole group (400 + 3000 + 2000 kg) at 0.63 m/s into c = 2e5 N/m,
+    # F = v sqrt(c M); the row's note carries it.
+    row = t["rows"][0]
+    assert row["factor"] == "phi7" and row["standard_lo"] == 1.25
+    assert f"rigid-body force {0.63 * math.sqrt(2e5 * 5400):.6g} N" in row["note"]

@@ -3,6 +3,7 @@
 // breakpoints, the decision of the new modes of all elements together at an event — and the
 // observers (outputs, peaks, quasi-static loads, slip phases, energy books, progress).
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/analysis/equilibrium.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -496,6 +497,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
 
 SimulationResult simulate(const Model& m, const SimulateOptions& options) {
+  // `initial: equilibrium`: the same run from the static equilibrium at t = 0 (analysis/equilibrium.hpp).
+  if (m.simulation.initial == InitialState::equilibrium) return simulate(with_equilibrium_start(m), options);
   SimulationResult out;
   DriveRun run(m, options, out);
   run.run();

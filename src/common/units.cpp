@@ -185,6 +185,7 @@ std::string describe(const Dim& d) {
       {dim::damping_lin, "a damping coefficient (N*s/m)"},
       {dim::damping_rot, "a rotational damping coefficient (N*m*s/rad)"},
       {dim::inv_length, "a ratio per length (rad/m, 1/m)"},
+      {dim::acceleration, "an acceleration (m/s^2)"},
   };
   for (const auto& n : names)
     if (n.d == d) return n.text;

@@ -7,6 +7,7 @@
 
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/report.hpp"
+#include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/linear_results.hpp"
 
 namespace machdyn::report {
@@ -273,6 +274,28 @@ std::vector<Table> model_tables(const Model& m) {
   return t;
 }
 
+namespace {
+/// The crane factors of one case: the table of `machdyn crane` and each factor's time history.
+Section crane_section(const CraneReport& cr, const std::string& case_name) {
+  Section s;
+  s.title = case_name.empty() ? "Crane factors (EN 13001-2)" : "Crane factors — case " + case_name;
+  s.paragraphs.push_back("Each factor simulated beside the standard's value (docs/crane-factors.md); margin > 0: the "
+                         "standard's value is on the safe side of this model.");
+  Table t;
+  t.caption = "Dynamic factors";
+  t.header = {"factor", "case", "simulated", "standard", "margin", "clause/table", "note"};
+  auto num = [](double x) { return std::isfinite(x) ? fmt::format("{:.4f}", x) : std::string("–"); };
+  for (const auto& x : cr.rows)
+    t.rows.push_back({x.factor, x.case_name, num(x.simulated),
+                      x.standard_lo == x.standard_hi ? fmt::format("{:.4g}", x.standard_lo)
+                                                     : fmt::format("{:.4g}–{:.4g}", x.standard_lo, x.standard_hi),
+                      num(x.margin), x.clause, x.note});
+  s.tables.push_back(std::move(t));
+  s.figures = crane_figures(cr);
+  return s;
+}
+}  // namespace
+
 Document simulation_report(const std::vector<Case>& cases, const std::string& command) {
   Document d;
   if (cases.empty() || !cases[0].model || !cases[0].result) throw std::invalid_argument("simulation_report: no case");
@@ -324,6 +347,7 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
       d.sections.push_back(std::move(run));
       d.sections.push_back(std::move(plots));
     }
+    if (c.crane) d.sections.push_back(crane_section(*c.crane, c.name));
   }
   return d;
 }

@@ -15,6 +15,7 @@
 #include "compile_hybrid.hpp"
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
+#include "model/compile_crane.hpp"
 
 namespace machdyn {
 namespace {
@@ -33,7 +34,8 @@ std::string_view section_of_type(std::string_view type) {
       {"file", "loads"},        {"drag", "loads"},           {"eddy-current-brake", "loads"},
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
-      {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"}};
+      {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
+      {"buffer", "buffers"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -94,6 +96,14 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
     b.inertia = inertia.value_or(1.0);
     b.q0 = f.quantity("position", position_dim(b.kind), 0.0).value_or(0.0);
     b.v0 = f.quantity("velocity", velocity_dim(b.kind), 0.0).value_or(0.0);
+    if (f.map().find("vertical")) {
+      auto up = f.word("vertical", {"up", "down"});
+      if (b.kind != BodyKind::translational)
+        f.error_at("vertical", fmt::format("body '{}': 'vertical' gives a translational body its weight; a rotational "
+                                           "body has none (give its gravity torque as a load)", name));
+      else if (up)
+        b.vertical = *up == "up" ? 1 : -1;
+    }
     f.finish();
     m.bodies.push_back(b);
   }
@@ -361,6 +371,30 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
   }
 }
 
+/// Gravity: `gravity: g` (m/s², default standard gravity 9.80665 m/s² when a body is vertical) gives
+/// each body with `vertical: up|down` the constant load "NAME.weight" = −vertical · m g (N).
+void compile_gravity(FieldReader& top, Model& m, Diagnostics& diag) {
+  bool any = false;
+  for (const auto& b : m.bodies) any = any || b.vertical != 0;
+  const std::optional<double> g = top.positive("gravity", dim::acceleration, kStandardGravity);
+  if (top.map().find("gravity") && !any)
+    diag.error(top.map().find("gravity")->loc, "'gravity' is given but no body is 'vertical: up|down', so no weight "
+                                               "would act; give the bodies that hang or rise 'vertical: up' or 'down'");
+  if (!any || !g) return;
+  m.gravity = *g;
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const Body& b = m.bodies[i];
+    if (b.vertical == 0) continue;
+    Load w;
+    w.name = b.name + ".weight";
+    w.kind = LoadKind::constant;
+    w.body = static_cast<int>(i);
+    w.value = -b.vertical * b.inertia * m.gravity;
+    w.signal = Signal::constant(w.value);
+    m.loads.push_back(w);
+  }
+}
+
 /// The breakpoints of every load within t_end are listed before the run: bound them (a pulse of
 /// 1 µs period over an hour would be 7·10^9 stops).
 void check_breakpoints(const Model& m, Diagnostics& diag) {
@@ -395,6 +429,8 @@ void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
                            : *integ == "bdf"   ? IntegratorChoice::bdf
                                                : IntegratorChoice::automatic;
   s.max_steps = f.integer("max_steps", 1, 2'000'000'000L, s.max_steps).value_or(s.max_steps);
+  auto init = f.word("initial", {"given", "equilibrium"}, "given");
+  if (init) s.initial = *init == "equilibrium" ? InitialState::equilibrium : InitialState::given;
   if (s.rtol < 1e-14 || s.rtol > 0.1) f.error_at("rtol", "field 'rtol' must lie in [1e-14, 0.1]");
   if (s.dt_out > s.t_end) f.error_at("dt_out", "field 'dt_out' is longer than t_end");
   if (s.dt_out > 0.0 && s.t_end / s.dt_out > 1e8) f.error_at("dt_out", "more than 1e8 output rows; raise 'dt_out'");
@@ -421,7 +457,7 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 }  // namespace
 
 const std::vector<std::string>& element_sections() {
-  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "clutches", "freewheels", "stops"};
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "clutches", "freewheels", "stops", "buffers"};
   return kSections;
 }
 
@@ -446,10 +482,13 @@ Model compile_model(const SpecNode& root, const std::string& source) {
                "the model has no body with mass or inertia: add at least one under 'bodies'");
   compile_links(top.node("links"), m, diag);
   compile_loads(top.node("loads"), m, diag);
+  compile_gravity(top, m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
   detail::compile_clutches(top.node("clutches"), m, diag);
   detail::compile_freewheels(top.node("freewheels"), m, diag);
   detail::compile_stops(top.node("stops"), m, diag);
+  detail::compile_buffers(top.node("buffers"), m, diag);
+  detail::compile_crane(top.node("crane"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);

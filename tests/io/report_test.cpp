@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "machdyn/analysis/crane.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/model/compile.hpp"
@@ -44,6 +45,28 @@ TEST(Report, HasTablesWithUnitsAndFigures) {
     EXPECT_NE(h.find(s), std::string::npos) << s;
   for (const char* id : {"data-figure=\"link_loads-1\"", "data-figure=\"body_speeds-2\"", "data-figure=\"mode_shapes-3\""})
     EXPECT_NE(h.find(id), std::string::npos) << id;
+}
+
+// Claim: a case with a crane analysis gets its own section: the factor table (the trolley's φ7 row
+// with the standard's 1.25) and one chart per factor (data-figure="crane_phi7_0-…").
+TEST(Report, CraneSectionHasTheTableAndAChartPerFactor) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
+  const Model m = load_model(test::example("crane/trolley-buffers.yaml"));
+  const SimulationResult r = simulate(m);
+  const CraneReport cr = crane_analysis(m);
+  report::Case c;
+  c.model = &m, c.result = &r, c.crane = &cr;
+  const report::Document d = report::simulation_report({c}, "machdyn report trolley-buffers.yaml");
+  ASSERT_FALSE(d.sections.empty());
+  const report::Section& s = d.sections.back();
+  EXPECT_EQ(s.title, "Crane factors (EN 13001-2)");
+  ASSERT_EQ(s.tables.size(), 1u);
+  ASSERT_EQ(s.tables[0].rows.size(), 1u);
+  EXPECT_EQ(s.tables[0].rows[0][0], "phi7");
+  EXPECT_EQ(s.tables[0].rows[0][3], "1.25");
+  ASSERT_EQ(s.figures.size(), 1u);
+  const std::string h = report::to_html(d);
+  EXPECT_NE(h.find("data-figure=\"crane_phi7_0"), std::string::npos);
 }
 
 // Claim: a figure's JSON has the columns [x, y1, ...] on one grid: shared when the series share x,

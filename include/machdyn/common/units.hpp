@@ -44,6 +44,7 @@ inline constexpr Dim stiffness_lin{1, 0, -2};  ///< N/m
 inline constexpr Dim damping_lin{1, 0, -1};    ///< N*s/m
 inline constexpr Dim damping_rot{1, 2, -1};    ///< N*m*s/rad
 inline constexpr Dim inv_length{0, -1, 0};     ///< 1/m (rad/m)
+inline constexpr Dim acceleration{0, 1, -2};   ///< m/s^2
 }  // namespace dim
 
 /// A name and an SI unit for a dimension, for messages: "a torque (N*m)". Unknown: the exponents.

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "machdyn/analysis/crane.hpp"
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/frequency_response.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
@@ -80,6 +81,9 @@ struct Case {
   const std::vector<TopologyModes>* topologies = nullptr;
   const FrequencyResponse* frf = nullptr;
   std::string frf_topology;  ///< the topology label of `frf`
+  /// Optional: the crane analysis of a model with a `crane:` section (analysis/crane.hpp), shown as
+  /// its own section: the factor table beside EN 13001-2 and each factor's time history.
+  const CraneReport* crane = nullptr;
 };
 
 /// The natural frequencies (Hz) and damping ratios of each topology, with its time intervals.
@@ -101,7 +105,8 @@ Table cases_table(const std::vector<Case>& cases);
 /// settings and solver statistics, the results table (peaks, static values, dynamic factors,
 /// events), the natural frequencies, and the plots (link loads with the static values marked, body
 /// speeds, mode shapes; the load cyclogram and contacts of a hybrid run; ω against distance or
-/// angle of a machine). With more than one case a comparison table (cases_table) follows the model.
+/// angle of a machine; the crane factors of a case that has them). With more than one case a
+/// comparison table (cases_table) follows the model.
 /// `command` is the command line, printed under the title.
 Document simulation_report(const std::vector<Case>& cases, const std::string& command);
 

@@ -37,10 +37,17 @@ struct Body {
   double inertia = 0.0;  ///< I in kg·m² (rotational) or m in kg (translational); > 0
   double q0 = 0.0;       ///< initial position, rad or m
   double v0 = 0.0;       ///< initial velocity, rad/s or m/s
+  /// Gravity (`vertical:` of a translational body): +1 when q points up (its weight −m g acts
+  /// along −q), −1 when q points down (weight +m g), 0 for no weight. The weight is a constant load
+  /// "NAME.weight" added by compile (Model::gravity), so every consumer sees an ordinary load.
+  int vertical = 0;
   /// Variable inertia I(q) (crank-slider, rolling wheel, table, expression; model/machine.hpp), or
   /// null for a constant one. When set, `inertia` holds I(q0) (used where the model is linearized).
   std::shared_ptr<const Machine> machine;
 };
+
+/// Standard gravity g_n (ISO 80000-3), m/s²: the default of `gravity:`.
+inline constexpr double kStandardGravity = 9.80665;
 
 /// Index of the ground in Link::a / Link::b.
 inline constexpr int kGround = -1;
@@ -72,6 +79,12 @@ struct Link {
   /// The end is the machine's output point p(q) (e.g. `crank.piston`) instead of q itself:
   /// δ = p_a(q_a)/i − p_b(q_b); the load acts on a with −F p_a′/i and on b with +F p_b′.
   bool a_point = false, b_point = false;
+  /// A buffer (`buffers:` section, model/compile_crane.cpp): a one-sided spring (and damper) between
+  /// a body and the ground that pushes the body back once it passes the buffer's position x_b. It is
+  /// this link law's single flank: an upper buffer (`max: x_b`) is [body, ground] with δ = q and
+  /// δ₊ = x_b, a lower one (`min: x_b`) is [ground, body] with δ = −q and δ₊ = −x_b; the load
+  /// F = c (δ − δ₊) + d δ̇ ≥ 0 is the buffer force (compression). `gap` holds δ₊ (any sign here).
+  bool buffer = false;
 };
 
 /// Friction between body a and body b (or the ground, which may move with a prescribed surface
@@ -190,6 +203,29 @@ struct Load {
 
 enum class IntegratorChoice { automatic, dopri5, bdf };
 
+/// The `crane:` section (docs/crane-factors.md): the classes the crane analysis (analysis/crane.hpp)
+/// compares with and the elements of its cases. Indices into Model::bodies / Model::links; −1 (or
+/// empty) where not given, and then the case that needs it does not run.
+struct CraneSpec {
+  bool given = false;
+  int hoisting_class = 2;         ///< HC1…HC4 as 1…4
+  int drive_class = 1;            ///< HD1…HD5 as 1…5
+  double hoist_speed = 0.0;       ///< vh,max, the steady hoisting speed of the hook, m/s
+  double creep_speed = 0.0;       ///< vh,CS, m/s (HD2, HD3)
+  int load = -1;                  ///< the hook load (a vertical translational body)
+  int rope = -1;                  ///< the rope link that carries it (the load is its second end)
+  double release_mass = -1.0;     ///< Δm of the φ3 case, kg (< 0: no φ3 case)
+  bool rapid_release = true;      ///< β3 = 1.0 (rapid) or 0.5 (grabs, slow release)
+  std::vector<int> drive_links;   ///< links of the φ5 case (the model's own run)
+  int force_change = 1;           ///< φ5 range: 0 centrifugal, 1 smooth, 2 sudden, 3 backlash
+  std::vector<int> buffers;       ///< buffer links of the φ7 case (the model's own run)
+};
+
+/// How the run starts: from the bodies' `position`/`velocity` as given, or from static equilibrium
+/// under the loads at t = 0 (analysis/equilibrium.hpp: the elastic part solves K q = f, the rigid-body
+/// motions keep the given position and velocity).
+enum class InitialState { given, equilibrium };
+
 /// Run settings, one struct for the file, the JSON summary and `--set simulation.FIELD=...`.
 struct SimulationSettings {
   double t_end = 1.0;      ///< s
@@ -198,6 +234,7 @@ struct SimulationSettings {
   double atol = 1e-10;     ///< absolute tolerance (SI units of each state)
   IntegratorChoice integrator = IntegratorChoice::automatic;
   long max_steps = 50'000'000;
+  InitialState initial = InitialState::given;  ///< `initial: given | equilibrium`
 };
 
 struct Model {
@@ -209,7 +246,11 @@ struct Model {
   std::vector<Load> loads;
   std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (law: elements/contact.hpp)
   std::string load_case;                  ///< the case applied from the file's `cases:`, or empty
+  /// g in m/s² (`gravity:`), the acceleration of gravity that gives every body with `vertical` its
+  /// weight; 0 when no body is vertical.
+  double gravity = 0.0;
   SimulationSettings simulation;
+  CraneSpec crane;                        ///< the `crane:` section (given = false without one)
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
   /// Index of the body called `name`, kGround for "ground", or -2 if none. A hashed look-up once

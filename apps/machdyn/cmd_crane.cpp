@@ -1,0 +1,109 @@
+// `machdyn crane MODEL [-o DIR] [--json] [--set ...]`: the crane analysis (analysis/crane.hpp) of a
+// model with a `crane:` section — each dynamic factor simulated beside the EN 13001-2 value. Writes
+// DIR/crane.json and DIR/crane.csv (default out/MODEL) and prints the table (or the JSON);
+// --phi2-speeds FROM:TO:N adds φ2(vh) beside the standard's line (DIR/phi2_sweep.csv).
+#include <iostream>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "commands.hpp"
+#include "machdyn/analysis/crane.hpp"
+#include "machdyn/io/crane_results.hpp"
+#include "machdyn/common/diagnostics.hpp"
+#include "machdyn/common/units.hpp"
+#include "machdyn/io/model_file.hpp"
+
+namespace machdyn::cli {
+namespace {
+
+struct CraneArgs {
+  std::string model, out;
+  std::string phi2_speeds;  ///< --phi2-speeds FROM:TO:N (m/s)
+  bool json = false;
+  bool plot = false;  ///< --plot: one figure per factor (SVG + PNG, gnuplot)
+  std::vector<std::string> sets;
+};
+
+/// FROM:TO:N with speeds in m/s (plain numbers or quantities such as `0.1 m/s`), N ≥ 2 evenly
+/// spaced, or one speed.
+std::vector<double> speed_list(const std::string& text) {
+  const auto bad = [&](const std::string& why) {
+    return InputError(Location{"--phi2-speeds", 0, 0}, fmt::format("'{}': {}; expected FROM:TO:N, e.g. 0.1:0.5:5", text, why));
+  };
+  std::vector<std::string> parts;
+  for (size_t start = 0;;) {
+    const size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() != 1 && parts.size() != 3) throw bad("give one speed or three fields");
+  std::string err;
+  auto speed = [&](const std::string& s) {
+    auto v = parse_as(s, dim::velocity, &err);
+    if (!v || !(*v > 0.0)) throw bad(v ? "a speed must be > 0" : err);
+    return *v;
+  };
+  if (parts.size() == 1) return {speed(parts[0])};
+  const double from = speed(parts[0]), to = speed(parts[1]);
+  int n = 0;
+  try {
+    n = std::stoi(parts[2]);
+  } catch (const std::exception&) {
+    throw bad("N is not a whole number");
+  }
+  if (n < 2 || n > 10000) throw bad("N must lie in [2, 10000]");
+  std::vector<double> out;
+  for (int k = 0; k < n; ++k) out.push_back(from + (to - from) * k / (n - 1));
+  return out;
+}
+
+int run_crane(const CraneArgs& a) {
+  const std::filesystem::path out_dir = output_dir(a.model, a.out, "");
+  const Model m = load_model(a.model, a.sets);
+  if (a.plot) plot::find_gnuplot();  // before the work, not after
+  const CraneReport r = crane_analysis(m);
+  nlohmann::json j = crane_json(r);
+  std::string sweep_csv;
+  if (!a.phi2_speeds.empty()) {  // φ2(vh) beside the standard's line
+    const std::vector<double> speeds = speed_list(a.phi2_speeds);
+    sweep_csv = "vh_m_s,phi2_simulated,phi2_standard\n";
+    nlohmann::json pts = nlohmann::json::array();
+    for (const Phi2Point& p : phi2_sweep(m, speeds)) {
+      sweep_csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", p.vh, p.simulated, p.standard);
+      pts.push_back({{"vh_m_s", p.vh}, {"simulated", p.simulated}, {"standard", p.standard}});
+    }
+    j["phi2_sweep"] = pts;
+  }
+  write_file_atomic((out_dir / "crane.csv").string(), crane_csv(r));
+  if (!sweep_csv.empty()) write_file_atomic((out_dir / "phi2_sweep.csv").string(), sweep_csv);
+  const std::vector<std::string> files = a.plot ? write_figures(out_dir, crane_figures(r)) : std::vector<std::string>{};
+  write_file_atomic((out_dir / "crane.json").string(), j.dump(2) + "\n");
+  if (a.json) {
+    std::cout << j.dump(2) << '\n';
+    return 0;
+  }
+  std::cout << crane_table(r);
+  std::cout << fmt::format("wrote {0}/crane.csv and {0}/crane.json\n", out_dir.string());
+  if (!files.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", out_dir.string(), fmt::join(files, ","));
+  return 0;
+}
+
+}  // namespace
+
+void register_crane(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<CraneArgs>();
+  auto* cmd = app.add_subcommand("crane", "Crane dynamic factors (phi2, phi3, phi5, phi7) simulated beside EN 13001-2");
+  cmd->add_option("MODEL", a->model, "Model file (YAML) with a 'crane:' section (docs/crane-factors.md)")->required();
+  cmd->add_flag("--json", a->json, "Print JSON to stdout");
+  cmd->add_flag("--plot", a->plot, "Write crane_FACTOR_K.svg/.png: each factor's time history with the standard's "
+                                   "value dashed (needs gnuplot)");
+  cmd->add_option("-o,--out", a->out, "Output folder (default out/MODEL): crane.csv, crane.json");
+  cmd->add_option("--phi2-speeds", a->phi2_speeds,
+                  "phi2 over hoisting speeds FROM:TO:N (m/s) beside the standard's line: phi2_sweep.csv and "
+                  "'phi2_sweep' in the JSON");
+  add_set_option(*cmd, a->sets);
+  cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_crane(*a); }); });
+}
+
+}  // namespace machdyn::cli

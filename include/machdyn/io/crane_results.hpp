@@ -1,0 +1,26 @@
+#pragma once
+/// @file
+/// The crane table (analysis/crane.hpp) as JSON, CSV and a terminal table — one column set:
+/// factor | case | simulated | standard (value or lo–hi) | clause | margin | note. NaN is JSON null
+/// and an empty CSV cell.
+
+#include <string>
+#include <nlohmann/json.hpp>
+
+#include "machdyn/analysis/crane.hpp"
+#include "machdyn/io/plot.hpp"
+
+namespace machdyn {
+
+/// {"model": NAME, "rows": [{"factor", "case", "simulated", "standard_lo", "standard_hi", "clause",
+/// "margin", "note"}, ...]}
+nlohmann::json crane_json(const CraneReport& r);
+/// factor,case,simulated,standard_lo,standard_hi,clause,margin,note (text quoted, numbers %.17g).
+std::string crane_csv(const CraneReport& r);
+/// The table for the terminal: numbers to 4 digits, the standard as "1.44" or "1.0-1.5".
+std::string crane_table(const CraneReport& r);
+/// One figure per simulated row (id "crane_FACTOR_K", K its row index): the factor's time history
+/// with the standard's value (both ends of a range) as dashed lines.
+std::vector<plot::Figure> crane_figures(const CraneReport& r);
+
+}  // namespace machdyn

@@ -1,0 +1,278 @@
+#include "machdyn/analysis/crane.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <Eigen/Core>
+#include <fmt/format.h>
+
+#include "machdyn/analysis/crane_standard.hpp"
+#include "machdyn/analysis/equilibrium.hpp"
+#include "machdyn/analysis/static_loads.hpp"
+#include "machdyn/common/diagnostics.hpp"
+
+namespace machdyn {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+[[noreturn]] void case_error(const Model& m, const std::string& element, const std::string& message) {
+  throw InputError(m.where(element), "crane: " + message);
+}
+
+/// The rigid motion of the free group of `body` through the links of `m` other than those `skip`
+/// says (column of rigid_motions), or an empty vector when the body is tied to the ground.
+template <class Skip>
+Eigen::VectorXd group_motion(const Model& m, int body, Skip&& skip) {
+  Model tied;
+  tied.bodies = m.bodies;
+  for (const Link& l : m.links)
+    if (!skip(l)) tied.links.push_back(l);
+  const Eigen::MatrixXd R = rigid_motions(tied);
+  for (Eigen::Index k = 0; k < R.cols(); ++k)
+    if (R(body, k) != 0.0) return R.col(k);
+  return {};
+}
+
+/// The load of link `k` on the output grid divided by `reference`: the row's time history.
+void set_history(const Model& m, const SimulationResult& res, int k, double reference, CraneFactorRow& r) {
+  const std::string name = m.links[static_cast<size_t>(k)].name + ".load_";
+  for (size_t c = 0; c < res.column_names.size(); ++c)
+    if (res.column_names[c].rfind(name, 0) == 0 && !res.columns.empty()) {
+      r.t = res.columns[0];
+      r.history = res.columns[c];
+      for (double& x : r.history) x /= reference;
+      return;
+    }
+}
+
+const Body& load_body(const Model& m) { return m.bodies[static_cast<size_t>(m.crane.load)]; }
+double load_weight(const Model& m) { return load_body(m).inertia * m.gravity; }
+
+CraneFactorRow phi2_row(const Model& m) {
+  using namespace crane;
+  const CraneSpec& c = m.crane;
+  const auto hc = static_cast<HoistingClass>(c.hoisting_class);
+  const auto hd = static_cast<HoistDriveClass>(c.drive_class);
+  const double vh = characteristic_hoisting_speed(hd, c.hoist_speed, c.creep_speed);
+  CraneFactorRow r;
+  r.factor = "phi2";
+  r.case_name = fmt::format("hoisting a grounded load, {}/{}, vh = {:.4g} m/s", to_string(hc), to_string(hd), vh);
+  r.standard_lo = r.standard_hi = phi2(hc, hd, vh);
+  r.clause = fmt::format("EN 13001-2 phi2 = phi2,min + beta2 vh ({}: beta2 = {:.2f} s/m; {}: phi2,min = {:.2f})",
+                         to_string(hc), beta2(hc), to_string(hd), phi2_min(hc, hd));
+  if (vh == 0.0) {  // HD5: the drive starts from zero speed; no dynamic lift-off to simulate
+    r.simulated = kNaN;
+    r.margin = kNaN;
+    r.note = "vh = 0 (stepless drive from zero speed): not simulated";
+    return r;
+  }
+  const SimulationResult res = simulate(phi2_case_model(m, vh));
+  const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
+  r.simulated = s.max / load_weight(m);
+  r.margin = r.standard_hi - r.simulated;
+  set_history(m, res, c.rope, load_weight(m), r);
+  r.note = fmt::format("max rope force {:.6g} N at t = {:.6g} s; weight m g = {:.6g} N", s.max, s.t_max, load_weight(m));
+  return r;
+}
+
+CraneFactorRow phi3_row(const Model& m) {
+  using namespace crane;
+  const CraneSpec& c = m.crane;
+  const ReleaseKind kind = c.rapid_release ? ReleaseKind::rapid : ReleaseKind::slow;
+  const double mass = load_body(m).inertia;
+  CraneFactorRow r;
+  r.factor = "phi3";
+  r.case_name = fmt::format("sudden release of {:.6g} kg of {:.6g} kg ({})", c.release_mass, mass,
+                            c.rapid_release ? "rapid" : "slow");
+  r.standard_lo = r.standard_hi = phi3(c.release_mass, mass, kind);
+  r.clause = fmt::format("EN 13001-2 phi3 = 1 - (dm/m)(1 + beta3), beta3 = {:.1f} ({} release)", beta3(kind),
+                         c.rapid_release ? "rapid" : "slow");
+  const SimulationResult res = simulate(phi3_case_model(m, c.release_mass));
+  const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
+  r.simulated = s.min / load_weight(m);
+  r.margin = r.simulated - r.standard_lo;
+  set_history(m, res, c.rope, load_weight(m), r);
+  r.note = fmt::format("min rope force {:.6g} N at t = {:.6g} s after the release; m g = {:.6g} N", s.min, s.t_min,
+                       load_weight(m));
+  return r;
+}
+
+void phi5_rows(const Model& m, const SimulationResult& res, CraneReport& out) {
+  using namespace crane;
+  const auto change = static_cast<DriveForceChange>(m.crane.force_change);
+  const Range range = phi5_range(change);
+  for (int k : m.crane.drive_links) {
+    const LinkSummary& s = res.links[static_cast<size_t>(k)];
+    CraneFactorRow r;
+    r.factor = "phi5";
+    r.case_name = fmt::format("drive link {} ({} force changes)", m.links[static_cast<size_t>(k)].name, to_string(change));
+    r.simulated = s.dynamic_factor;
+    r.standard_lo = range.lo;
+    r.standard_hi = range.hi;
+    r.clause = fmt::format("EN 13001-2 phi5, {} force changes (one source)", to_string(change));
+    r.margin = r.standard_hi - r.simulated;
+    if (std::isfinite(s.dynamic_factor)) set_history(m, res, k, s.static_load, r);
+    r.note = fmt::format("peak {:.6g} {} at t = {:.6g} s; quasi-static load there {:.6g}", s.peak,
+                         link_load_unit(m, m.links[static_cast<size_t>(k)]), s.t_peak, s.static_load);
+    out.rows.push_back(r);
+  }
+}
+
+/// The rigid-body reference of buffer link k: the free group of its body lumped into one mass at the
+/// group's momentum speed, into the same buffer, without other loads. Returns its peak force.
+double rigid_buffer_force(const Model& m, int k, std::string* note) {
+  const Link& l = m.links[static_cast<size_t>(k)];
+  const int body = l.a >= 0 ? l.a : l.b;
+  const Eigen::VectorXd R = group_motion(m, body, [](const Link& x) { return x.buffer || x.tension_only; });
+  if (R.size() == 0) {
+    *note = "the buffer's body is tied to the ground by a spring: no rigid-body reference";
+    return kNaN;
+  }
+  double RMR = 0.0, RMv = 0.0;
+  for (int i = 0; i < m.dof(); ++i) {
+    const Body& b = m.bodies[static_cast<size_t>(i)];
+    RMR += R(i) * b.inertia * R(i);
+    RMv += R(i) * b.inertia * b.v0;
+  }
+  const double rb = R(body);
+  Model rigid;
+  rigid.name = m.name + " (rigid)";
+  rigid.source = m.source;
+  rigid.simulation = m.simulation;
+  rigid.simulation.initial = InitialState::given;
+  Body b = m.bodies[static_cast<size_t>(body)];
+  b.inertia = RMR / (rb * rb);       // M = Σ m_i (r_i / r_b)²
+  b.v0 = rb * RMv / RMR;             // the group's momentum speed at the buffer's body
+  b.vertical = 0;
+  rigid.bodies.push_back(b);
+  rigid.index_bodies();
+  Link lb = l;
+  lb.a = l.a >= 0 ? 0 : kGround;
+  lb.b = l.b >= 0 ? 0 : kGround;
+  rigid.links.push_back(lb);
+  const SimulationResult res = simulate(rigid);
+  *note = fmt::format("rigid body {:.6g} kg at {:.6g} m/s", b.inertia, b.v0);
+  return res.links[0].max;
+}
+
+void phi7_rows(const Model& m, const SimulationResult& res, CraneReport& out) {
+  for (int k : m.crane.buffers) {
+    const Link& l = m.links[static_cast<size_t>(k)];
+    const LinkSummary& s = res.links[static_cast<size_t>(k)];
+    CraneFactorRow r;
+    r.factor = "phi7";
+    r.case_name = fmt::format("buffer {}", l.name);
+    std::string rigid_note;
+    const double F_rigid = rigid_buffer_force(m, k, &rigid_note);
+    // ξb of the buffer's characteristic over its stroke x_max = F/c (a linear spring: 1/2).
+    const double x_max = F_rigid / l.c;
+    const double xi = std::isfinite(x_max) && x_max > 0.0 ? crane::buffer_energy_ratio({0.0, x_max}, {0.0, l.c * x_max})
+                                                            : 0.5;
+    r.standard_lo = r.standard_hi = crane::phi7(xi);
+    r.clause = fmt::format("EN 13001-2 phi7 = 1.25 (xi_b <= 0.5), 1.25 + 0.7 (xi_b - 0.5) above; xi_b = {:.3g}", xi);
+    r.simulated = s.max / F_rigid;
+    r.margin = r.standard_hi - r.simulated;
+    if (std::isfinite(F_rigid)) set_history(m, res, k, F_rigid, r);
+    r.note = fmt::format("peak buffer force {:.6g} N at t = {:.6g} s; rigid-body force {:.6g} N ({})", s.max, s.t_max,
+                         F_rigid, rigid_note);
+    out.rows.push_back(r);
+  }
+}
+
+}  // namespace
+
+Model phi2_case_model(const Model& m, double vh) {
+  const CraneSpec& c = m.crane;
+  if (c.rope < 0) case_error(m, m.name, "the phi2 case needs 'load' and 'rope'");
+  const Link& rope = m.links[static_cast<size_t>(c.rope)];
+  if (rope.a < 0) case_error(m, rope.name, fmt::format("the rope '{}' hangs from the ground: no hoist drive to start", rope.name));
+  bool on_ground = false;
+  for (const auto& s : m.contacts)
+    on_ground = on_ground || (s.stop && s.a == c.load && s.lock == -1 && m.bodies[static_cast<size_t>(c.load)].q0 == s.stop_position);
+  if (!on_ground)
+    case_error(m, load_body(m).name, fmt::format("the phi2 case lifts the load '{}' from the ground: give it a lower stop "
+                                                 "(stops: {{ground: {{body: {}, min: X}}}}) and start it there",
+                                                 load_body(m).name, load_body(m).name));
+  // The hoist drive: the free group behind the rope's first end. Its rope end moves at vh:
+  // δ̇ = v_a / i − v_load = vh with v = R β  ⇒  β = vh i / R_a.
+  const int rope_index = c.rope;
+  const Eigen::VectorXd R = group_motion(m, rope.a, [&](const Link& l) { return &l == &m.links[static_cast<size_t>(rope_index)]; });
+  if (R.size() == 0)
+    case_error(m, rope.name, fmt::format("the hoist drive behind the rope '{}' is tied to the ground by a spring: it cannot "
+                                         "hoist", rope.name));
+  const double beta = vh * rope.ratio / R(rope.a);
+  Model out = m;
+  out.simulation.initial = InitialState::given;
+  for (int i = 0; i < m.dof(); ++i)
+    if (R(i) != 0.0) out.bodies[static_cast<size_t>(i)].v0 = R(i) * beta;
+  return out;
+}
+
+Model phi3_case_model(const Model& m, double released_mass) {
+  const CraneSpec& c = m.crane;
+  if (c.rope < 0) case_error(m, m.name, "the phi3 case needs 'load' and 'rope'");
+  const Body& load = load_body(m);
+  if (!(released_mass > 0.0 && released_mass < load.inertia))
+    case_error(m, load.name, fmt::format("the released mass {} kg must lie between 0 and the load's mass {} kg",
+                                         released_mass, load.inertia));
+  // The load hangs: no ground under it, at rest, the rope on its flank (δ = δ₊) to start the search.
+  Model hang = m;
+  hang.simulation.initial = InitialState::equilibrium;
+  std::erase_if(hang.contacts, [&](const FrictionContact& s) { return s.stop && s.a == c.load; });
+  for (auto& b : hang.bodies) b.v0 = 0.0;
+  const Link& rope = m.links[static_cast<size_t>(c.rope)];
+  if (rope.a >= 0) {  // the hoist is stopped: a holding brake (never slipping) on the rope's first body
+    FrictionContact hold;
+    hold.name = "crane_holding_brake";
+    hold.brake = true;
+    hold.a = rope.a;
+    hold.b = kGround;
+    hold.static_limit = 1e30;
+    hold.kinetic = {1e30};
+    hang.contacts.push_back(hold);
+  }
+  const double qa = rope.a >= 0 ? hang.bodies[static_cast<size_t>(rope.a)].q0 : 0.0;
+  hang.bodies[static_cast<size_t>(c.load)].q0 = qa / rope.ratio - rope.gap;
+  Model out = with_equilibrium_start(hang);
+  // At t = 0 the load loses Δm: its mass and weight drop, position and velocity are continuous.
+  Body& b = out.bodies[static_cast<size_t>(c.load)];
+  b.inertia -= released_mass;
+  for (Load& ld : out.loads)
+    if (ld.name == b.name + ".weight") {
+      ld.value = -b.vertical * b.inertia * out.gravity;
+      ld.signal = Signal::constant(ld.value);
+    }
+  return out;
+}
+
+std::vector<Phi2Point> phi2_sweep(const Model& m, const std::vector<double>& speeds) {
+  const auto hc = static_cast<crane::HoistingClass>(m.crane.hoisting_class);
+  const auto hd = static_cast<crane::HoistDriveClass>(m.crane.drive_class);
+  if (m.crane.rope < 0) case_error(m, m.name, "the phi2 sweep needs 'load' and 'rope' in the 'crane:' section");
+  std::vector<Phi2Point> out;
+  for (double vh : speeds) {
+    if (!(vh > 0.0)) throw std::invalid_argument(fmt::format("a hoisting speed of the phi2 sweep must be > 0, got {}", vh));
+    const SimulationResult res = simulate(phi2_case_model(m, vh));
+    out.push_back({vh, res.links[static_cast<size_t>(m.crane.rope)].max / load_weight(m), crane::phi2(hc, hd, vh)});
+  }
+  return out;
+}
+
+CraneReport crane_analysis(const Model& m) {
+  if (!m.crane.given)
+    throw InputError(Location{m.source, 0, 0}, "the model has no 'crane:' section (docs/crane-factors.md)");
+  CraneReport out;
+  out.model = m.name;
+  const CraneSpec& c = m.crane;
+  if (c.rope >= 0 && c.hoist_speed > 0.0) out.rows.push_back(phi2_row(m));
+  if (c.rope >= 0 && c.release_mass > 0.0) out.rows.push_back(phi3_row(m));
+  if (!c.drive_links.empty() || !c.buffers.empty()) {
+    const SimulationResult res = simulate(m);  // the model's own run
+    phi5_rows(m, res, out);
+    phi7_rows(m, res, out);
+  }
+  return out;
+}
+
+}  // namespace machdyn

@@ -1,0 +1,288 @@
+#include "machdyn/analysis/equilibrium.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <Eigen/Core>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <fmt/format.h>
+
+#include "machdyn/analysis/static_loads.hpp"
+#include "machdyn/common/diagnostics.hpp"
+#include "machdyn/elements/contact.hpp"
+#include "machdyn/elements/link.hpp"
+
+namespace machdyn {
+namespace {
+
+/// The elements whose rest force the equilibrium does not decide are refused, located.
+void check_supported(const Model& m) {
+  Diagnostics diag;
+  const std::string pre = "simulation: 'initial: equilibrium'";
+  for (const auto& b : m.bodies)
+    if (b.machine)
+      diag.error(m.where(b.name), fmt::format("{} cannot start body '{}' (a machine with variable inertia) in "
+                                              "equilibrium yet; use 'initial: given'", pre, b.name));
+  for (const auto& l : m.links)
+    if (l.a_point || l.b_point)
+      diag.error(m.where(l.name), fmt::format("{}: link '{}' ends at a machine's point, not supported yet", pre, l.name));
+  for (const auto& c : m.contacts) {
+    // Stops and brakes to the ground are decided below; a brake not yet applied is free.
+    if (c.stop || (c.brake && (c.scale(0.0) == 0.0 || c.b == kGround))) continue;
+    diag.error(m.where(c.name), fmt::format("{}: the force at rest of {} '{}' is not decided by its law (friction "
+                                            "holds anything within its limit); start with 'initial: given'",
+                                            pre, c.brake ? "brake" : c.lock != 0 ? "freewheel" : "contact", c.name));
+  }
+  diag.throw_if_any();
+}
+
+struct State {
+  Eigen::VectorXd g;      // generalized forces g(q), N or N·m
+  Eigen::VectorXd scale;  // Σ |terms| per body, for the balance tolerance
+  Eigen::MatrixXd J;      // ∂g/∂q
+};
+
+}  // namespace
+
+EquilibriumStart static_equilibrium(const Model& m) {
+  check_supported(m);
+  const int n = m.dof();
+  const auto nl = m.links.size();
+  std::vector<LinkLaw> laws;
+  laws.reserve(nl);
+  for (const auto& l : m.links) laws.push_back(LinkLaw::of(m, l));
+  std::vector<int> stops, brakes;  // end stops; brakes applied at t = 0 (they hold their body)
+  for (size_t k = 0; k < m.contacts.size(); ++k) {
+    if (m.contacts[k].stop) stops.push_back(static_cast<int>(k));
+    if (m.contacts[k].brake && m.contacts[k].scale(0.0) > 0.0) brakes.push_back(static_cast<int>(k));
+  }
+
+  Eigen::VectorXd q(n), q_given(n), v_given(n), M(n);
+  for (int i = 0; i < n; ++i) {
+    const Body& b = m.bodies[static_cast<size_t>(i)];
+    q(i) = q_given(i) = b.q0;
+    v_given(i) = b.v0;
+    M(i) = b.inertia;
+  }
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  const double q_scale = 1.0 + q_given.lpNorm<Eigen::Infinity>();
+
+  // Modes: a gap or rope presses the flank it is on or beyond; a stop holds a body on or past it.
+  std::vector<GapMode> mode(nl, GapMode::open);
+  for (size_t k = 0; k < nl; ++k) {
+    if (!laws[k].gap) continue;
+    const double delta = laws[k].linear(q.data());
+    mode[k] = delta >= laws[k].hi ? GapMode::closed_pos : delta <= laws[k].lo ? GapMode::closed_neg : GapMode::open;
+  }
+  std::vector<char> held(m.contacts.size(), 0);
+  for (int k : brakes) held[static_cast<size_t>(k)] = 1;
+  for (int k : stops) {
+    const ContactLaw law = ContactLaw::of(m.contacts[static_cast<size_t>(k)]);
+    held[static_cast<size_t>(k)] = law.stop_distance(q(law.a)) <= 1e-12 * q_scale;
+  }
+
+  // g(q) and ∂g/∂q from the loads at t = 0 and the links' law in their modes.
+  auto evaluate = [&](const Eigen::VectorXd& x) {
+    State s{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::MatrixXd::Zero(n, n)};
+    for (const auto& ld : m.loads) {
+      const double F = ld.evaluate(0.0, x(ld.body), v_given(ld.body));
+      s.g(ld.body) += F;
+      s.scale(ld.body) += std::abs(F);
+      s.J(ld.body, ld.body) += ld.position_slope(0.0, x(ld.body), v_given(ld.body));
+    }
+    for (size_t k = 0; k < nl; ++k) {
+      const LinkLaw& law = laws[k];
+      if (!law.transmits(mode[k]) || law.c <= 0.0) continue;
+      const LinkLaw::Kinematics kin = law.kinematics(x.data(), zero.data());
+      const double F = law.load(kin.delta, 0.0, mode[k]);
+      law.apply(F, kin, s.g.data());
+      if (law.a >= 0) s.scale(law.a) += std::abs(F * kin.ja);
+      if (law.b >= 0) s.scale(law.b) += std::abs(F * kin.jb);
+      law.jacobian(n, mode[k], [&](int r, int c, double val) {
+        if (c < n) s.J(r, c) += val;
+      });
+    }
+    return s;
+  };
+  // Rigid motions of the transmitting springs, a held body counting as tied to the ground.
+  auto rigid = [&]() {
+    Model tied;
+    tied.bodies = m.bodies;
+    for (size_t k = 0; k < nl; ++k)
+      if (laws[k].transmits(mode[k]) && m.links[k].c > 0.0) tied.links.push_back(m.links[k]);
+    for (size_t k = 0; k < m.contacts.size(); ++k)
+      if (held[k]) {
+        Link tie;
+        tie.b = m.contacts[k].a;
+        tie.c = 1.0;
+        tied.links.push_back(tie);
+      }
+    return rigid_motions(tied);
+  };
+
+  EquilibriumStart out;
+  Eigen::MatrixXd R;
+  State s;
+  constexpr int kMaxIterations = 100;
+  bool settled = false;
+  for (int it = 0; it < kMaxIterations && !settled; ++it) {
+    out.iterations = it + 1;
+    s = evaluate(q);
+    R = rigid();
+    const auto r = R.cols();
+    // A free group pushed by loads that do not balance moves as a whole until the first open rope,
+    // gap flank or stop in its way takes it up (a hanging load sinks onto its slack rope).
+    bool moved = false;
+    for (Eigen::Index k = 0; k < r && !moved; ++k) {
+      const double net = R.col(k).dot(s.g), scale = R.col(k).cwiseAbs().dot(s.scale);
+      if (std::abs(net) <= 1e-9 * scale) continue;
+      const Eigen::VectorXd u = (net > 0.0 ? 1.0 : -1.0) * R.col(k);
+      double best = HUGE_VAL;
+      int link = -1, stop = -1;
+      GapMode closes = GapMode::open;
+      for (size_t l = 0; l < nl; ++l) {
+        const LinkLaw& law = laws[l];
+        if (!law.gap || mode[l] != GapMode::open) continue;
+        const double rate = law.linear(u.data()), delta = law.linear(q.data());
+        const double d = rate > 0.0 ? (law.hi - delta) / rate : rate < 0.0 ? (law.lo - delta) / rate : HUGE_VAL;
+        if (std::isfinite(d) && d < best) best = d, link = static_cast<int>(l), stop = -1,
+                                          closes = rate > 0.0 ? GapMode::closed_pos : GapMode::closed_neg;
+      }
+      for (int c : stops) {
+        if (held[static_cast<size_t>(c)]) continue;
+        const ContactLaw law = ContactLaw::of(m.contacts[static_cast<size_t>(c)]);
+        const double slope = -law.lock * u(law.a);  // d(distance)/dα
+        if (slope >= 0.0) continue;
+        const double d = law.stop_distance(q(law.a)) / -slope;
+        if (d < best) best = d, stop = c, link = -1;
+      }
+      if (link < 0 && stop < 0) continue;  // nothing takes it up: reported below
+      q += std::max(best, 0.0) * u;
+      if (link >= 0) mode[static_cast<size_t>(link)] = closes;
+      if (stop >= 0) held[static_cast<size_t>(stop)] = 1;
+      moved = true;
+    }
+    if (moved) continue;
+    const Eigen::MatrixXd MR = M.asDiagonal() * R;
+    Eigen::VectorXd acc = Eigen::VectorXd::Zero(r);  // the rigid acceleration a'' of each free group
+    if (r > 0) acc = (R.transpose() * MR).ldlt().solve(R.transpose() * s.g);
+    // [K MR; (MR)ᵀ 0] [Δ; μ] = [g − MR a''; RᵀM (q_given − q)], K = −∂g/∂q; a held body's row pins it.
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + r, n + r);
+    Eigen::VectorXd rhs(n + r);
+    A.topLeftCorner(n, n) = -s.J;
+    A.topRightCorner(n, r) = MR;
+    A.bottomLeftCorner(r, n) = MR.transpose();
+    rhs.head(n) = s.g - MR * acc;
+    rhs.tail(r) = MR.transpose() * (q_given - q);
+    for (size_t k = 0; k < m.contacts.size(); ++k) {  // a stop pins its body at the stop, a brake where it is
+      if (!held[k]) continue;
+      const FrictionContact& c = m.contacts[k];
+      A.row(c.a).setZero();
+      A(c.a, c.a) = 1.0;
+      rhs(c.a) = c.stop ? c.stop_position - q(c.a) : 0.0;
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+    if (!lu.isInvertible())
+      throw InputError(Location{m.source, 0, 0}, "simulation: 'initial: equilibrium': the equilibrium equations are "
+                                                  "singular (a loop of links with inconsistent ratios?)");
+    const Eigen::VectorXd dq = lu.solve(rhs).head(n);
+    q += dq;
+
+    // Modes after the step: a flank pulled off opens, a flank passed closes; a stop pulled off lets
+    // go, a stop passed holds.
+    bool changed = false;
+    const State at = evaluate(q);
+    for (size_t k = 0; k < nl; ++k) {
+      const LinkLaw& law = laws[k];
+      if (!law.gap) continue;
+      const double delta = law.linear(q.data());
+      const double F = law.load(delta, 0.0, mode[k]), tol = 1e-12 * law.c * q_scale;
+      GapMode next = mode[k];
+      if (mode[k] == GapMode::closed_pos && F < -tol) next = GapMode::open;
+      if (mode[k] == GapMode::closed_neg && F > tol) next = GapMode::open;
+      if (mode[k] == GapMode::open)
+        next = delta > law.hi + 1e-12 * q_scale ? GapMode::closed_pos
+               : delta < law.lo - 1e-12 * q_scale ? GapMode::closed_neg
+                                                   : GapMode::open;
+      changed = changed || next != mode[k];
+      mode[k] = next;
+    }
+    for (int k : stops) {
+      const ContactLaw law = ContactLaw::of(m.contacts[static_cast<size_t>(k)]);
+      const bool was = held[static_cast<size_t>(k)];
+      // The stop carries λ = g (the load F acts on its body with −λ, model/model.hpp).
+      const bool now = was ? law.holds(at.g(law.a), 0.0, false) : law.stop_distance(q(law.a)) < -1e-12 * q_scale;
+      held[static_cast<size_t>(k)] = now ? 1 : 0;
+      changed = changed || now != was;
+    }
+    settled = !changed && dq.lpNorm<Eigen::Infinity>() <= 1e-12 * q_scale;
+  }
+  if (!settled)
+    throw InputError(Location{m.source, 0, 0}, fmt::format("simulation: 'initial: equilibrium': the modes of the ropes, "
+                                                           "gaps and stops did not settle in {} steps", kMaxIterations));
+
+  // Every free group balanced: the net load along its rigid motion vanishes; every brake holds.
+  s = evaluate(q);
+  Diagnostics diag;
+  for (int k : brakes) {
+    const FrictionContact& c = m.contacts[static_cast<size_t>(k)];
+    if (!ContactLaw::of(c).holds(s.g(c.a), 0.0, false))
+      diag.error(m.where(c.name), fmt::format("simulation: 'initial: equilibrium': no static equilibrium: brake '{}' "
+                                              "would have to hold {:.6g} {}, more than its static limit {:.6g} {} at "
+                                              "t = 0", c.name, std::abs(s.g(c.a)), load_unit(m.bodies[static_cast<size_t>(c.a)].kind),
+                                              c.scale(0.0) * c.static_limit, load_unit(m.bodies[static_cast<size_t>(c.a)].kind)));
+  }
+  for (Eigen::Index k = 0; k < R.cols(); ++k) {
+    const double net = R.col(k).dot(s.g), scale = R.col(k).cwiseAbs().dot(s.scale);
+    if (std::abs(net) <= 1e-9 * scale) continue;
+    std::string names;
+    int first = -1;
+    for (int i = 0; i < n; ++i)
+      if (R(i, k) != 0.0) {
+        names += (names.empty() ? "'" : ", '") + m.bodies[static_cast<size_t>(i)].name + "'";
+        if (first < 0) first = i;
+      }
+    const Body& b = m.bodies[static_cast<size_t>(first)];
+    diag.error(m.where(b.name),
+               fmt::format("simulation: 'initial: equilibrium': no static equilibrium: the free group of bodies {} (no "
+                           "spring to the ground) has the net load {:.6g} {} at t = 0 along the motion of '{}'; balance "
+                           "its loads or start with 'initial: given'", names, net, load_unit(b.kind), b.name));
+  }
+  diag.throw_if_any();
+
+  // Velocities: the rigid motions keep their momentum RᵀM v; nothing elastic moves.
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+  if (R.cols() > 0) {
+    const Eigen::MatrixXd MR = M.asDiagonal() * R;
+    v = R * (R.transpose() * MR).ldlt().solve(MR.transpose() * v_given);
+  }
+  const double v_scale = v_given.lpNorm<Eigen::Infinity>();
+  for (int i = 0; i < n; ++i) {
+    if (std::abs(v(i) - v_given(i)) <= 1e-9 * v_scale) continue;
+    const Body& b = m.bodies[static_cast<size_t>(i)];
+    diag.error(m.where(b.name),
+               fmt::format("simulation: 'initial: equilibrium': body '{}' starts at {:.6g} {}, which contradicts the "
+                           "ratios of its stiff links (the rigid motion of its group gives {:.6g} {}; a body held by "
+                           "the ground or a stop gives 0); give velocities that follow the ratios", b.name, v_given(i),
+                           velocity_unit(b.kind), v(i), velocity_unit(b.kind)));
+  }
+  diag.throw_if_any();
+  out.q0.assign(q.data(), q.data() + n);
+  out.v0.assign(v.data(), v.data() + n);
+  return out;
+}
+
+Model with_equilibrium_start(const Model& m) {
+  const EquilibriumStart e = static_equilibrium(m);
+  Model out = m;
+  for (size_t i = 0; i < out.bodies.size(); ++i) {
+    out.bodies[i].q0 = e.q0[i];
+    out.bodies[i].v0 = e.v0[i];
+  }
+  out.simulation.initial = InitialState::given;
+  return out;
+}
+
+}  // namespace machdyn

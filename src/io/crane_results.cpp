@@ -1,0 +1,89 @@
+#include "machdyn/io/crane_results.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+#include <fmt/format.h>
+
+namespace machdyn {
+namespace {
+
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+std::string csv_number(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : ""; }
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+std::string standard_text(const CraneFactorRow& r) {
+  return r.standard_lo == r.standard_hi ? fmt::format("{:.4g}", r.standard_lo)
+                                        : fmt::format("{:.4g}-{:.4g}", r.standard_lo, r.standard_hi);
+}
+std::string short_number(double x) { return std::isfinite(x) ? fmt::format("{:.4f}", x) : "-"; }
+
+}  // namespace
+
+nlohmann::json crane_json(const CraneReport& r) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& x : r.rows)
+    rows.push_back({{"factor", x.factor},
+                    {"case", x.case_name},
+                    {"simulated", number(x.simulated)},
+                    {"standard_lo", number(x.standard_lo)},
+                    {"standard_hi", number(x.standard_hi)},
+                    {"clause", x.clause},
+                    {"margin", number(x.margin)},
+                    {"note", x.note}});
+  return {{"model", r.model}, {"rows", rows}};
+}
+
+std::string crane_csv(const CraneReport& r) {
+  std::string s = "factor,case,simulated,standard_lo,standard_hi,clause,margin,note\n";
+  for (const auto& x : r.rows)
+    s += fmt::format("{},{},{},{},{},{},{},{}\n", x.factor, quoted(x.case_name), csv_number(x.simulated),
+                     csv_number(x.standard_lo), csv_number(x.standard_hi), quoted(x.clause), csv_number(x.margin),
+                     quoted(x.note));
+  return s;
+}
+
+std::string crane_table(const CraneReport& r) {
+  std::vector<std::vector<std::string>> cells = {{"factor", "case", "simulated", "standard", "margin", "clause/table"}};
+  for (const auto& x : r.rows)
+    cells.push_back({x.factor, x.case_name, short_number(x.simulated), standard_text(x), short_number(x.margin), x.clause});
+  std::vector<size_t> width(cells[0].size(), 0);
+  for (const auto& row : cells)
+    for (size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  std::string s = fmt::format("crane factors of {}\n", r.model);
+  for (size_t k = 0; k < cells.size(); ++k) {
+    for (size_t c = 0; c < cells[k].size(); ++c)
+      s += c + 1 < cells[k].size() ? fmt::format("{:<{}}  ", cells[k][c], width[c]) : cells[k][c];
+    s += '\n';
+    if (k == 0) {
+      for (size_t c = 0; c < width.size(); ++c) s += std::string(width[c], '-') + (c + 1 < width.size() ? "  " : "");
+      s += '\n';
+    }
+  }
+  for (const auto& x : r.rows) s += fmt::format("{} ({}): {}\n", x.factor, x.case_name, x.note);
+  return s;
+}
+
+std::vector<plot::Figure> crane_figures(const CraneReport& r) {
+  std::vector<plot::Figure> out;
+  for (size_t k = 0; k < r.rows.size(); ++k) {
+    const CraneFactorRow& x = r.rows[k];
+    if (x.history.empty()) continue;
+    plot::Figure f;
+    f.id = fmt::format("crane_{}_{}", x.factor, k);
+    f.title = fmt::format("{}: {}", x.factor, x.case_name);
+    f.x = plot::make_axis("time t", "s");
+    f.y = plot::make_axis(x.factor + " (load / reference)", "");
+    f.series.push_back(plot::make_series("simulated", x.t, x.history));
+    f.ref_lines.push_back(plot::make_ref_line(x.standard_hi, fmt::format("EN 13001-2: {}", standard_text(x)), -1));
+    if (x.standard_lo != x.standard_hi)
+      f.ref_lines.push_back(plot::make_ref_line(x.standard_lo, fmt::format("lower end {:.4g}", x.standard_lo), -1));
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+}  // namespace machdyn

@@ -1,0 +1,106 @@
+// `machdyn crane` as a user meets it: the shipped crane examples run, the table is printed and
+// written as crane.csv and crane.json with the same rows; a model without `crane:` exits 2.
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/support.hpp"
+
+namespace machdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Claim: the main-hoist example gives the rows phi2, phi3, phi5 (in that order) in the JSON, the CSV
+// (header + one line per row) and the terminal table; the φ2 standard value is HC2/HD1 at
+// vh = 0.2 m/s: 1.10 + 0.34 · 0.2 = 1.168; φ3 rapid release of 4 t of 12 t: 1 − (1/3)·2 = 1/3.
+TEST(CraneCli, MainHoistWritesTheTable) {
+  const auto dir = test::temp_dir() / "crane-hoist";
+  const auto r = test::run_cli("crane '" + test::example("crane/main-hoist.yaml") + "' -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "crane.json"));
+  ASSERT_EQ(j["rows"].size(), 3u);
+  EXPECT_EQ(j["rows"][0]["factor"], "phi2");
+  EXPECT_NEAR(j["rows"][0]["standard_lo"].get<double>(), 1.168, 1e-12);
+  EXPECT_GT(j["rows"][0]["simulated"].get<double>(), 1.0);
+  EXPECT_EQ(j["rows"][1]["factor"], "phi3");
+  EXPECT_NEAR(j["rows"][1]["standard_lo"].get<double>(), 1.0 / 3.0, 1e-12);
+  EXPECT_LT(j["rows"][1]["simulated"].get<double>(), 1.0);
+  EXPECT_EQ(j["rows"][2]["factor"], "phi5");
+  std::ifstream csv(dir / "crane.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 4);
+  EXPECT_NE(r.out.find("phi2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("EN 13001-2"), std::string::npos) << r.out;
+}
+
+// Claim: --plot writes one figure per simulated factor (SVG and PNG): crane_phi7_0 for the trolley.
+TEST(CraneCli, PlotWritesAFigurePerFactor) {
+  const auto dir = test::temp_dir() / "crane-plot";
+  const auto r = test::run_cli("crane '" + test::example("crane/trolley-buffers.yaml") + "' --plot -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "crane_phi7_0.svg"));
+  EXPECT_TRUE(fs::exists(dir / "crane_phi7_0.png"));
+}
+
+// Claim: the trolley example's φ7 row compares with 1.25 (a linear buffer, ξb = 1/2).
+TEST(CraneCli, TrolleyBuffersGivePhi7) {
+  const auto r = test::run_cli("crane '" + test::example("crane/trolley-buffers.yaml") + "' --json -o '" +
+                               (test::temp_dir() / "crane-trolley").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 1u);
+  EXPECT_EQ(j["rows"][0]["factor"], "phi7");
+  EXPECT_EQ(j["rows"][0]["standard_lo"].get<double>(), 1.25);
+  EXPECT_GT(j["rows"][0]["simulated"].get<double>(), 0.5);
+}
+
+// Claim: --phi2-speeds FROM:TO:N writes phi2_sweep.csv (header + N rows, vh evenly spaced, the
+// standard's 1.10 + 0.34 vh of HC2/HD1 beside each) and the same points under "phi2_sweep" in the
+// JSON; a malformed list is an input error naming the option (exit 2).
+TEST(CraneCli, Phi2SpeedsWritesTheCurve) {
+  const auto dir = test::temp_dir() / "crane-sweep";
+  const auto r = test::run_cli("crane '" + test::example("crane/main-hoist.yaml") + "' --phi2-speeds 0.1:0.3:3 -o '" +
+                               dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream csv(dir / "phi2_sweep.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "vh_m_s,phi2_simulated,phi2_standard");
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "crane.json"));
+  ASSERT_EQ(j["phi2_sweep"].size(), 3u);
+  EXPECT_NEAR(j["phi2_sweep"][1]["vh_m_s"].get<double>(), 0.2, 1e-15);
+  EXPECT_NEAR(j["phi2_sweep"][2]["standard"].get<double>(), 1.10 + 0.34 * 0.3, 1e-12);
+  EXPECT_GT(j["phi2_sweep"][2]["simulated"].get<double>(), j["phi2_sweep"][0]["simulated"].get<double>());
+  const auto bad = test::run_cli("crane '" + test::example("crane/main-hoist.yaml") + "' --phi2-speeds 0.1:0.3 -o '" +
+                                 (test::temp_dir() / "crane-bad").string() + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--phi2-speeds"), std::string::npos) << bad.err;
+}
+
+// Claim: the slewing example's φ5 row compares the ring's dynamic factor with 3.0 ("considerable
+// backlash"); the knock when the backlash closes lifts it above the 2 of a sudden force.
+TEST(CraneCli, SlewingBacklashGivesPhi5) {
+  const auto r = test::run_cli("crane '" + test::example("crane/slewing-backlash.yaml") + "' --json -o '" +
+                               (test::temp_dir() / "crane-slew").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 1u);
+  EXPECT_EQ(j["rows"][0]["factor"], "phi5");
+  EXPECT_EQ(j["rows"][0]["standard_hi"].get<double>(), 3.0);
+  EXPECT_GT(j["rows"][0]["simulated"].get<double>(), 2.0);
+}
+
+// Claim: a model without a `crane:` section is an input error (exit 2) and writes nothing.
+TEST(CraneCli, NoCraneSectionExitsTwo) {
+  const auto dir = test::temp_dir() / "crane-none";
+  const auto r = test::run_cli("crane '" + test::example("hoist-3mass.yaml") + "' -o '" + dir.string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no 'crane:' section"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+}  // namespace
+}  // namespace machdyn
