@@ -259,7 +259,7 @@ void walk(SpecNode& n, const std::string& what, Diagnostics& diag, int depth) {
 }
 
 void resolve_sections(SpecNode& root, Diagnostics& diag) {
-  static const std::pair<const char*, const char*> kSections[] = {{"loads", "load"}, {"contacts", "contact"}, {"brakes", "brake"}};
+  static const std::pair<const char*, const char*> kSections[] = {{"loads", "load"}, {"contacts", "contact"}, {"brakes", "brake"}, {"drives", "drive"}};
   for (const auto& [section, kind] : kSections) {
     SpecNode* sec = root.find(section);
     if (!sec || !sec->is_map()) continue;

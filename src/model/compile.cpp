@@ -13,6 +13,7 @@
 #include "machdyn/model/machine.hpp"
 #include "machdyn/common/expression.hpp"
 #include "compile_hybrid.hpp"
+#include "model/compile_drive.hpp"
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 
@@ -33,7 +34,8 @@ std::string_view section_of_type(std::string_view type) {
       {"file", "loads"},        {"drag", "loads"},           {"eddy-current-brake", "loads"},
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"gap", "links"}, {"rope", "links"},
-      {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"}};
+      {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
+      {"dc-motor", "drives"}, {"speed-drive", "drives"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -365,6 +367,13 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
       diag.error(m.where(ld.name), fmt::format("load '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
                                                "lengthen the period or give a count", ld.name, n, kMaxBreakpoints));
   }
+  for (const auto& d : m.drives) {
+    const Signal& s = d.kind == DriveKind::dc_motor ? d.voltage : d.reference;
+    const double n = s.breakpoint_count(0.0, m.simulation.t_end);
+    if (n > kMaxBreakpoints)
+      diag.error(m.where(d.name), fmt::format("drive '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
+                                              "lengthen the period or give a count", d.name, n, kMaxBreakpoints));
+  }
 }
 
 void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
@@ -406,7 +415,8 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 }  // namespace
 
 const std::vector<std::string>& element_sections() {
-  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "freewheels", "stops"};
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "freewheels", "stops",
+                                                     "drives"};
   return kSections;
 }
 
@@ -434,6 +444,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
   detail::compile_freewheels(top.node("freewheels"), m, diag);
   detail::compile_stops(top.node("stops"), m, diag);
+  detail::compile_drives(top.node("drives"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);
