@@ -220,6 +220,22 @@ drives:
   EXPECT_NEAR(r.links[0].peak, 150.0, 1e-4);  // a step load on an undamped spring: twice the static
 }
 
+// Claim: the shipped example's inverter start ends in steady hoisting: the drive holds the speed at
+// its reference 960 rpm (integral action against M_B), so the links carry the static loads of
+// constant speed — c1 the load torque M_B = 270 N·m, c2 nothing — and the drive's torque is M_B.
+// The smooth start keeps c1's dynamic factor below the direct start's.
+TEST(DriveExample, InverterStartEndsInSteadyHoisting) {
+  const Model m = load_model_case(test::example("drives.yaml"), {}, "inverter");
+  const SimulationResult r = simulate(m);
+  const double w_ref = 960 * 2 * M_PI / 60;
+  EXPECT_NEAR(r.columns[test::column(r, "I1.velocity_rad_s")].back(), w_ref, 0.05);
+  EXPECT_NEAR(r.columns[test::column(r, "c1.load_N_m")].back(), 270.0, 1.0);
+  EXPECT_NEAR(r.columns[test::column(r, "c2.load_N_m")].back(), 0.0, 1.0);
+  EXPECT_NEAR(r.columns[test::column(r, "drive.torque_N_m")].back(), 270.0, 1.0);
+  const SimulationResult d = simulate(load_model_case(test::example("drives.yaml"), {}, "direct"));
+  EXPECT_LT(r.links[0].dynamic_factor, d.links[0].dynamic_factor);
+}
+
 // ∂f/∂y against central differences of the drive system's own rhs, for every drive state and mode.
 void expect_jacobian_matches_differences(DriveSystem& sys, double t, const std::vector<double>& y) {
   const int N = sys.size();
