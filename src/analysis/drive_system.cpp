@@ -63,6 +63,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     nx_ += drives_.back().states;
   }
   nd_ = static_cast<int>(drives_.size());
+  general_ = has_machines_ || nd_ > 0;
   drive_mode_.assign(static_cast<size_t>(nd_), LimitMode::linear);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
   for (const auto& ld : model.loads) {
@@ -246,14 +247,9 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
     f[ld->body] += val;
     src += val * v[ld->body];
   }
-  for (int d = 0; d < nd_; ++d) {  // drives: their torque from their own states (elements/drive.hpp)
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    const double M = k.torque(t, v[k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)]);
-    f[k.body] += M;
-    src += M * v[k.body];
-  }
   const double* q = y;
   if constexpr (kMach) {
+    if (nd_ > 0) src += drive_forces(t, y, f);
     q = machine_positions(y);
     // I q'' + ½ I′ q'² = Q + ...: the velocity term joins the forces (it does no work on its own:
     // d/dt ½ I v² = v (I v' + ½ I′ v²)); the machine's force Q(q) is a source.
@@ -298,9 +294,29 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
   if (p_src) *p_src = src, *p_fric = fric, *p_damp = damp;
 }
 
+// Out of line: the plain chain's loops stay as they were for models without drives.
+__attribute__((noinline)) double DriveSystem::drive_forces(double t, const double* y, double* f) const {
+  double src = 0.0;
+  for (int d = 0; d < nd_; ++d) {  // drives: their torque from their own states (elements/drive.hpp)
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    const double M = k.torque(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)]);
+    f[k.body] += M;
+    src += M * y[n_ + k.body];
+  }
+  return src;
+}
+
+__attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* y, double* dydt) const {
+  for (int d = 0; d < nd_; ++d) {
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    const int o = drive_off_[static_cast<size_t>(d)];
+    k.rates(t, y[n_ + k.body], y + o, drive_mode_[static_cast<size_t>(d)], dydt + o);
+  }
+}
+
 void DriveSystem::evaluate(double t, const double* y, double* acc, double* fc) {
   double src, fric, damp;
-  if (has_machines_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
+  if (general_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
   else evaluate_impl<false>(t, y, acc, fc, &src, &fric, &damp);
 }
 
@@ -391,7 +407,7 @@ void DriveSystem::rhs(double t, const double* y, double* dydt) {
     return;
   }
   if (!affine_eligible_) {
-    if (has_machines_) rhs_general<true>(t, y, dydt);
+    if (general_) rhs_general<true>(t, y, dydt);
     else rhs_general<false>(t, y, dydt);
     return;
   }
@@ -415,11 +431,8 @@ __attribute__((noinline)) void DriveSystem::rhs_general(double t, const double* 
   for (int i = 0; i < n_; ++i) dydt[i] = y[n_ + i];
   double src, fric, damp;
   evaluate_impl<kMach>(t, y, dydt + n_, fc_.data(), &src, &fric, &damp);
-  for (int d = 0; d < nd_; ++d) {
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    const int o = drive_off_[static_cast<size_t>(d)];
-    k.rates(t, y[n_ + k.body], y + o, drive_mode_[static_cast<size_t>(d)], dydt + o);
-  }
+  if constexpr (kMach)
+    if (nd_ > 0) drive_rates(t, y, dydt);
   if (!energy_) return;
   const int e = energy_index();
   dydt[e] = src;

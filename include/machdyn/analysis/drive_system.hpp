@@ -159,8 +159,9 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] const Model& model() const { return m_; }
 
  private:
-  // kMach: the model has machines (position-dependent inertia, point links). The constant-inertia
-  // instantiation is the plain code of the linear chain, untouched by the machine terms.
+  // kMach: the model has machines (position-dependent inertia, point links) or drives (their torques
+  // and state rates). The constant-inertia instantiation is the plain code of the linear chain,
+  // untouched by the machine and drive terms.
   template <bool kMach>
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
   template <bool kMach>
@@ -180,6 +181,10 @@ class DriveSystem final : public OdeSystem {
   /// P_ for the inverse inertias `im` (machines in the stuck set: at every evaluation).
   void form_stuck_solution(const double* im);
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
+  /// Adds the drives' torques to f; returns their power Σ M v (source work rate).
+  double drive_forces(double t, const double* y, double* f) const;
+  /// The drives' state rates into dydt.
+  void drive_rates(double t, const double* y, double* dydt) const;
 
   // Within one mode, with constant loads and friction levels, no brake ramp, no moving surface and no
   // dampers, the whole right-hand side (work and losses included) is affine in y: dy = J y + c. Each
@@ -208,6 +213,7 @@ class DriveSystem final : public OdeSystem {
   std::vector<const Machine*> machine_;  // per body, null for constant inertia
   std::vector<int> machine_bodies_;      // indices of the bodies with a machine
   bool has_machines_ = false;
+  bool general_ = false;                 // machines or drives: the kMach = true instantiations
   bool stuck_machine_ = false;           // a stuck contact touches a machine: P_ per evaluation
   std::vector<double> im_;               // I(q)⁻¹ of the last evaluation (machines)
   std::vector<double> q_lo_, q_hi_;      // evaluation windows of the machines (±inf: none)
