@@ -132,6 +132,17 @@ py::list loads(const Model& m) {
   return out;
 }
 
+py::list drives(const Model& m) {
+  py::list out;
+  for (const auto& d : m.drives) {
+    py::dict e;
+    e["name"] = d.name, e["type"] = d.kind == DriveKind::dc_motor ? "dc-motor" : "speed-drive";
+    e["body"] = body_name(m, d.body), e["states"] = d.states();
+    out.append(e);
+  }
+  return out;
+}
+
 py::list contacts(const Model& m) {
   py::list out;
   for (const auto& c : m.contacts) {
@@ -217,6 +228,7 @@ PYBIND11_MODULE(_machdyn, mod) {
       .def_property_readonly("bodies", [](const PyModel& p) { return bodies(*p.model); })
       .def_property_readonly("links", [](const PyModel& p) { return links(*p.model); })
       .def_property_readonly("loads", [](const PyModel& p) { return loads(*p.model); })
+      .def_property_readonly("drives", [](const PyModel& p) { return drives(*p.model); })
       .def_property_readonly("contacts", [](const PyModel& p) { return contacts(*p.model); })
       .def_property_readonly("simulation", [](const PyModel& p) { return settings(*p.model); })
       .def("with_case",

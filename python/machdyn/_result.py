@@ -46,6 +46,7 @@ class _Model:
     links = property(lambda self: self._core.links,
                      doc="links: name, type, between (a, b), ratio, stiffness (N*m/rad or N/m), damping, gap")
     loads = property(lambda self: self._core.loads, doc="loads: name, type, body, value (N*m or N)")
+    drives = property(lambda self: self._core.drives, doc="drives with states: name, type (dc-motor, speed-drive), body, states")
     contacts = property(lambda self: self._core.contacts, doc="friction contacts and brakes")
     simulation = property(lambda self: self._core.simulation,
                           doc="run settings: t_end_s, dt_out_s, rtol, atol, integrator, max_steps")

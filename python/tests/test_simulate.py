@@ -198,3 +198,19 @@ def test_help_documents_every_function_with_units():
     assert "rad/s" in machdyn.modes.__doc__ and "Hz" in machdyn.modes.__doc__
     assert "kg*m^2" in machdyn.energy.__doc__ and "rad" in machdyn.energy.__doc__
     assert "mm" in machdyn.gears.__doc__
+
+
+def test_speed_drive_case_equals_the_cli(tmp):
+    # A model with a drive's own states (speed drive: integral and lagged torque) through the module.
+    path = example("drives.yaml")
+    run_cli("simulate", path, "-o", tmp, "--quiet", "--case", "inverter")
+    m = machdyn.load(path)
+    r = machdyn.simulate(m, case="inverter")
+    cli = json.load(open(tmp / "inverter" / "summary.json"))
+    for s in (cli, r.summary):
+        s["solver"].pop("wall_time_s")
+    assert r.summary == cli
+    assert r.to_csv() == (tmp / "inverter" / "timeseries.csv").read_text()
+    assert "drive.torque_N_m" in r.columns
+    assert [(d["name"], d["type"], d["body"], d["states"]) for d in m.with_case("inverter").drives] == \
+        [("drive", "speed-drive", "I1", 2)]

@@ -57,12 +57,20 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     const double ma = model.bodies[static_cast<size_t>(c.a)].inertia;
     stuck_share_.push_back(c.b >= 0 ? ma / (ma + model.bodies[static_cast<size_t>(c.b)].inertia) : 1.0);
   }
+  for (const auto& dr : model.drives) {
+    drives_.push_back(DriveLaw::of(dr));
+    drive_off_.push_back(2 * n_ + nx_);
+    nx_ += drives_.back().states;
+  }
+  nd_ = static_cast<int>(drives_.size());
+  general_ = has_machines_ || nd_ > 0;
+  drive_mode_.assign(static_cast<size_t>(nd_), LimitMode::linear);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
   for (const auto& ld : model.loads) {
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
     else varying_.push_back(&ld);
   }
-  affine_eligible_ = varying_.empty() && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
+  affine_eligible_ = varying_.empty() && nd_ == 0 && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
   for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0;
   for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.applied;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
@@ -73,7 +81,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   // Jacobian terms (elements/link.hpp).
   bool gaps = false;
   for (const auto& l : links_) gaps = gaps || l.gap;
-  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && n_ >= 1 && n_ <= 8) {
+  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && n_ >= 1 && n_ <= 8) {
     Aq_.assign(static_cast<size_t>(n_ * n_), 0.0);
     Av_ = Aq_;
     for (const auto& l : links_)
@@ -96,7 +104,10 @@ void DriveSystem::initial_state(double* y) const {
     y[i] = m_.bodies[static_cast<size_t>(i)].q0;
     y[n_ + i] = m_.bodies[static_cast<size_t>(i)].v0;
   }
-  if (energy_) y[2 * n_] = y[2 * n_ + 1] = y[2 * n_ + 2] = 0.0;
+  for (int d = 0; d < nd_; ++d)
+    for (int j = 0; j < drives_[static_cast<size_t>(d)].states; ++j)
+      y[drive_offset(d) + j] = drives_[static_cast<size_t>(d)].x0[j];
+  if (energy_) y[energy_index()] = y[energy_index() + 1] = y[energy_index() + 2] = 0.0;
 }
 
 void DriveSystem::set_evaluation_window(int body, double lo, double hi) {
@@ -238,6 +249,7 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
   }
   const double* q = y;
   if constexpr (kMach) {
+    if (nd_ > 0) src += drive_forces(t, y, f);
     q = machine_positions(y);
     // I q'' + ½ I′ q'² = Q + ...: the velocity term joins the forces (it does no work on its own:
     // d/dt ½ I v² = v (I v' + ½ I′ v²)); the machine's force Q(q) is a source.
@@ -282,9 +294,29 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
   if (p_src) *p_src = src, *p_fric = fric, *p_damp = damp;
 }
 
+// Out of line: the plain chain's loops stay as they were for models without drives.
+__attribute__((noinline)) double DriveSystem::drive_forces(double t, const double* y, double* f) const {
+  double src = 0.0;
+  for (int d = 0; d < nd_; ++d) {  // drives: their torque from their own states (elements/drive.hpp)
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    const double M = k.torque(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)]);
+    f[k.body] += M;
+    src += M * y[n_ + k.body];
+  }
+  return src;
+}
+
+__attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* y, double* dydt) const {
+  for (int d = 0; d < nd_; ++d) {
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    const int o = drive_off_[static_cast<size_t>(d)];
+    k.rates(t, y[n_ + k.body], y + o, drive_mode_[static_cast<size_t>(d)], dydt + o);
+  }
+}
+
 void DriveSystem::evaluate(double t, const double* y, double* acc, double* fc) {
   double src, fric, damp;
-  if (has_machines_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
+  if (general_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
   else evaluate_impl<false>(t, y, acc, fc, &src, &fric, &damp);
 }
 
@@ -375,7 +407,7 @@ void DriveSystem::rhs(double t, const double* y, double* dydt) {
     return;
   }
   if (!affine_eligible_) {
-    if (has_machines_) rhs_general<true>(t, y, dydt);
+    if (general_) rhs_general<true>(t, y, dydt);
     else rhs_general<false>(t, y, dydt);
     return;
   }
@@ -399,10 +431,13 @@ __attribute__((noinline)) void DriveSystem::rhs_general(double t, const double* 
   for (int i = 0; i < n_; ++i) dydt[i] = y[n_ + i];
   double src, fric, damp;
   evaluate_impl<kMach>(t, y, dydt + n_, fc_.data(), &src, &fric, &damp);
+  if constexpr (kMach)
+    if (nd_ > 0) drive_rates(t, y, dydt);
   if (!energy_) return;
-  dydt[2 * n_] = src;
-  dydt[2 * n_ + 1] = fric;
-  dydt[2 * n_ + 2] = damp;
+  const int e = energy_index();
+  dydt[e] = src;
+  dydt[e + 1] = fric;
+  dydt[e + 2] = damp;
 }
 
 void DriveSystem::numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) {
@@ -452,7 +487,19 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
       trip.emplace_back(n_ + r, c, v * im(r));
     });
   }
-  J.resize(2 * n_, 2 * n_);
+  // Drives (elements/drive.hpp): M(ω, x) on the body's acceleration, the state rates x'(ω, x).
+  for (int d = 0; d < nd_; ++d) {
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    const int o = drive_off_[static_cast<size_t>(d)], vb = n_ + k.body;
+    const DriveJacobian jd = k.jacobian(drive_mode_[static_cast<size_t>(d)]);
+    trip.emplace_back(vb, vb, jd.dM_domega * im(k.body));
+    for (int j = 0; j < k.states; ++j) {
+      trip.emplace_back(vb, o + j, jd.dM_dx[j] * im(k.body));
+      trip.emplace_back(o + j, vb, jd.dx_domega[j]);
+      for (int c = 0; c < k.states; ++c) trip.emplace_back(o + j, o + c, jd.dx_dx[j][c]);
+    }
+  }
+  J.resize(2 * n_ + nx_, 2 * n_ + nx_);
   J.setFromTriplets(trip.begin(), trip.end());
   J.makeCompressed();
 }
@@ -460,6 +507,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
 void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
   for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[ld.body], y[n_ + ld.body]);
+  for (int d = 0; d < nd_; ++d) f[drives_[static_cast<size_t>(d)].body] += drive_torque(d, t, y);
   const double* q = machine_positions(y);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);
   for (int k = 0; k < nc_; ++k) contacts_[static_cast<size_t>(k)].apply(fc[k], f);
@@ -504,6 +552,11 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
   }
+  for (int d = 0; d < nd_; ++d) {
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    k.events(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)],
+             g + 2 * (nl_ + nc_ + d));
+  }
 }
 
 void DriveSystem::project_velocities(double t, double* y) const {
@@ -547,7 +600,13 @@ void DriveSystem::project_velocities(double t, double* y) const {
 }
 
 std::string DriveSystem::state_name(int i) const {
-  if (i >= 2 * n_) return "energy quadrature";
+  if (i >= energy_index()) return "energy quadrature";
+  if (i >= 2 * n_) {
+    int d = nd_ - 1;
+    while (d > 0 && drive_off_[static_cast<size_t>(d)] > i) --d;
+    return fmt::format("drive '{}' ({})", m_.drives[static_cast<size_t>(d)].name,
+                       drives_[static_cast<size_t>(d)].state_name(i - drive_off_[static_cast<size_t>(d)]));
+  }
   const bool vel = i >= n_;
   const auto& b = m_.bodies[static_cast<size_t>(vel ? i - n_ : i)];
   return fmt::format("body '{}' ({})", b.name, vel ? "velocity" : "position");

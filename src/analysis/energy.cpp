@@ -120,6 +120,10 @@ EnergyIntegral::EnergyIntegral(const Model& m, double added_inertia, double extr
                                     "only constant loads and the machine's own forces can be used",
                                     ld.name));
   }
+  for (const auto& d : m.drives)
+    diag.error(m.where(d.name), fmt::format("drive '{}' has states of its own (current, controller), so the motion has "
+                                            "no energy integral; simulate it instead",
+                                            d.name));
   if (m.dof() == 1 && m.bodies[0].machine && m.bodies[0].machine->has_jumps())
     diag.error(m.where(m.bodies[0].name), fmt::format("body '{}' has velocity jumps (a stepwise gear ratio): kinetic energy is lost at "
                                   "every jump, so the energy integral does not hold; use `simulate`",

@@ -30,13 +30,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   DriveRun(const Model& m, const SimulateOptions& opt, SimulationResult& out)
       : m_(m), opt_(opt), out_(out), sys_(m, m.is_hybrid() || opt.event_driven), jumps_(m, sys_), n_(m.dof()),
         N_(sys_.size()), nl_(static_cast<int>(m.links.size())), nc_(static_cast<int>(m.contacts.size())),
-        peaks_(sys_.size(), *this) {
+        nd_(static_cast<int>(m.drives.size())), peaks_(sys_.size(), *this) {
     y_.assign(static_cast<size_t>(N_), 0.0);
     acc_.assign(static_cast<size_t>(n_), 0.0);
     fc_.assign(static_cast<size_t>(nc_), 0.0);
     open_phase_.assign(static_cast<size_t>(nc_), -1);
     for (int k = 0; k < nc_; ++k) was_released_.push_back(m_.contacts[static_cast<size_t>(k)].released(0.0));
-    switches_.resize(static_cast<size_t>(nl_ + nc_));
+    switches_.resize(static_cast<size_t>(nl_ + nc_ + nd_));
     at_max_.resize(static_cast<size_t>(nl_));
     at_min_.resize(static_cast<size_t>(nl_));
     for (size_t k = 0; k < m.loads.size(); ++k)
@@ -83,9 +83,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (sys_.energy_books()) {
       E.kinetic_end = sys_.kinetic_energy(y_.data());
       E.elastic_end = sys_.elastic_energy(y_.data());
-      E.source_work = y_[static_cast<size_t>(2 * n_)];
-      E.friction_loss = y_[static_cast<size_t>(2 * n_ + 1)];
-      E.damping_loss = y_[static_cast<size_t>(2 * n_ + 2)];
+      const auto e = static_cast<size_t>(sys_.energy_index());
+      E.source_work = y_[e];
+      E.friction_loss = y_[e + 1];
+      E.damping_loss = y_[e + 2];
       E.release_loss = release_loss_;
     }
     summarize_links();
@@ -161,6 +162,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     for (const auto& l : m_.links)
       if (l.has_gap) names.push_back(l.name + ".gap_mode");
+    // Drives: the torque on the body, the DC motor's current or the speed drive's reference speed,
+    // and the limiter mode (0 linear, ±1 limited±; always 0 for a DC motor).
+    for (const auto& d : m_.drives) {
+      const BodyKind k = m_.bodies[static_cast<size_t>(d.body)].kind;
+      names.push_back(d.name + ".torque_" + unit_suffix(load_unit(k)));
+      names.push_back(d.kind == DriveKind::dc_motor ? d.name + ".current_A"
+                                                    : d.name + ".reference_" + unit_suffix(velocity_unit(k)));
+      names.push_back(d.name + ".mode");
+    }
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     const auto rows = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
@@ -186,6 +196,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int l = 0; l < nl_; ++l)
       if (m_.links[static_cast<size_t>(l)].has_gap)
         cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+    for (int d = 0; d < nd_; ++d) {
+      const Drive& dr = m_.drives[static_cast<size_t>(d)];
+      cols[c++].push_back(sys_.drive_torque(d, t, y));
+      cols[c++].push_back(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
+      cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
+    }
   }
 
   // ---- quasi-static loads at the extremes ----
@@ -206,6 +222,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       out.vals.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
+    for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
     if (nc_ == 0) return;
     out.t = t;
     out.y.assign(y, y + N_);
@@ -229,6 +246,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;
+    for (int d = 0; d < nd_; ++d) f(m_.drives[static_cast<size_t>(d)].body) += v < vals.size() ? vals[v++] : 0.0;
     for (int c = 0; c < nc_; ++c) sys_.contact(c).apply(v < vals.size() ? vals[v++] : 0.0, f.data());
     return f;
   }
@@ -277,8 +295,19 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   // ---- events and slip phases ----
+  /// Element e of the events: links, then contacts, then drives.
   const std::string& element_name(int e) const {
-    return e < nl_ ? m_.links[static_cast<size_t>(e)].name : m_.contacts[static_cast<size_t>(e - nl_)].name;
+    return e < nl_        ? m_.links[static_cast<size_t>(e)].name
+           : e < nl_ + nc_ ? m_.contacts[static_cast<size_t>(e - nl_)].name
+                          : m_.drives[static_cast<size_t>(e - nl_ - nc_)].name;
+  }
+  /// Sets drive d's limiter mode and records the switch.
+  void set_drive_mode(int d, double t, LimitMode now, bool initial) {
+    const LimitMode old = sys_.drive_mode(d);
+    if (!initial && now == old) return;
+    sys_.set_drive_mode(d, now);
+    record(t, initial ? "initial" : now == LimitMode::linear ? "unlimited" : "limited", nl_ + nc_ + d,
+           initial ? "" : to_string(old), to_string(now));
   }
 
   void record(double t, const char* kind, int element, const char* from, const char* to) {
@@ -382,6 +411,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void initial_modes() {
+    for (int d = 0; d < nd_; ++d)
+      if (sys_.drive(d).has_events()) set_drive_mode(d, 0.0, sys_.natural_drive_mode(d, 0.0, y_.data()), true);
     for (int l = 0; l < nl_; ++l) {
       if (!m_.links[static_cast<size_t>(l)].has_gap) continue;
       const GapMode g = sys_.natural_gap_mode(l, y_.data());
@@ -411,7 +442,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     bool gap_changed = false;
     for (int slot : fired) {
       const int e = sys_.slot_element(slot);
-      if (sys_.slot_is_link(slot)) {
+      if (sys_.slot_is_drive(slot)) {  // a speed drive reaches or leaves its torque limit
+        set_drive_mode(e, t, SpeedDriveLaw::mode_after(sys_.drive_mode(e), slot % 2), false);
+      } else if (sys_.slot_is_link(slot)) {
         const GapMode old = sys_.gap_mode(e);
         const GapMode now = LinkLaw::mode_after(old, slot % 2);
         if (now == old) continue;
@@ -444,6 +477,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void time_event(double t) {
+    // A jump of a speed reference may carry the command across the torque limit.
+    for (int d = 0; d < nd_; ++d)
+      if (sys_.drive(d).has_events()) set_drive_mode(d, t, sys_.natural_drive_mode(d, t, y_.data()), false);
     // A brake or clutch applied now while it slides starts a slip phase (it was released so far);
     // one released now ends its phase (its application reached 0: it opens).
     for (int k = 0; k < nc_; ++k) {
@@ -472,7 +508,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   SimulationResult& out_;
   DriveSystem sys_;
   detail::MachineJumps jumps_;
-  int n_, N_, nl_, nc_;
+  int n_, N_, nl_, nc_, nd_;
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
   PeakTracker::Candidate on_candidate_;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/elements/contact.hpp"
+#include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
 
 
@@ -40,6 +41,16 @@ Method choose_method(const Model& m, std::string* reason) {
         if (idx[r] >= 0 && idx[k] >= 0) rowD[static_cast<size_t>(idx[r])] += slope;
   }
   double rho_D = 0.0, omega_K = 0.0;
+  // A drive's linear terms (elements/drive.hpp: K_p, k²/R as dampers, K_p/T_i as a spring) and its
+  // own rates (R/L of the armature, 1/T_m of the torque lag).
+  for (const auto& d : m.drives) {
+    const DriveLaw k = DriveLaw::of(d);
+    LinearModel lin(n);
+    k.add_linear(LimitMode::linear, lin);
+    for (const auto& e : lin.D) rowD[static_cast<size_t>(e.row())] += std::abs(e.value());
+    for (const auto& e : lin.K) rowK[static_cast<size_t>(e.row())] += std::abs(e.value());
+    rho_D = std::max(rho_D, k.rate_bound());
+  }
   for (int i = 0; i < m.dof(); ++i) {
     const double I = m.bodies[static_cast<size_t>(i)].inertia;
     rho_D = std::max(rho_D, rowD[static_cast<size_t>(i)] / I);

@@ -31,6 +31,9 @@ constexpr UnitDef kUnits[] = {
     {"rpm", 2.0 * pi / 60.0, {0, 0, -1}, false}, {"rps", 2.0 * pi, {0, 0, -1}, false},
     {"%", 0.01, dim::none, false},
     {"Nm", 1.0, dim::torque, false},     {"kNm", 1e3, dim::torque, false},
+    {"A", 1.0, dim::current, true},      {"V", 1.0, dim::voltage, true},
+    {"ohm", 1.0, dim::resistance, true}, {"Ω", 1.0, dim::resistance, true},
+    {"H", 1.0, dim::inductance, true},
 };
 
 struct Prefix {
@@ -89,7 +92,8 @@ class UnitParser {
       auto r = factor(err);
       if (!r) return r;
       const Dim d = op == '*' ? q->dim * r->dim : q->dim / r->dim;
-      if (std::abs(d.kg) > kMaxDimExponent || std::abs(d.m) > kMaxDimExponent || std::abs(d.s) > kMaxDimExponent)
+      if (std::abs(d.kg) > kMaxDimExponent || std::abs(d.m) > kMaxDimExponent || std::abs(d.s) > kMaxDimExponent ||
+          std::abs(d.A) > kMaxDimExponent)
         return fail(err, "unit exponents out of range");
       q = Quantity{op == '*' ? q->value * r->value : q->value / r->value, d, true, q->hertz || r->hertz};
     }
@@ -149,7 +153,8 @@ class UnitParser {
       p = 3;
     }
     const Dim d = q->dim.pow(p);
-    if (std::abs(d.kg) > kMaxDimExponent || std::abs(d.m) > kMaxDimExponent || std::abs(d.s) > kMaxDimExponent)
+    if (std::abs(d.kg) > kMaxDimExponent || std::abs(d.m) > kMaxDimExponent || std::abs(d.s) > kMaxDimExponent ||
+          std::abs(d.A) > kMaxDimExponent)
       return fail(err, "unit exponents out of range");
     return Quantity{std::pow(q->value, p), d, true, q->hertz};
   }
@@ -186,9 +191,16 @@ std::string describe(const Dim& d) {
       {dim::damping_rot, "a rotational damping coefficient (N*m*s/rad)"},
       {dim::inv_length, "a ratio per length (rad/m, 1/m)"},
       {dim::acceleration, "an acceleration (m/s^2)"},
+      {dim::current, "a current (A)"},
+      {dim::voltage, "a voltage (V)"},
+      {dim::resistance, "a resistance (ohm)"},
+      {dim::inductance, "an inductance (H)"},
+      {dim::torque / dim::current, "a motor constant (N*m/A = V*s/rad)"},
+      {dim::force / dim::current, "a motor constant (N/A = V*s/m)"},
   };
   for (const auto& n : names)
     if (n.d == d) return n.text;
+  if (d.A != 0) return fmt::format("a quantity of dimension kg^{}*m^{}*s^{}*A^{}", d.kg, d.m, d.s, d.A);
   return fmt::format("a quantity of dimension kg^{}*m^{}*s^{}", d.kg, d.m, d.s);
 }
 

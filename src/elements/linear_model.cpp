@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "machdyn/elements/contact.hpp"
+#include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/linearize.hpp"
 
@@ -58,6 +59,9 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
     const bool engaged = topo.engaged.empty() || topo.engaged[k];
     c.add_linear(topo.contacts[k], engaged, t, c.sliding_velocity(t, v), lin);
   }
+  // Drives in their linear mode (a limited speed drive is a constant torque and adds nothing): a DC
+  // motor its quasi-static slope k²/R, a speed drive its PI law as damper K_p and spring K_p/T_i.
+  for (const Drive& d : m.drives) DriveLaw::of(d).add_linear(LimitMode::linear, lin);
   return lin;
 }
 

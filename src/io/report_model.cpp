@@ -267,10 +267,25 @@ std::vector<Table> model_tables(const Model& m) {
   for (const auto& L : m.loads)
     loads.rows.push_back({L.name, L.kind == LoadKind::signal ? Signal::kind_name(L.signal.kind()) : load_kind(L.kind),
                           body_name(m, L.body), load_description(m, L)});
+  Table drives = table("Drives", {"drive", "type", "body", "definition"});
+  for (const auto& d : m.drives) {
+    const char* lu = load_unit(m.bodies[static_cast<size_t>(d.body)].kind);
+    const std::string def =
+        d.kind == DriveKind::dc_motor
+            ? "R = " + num(d.R) + " ohm, L = " + num(d.L) + " H, k = " + num(d.k) + ", u(t): " + d.voltage.describe("V")
+            : "K_p = " + num(d.Kp) + ", T_i = " + num(d.Ti) + " s" +
+                  (std::isfinite(d.M_max) ? ", M_max = " + num(d.M_max) + " " + lu : std::string()) +
+                  (d.T_m > 0.0 ? ", T_m = " + num(d.T_m) + " s" : std::string()) + ", reference: " +
+                  d.reference.describe(velocity_unit(m.bodies[static_cast<size_t>(d.body)].kind));
+    drives.rows.push_back({d.name, d.kind == DriveKind::dc_motor ? "dc-motor" : "speed-drive", body_name(m, d.body), def});
+  }
+  drives.note = "Drives with states of their own: L di/dt = u − R i − k ω, M = k i (DC motor); PI speed control "
+                "M = K_p e + (K_p/T_i) ∫e dt, |M| ≤ M_max, integral held while limited (speed drive).";
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
   if (!m.contacts.empty()) t.push_back(std::move(contacts));
   if (!m.loads.empty()) t.push_back(std::move(loads));
+  if (!m.drives.empty()) t.push_back(std::move(drives));
   return t;
 }
 

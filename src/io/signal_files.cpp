@@ -260,7 +260,7 @@ void walk(SpecNode& n, const std::string& what, Diagnostics& diag, int depth) {
 
 void resolve_sections(SpecNode& root, Diagnostics& diag) {
   static const std::pair<const char*, const char*> kSections[] = {{"loads", "load"}, {"contacts", "contact"}, {"brakes", "brake"},
-                                                                 {"clutches", "clutch"}};
+                                                                 {"clutches", "clutch"}, {"drives", "drive"}};
   for (const auto& [section, kind] : kSections) {
     SpecNode* sec = root.find(section);
     if (!sec || !sec->is_map()) continue;

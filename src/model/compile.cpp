@@ -13,6 +13,7 @@
 #include "machdyn/model/machine.hpp"
 #include "machdyn/common/expression.hpp"
 #include "compile_hybrid.hpp"
+#include "model/compile_drive.hpp"
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 #include "model/compile_crane.hpp"
@@ -35,7 +36,7 @@ std::string_view section_of_type(std::string_view type) {
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
-      {"buffer", "buffers"}};
+      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"speed-drive", "drives"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -414,6 +415,13 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
                                               "than {:.0e}; lengthen the period or give a count", c.name, n,
                                               kMaxBreakpoints));
   }
+  for (const auto& d : m.drives) {
+    const Signal& s = d.kind == DriveKind::dc_motor ? d.voltage : d.reference;
+    const double n = s.breakpoint_count(0.0, m.simulation.t_end);
+    if (n > kMaxBreakpoints)
+      diag.error(m.where(d.name), fmt::format("drive '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
+                                              "lengthen the period or give a count", d.name, n, kMaxBreakpoints));
+  }
 }
 
 void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
@@ -457,7 +465,8 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 }  // namespace
 
 const std::vector<std::string>& element_sections() {
-  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "clutches", "freewheels", "stops", "buffers"};
+  static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "clutches", "freewheels", "stops",
+                                                     "buffers", "drives"};
   return kSections;
 }
 
@@ -489,6 +498,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_stops(top.node("stops"), m, diag);
   detail::compile_buffers(top.node("buffers"), m, diag);
   detail::compile_crane(top.node("crane"), m, diag);
+  detail::compile_drives(top.node("drives"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);

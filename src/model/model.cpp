@@ -101,6 +101,10 @@ std::vector<double> Load::breakpoints(double t0, double t1) const {
   return b;
 }
 
+std::vector<double> Drive::breakpoints(double t0, double t1) const {
+  return (kind == DriveKind::dc_motor ? voltage : reference).breakpoints(t0, t1);
+}
+
 Location Model::where(const std::string& element) const {
   auto it = element_where.find(element);
   return it == element_where.end() ? Location{source, 0, 0} : it->second;
@@ -145,7 +149,7 @@ std::vector<std::string> chain_column_names(const Model& m) {
 }
 
 std::size_t output_columns_bound(const Model& m) {
-  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size();
+  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size() + 3 * m.drives.size();
   for (const auto& l : m.links) n += l.has_gap ? 1 : 0;
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   return n;
@@ -240,6 +244,10 @@ std::vector<double> Model::breakpoints(double t_end) const {
   std::vector<double> t;
   for (const auto& ld : loads) {
     auto b = ld.breakpoints(0.0, t_end);
+    t.insert(t.end(), b.begin(), b.end());
+  }
+  for (const auto& d : drives) {
+    auto b = d.breakpoints(0.0, t_end);
     t.insert(t.end(), b.begin(), b.end());
   }
   for (const auto& c : contacts) {

@@ -40,6 +40,26 @@ TEST(Units, ComposesProductsQuotientsPowersAndPrefixes) {
   EXPECT_DOUBLE_EQ(si("-1.5e-3 m/s", dim::velocity), -1.5e-3);
 }
 
+// Claim: the electrical units of a DC motor follow their SI definitions with the ampere as the
+// fourth base unit: V = W/A, Ω = V/A, H = V·s/A, so N·m/A = V·s/rad (k_t = k_e), and Ω·A = V.
+TEST(Units, ElectricalUnitsFollowTheirDefinitions) {
+  EXPECT_DOUBLE_EQ(si("12 mH", dim::inductance), 0.012);
+  EXPECT_DOUBLE_EQ(si("250 mohm", dim::resistance), 0.25);
+  EXPECT_DOUBLE_EQ(si("2 Ω", dim::resistance), 2.0);
+  EXPECT_DOUBLE_EQ(si("0.4 kV", dim::voltage), 400.0);
+  EXPECT_DOUBLE_EQ(si("3 mA", dim::current), 0.003);
+  EXPECT_DOUBLE_EQ(si("2 V*s/rad", dim::torque / dim::current), 2.0);   // back-emf constant
+  EXPECT_DOUBLE_EQ(si("2 N*m/A", dim::torque / dim::current), 2.0);     // torque constant: the same
+  EXPECT_DOUBLE_EQ(si("3 ohm*A", dim::voltage), 3.0);
+  EXPECT_DOUBLE_EQ(si("5 W/A", dim::voltage), 5.0);
+  EXPECT_DOUBLE_EQ(si("1 H*A/s", dim::voltage), 1.0);
+  std::string err;
+  EXPECT_FALSE(parse_as("10 A", dim::voltage, &err).has_value());
+  EXPECT_NE(err.find("expected a voltage (V), got a current (A)"), std::string::npos) << err;
+  EXPECT_FALSE(parse_as("1 H", dim::time, &err).has_value());
+  EXPECT_NE(err.find("got an inductance (H)"), std::string::npos) << err;
+}
+
 // Claim: a value of the wrong dimension is an error that names both dimensions.
 TEST(Units, RejectsWrongDimensionNamingBoth) {
   std::string err;

@@ -3,11 +3,13 @@
 /// The one system of equations every model runs through: bodies, links (elements/link.hpp),
 /// friction contacts and brakes (elements/contact.hpp), loads and machines, flattened once.
 ///
-/// State y = [q; v] (n positions, n velocities), plus three energy quadratures [W_src; E_fric;
-/// E_damp] when the energy books are kept (DriveSystem(m, true): every event-driven run).
+/// State y = [q; v; x] (n positions, n velocities, then the states x of the drives, e.g. a DC motor's
+/// current: elements/drive.hpp, in the order of Model::drives), plus three energy quadratures [W_src;
+/// E_fric; E_damp] when the energy books are kept (DriveSystem(m, true): every event-driven run).
 /// Every switching element is in a definite mode and the equations of a mode hold until an event:
 ///   gap link     open (F = 0), closed+ on the positive flank, closed- on the negative one
 ///   contact      stuck (u ≡ 0, a bilateral velocity constraint) or sliding in direction ±1
+///   speed drive  its torque limiter linear or limited± (elements/speed_drive.hpp)
 /// In a mode:  M(q) v' = f(t, q, v) − Jᵀ F_links − Gᵀ λ − Σ_sliding ĝ_k F_k,
 /// where row k of G is the sliding velocity u_k = v_a − v_b of stuck contact k and λ solves
 ///   (G M⁻¹ Gᵀ) λ = G M⁻¹ f̃ − ẇ     (f̃: all forces but λ; ẇ: the prescribed surface acceleration).
@@ -23,7 +25,7 @@
 /// the kinetic energy is ½ Σ I_i(q_i) v_i².
 ///
 /// Fast paths, chosen once (each computes the same law): a small chain without events (n ≤ 8, no
-/// machines, no energy books) as fixed-size dense products; within one mode with constant loads and
+/// machines, no energy books, no drives) as fixed-size dense products; within one mode with constant loads and
 /// friction levels and no dampers, the whole right-hand side as a cached affine map per mode.
 ///
 /// Jacobian: without energy books (no gaps, no contacts) analytic and sparse for constant inertias
@@ -38,6 +40,7 @@
 #include <Eigen/Core>
 
 #include "machdyn/elements/contact.hpp"
+#include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/modes.hpp"
 #include "machdyn/model/model.hpp"
@@ -53,7 +56,7 @@ class DriveSystem final : public OdeSystem {
   /// quadratures in the state (source work, friction and damping losses).
   DriveSystem(const Model& model, bool energy_books);
 
-  [[nodiscard]] int size() const override { return 2 * n_ + (energy_ ? 3 : 0); }
+  [[nodiscard]] int size() const override { return 2 * n_ + nx_ + (energy_ ? 3 : 0); }
   void rhs(double t, const double* y, double* dydt) override;
   [[nodiscard]] bool has_jacobian() const override { return !energy_; }
   void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override;
@@ -64,8 +67,8 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] int dof() const { return n_; }
   [[nodiscard]] bool energy_books() const { return energy_; }
   /// Index of the energy states in y (energy books only): source work, friction loss, damping loss.
-  [[nodiscard]] int energy_index() const { return 2 * n_; }
-  /// y0 from the bodies' initial positions and velocities, zero energies.
+  [[nodiscard]] int energy_index() const { return 2 * n_ + nx_; }
+  /// y0 from the bodies' initial positions and velocities, the drives' initial states, zero energies.
   void initial_state(double* y) const;
 
   // Modes.
@@ -80,6 +83,23 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] const std::vector<ContactMode>& contact_modes() const { return mode_; }
   /// The gap mode a state implies on its own (initial state): closed on a flank it presses.
   [[nodiscard]] GapMode natural_gap_mode(int l, const double* y) const;
+
+  // Drives (elements/drive.hpp): their states x_d start at y[drive_offset(d)].
+  [[nodiscard]] int drive_count() const { return nd_; }
+  [[nodiscard]] const DriveLaw& drive(int d) const { return drives_[static_cast<size_t>(d)]; }
+  [[nodiscard]] int drive_offset(int d) const { return drive_off_[static_cast<size_t>(d)]; }
+  [[nodiscard]] LimitMode drive_mode(int d) const { return drive_mode_[static_cast<size_t>(d)]; }
+  void set_drive_mode(int d, LimitMode md) { drive_mode_[static_cast<size_t>(d)] = md; }
+  /// The mode drive d's state implies on its own (initial state, time events).
+  [[nodiscard]] LimitMode natural_drive_mode(int d, double t, const double* y) const {
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    return k.natural_mode(t, y[n_ + k.body], y + drive_offset(d), drive_mode(d));
+  }
+  /// The torque (or force) of drive d on its body, N·m or N.
+  [[nodiscard]] double drive_torque(int d, double t, const double* y) const {
+    const DriveLaw& k = drives_[static_cast<size_t>(d)];
+    return k.torque(t, y[n_ + k.body], y + drive_offset(d), drive_mode(d));
+  }
 
   [[nodiscard]] const LinkLaw& link(int l) const { return links_[static_cast<size_t>(l)]; }
   [[nodiscard]] const ContactLaw& contact(int k) const { return contacts_[static_cast<size_t>(k)]; }
@@ -116,12 +136,15 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] double elastic_energy(const double* y) const;
 
   // Events.
-  /// Two per link, then two per contact. Each is ≥ 0 while the mode holds.
-  [[nodiscard]] int event_slots() const { return 2 * (nl_ + nc_); }
+  /// Two per link, then two per contact, then two per drive. Each is ≥ 0 while the mode holds.
+  [[nodiscard]] int event_slots() const { return 2 * (nl_ + nc_ + nd_); }
   void event_functions(double t, const double* y, double* g);
-  /// The element of a slot: link index (slot < 2·links) or contact index.
+  /// The element of a slot: link index (slot < 2·links), contact index or drive index.
   [[nodiscard]] bool slot_is_link(int slot) const { return slot < 2 * nl_; }
-  [[nodiscard]] int slot_element(int slot) const { return slot < 2 * nl_ ? slot / 2 : (slot - 2 * nl_) / 2; }
+  [[nodiscard]] bool slot_is_drive(int slot) const { return slot >= 2 * (nl_ + nc_); }
+  [[nodiscard]] int slot_element(int slot) const {
+    return slot < 2 * nl_ ? slot / 2 : slot < 2 * (nl_ + nc_) ? (slot - 2 * nl_) / 2 : (slot - 2 * (nl_ + nc_)) / 2;
+  }
 
   /// Sets the sliding velocity of contact k to exactly 0 by the M-orthogonal (momentum-keeping)
   /// velocity change Δv_a = −u/(m_a (1/m_a + 1/m_b)), Δv_b = +u/(m_b (…)): a contact decided at zero
@@ -140,8 +163,9 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] const Model& model() const { return m_; }
 
  private:
-  // kMach: the model has machines (position-dependent inertia, point links). The constant-inertia
-  // instantiation is the plain code of the linear chain, untouched by the machine terms.
+  // kMach: the model has machines (position-dependent inertia, point links) or drives (their torques
+  // and state rates). The constant-inertia instantiation is the plain code of the linear chain,
+  // untouched by the machine and drive terms.
   template <bool kMach>
   void forces(double t, const double* y, double* f, double* fc, double* p_src, double* p_fric, double* p_damp);
   template <bool kMach>
@@ -161,6 +185,10 @@ class DriveSystem final : public OdeSystem {
   /// P_ for the inverse inertias `im` (machines in the stuck set: at every evaluation).
   void form_stuck_solution(const double* im);
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
+  /// Adds the drives' torques to f; returns their power Σ M v (source work rate).
+  double drive_forces(double t, const double* y, double* f) const;
+  /// The drives' state rates into dydt.
+  void drive_rates(double t, const double* y, double* dydt) const;
 
   // Within one mode, with constant loads and friction levels, no brake ramp, no moving surface and no
   // dampers, the whole right-hand side (work and losses included) is affine in y: dy = J y + c. Each
@@ -180,11 +208,16 @@ class DriveSystem final : public OdeSystem {
 
   const Model& m_;
   int n_, nl_, nc_;
+  int nd_ = 0, nx_ = 0;                  // drives and their states in y
+  std::vector<DriveLaw> drives_;
+  std::vector<int> drive_off_;           // index of each drive's first state in y
+  std::vector<LimitMode> drive_mode_;
   bool energy_;
   std::vector<double> inv_mass_;
   std::vector<const Machine*> machine_;  // per body, null for constant inertia
   std::vector<int> machine_bodies_;      // indices of the bodies with a machine
   bool has_machines_ = false;
+  bool general_ = false;                 // machines or drives: the kMach = true instantiations
   bool stuck_machine_ = false;           // a stuck contact touches a machine: P_ per evaluation
   std::vector<double> im_;               // I(q)⁻¹ of the last evaluation (machines)
   std::vector<double> q_lo_, q_hi_;      // evaluation windows of the machines (±inf: none)

@@ -8,8 +8,8 @@
 ///   quantity := number [unit-expr];  unit-expr := factor (('*' | '/' | '·' | '.' | ' ') factor)*
 ///   factor := unit ['^' integer] | '1' | '(' unit-expr ')' ['^' integer]
 /// `a/b*c` is `(a/b)*c`; a space multiplies (`1.2 kg m^2`); `1/m` is a reciprocal unit. Units: m g t
-/// s min h N J W Pa Hz rad deg rev rpm rps %, SI prefixes (n u µ m c d k M G) on m g s N J W Pa Hz
-/// rad, and `Nm`, `kNm` for N*m. `rps` is revolutions per second (2π rad/s).
+/// s min h N J W Pa Hz rad deg rev rpm rps % A V ohm (or Ω) H, SI prefixes (n u µ m c d k M G) on m g
+/// s N J W Pa Hz rad A V ohm Ω H, and `Nm`, `kNm` for N*m. `rps` is revolutions per second (2π rad/s).
 /// Limits: exponents after '^' from -12 to 12, at most 16 nested parentheses, and the value in SI
 /// must be finite and, unless zero, not underflow to zero (`1e308 kN` is an error, not infinity).
 /// An angular speed in Hz is rejected (cycles or radians per second?) with a hint: rpm, rps, rad/s.
@@ -21,13 +21,14 @@
 
 namespace machdyn {
 
-/// Exponents of (kg, m, s).
+/// Exponents of (kg, m, s, A). The ampere is there for the electrical fields of a DC motor
+/// (armature voltage V, resistance Ω, inductance H, motor constant N·m/A = V·s/rad).
 struct Dim {
-  int kg = 0, m = 0, s = 0;
+  int kg = 0, m = 0, s = 0, A = 0;
   friend constexpr bool operator==(const Dim&, const Dim&) = default;
-  constexpr Dim operator*(const Dim& o) const { return {kg + o.kg, m + o.m, s + o.s}; }
-  constexpr Dim operator/(const Dim& o) const { return {kg - o.kg, m - o.m, s - o.s}; }
-  constexpr Dim pow(int p) const { return {kg * p, m * p, s * p}; }
+  constexpr Dim operator*(const Dim& o) const { return {kg + o.kg, m + o.m, s + o.s, A + o.A}; }
+  constexpr Dim operator/(const Dim& o) const { return {kg - o.kg, m - o.m, s - o.s, A - o.A}; }
+  constexpr Dim pow(int p) const { return {kg * p, m * p, s * p, A * p}; }
 };
 
 namespace dim {
@@ -45,6 +46,10 @@ inline constexpr Dim damping_lin{1, 0, -1};    ///< N*s/m
 inline constexpr Dim damping_rot{1, 2, -1};    ///< N*m*s/rad
 inline constexpr Dim inv_length{0, -1, 0};     ///< 1/m (rad/m)
 inline constexpr Dim acceleration{0, 1, -2};   ///< m/s^2
+inline constexpr Dim current{0, 0, 0, 1};      ///< A
+inline constexpr Dim voltage{1, 2, -3, -1};    ///< V = W/A
+inline constexpr Dim resistance{1, 2, -3, -2}; ///< Ω = V/A
+inline constexpr Dim inductance{1, 2, -2, -2}; ///< H = V·s/A
 }  // namespace dim
 
 /// A name and an SI unit for a dimension, for messages: "a torque (N*m)". Unknown: the exponents.

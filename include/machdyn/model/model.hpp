@@ -201,6 +201,40 @@ struct Load {
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
 };
 
+enum class DriveKind { dc_motor, speed_drive };
+
+/// A drive: a torque source on one body (`body`) with continuous states of its own (section
+/// `drives:`). The laws, each stated once, are in elements/dc_motor.hpp and elements/speed_drive.hpp;
+/// the states follow [q; v] in the drive system's state (analysis/drive_system.hpp).
+///   dc_motor:    L di/dt = u(t) − R i − k ω,  M = k i        (one state: the armature current i, A)
+///   speed_drive: e = ω_ref(t) − ω,  M_c = K_p e + x_I,  x_I' = (K_p/T_i) e while not limited,
+///                |M| ≤ M_max (clamping anti-windup: x_I held while limited), optional torque lag
+///                T_m M' = M_s − M      (states: x_I in N·m, and M in N·m when T_m > 0)
+/// On a translational body the same laws hold with force and velocity (k in N/A, K_p in N·s/m).
+struct Drive {
+  std::string name;
+  DriveKind kind = DriveKind::dc_motor;
+  int body = 0;
+  // dc_motor
+  double R = 0.0;      ///< armature resistance, Ω, > 0
+  double L = 0.0;      ///< armature inductance, H, > 0
+  double k = 0.0;      ///< motor constant k = k_t = k_e, N·m/A = V·s/rad (N/A on a translational body), > 0
+  double i0 = 0.0;     ///< initial current, A
+  Signal voltage = Signal::constant(0.0);  ///< u(t), V
+  // speed_drive
+  Signal reference = Signal::constant(0.0);  ///< ω_ref(t), rad/s or m/s
+  double Kp = 0.0;     ///< proportional gain K_p, N·m·s/rad or N·s/m, > 0
+  double Ti = 0.0;     ///< integral time T_i, s, > 0 (infinite: P control only)
+  double M_max = 0.0;  ///< torque limit, N·m or N, > 0 (infinite: no limit)
+  double T_m = 0.0;    ///< torque rise time, s, >= 0 (0: no lag)
+  double M0 = 0.0;     ///< initial torque (integral state and lagged torque at t = 0), N·m or N
+
+  /// Number of continuous states: 1 for a DC motor, 1 or 2 (with a torque lag) for a speed drive.
+  [[nodiscard]] int states() const { return kind == DriveKind::dc_motor ? 1 : (T_m > 0.0 ? 2 : 1); }
+  /// Times in (t0, t1) where u(t) or ω_ref(t) jumps or has a kink.
+  [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
+};
+
 enum class IntegratorChoice { automatic, dopri5, bdf };
 
 /// The `crane:` section (docs/crane-factors.md): the classes the crane analysis (analysis/crane.hpp)
@@ -245,6 +279,7 @@ struct Model {
   std::vector<Link> links;
   std::vector<Load> loads;
   std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (law: elements/contact.hpp)
+  std::vector<Drive> drives;              ///< drives with states of their own (DC motor, speed drive)
   std::string load_case;                  ///< the case applied from the file's `cases:`, or empty
   /// g in m/s² (`gravity:`), the acceleration of gravity that gives every body with `vertical` its
   /// weight; 0 when no body is vertical.
@@ -284,7 +319,8 @@ std::string unit_suffix(const char* unit);
 std::vector<std::string> chain_column_names(const Model& m);
 
 /// Output columns a run of `m` holds in memory, at most: the chain columns, three per contact or
-/// brake, one per gap, and up to eight per machine body (its parts' loads, output point, extras).
+/// brake, one per gap, up to eight per machine body (its parts' loads, output point, extras) and
+/// three per drive (torque, and current or reference speed, and the limiter mode).
 std::size_t output_columns_bound(const Model& m);
 /// Bytes the output grid of `m` needs in memory, at most: (t_end/dt_out + 2) rows × output_columns_bound
 /// × 8 bytes. The runs reserve all of it before the first step, so compile checks it against
