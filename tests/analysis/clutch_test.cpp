@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/support.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/elements/contact.hpp"
@@ -23,29 +24,14 @@
 namespace machdyn {
 namespace {
 
+using test::at;
+using test::series;
+
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "cl.yaml"), "cl.yaml"); }
 
 class Clutch : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Clutch, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
-
-const std::vector<double>& column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  ADD_FAILURE() << "no column " << name;
-  static const std::vector<double> none;
-  return none;
-}
-
-/// The value of column `name` at output time t (a grid time).
-double at(const SimulationResult& r, const std::string& name, double t) {
-  const auto& ts = column(r, "t_s");
-  const auto& v = column(r, name);
-  for (size_t i = 0; i < ts.size(); ++i)
-    if (std::abs(ts[i] - t) < 1e-9) return v[i];
-  ADD_FAILURE() << "no row at t = " << t;
-  return NAN;
-}
 
 // ---------------------------------------------------------------------------------------------
 // An independent solution of MSL CoupledClutches: four unit inertias in a chain, clutch k between
@@ -308,7 +294,7 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
   ASSERT_EQ(ev.size(), 1u);
   EXPECT_NEAR(ev[0].t, ts, 1e-9);
   const double w_end = 10.0 * 2.0 / 3.0;  // momentum: I_a ω0 / (I_a + I_b)
-  EXPECT_NEAR(column(r, "b.velocity_rad_s").back(), w_end, 1e-8);
+  EXPECT_NEAR(series(r, "b.velocity_rad_s").back(), w_end, 1e-8);
   EXPECT_NEAR(at(r, "b.velocity_rad_s", 0.3), K * 0.09 / 2, 1e-8);
 }
 
@@ -331,8 +317,8 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
       if (e.kind == "stick") ev.push_back(e);
     ASSERT_EQ(ev.size(), 1u) << app;
     EXPECT_NEAR(ev[0].t, 0.7, 1e-9) << app;
-    EXPECT_NEAR(column(r, "h.velocity_rad_s").back(), 1.0, 1e-8) << app;
-    EXPECT_EQ(column(r, "h.velocity_rad_s").back(), column(r, "a.velocity_rad_s").back());
+    EXPECT_NEAR(series(r, "h.velocity_rad_s").back(), 1.0, 1e-8) << app;
+    EXPECT_EQ(series(r, "h.velocity_rad_s").back(), series(r, "a.velocity_rad_s").back());
   }
 }
 
@@ -354,7 +340,7 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
     if (e.kind == "stick") ev.push_back(e);
   ASSERT_EQ(ev.size(), 1u);
   EXPECT_NEAR(ev[0].t, 0.6, 1e-9);
-  EXPECT_EQ(column(r, "cart.velocity_m_s").back(), 0.0);
+  EXPECT_EQ(series(r, "cart.velocity_m_s").back(), 0.0);
 }
 
 // Claim: the Stribeck law μ(s) = μ_c + (μ_s − μ_c) exp(−(s/w_s)^δ) gives μ_s at rest, tends to μ_c,

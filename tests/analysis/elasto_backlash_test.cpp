@@ -1,6 +1,7 @@
 // The elasto-backlash flank law (elements/link.hpp, `flank_law: elasto-backlash`): a mass striking a
 // spring–damper flank, checked phase by phase against the closed forms derived below, on both
 // integrators.
+#include "support/support.hpp"
 #include "machdyn/analysis/simulate.hpp"
 
 #include <cmath>
@@ -13,23 +14,10 @@
 namespace machdyn {
 namespace {
 
+using test::at;
+using test::series;
+
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
-
-const std::vector<double>& col(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  ADD_FAILURE() << "no column " << name;
-  static std::vector<double> none;
-  return none;
-}
-
-double at(const SimulationResult& r, const std::string& name, double t) {
-  const auto& ts = r.columns[0];
-  for (size_t i = 0; i < ts.size(); ++i)
-    if (std::abs(ts[i] - t) < 1e-12) return col(r, name)[i];
-  ADD_FAILURE() << "no output at t = " << t;
-  return NAN;
-}
 
 class ElastoBacklash : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, ElastoBacklash, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
@@ -87,7 +75,7 @@ TEST_P(ElastoBacklash, ImpactOnAFlankFollowsThePhaseClosedForms) {
   ASSERT_EQ(t_opened.size(), 1u);
   EXPECT_NEAR(t_closed[0], t0, 1e-12);
   EXPECT_NEAR(t_opened[0], t0 + tau1 + tau2, 1e-9 * t_opened[0]);
-  EXPECT_NEAR(col(r, "A.velocity_m_s").back(), v_out, 1e-8);
+  EXPECT_NEAR(series(r, "A.velocity_m_s").back(), v_out, 1e-8);
   // Phase 1 on the grid: F = 2 c e (the damper acts as a second spring), not c e + d ė.
   const double t_in = 0.0105;
   ASSERT_LT(t_in, t0 + tau1);

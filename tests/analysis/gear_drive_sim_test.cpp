@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/support.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/gears/synthesis.hpp"
 #include "machdyn/io/model_file.hpp"
@@ -14,6 +15,9 @@
 
 namespace machdyn {
 namespace {
+
+using test::at;
+using test::series;
 
 const std::string kGearSpec = std::string(MACHDYN_SOURCE_DIR) + "/examples/walking-drive-gears.yaml";
 
@@ -37,12 +41,6 @@ simulation: {{t_end: {}, dt_out: 0.001, rtol: {}, atol: 1e-13, integrator: dopri
   return compile_model(root, "drive.yaml");
 }
 
-const std::vector<double>& column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  throw std::runtime_error("no column " + name);
-}
-
 double kinematic_stepwise_delta() {
   const auto gm = gears::compile_gears(read_yaml_file(kGearSpec));
   return gears::speed_uniformity(gm, gears::synthesize(gm)).stepwise_delta;
@@ -57,7 +55,7 @@ TEST(GearDriveSim, ContinuousRatioGivesConstantTravelSpeed) {
   d.I_H = 0.0;
   const auto r = simulate(compile(d));
   const double u = (M_PI / 2) / (M_PI / 4 + 0.9375 / 2), V = 0.320 * 4.0 / u;
-  for (double v : column(r, "drive.travel_speed_m_s")) EXPECT_NEAR(v, V, 1e-9);
+  for (double v : series(r, "drive.travel_speed_m_s")) EXPECT_NEAR(v, V, 1e-9);
   ASSERT_EQ(r.machines.size(), 1u);
   EXPECT_TRUE(r.machines[0].window);
   EXPECT_LT(r.machines[0].delta, 1e-9);
@@ -125,10 +123,10 @@ TEST(GearDriveSim, EnergyBalanceHoldsWithImpactLosses) {
     d.loads = "loads:\n  motor: {type: constant, body: drive, value: 60}\n";
     const Model m = compile(d);
     const auto r = simulate(m);
-    const auto& q = column(r, "drive.position_rad");
-    const auto& w = column(r, "drive.velocity_rad_s");
-    const auto& X = column(r, "drive.travel_m");
-    const auto& I = column(r, "drive.inertia_kg_m2");
+    const auto& q = series(r, "drive.position_rad");
+    const auto& w = series(r, "drive.velocity_rad_s");
+    const auto& X = series(r, "drive.travel_m");
+    const auto& I = series(r, "drive.inertia_kg_m2");
     const size_t e = q.size() - 1;
     const double W_motor = 60.0 * (q[e] - q[0]);
     const double W_res = 147.0 * (X[e] - X[0]);

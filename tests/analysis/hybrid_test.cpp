@@ -18,6 +18,9 @@
 namespace machdyn {
 namespace {
 
+using test::at;
+using test::series;
+
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
 // Every event-driven claim holds on both integrators: the test is parameterized over them.
@@ -34,28 +37,11 @@ Model with_integrator(Model m, IntegratorChoice ic) {
 }
 SimulationResult run(const Model& m, IntegratorChoice ic) { return simulate(with_integrator(m, ic)); }
 
-const std::vector<double>& col(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  ADD_FAILURE() << "no column " << name;
-  static std::vector<double> none;
-  return none;
-}
-
 std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element, const std::string& kind = "") {
   std::vector<ModeEvent> out;
   for (const auto& e : r.hybrid.events)
     if (e.element == element && e.kind != "initial" && (kind.empty() || e.kind == kind)) out.push_back(e);
   return out;
-}
-
-/// Value of a column at output time t (an output point).
-double at(const SimulationResult& r, const std::string& name, double t) {
-  const auto& ts = r.columns[0];
-  for (size_t i = 0; i < ts.size(); ++i)
-    if (std::abs(ts[i] - t) < 1e-12) return col(r, name)[i];
-  ADD_FAILURE() << "no output at t = " << t;
-  return NAN;
 }
 
 // Claim: a body stays stuck while the load is within the static limit and slips exactly when it
@@ -335,10 +321,10 @@ TEST_P(Hybrid, EnergyBalanceOverHundredsOfEvents) {
   // m2 never moves backwards; the adhesion dissipates F_d ∫|u| dt with F_d = 0.11 · 50 kN = 5.5 kN,
   // and since it only ever slides forwards (u = v_k − v_2 > 0) and u ≡ 0 while stuck, ∫|u| dt is
   // the relative travel x_k − x_2 at t_end (both start at 0).
-  const double x1 = col(r, "m1.position_m").back(), xk = col(r, "mk.position_m").back();
-  const double x2 = col(r, "m2.position_m").back();
+  const double x1 = series(r, "m1.position_m").back(), xk = series(r, "mk.position_m").back();
+  const double x2 = series(r, "m2.position_m").back();
   EXPECT_NEAR(E.source_work, 6900.0 * x1, tol * E.source_work);
-  for (double v2 : col(r, "m2.velocity_m_s")) ASSERT_GE(v2, 0.0) << "m2 moved backwards";
+  for (double v2 : series(r, "m2.velocity_m_s")) ASSERT_GE(v2, 0.0) << "m2 moved backwards";
   for (const auto& p : r.hybrid.slip_phases)
     if (p.contact == "adhesion") {
       ASSERT_EQ(p.direction, 1) << "adhesion slid backwards at " << p.t_start;
@@ -368,17 +354,17 @@ TEST_P(Hybrid, RisingKineticTableNeverSlidesBackwards) {
     m.simulation.max_steps = 200'000;
     try {
       const SimulationResult r = run(m, GetParam());
-      for (double v : col(r, "A.velocity_m_s")) EXPECT_GE(v, 0.0);
+      for (double v : series(r, "A.velocity_m_s")) EXPECT_GE(v, 0.0);
     } catch (const SolverError& e) {
       EXPECT_NE(std::string(e.what()).find("maximum number of steps"), std::string::npos) << e.what();
     }
   } else {
     const SimulationResult r = run(m, GetParam());
     const double u_star = 3.0 / 7e9;
-    for (double v : col(r, "A.velocity_m_s")) EXPECT_GE(v, 0.0);
-    for (double md : col(r, "f.mode")) EXPECT_EQ(md, 1.0);
-    EXPECT_NEAR(col(r, "A.velocity_m_s").back(), u_star, 1e-6 * u_star);
-    EXPECT_NEAR(col(r, "f.force_N").back(), 5.0, 1e-6);
+    for (double v : series(r, "A.velocity_m_s")) EXPECT_GE(v, 0.0);
+    for (double md : series(r, "f.mode")) EXPECT_EQ(md, 1.0);
+    EXPECT_NEAR(series(r, "A.velocity_m_s").back(), u_star, 1e-6 * u_star);
+    EXPECT_NEAR(series(r, "f.force_N").back(), 5.0, 1e-6);
   }
   const Model b = model_of("bodies: {A: {type: translational, mass: 1 kg, velocity: 1 m/s}}\n" + contact +
                            "loads: {P: {type: constant, body: A, value: 1 N}}\n"

@@ -41,4 +41,11 @@ extern const char* const kCrankSliderBody;
 /// Index of the output column called `name`; records a test failure if there is none.
 std::size_t column(const SimulationResult& r, const std::string& name);
 
+/// The output column called `name`; records a test failure and gives an empty series if there is none.
+const std::vector<double>& series(const SimulationResult& r, const std::string& name);
+
+/// The value of column `name` in the output row at time t (within `tol` s); a test failure and NaN
+/// if no row is there.
+double at(const SimulationResult& r, const std::string& name, double t, double tol = 1e-9);
+
 }  // namespace machdyn::test

@@ -4,6 +4,7 @@
 #include "machdyn/io/plot.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -93,6 +94,23 @@ std::size_t column(const SimulationResult& r, const std::string& name) {
     if (r.column_names[c] == name) return c;
   ADD_FAILURE() << "no column " << name;
   return 0;
+}
+
+const std::vector<double>& series(const SimulationResult& r, const std::string& name) {
+  static const std::vector<double> none;
+  for (std::size_t c = 0; c < r.column_names.size(); ++c)
+    if (r.column_names[c] == name) return r.columns[c];
+  ADD_FAILURE() << "no column " << name;
+  return none;
+}
+
+double at(const SimulationResult& r, const std::string& name, double t, double tol) {
+  const auto& ts = series(r, "t_s");
+  const auto& v = series(r, name);
+  for (std::size_t i = 0; i < ts.size() && i < v.size(); ++i)
+    if (std::abs(ts[i] - t) <= tol) return v[i];
+  ADD_FAILURE() << "no output row of " << name << " at t = " << t;
+  return std::nan("");
 }
 
 }  // namespace machdyn::test
