@@ -128,9 +128,8 @@ LinkLaw::Kinematics DriveSystem::point_kinematics(int l, const double* y) const 
   return links_[static_cast<size_t>(l)].kinematics(machine_positions(y), y + n_);
 }
 
-double DriveSystem::link_load_rate(int l, const double* y, const double* dy) const {
-  const LinkLaw& k = links_[static_cast<size_t>(l)];
-  return k.load_rate(k.point ? machine_positions(y) : y, k.point ? y + n_ : dy, dy + n_, gap_[static_cast<size_t>(l)]);
+double DriveSystem::point_load_rate(int l, const double* y, const double* dy) const {
+  return links_[static_cast<size_t>(l)].load_rate(machine_positions(y), y + n_, dy + n_, gap_[static_cast<size_t>(l)]);
 }
 
 void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {

@@ -8,11 +8,16 @@ namespace machdyn {
 
 PeakTracker::PeakTracker(int state_size, const PeakSignals& signals)
     : signals_(signals), sig_(static_cast<size_t>(signals.count())), y_(static_cast<size_t>(state_size)),
-      dy_(static_cast<size_t>(state_size)) {}
+      dy_(static_cast<size_t>(state_size)), vals_(static_cast<size_t>(signals.count())),
+      rates_(static_cast<size_t>(signals.count())) {}
 
 void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate) {
+  consider_value(j, t, signals_.value(j, y), y, on_new_max, on_candidate);
+}
+
+void PeakTracker::consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
+                                 const Candidate& on_candidate) {
   Extremes& g = sig_[static_cast<size_t>(j)];
-  const double v = signals_.value(j, y);
   if (!started_ || v > g.max) {
     g.max = v, g.t_max = t;
     if (on_new_max) on_new_max(j, true, t, y);
@@ -60,15 +65,17 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     s.derivative(tb, db_.data());
     y1 = yb_.data(), dy1 = db_.data();
   }
+  signals_.rates(y1, dy1, rates_.data());
+  signals_.values(y1, vals_.data());
   for (int j = 0; j < n; ++j) {
     Extremes& g = sig_[static_cast<size_t>(j)];
-    const double r1 = signals_.rate(j, y1, dy1);
+    const double r1 = rates_[static_cast<size_t>(j)];
     if ((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) {
       const double te = locate_extremum(s, j, ta, g.rate_prev, tb, r1);
       s.interpolate(te, y_.data());
       consider(j, te, y_.data(), on_new_max, on_candidate);
     }
-    consider(j, tb, y1, on_new_max, on_candidate);
+    consider_value(j, tb, vals_[static_cast<size_t>(j)], y1, on_new_max, on_candidate);
     g.rate_prev = r1;
   }
   last_end_ = tb == s.t() ? tb : -1.0;

@@ -43,6 +43,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (m.loads[k].kind != LoadKind::constant) varying_.push_back(k);
     for (int i = 0; i < n_; ++i)
       if (m.bodies[static_cast<size_t>(i)].machine) machine_bodies_.push_back(i);
+    has_events_ = nc_ > 0 || jumps_.count() > 0;
+    for (int l = 0; l < nl_; ++l) has_events_ = has_events_ || sys_.link(l).gap;
+    for (int d = 0; d < nd_; ++d) has_events_ = has_events_ || sys_.drive(d).has_events();
     on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
       ingredients(t, y, (is_max ? at_max_ : at_min_)[static_cast<size_t>(l)]);
     };
@@ -111,7 +114,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.sparse_jacobian(t, y, J);
   }
   [[nodiscard]] std::string state_name(int i) const override { return sys_.state_name(i); }
-  [[nodiscard]] int event_count() const override { return sys_.event_slots() + jumps_.count(); }
+  /// None when no element has an event function (a chain of springs and loads): the driver then
+  /// evaluates none.
+  [[nodiscard]] int event_count() const override { return has_events_ ? sys_.event_slots() + jumps_.count() : 0; }
   void event_functions(double t, const double* y, double* g) override {
     sys_.event_functions(t, y, g);
     jumps_.event_functions(y, g + sys_.event_slots());
@@ -139,6 +144,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return sys_.link_load_rate(l, y, dy);
   }
   [[nodiscard]] bool rate_reads_state(int l) const override { return sys_.link_rate_reads_state(l); }
+  void values(const double* y, double* out) const override {
+    for (int l = 0; l < nl_; ++l) out[l] = sys_.link_load(l, y);
+  }
+  void rates(const double* y, const double* dy, double* out) const override {
+    for (int l = 0; l < nl_; ++l) out[l] = sys_.link_load_rate(l, y, dy);
+  }
 
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override { report_progress(st, start_, false); }
@@ -509,6 +520,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   DriveSystem sys_;
   detail::MachineJumps jumps_;
   int n_, N_, nl_, nc_, nd_;
+  bool has_events_ = false;  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
   PeakTracker::Candidate on_candidate_;

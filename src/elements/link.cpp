@@ -19,12 +19,7 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   return k;
 }
 
-double LinkLaw::load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
-  if (!transmits(g)) return 0.0;
-  if (!point) {
-    if (capped && on_cap(linear(q), linear(v), g)) return 2.0 * c * linear(v);
-    return c * linear(v) + d * linear(acc);
-  }
+double LinkLaw::point_load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
   // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i).
   double delta = 0, rate = 0, dd = 0, p, dp, ddp;
   if (a >= 0) {

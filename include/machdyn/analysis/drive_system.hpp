@@ -115,7 +115,11 @@ class DriveSystem final : public OdeSystem {
     return links_[static_cast<size_t>(l)].load(s.delta, s.rate, gap_[static_cast<size_t>(l)]);
   }
   /// The rate dF/dt of link l from the state y and its derivative dy (0 if open).
-  [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const;
+  [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const {
+    const LinkLaw& k = links_[static_cast<size_t>(l)];
+    if (k.point) [[unlikely]] return point_load_rate(l, y, dy);
+    return k.load_rate(y, dy, dy + n_, gap_[static_cast<size_t>(l)]);
+  }
   /// Whether link l's load depends on q nonlinearly (a machine's output point).
   /// Whether link l's load rate needs the state itself (a machine's output point, or the capped
   /// flank law, whose branch depends on δ and δ̇), not only its derivative.
@@ -176,6 +180,7 @@ class DriveSystem final : public OdeSystem {
   void rhs_general(double t, const double* y, double* dydt);
   /// Kinematics of a link to a machine's output point (out of line: the plain links stay inline).
   [[nodiscard]] LinkLaw::Kinematics point_kinematics(int l, const double* y) const;
+  [[nodiscard]] double point_load_rate(int l, const double* y, const double* dy) const;
   /// The positions machines are evaluated at (y itself, or clamped into the evaluation windows).
   [[nodiscard]] const double* machine_positions(const double* y) const;
   /// I_i(q_i)⁻¹ of every body into `im` (constant bodies: 1/I).

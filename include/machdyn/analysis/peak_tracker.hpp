@@ -23,6 +23,15 @@ class PeakSignals {
   [[nodiscard]] virtual double rate(int j, const double* y, const double* dy) const = 0;
   /// Whether rate(j, …) reads y (else only dy: the tracker then skips interpolating y).
   [[nodiscard]] virtual bool rate_reads_state(int /*j*/) const { return false; }
+  /// All values s_j(y) into out (count()), and all rates into rate_out: one call per step instead
+  /// of one per signal and quantity (the per-step path of the tracker). Defaults loop over value()
+  /// and rate(); a system overrides them to keep its loop free of virtual calls.
+  virtual void values(const double* y, double* out) const {
+    for (int j = 0; j < count(); ++j) out[j] = value(j, y);
+  }
+  virtual void rates(const double* y, const double* dy, double* rate_out) const {
+    for (int j = 0; j < count(); ++j) rate_out[j] = rate(j, y, dy);
+  }
 };
 
 /// The nonzero weights of a signal s = Σ_k w[k] y[idx[k]].
@@ -76,6 +85,8 @@ class PeakTracker {
     double rate_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
   };
   void consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
+  void consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
+                      const Candidate& on_candidate);
   double locate_extremum(const Stepper& s, int j, double t0, double r0, double t1, double r1);
 
   const PeakSignals& signals_;
@@ -83,6 +94,7 @@ class PeakTracker {
   bool started_ = false;
   double last_end_ = -1.0;  // end of the last piece when it ended its step, else −1
   std::vector<double> y_, dy_, yb_, db_, ym_;
+  std::vector<double> vals_, rates_;  // the signals' values and rates at the end of a piece
 };
 
 }  // namespace machdyn

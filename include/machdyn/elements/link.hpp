@@ -149,7 +149,14 @@ struct LinkLaw {
     if (b >= 0) add(b, -c), add(n + b, -d);
   }
   /// The rate dF/dt from the state (q, v) and its derivative (v, acc), mode g (on the cap: 2 c δ̇).
-  [[nodiscard]] double load_rate(const double* q, const double* v, const double* acc, GapMode g) const;
+  [[nodiscard]] double load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
+    if (!transmits(g)) return 0.0;
+    if (point) [[unlikely]] return point_load_rate(q, v, acc, g);
+    if (capped && on_cap(linear(q), linear(v), g)) return 2.0 * c * linear(v);
+    return c * linear(v) + d * linear(acc);
+  }
+  /// load_rate of a link with a machine's output point at an end (p′, p″ of the point).
+  [[nodiscard]] double point_load_rate(const double* q, const double* v, const double* acc, GapMode g) const;
   /// The terms of ∂(acceleration)/∂(q, v) before the division by the inertias: for a plain link
   /// calls add(row, column, value) with columns < n for q and ≥ n for v. Mode g, off the cap of the
   /// elasto-backlash law (its Jacobian on the cap is 2c, 0: jacobian(n, g, on_cap, add)).
