@@ -380,21 +380,34 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
   const int N = size();
   AffineMode a;
   a.c.resize(N);
-  Eigen::MatrixXd J(N, N);
+  Eigen::MatrixXd J(N, N), G(nc_, N);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(N), d(N);
   rhs_general<false>(0.0, y.data(), a.c.data());
+  a.force_c = Eigen::Map<const Eigen::VectorXd>(fc_.data(), nc_);
   for (int j = 0; j < N; ++j) {
     y(j) = 1.0;
     rhs_general<false>(0.0, y.data(), d.data());
     J.col(j) = d - a.c;
+    G.col(j) = Eigen::Map<const Eigen::VectorXd>(fc_.data(), nc_) - a.force_c;
     y(j) = 0.0;
   }
-  for (int i = 0; i < N; ++i) {
-    a.row_start.push_back(static_cast<int>(a.col.size()));
-    for (int j = 0; j < N; ++j)
-      if (J(i, j) != 0.0) a.col.push_back(j), a.val.push_back(J(i, j));
+  auto compress = [N](const Eigen::MatrixXd& M, std::vector<int>& start, std::vector<int>& col, std::vector<double>& val) {
+    for (int i = 0; i < M.rows(); ++i) {
+      start.push_back(static_cast<int>(col.size()));
+      for (int j = 0; j < N; ++j)
+        if (M(i, j) != 0.0) col.push_back(j), val.push_back(M(i, j));
+    }
+    start.push_back(static_cast<int>(col.size()));
+  };
+  compress(J, a.row_start, a.col, a.val);
+  a.first_row = n_;
+  for (int i = 0; i < n_; ++i) {
+    const int k = a.row_start[static_cast<size_t>(i)];
+    if (a.c[i] != 0.0 || a.row_start[static_cast<size_t>(i) + 1] != k + 1 || a.col[static_cast<size_t>(k)] != n_ + i ||
+        a.val[static_cast<size_t>(k)] != 1.0)
+      a.first_row = 0;
   }
-  a.row_start.push_back(static_cast<int>(a.col.size()));
+  compress(G, a.force_start, a.force_col, a.force_val);
   return affine_cache_.emplace(std::move(key), std::move(a)).first->second;
 }
 
@@ -417,7 +430,8 @@ void DriveSystem::rhs(double t, const double* y, double* dydt) {
   const int* col = a.col.data();
   const double* val = a.val.data();
   const double* c = a.c.data();
-  for (int i = 0; i < N; ++i) {
+  std::copy(y + n_, y + n_ + a.first_row, dydt);
+  for (int i = a.first_row; i < N; ++i) {
     double s = c[i];
     for (int k = rs[i]; k < rs[i + 1]; ++k) s += val[k] * y[col[k]];
     dydt[i] = s;
@@ -532,9 +546,20 @@ double DriveSystem::elastic_energy(const double* y) const {
 
 void DriveSystem::event_functions(double t, const double* y, double* g) {
   if (!stuck_.empty()) {
-    // λ of the stuck contacts, into fc_.
-    std::vector<double>& acc = f_;
-    evaluate(t, y, acc.data(), fc_.data());
+    // λ of the stuck contacts, into fc_: from the mode's affine rows where the mode is affine.
+    if (affine_eligible_ && !dense_) {
+      if (!affine_) affine_ = &compile_affine();
+      const AffineMode& a = *affine_;
+      for (int k = 0; k < nc_; ++k) {
+        double s = a.force_c[k];
+        for (int i = a.force_start[static_cast<size_t>(k)]; i < a.force_start[static_cast<size_t>(k) + 1]; ++i)
+          s += a.force_val[static_cast<size_t>(i)] * y[a.force_col[static_cast<size_t>(i)]];
+        fc_[static_cast<size_t>(k)] = s;
+      }
+    } else {
+      std::vector<double>& acc = f_;
+      evaluate(t, y, acc.data(), fc_.data());
+    }
   }
   for (int l = 0; l < nl_; ++l) {
     const LinkLaw& k = links_[static_cast<size_t>(l)];

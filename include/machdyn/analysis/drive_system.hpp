@@ -203,6 +203,12 @@ class DriveSystem final : public OdeSystem {
     Eigen::VectorXd c;
     std::vector<int> row_start, col;  // J in compressed rows: a handful of nonzeros per row
     std::vector<double> val;
+    int first_row = 0;  // rows before it are q̇_i = v_i (copied, not multiplied)
+    // The contact forces F_k (stuck: λ) are affine in y in the mode too: their rows, for the event
+    // functions of stuck contacts (|λ| ≤ F_s) without solving the equations of motion again.
+    Eigen::VectorXd force_c;
+    std::vector<int> force_start, force_col;
+    std::vector<double> force_val;
   };
   bool affine_eligible_ = false;
   const AffineMode* affine_ = nullptr;  // the current mode's, or null until compiled
