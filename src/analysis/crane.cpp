@@ -206,6 +206,10 @@ Model phi2_case_model(const Model& m, double vh) {
   out.simulation.initial = InitialState::given;
   for (int i = 0; i < m.dof(); ++i)
     if (R(i) != 0.0) out.bodies[static_cast<size_t>(i)].v0 = R(i) * beta;
+  // A speed-controlled drive of the hoist runs at that steady speed: its reference holds it (its
+  // own ramp would start from rest and brake the drive that the case starts at vh).
+  for (auto& d : out.drives)
+    if (d.kind == DriveKind::speed_drive && R(d.body) != 0.0) d.reference = Signal::constant(R(d.body) * beta);
   return out;
 }
 

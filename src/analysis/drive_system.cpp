@@ -309,7 +309,7 @@ __attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* 
   for (int d = 0; d < nd_; ++d) {
     const DriveLaw& k = drives_[static_cast<size_t>(d)];
     const int o = drive_off_[static_cast<size_t>(d)];
-    k.rates(t, y[n_ + k.body], y + o, drive_mode_[static_cast<size_t>(d)], dydt + o);
+    k.rates(t, y[n_ + k.body], y + o, drive_mode_[static_cast<size_t>(d)], dydt + o, dydt[n_ + k.body]);
   }
 }
 
@@ -576,11 +576,35 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
   }
+  // A speed drive on its limit reads the body's acceleration (elements/speed_drive.hpp).
+  bool accelerations = false;
+  for (int d = 0; d < nd_; ++d) accelerations = accelerations || on_limit(drive_mode_[static_cast<size_t>(d)]);
+  if (accelerations) evaluate(t, y, f_.data(), fc_.data());
   for (int d = 0; d < nd_; ++d) {
     const DriveLaw& k = drives_[static_cast<size_t>(d)];
     k.events(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)],
-             g + 2 * (nl_ + nc_ + d));
+             g + 2 * (nl_ + nc_ + d), accelerations ? f_[static_cast<size_t>(k.body)] : 0.0);
   }
+}
+
+LimitMode DriveSystem::natural_drive_mode(int d, double t, const double* y) {
+  const DriveLaw& k = drives_[static_cast<size_t>(d)];
+  const LimitMode cur = drive_mode(d);
+  if (!on_limit(cur)) return k.natural_mode(t, y[n_ + k.body], y + drive_offset(d), cur);
+  // On the limit a jump of ω_ref' (a ramp's end) may end the on-limit motion: its event functions.
+  evaluate(t, y, f_.data(), fc_.data());
+  double g[2];
+  k.events(t, y[n_ + k.body], y + drive_offset(d), cur, g, f_[static_cast<size_t>(k.body)]);
+  return g[0] < 0.0 ? LimitMode::linear : g[1] < 0.0 ? SpeedDriveLaw::mode_after(cur, 1) : cur;
+}
+
+LimitMode DriveSystem::settle_drive_mode(int d, double t, const double* y, LimitMode now) {
+  const DriveLaw& k = drives_[static_cast<size_t>(d)];
+  const LimitMode old = drive_mode(d);
+  if (on_limit(old) || on_limit(now) || !k.has_events()) return now;
+  // At the limit ω' is the same in both modes (the torque is ±M_max either way, or a lagged state).
+  evaluate(t, y, f_.data(), fc_.data());
+  return k.settle(t, y[n_ + k.body], old, now, f_[static_cast<size_t>(k.body)]);
 }
 
 void DriveSystem::project_velocities(double t, double* y) const {

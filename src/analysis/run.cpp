@@ -317,7 +317,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const LimitMode old = sys_.drive_mode(d);
     if (!initial && now == old) return;
     sys_.set_drive_mode(d, now);
-    record(t, initial ? "initial" : now == LimitMode::linear ? "unlimited" : "limited", nl_ + nc_ + d,
+    record(t, initial ? "initial" : now == LimitMode::linear ? "unlimited" : on_limit(now) ? "on limit" : "limited", nl_ + nc_ + d,
            initial ? "" : to_string(old), to_string(now));
   }
 
@@ -454,7 +454,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int slot : fired) {
       const int e = sys_.slot_element(slot);
       if (sys_.slot_is_drive(slot)) {  // a speed drive reaches or leaves its torque limit
-        set_drive_mode(e, t, SpeedDriveLaw::mode_after(sys_.drive_mode(e), slot % 2), false);
+        const LimitMode now = SpeedDriveLaw::mode_after(sys_.drive_mode(e), slot % 2);
+        set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false);
       } else if (sys_.slot_is_link(slot)) {
         const GapMode old = sys_.gap_mode(e);
         const GapMode now = LinkLaw::mode_after(old, slot % 2);

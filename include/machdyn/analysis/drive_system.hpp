@@ -90,11 +90,12 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] int drive_offset(int d) const { return drive_off_[static_cast<size_t>(d)]; }
   [[nodiscard]] LimitMode drive_mode(int d) const { return drive_mode_[static_cast<size_t>(d)]; }
   void set_drive_mode(int d, LimitMode md) { drive_mode_[static_cast<size_t>(d)] = md; }
-  /// The mode drive d's state implies on its own (initial state, time events).
-  [[nodiscard]] LimitMode natural_drive_mode(int d, double t, const double* y) const {
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    return k.natural_mode(t, y[n_ + k.body], y + drive_offset(d), drive_mode(d));
-  }
+  /// The mode drive d's state implies on its own (initial state, time events; on its limit: whether
+  /// the on-limit motion goes on after a jump of the reference's slope).
+  [[nodiscard]] LimitMode natural_drive_mode(int d, double t, const double* y);
+  /// The mode of drive d after its event switches it to `now` at its limit: `now`, or on-limit±
+  /// when neither the held nor the integrating law would stay there (SpeedDriveLaw::settle).
+  [[nodiscard]] LimitMode settle_drive_mode(int d, double t, const double* y, LimitMode now);
   /// The torque (or force) of drive d on its body, N·m or N.
   [[nodiscard]] double drive_torque(int d, double t, const double* y) const {
     const DriveLaw& k = drives_[static_cast<size_t>(d)];

@@ -28,21 +28,26 @@ struct DriveLaw {
   [[nodiscard]] double torque(double t, double omega, const double* x, LimitMode md) const {
     return kind == DriveKind::dc_motor ? dc.torque(x[0]) : sd.torque(t, omega, x, md);
   }
-  /// The state rates x'.
-  void rates(double t, double omega, const double* x, LimitMode md, double* dx) const {
+  /// The state rates x' (omega_dot: the body's acceleration, read by a speed drive on its limit).
+  void rates(double t, double omega, const double* x, LimitMode md, double* dx, double omega_dot) const {
     if (kind == DriveKind::dc_motor) dx[0] = dc.current_rate(t, omega, x[0]);
-    else sd.rates(t, omega, x, md, dx);
+    else sd.rates(t, omega, x, md, dx, omega_dot);
   }
   [[nodiscard]] DriveJacobian jacobian(LimitMode md) const;
   /// Whether the drive has limiter events (a speed drive with a finite torque limit).
   [[nodiscard]] bool has_events() const { return kind == DriveKind::speed_drive && sd.limited(); }
   /// Two event functions, each ≥ 0 while mode md holds (1 for a drive without events).
-  void events(double t, double omega, const double* x, LimitMode md, double* g) const {
+  void events(double t, double omega, const double* x, LimitMode md, double* g, double omega_dot) const {
     if (!has_events()) {
       g[0] = g[1] = 1.0;
       return;
     }
-    sd.events(sd.command(t, omega, x[0]), md, g);
+    sd.events(sd.command(t, omega, x[0]), sd.ref->value(t) - omega, sd.ref->slope(t) - omega_dot, md, g);
+  }
+  /// The mode after a switch old → now at the limit (SpeedDriveLaw::settle).
+  [[nodiscard]] LimitMode settle(double t, double omega, LimitMode old, LimitMode now, double omega_dot) const {
+    if (!has_events()) return now;
+    return sd.settle(old, now, sd.ref->value(t) - omega, sd.ref->slope(t) - omega_dot);
   }
   /// The mode the state implies on its own (initial state, time events).
   [[nodiscard]] LimitMode natural_mode(double t, double omega, const double* x, LimitMode current) const {

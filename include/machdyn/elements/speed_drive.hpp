@@ -13,11 +13,21 @@
 /// Anti-windup by clamping (conditional integration): while the torque is limited the integral is
 /// held, so the drive leaves the limit as soon as K_p e + x_I falls back inside it, without the
 /// overshoot a wound-up integrator would cause.
+/// On the limit (M_c = ±M_max) the two laws can point against each other: held, M_c' = K_p ė < 0
+/// pulls the command inside; integrating, M_c' = K_p ė + (K_p/T_i) e > 0 pushes it out again (a
+/// speed that overtakes its reference while the error is still large, typically with a torque lag).
+/// Switching would chatter; the exact (Filippov) motion is the mode `on-limit±`: the command stays
+/// on the limit, M_s = ±M_max, and the integral integrates just enough for it,
+///   x_I' = −K_p ė = K_p (ω' − ω_ref'(t))            (ω' the body's acceleration)
 /// The limit is exact, not smoothed: each mode is a smooth law and the switches are events
-/// (each event function ≥ 0 while its mode holds):
-///   linear:    g₀ = M_max − M_c,  g₁ = M_max + M_c     (g₀ < 0: limited+, g₁ < 0: limited-)
-///   limited+:  g₀ = M_c − M_max                          (< 0: back to linear)
-///   limited-:  g₁ = −M_max − M_c                         (< 0: back to linear)
+/// (each event function ≥ 0 while its mode holds; s = +1 for the upper limit, −1 for the lower):
+///   linear:     g₀ = M_max − M_c,  g₁ = M_max + M_c     (g₀ < 0: limited+, g₁ < 0: limited-)
+///   limited+:   g₀ = M_c − M_max                          (< 0: back to linear)
+///   limited-:   g₁ = −M_max − M_c                         (< 0: back to linear)
+///   on-limit±:  g₀ = s (K_p ė + (K_p/T_i) e)  (< 0: linear pulls inside: linear)
+///               g₁ = −s K_p ė                  (< 0: held pushes outside: limited±)
+/// A switch between linear and limited± lands on on-limit± when, at the limit, held points inside
+/// and integrating points outside (settle()).
 /// A model without a limit (M_max = ∞) has no such events. On a translational body the same law
 /// holds with velocity (m/s) and force (N), K_p in N·s/m. Valid for K_p > 0, T_i > 0, M_max > 0,
 /// T_m ≥ 0 (compile checks); nothing is thrown.
@@ -30,7 +40,10 @@
 namespace machdyn {
 
 /// The mode of a speed drive's torque limiter.
-enum class LimitMode : int { limited_neg = -1, linear = 0, limited_pos = 1 };
+enum class LimitMode : int { on_limit_neg = -2, limited_neg = -1, linear = 0, limited_pos = 1, on_limit_pos = 2 };
+/// +1 for limited+ and on-limit+, −1 for the lower ones, 0 for linear.
+inline int limit_side(LimitMode m) { return static_cast<int>(m) > 0 ? 1 : static_cast<int>(m) < 0 ? -1 : 0; }
+inline bool on_limit(LimitMode m) { return m == LimitMode::on_limit_pos || m == LimitMode::on_limit_neg; }
 const char* to_string(LimitMode m);
 
 /// The Jacobian terms of a drive with up to two states x: its torque M and the state rates x'
@@ -51,19 +64,21 @@ struct SpeedDriveLaw {
   [[nodiscard]] double command(double t, double omega, double xI) const { return Kp * (ref->value(t) - omega) + xI; }
   /// M_s: the command through the limiter in mode md.
   [[nodiscard]] double limited_command(double Mc, LimitMode md) const {
-    return md == LimitMode::linear ? Mc : md == LimitMode::limited_pos ? M_max : -M_max;
+    return md == LimitMode::linear ? Mc : limit_side(md) * M_max;
   }
   /// The torque on the body: M_s, or the lagged torque x[1].
   [[nodiscard]] double torque(double t, double omega, const double* x, LimitMode md) const {
     return lagged() ? x[1] : limited_command(command(t, omega, x[0]), md);
   }
-  /// The state rates: x_I' and (lagged) M'.
-  void rates(double t, double omega, const double* x, LimitMode md, double* dx) const {
+  /// The state rates: x_I' and (lagged) M'. omega_dot: the body's acceleration ω' (read on the limit).
+  void rates(double t, double omega, const double* x, LimitMode md, double* dx, double omega_dot) const {
     const double e = ref->value(t) - omega;
-    dx[0] = md == LimitMode::linear ? Kp / Ti * e : 0.0;
+    dx[0] = md == LimitMode::linear ? Kp / Ti * e : on_limit(md) ? -Kp * (ref->slope(t) - omega_dot) : 0.0;
     if (lagged()) dx[1] = (limited_command(Kp * e + x[0], md) - x[1]) / T_m;
   }
-  /// Jacobian terms in mode md (the limited modes hold M_s constant):
+  /// Jacobian terms in mode md (the limited and on-limit modes hold M_s constant; on the limit the
+  /// coupling of x_I' to the acceleration ω' is left out: the Newton iteration of an implicit method
+  /// converges with it missing, the solution does not depend on it):
   ///   T_m = 0:  ∂M/∂ω = −K_p, ∂M/∂x_I = 1 (linear; 0 limited);  ∂x_I'/∂ω = −K_p/T_i (linear)
   ///   T_m > 0:  ∂M/∂x₁ = 1;  ∂x₁'/∂ω = −K_p/T_m, ∂x₁'/∂x_I = 1/T_m (linear), ∂x₁'/∂x₁ = −1/T_m
   [[nodiscard]] DriveJacobian jacobian(LimitMode md) const {
@@ -79,10 +94,17 @@ struct SpeedDriveLaw {
     j.dx_dx[1][1] = -1.0 / T_m;
     return j;
   }
-  /// The two event functions of mode md (see above), from the command M_c.
-  void events(double Mc, LimitMode md, double* g) const {
+  /// The two event functions of mode md (see above), from the command M_c, the error e and its
+  /// rate ė = ω_ref'(t) − ω' (read on the limit only).
+  void events(double Mc, double e, double e_dot, LimitMode md, double* g) const {
     if (!limited()) {
       g[0] = g[1] = 1.0;
+      return;
+    }
+    if (on_limit(md)) {
+      const double s = limit_side(md);
+      g[0] = s * (Kp * e_dot + Kp / Ti * e);
+      g[1] = -s * Kp * e_dot;
       return;
     }
     g[0] = md == LimitMode::linear ? M_max - Mc : md == LimitMode::limited_pos ? Mc - M_max : 1.0;
@@ -90,8 +112,20 @@ struct SpeedDriveLaw {
   }
   /// The mode after event function `slot` (0 or 1) of mode md crossed zero.
   static LimitMode mode_after(LimitMode md, int slot) {
+    if (on_limit(md)) return slot == 0 ? LimitMode::linear : limit_side(md) > 0 ? LimitMode::limited_pos : LimitMode::limited_neg;
     if (md != LimitMode::linear) return LimitMode::linear;
     return slot == 0 ? LimitMode::limited_pos : LimitMode::limited_neg;
+  }
+  /// A switch old → now between linear and limited± happens with the command on the limit: it
+  /// stays there (on-limit±) when held points inside (s K_p ė < 0) and integrating points outside
+  /// (s (K_p ė + (K_p/T_i) e) > 0); otherwise `now` holds.
+  [[nodiscard]] LimitMode settle(LimitMode old, LimitMode now, double e, double e_dot) const {
+    if (on_limit(old) || on_limit(now)) return now;
+    const int s = limit_side(old) != 0 ? limit_side(old) : limit_side(now);
+    if (s == 0) return now;
+    if (s * Kp * e_dot < 0.0 && s * (Kp * e_dot + Kp / Ti * e) > 0.0)
+      return s > 0 ? LimitMode::on_limit_pos : LimitMode::on_limit_neg;
+    return now;
   }
   /// The mode a command implies on its own (the initial state, a jump of ω_ref at a breakpoint):
   /// limited beyond the limit, else linear; exactly at the limit the current mode holds.
