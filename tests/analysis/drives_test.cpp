@@ -16,6 +16,7 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/solve/stepper.hpp"
+#include "support/jacobian.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -241,16 +242,7 @@ void expect_jacobian_matches_differences(DriveSystem& sys, double t, const std::
   const int N = sys.size();
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(N, N), D(N, N);
   sys.jacobian(t, y.data(), J);
-  std::vector<double> yp, ym, fp(static_cast<size_t>(N)), fm(fp);
-  for (int j = 0; j < N; ++j) {
-    const double h = 1e-6 * (1.0 + std::abs(y[static_cast<size_t>(j)]));
-    yp = y, ym = y;
-    yp[static_cast<size_t>(j)] += h;
-    ym[static_cast<size_t>(j)] -= h;
-    sys.rhs(t, yp.data(), fp.data());
-    sys.rhs(t, ym.data(), fm.data());
-    for (int i = 0; i < N; ++i) D(i, j) = (fp[static_cast<size_t>(i)] - fm[static_cast<size_t>(i)]) / (2 * h);
-  }
+  D = test::central_difference_jacobian(sys, t, y);
   const double scale = std::max(1.0, J.cwiseAbs().maxCoeff());
   EXPECT_LT((J - D).cwiseAbs().maxCoeff(), 1e-6 * scale) << "J\n" << J << "\nD\n" << D;
 }
