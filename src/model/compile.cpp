@@ -185,12 +185,16 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
     if (rope) needs_c = !detail::compile_rope_length(f, l, ld, qd, side, ends_ok ? m.bodies : std::vector<Body>{});
     else
       for (const char* k : {"EA", "elastic_modulus", "area", "length", "falls"})
-        if (type && f.map().find(k)) f.error_at(k, fmt::format("field '{}' belongs to a rope (type: rope)", k));
+        if (type && f.map().is_map() && f.map().find(k)) {
+          f.error_at(k, fmt::format("field '{}' belongs to a rope (type: rope)", k));
+          f.node(k);
+        }
     if (needs_c) l.c = f.positive("stiffness", ld / qd).value_or(0.0);
     else if (type && f.node("stiffness"))
       f.error_at("stiffness", fmt::format("a {} has no stiffness; use type spring-damper", *type));
     if (needs_d) l.d = f.positive("damping", ld / qd * dim::time, std::nullopt, true).value_or(0.0);
-    else if (type && f.node("damping")) f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
+    else if (type && !rope && f.node("damping"))
+      f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
     if (rope) {
       for (const char* k : {"gap", "gap_start"})
         if (f.map().find(k)) f.error_at(k, fmt::format("a rope has no '{}'; its 'slack' is the free play", k));

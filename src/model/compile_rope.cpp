@@ -1,5 +1,7 @@
 #include "compile_rope.hpp"
 
+#include <optional>
+
 #include <fmt/format.h>
 
 namespace machdyn::detail {
@@ -22,10 +24,14 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
   f.node("stiffness");
   if (side != BodyKind::translational) f.error_at("length", "a rope's 'length' needs a translational hook (body b)");
   if (l.a_point || l.b_point) f.error_at("length", "a rope with a 'length' cannot end at a machine's output point");
-  auto L = f.positive("length", qd);
-  if (!has("length")) f.error_at("EA", "a rope with 'EA' (or 'elastic_modulus') needs its free 'length'");
+  std::optional<double> L;
+  if (has("length")) L = f.positive("length", qd);
+  else f.error_at(has("EA") ? "EA" : has("elastic_modulus") ? "elastic_modulus" : "area",
+                  "a rope with 'EA' (or 'elastic_modulus') needs its free 'length'");
   std::optional<double> EA;
-  if (has("EA") && (has("elastic_modulus") || has("area"))) {
+  if (!has("EA") && !has("elastic_modulus") && !has("area")) {
+    f.error_at("length", "a rope with a 'length' needs 'EA', or 'elastic_modulus' and 'area'");
+  } else if (has("EA") && (has("elastic_modulus") || has("area"))) {
     f.error_at("EA", "give either 'EA' or 'elastic_modulus' and 'area', not both");
     f.node("elastic_modulus"), f.node("area"), f.node("EA");
   } else if (has("EA")) {
