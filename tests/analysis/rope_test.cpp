@@ -3,7 +3,6 @@
 // differences, a hoisting run against an RK4 integration written here, the static stretch, the
 // hook's frequency and the slack rope's tightening time against closed forms, on both integrators.
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 #include <Eigen/Core>
@@ -73,7 +72,6 @@ TEST(RopeJacobian, MatchesFiniteDifferences) {
         for (int i = 0; i < N; ++i) D(i, j) = (fp[static_cast<size_t>(i)] - fm[static_cast<size_t>(i)]) / (2 * h);
       }
       const double scale = J.cwiseAbs().maxCoeff();
-      printf("MEAS jac %s v %g rel %.3g\n", law, hook_v, (J - D).cwiseAbs().maxCoeff() / scale);
       EXPECT_LT((J - D).cwiseAbs().maxCoeff(), 1e-7 * scale) << law << " v " << hook_v << "\nJ\n" << J << "\nD\n" << D;
       // The winding terms are really there: ∂(drum acc)/∂q_a differs from the constant-c value −c s²/I.
       const double c = 2 * kEA / (kL0 - 2.0 * kS);
@@ -144,7 +142,6 @@ TEST_P(Rope, HoistingMatchesRk4AndBalancesEnergy) {
   const double work_M = M0 * qa.back();  // the drum torque's work, the scale of the books
   EXPECT_LT(std::abs(E.residual()), 1e-7 * work_M) << E.residual() << " of " << work_M;
   EXPECT_GT(E.damping_loss, 0.0);
-  printf("MEAS hoist worst_x %.3g worst_F %.3g residual %.3g work %.6g Lf_end %.6g\n", worst_x, worst_F, E.residual(), M0 * qa.back(), Lf.back());
 }
 
 // Claim (statics, n falls): a load m hanging on n = 4 falls from a braked drum stretches each fall by
@@ -171,7 +168,6 @@ simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
   const EquilibriumStart st = static_equilibrium(m);
   EXPECT_NEAR(st.q0[0], 3.0, 1e-15);
   EXPECT_NEAR(st.q0[1], x, 1e-12 * std::abs(x));
-  printf("MEAS static x %.17g closed %.17g rel %.3g\n", st.q0[1], x, std::abs(st.q0[1] - x) / std::abs(x));
   EXPECT_NEAR(e, mg / (n * EA / Lf), 1e-15);  // the same as m g / c_hook
   const SimulationResult r = simulate(m);
   EXPECT_NEAR(r.links[0].max, mg, 1e-9 * mg);
@@ -193,7 +189,6 @@ TEST(RopeModes, HookFrequencyIsSqrtOfNEAOverLm) {
     EXPECT_EQ(md.rigid_body_modes, 1);
     const double c = kN * kEA / L, w = std::sqrt(c * (1 / kMass + kS * kS / kI));
     EXPECT_NEAR(md.omega(0), w, 1e-12 * w) << L;
-    printf("MEAS modes L %g w %.17g closed %.17g rel %.3g\n", L, md.omega(0), w, std::abs(md.omega(0) - w) / w);
   }
 }
 
@@ -214,7 +209,6 @@ TEST_P(Rope, SlackRopeTightensAtTheClosedFormTime) {
     if (ev.element == "rope" && ev.kind == "gap_closed") closed.push_back(ev.t);
   ASSERT_GE(closed.size(), 1u);
   EXPECT_NEAR(closed[0], t_star, 1e-9 * t_star);
-  printf("MEAS slack t %.17g t* %.17g rel %.3g\n", closed[0], t_star, std::abs(closed[0] - t_star) / t_star);
   EXPECT_GT(r.links[0].max, kMass * kG);
 }
 
