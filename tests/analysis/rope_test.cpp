@@ -13,6 +13,7 @@
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/elements/link.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -87,6 +88,37 @@ TEST(RopeJacobian, MatchesFiniteDifferences) {
       EXPECT_TRUE(sys.link_rate_reads_state(0));
     }
   }
+}
+
+// Claim: the law is the gradient of its energy. With the rope taut, the generalized forces of the
+// link (apply_at: −F s − ½ c′ e² on the drum, +F on the hook; no damper) equal −∂V/∂q of the stored
+// energy V = ½ c(q_a) e² (elastic_energy) by central differences, at drum positions on both sides of
+// the reference; the hook load is n E A e / L_f and the winding term ½ c′ e² = ½ T ε R (T = F/n,
+// ε = T/(E A), R = n s); below L_min = 1e-3 L_f0 the length is held and the stiffness with it.
+TEST(RopeLaw, ForcesAreMinusTheGradientOfTheStoredEnergy) {
+  const Model m = model_of(hoist("", "", "", ""));
+  const LinkLaw k = LinkLaw::of(m, m.links[0]);
+  ASSERT_TRUE(k.winding);
+  for (double qa : {-5.0, 0.0, 30.0}) {
+    const double e = 0.01, x = kS * qa - e, Lf = kL0 - kS * qa;
+    double q[2] = {qa, x}, v[2] = {0.0, 0.0}, f[2] = {0.0, 0.0};
+    const double F = k.apply_at(q, v, GapMode::closed_pos, f);
+    EXPECT_NEAR(F, kN * kEA * e / Lf, 1e-12 * F);
+    const double T = F / kN, eps = T / kEA, R = kN * kS;
+    EXPECT_NEAR(-f[0] - F * kS, 0.5 * T * eps * R, 1e-9 * 0.5 * T * eps * R);
+    for (int j = 0; j < 2; ++j) {
+      const double h = 1e-6 * (1.0 + std::abs(q[j]));
+      double qp[2] = {q[0], q[1]}, qm[2] = {q[0], q[1]};
+      qp[j] += h, qm[j] -= h;
+      auto V = [&](const double* y) { return k.elastic_energy(k.linear(y), GapMode::closed_pos, y[0]); };
+      const double dV = (V(qp) - V(qm)) / (2 * h);
+      EXPECT_NEAR(f[j], -dV, 1e-7 * std::abs(f[j])) << qa << " " << j;
+    }
+  }
+  const double q_end = (kL0 - 1e-4 * kL0) / kS;  // L_f would be 1e-4 L_f0: held at 1e-3 L_f0
+  EXPECT_DOUBLE_EQ(k.free_length(q_end), 1e-3 * kL0);
+  EXPECT_DOUBLE_EQ(k.stiffness(q_end), kN * kEA / (1e-3 * kL0));
+  EXPECT_EQ(k.stiffness_slope(q_end), 0.0);
 }
 
 // Claim: hoisting. A constant torque M0 = 2600 N·m on the drum (above the static m g s = 2452.5 N·m)
