@@ -190,7 +190,7 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
           f.node(k);
         }
     if (needs_c) l.c = f.positive("stiffness", ld / qd).value_or(0.0);
-    else if (type && f.node("stiffness"))
+    else if (type && !rope && f.node("stiffness"))  // a rope with a length reports its own
       f.error_at("stiffness", fmt::format("a {} has no stiffness; use type spring-damper", *type));
     if (needs_d) l.d = f.positive("damping", ld / qd * dim::time, std::nullopt, true).value_or(0.0);
     else if (type && !rope && f.node("damping"))

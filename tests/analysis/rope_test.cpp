@@ -290,6 +290,9 @@ TEST(RopeInput, LengthFieldsAreCheckedAndLocated) {
   EXPECT_NE(error_of(rope("length: 10 m")).find("needs"), std::string::npos) << error_of(rope("length: 10 m"));
   EXPECT_NE(error_of(rope("EA: 1e7 N")).find("needs its free 'length'"), std::string::npos) << error_of(rope("EA: 1e7 N"));
   EXPECT_NE(error_of(rope("EA: 1e7 N, length: 10 m, stiffness: 1e6 N/m")).find("give no 'stiffness'"), std::string::npos);
+  EXPECT_EQ(error_of(rope("EA: 1e7 N, length: 10 m, stiffness: 1e6 N/m")).find("has no stiffness"), std::string::npos);
+  // A rope takes a damper (its hook's, N·s/m).
+  EXPECT_EQ(model_of(rope("stiffness: 1e6 N/m, damping: 1e3 N*s/m")).links[0].d, 1e3);
   EXPECT_NE(error_of(rope("EA: 1e7 N, elastic_modulus: 1e11 Pa, area: 1e-4 m^2, length: 10 m")).find("not both"),
             std::string::npos);
   EXPECT_NE(error_of(rope("falls: 4")).find("a rope with 'falls' needs"), std::string::npos) << error_of(rope("falls: 4"));
