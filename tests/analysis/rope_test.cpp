@@ -271,6 +271,20 @@ TEST_P(Rope, ExampleLiftsTheLoadWhenTheRopeCarriesItsWeight) {
   EXPECT_LT(std::abs(E.residual()), 1e-6 * E.source_work);  // 100 rtol (the example's default 1e-8)
 }
 
+// Claim: the same without a damper (the event function −c (δ − δ₊) beyond the flank is continuous
+// with a kink of slopes δ̇ : c δ̇): the tightening time is the closed form above to 1e-9 relative.
+TEST_P(Rope, UndampedSlackRopeTightensAtTheClosedFormTime) {
+  Model m = model_of(hoist(", velocity: 8 rad/s", ", position: 30 mm, velocity: 1.5 m/s", ", slack: 20 mm",
+                           "simulation: {t_end: 0.3 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}\n"));
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  const double b = kS * 8.0 - 1.5, t_star = (-b + std::sqrt(b * b + 2 * kG * (0.02 + 0.03))) / kG;
+  double closed = -1;
+  for (const auto& ev : r.hybrid.events)
+    if (ev.element == "rope" && ev.kind == "gap_closed" && closed < 0) closed = ev.t;
+  EXPECT_NEAR(closed, t_star, 1e-9 * t_star);
+}
+
 std::string error_of(const std::string& yaml) {
   try {
     model_of(yaml);
