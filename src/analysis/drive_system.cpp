@@ -71,7 +71,8 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     else varying_.push_back(&ld);
   }
   affine_eligible_ = varying_.empty() && nd_ == 0 && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
-  for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0;
+  // A winding rope's c(q_a) makes its load nonlinear in y: the general path.
+  for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0 && !l.winding;
   for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.applied;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
   f_.assign(static_cast<size_t>(n_), 0.0);
@@ -146,7 +147,8 @@ void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
 
 GapMode DriveSystem::natural_gap_mode(int l, const double* y) const {
   const LinkLaw::Kinematics s = link_kinematics(l, y);
-  return links_[static_cast<size_t>(l)].natural_mode(s.delta, s.rate);
+  const LinkLaw& k = links_[static_cast<size_t>(l)];
+  return k.natural_mode(s.delta, s.rate, k.drum(y));
 }
 
 void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
@@ -272,6 +274,11 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
         damp += k.dissipation(s.delta, s.rate, g);
         continue;
       }
+    }
+    if (k.winding) [[unlikely]] {  // c(q_a) and the winding term on the drum (elements/link.hpp)
+      k.apply_at(q, v, g, f);
+      damp += k.dissipation(k.linear(q), k.linear(v), g, k.drum(q));
+      continue;
     }
     const double delta = k.linear(q), rate = k.linear(v), F = k.load(delta, rate, g);
     damp += k.dissipation(delta, rate, g);
@@ -496,7 +503,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   for (int l = 0; l < nl_; ++l) {
     const LinkLaw& k = links_[static_cast<size_t>(l)];
     const GapMode g = gap_[static_cast<size_t>(l)];
-    k.jacobian(n_, g, k.on_cap(k.linear(y), k.linear(y + n_), g), [&](int r, int c, double v) {
+    k.jacobian(n_, g, k.on_cap(k.linear(y), k.linear(y + n_), g, k.drum(y)), y, [&](int r, int c, double v) {
       trip.emplace_back(n_ + r, c, v * im(r));
     });
   }
@@ -540,7 +547,8 @@ double DriveSystem::kinetic_energy(const double* y) const {
 double DriveSystem::elastic_energy(const double* y) const {
   double V = 0;
   for (int l = 0; l < nl_; ++l)
-    V += links_[static_cast<size_t>(l)].elastic_energy(link_kinematics(l, y).delta, gap_[static_cast<size_t>(l)]);
+    V += links_[static_cast<size_t>(l)].elastic_energy(link_kinematics(l, y).delta, gap_[static_cast<size_t>(l)],
+                                                       links_[static_cast<size_t>(l)].drum(y));
   return V;
 }
 
@@ -568,7 +576,7 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
       continue;
     }
     const LinkLaw::Kinematics s = link_kinematics(l, y);
-    k.events(s.delta, s.rate, gap_[static_cast<size_t>(l)], g + 2 * l);
+    k.events(s.delta, s.rate, gap_[static_cast<size_t>(l)], k.drum(y), g + 2 * l);
   }
   for (int k = 0; k < nc_; ++k) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];

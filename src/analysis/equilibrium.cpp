@@ -96,11 +96,12 @@ EquilibriumStart static_equilibrium(const Model& m) {
       const LinkLaw& law = laws[k];
       if (!law.transmits(mode[k]) || law.c <= 0.0) continue;
       const LinkLaw::Kinematics kin = law.kinematics(x.data(), zero.data());
-      const double F = law.load(kin.delta, 0.0, mode[k]);
-      law.apply(F, kin, s.g.data());
+      const double F = law.winding ? law.apply_at(x.data(), zero.data(), mode[k], s.g.data())
+                                   : law.load(kin.delta, 0.0, mode[k]);
+      if (!law.winding) law.apply(F, kin, s.g.data());
       if (law.a >= 0) s.scale(law.a) += std::abs(F * kin.ja);
       if (law.b >= 0) s.scale(law.b) += std::abs(F * kin.jb);
-      law.jacobian(n, mode[k], [&](int r, int c, double val) {
+      law.jacobian(n, mode[k], false, x.data(), [&](int r, int c, double val) {
         if (c < n) s.J(r, c) += val;
       });
     }
@@ -198,7 +199,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
       const LinkLaw& law = laws[k];
       if (!law.gap) continue;
       const double delta = law.linear(q.data());
-      const double F = law.load(delta, 0.0, mode[k]), tol = 1e-12 * law.c * q_scale;
+      const double F = law.load(delta, 0.0, mode[k], law.drum(q.data())), tol = 1e-12 * law.c * q_scale;
       GapMode next = mode[k];
       if (mode[k] == GapMode::closed_pos && F < -tol) next = GapMode::open;
       if (mode[k] == GapMode::closed_neg && F > tol) next = GapMode::open;

@@ -182,6 +182,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
                                                     : d.name + ".reference_" + unit_suffix(velocity_unit(k)));
       names.push_back(d.name + ".mode");
     }
+    // Ropes with falls or a free length (elements/link.hpp): the tension of one fall T = F/n (the
+    // link's load F is the hook load) and, wound on a drum, the free length of one fall L_f.
+    for (const auto& l : m_.links) {
+      if (!is_rope_with_falls(l)) continue;
+      names.push_back(l.name + ".fall_tension_N");
+      if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
+    }
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     const auto rows = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
@@ -212,6 +219,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       cols[c++].push_back(sys_.drive_torque(d, t, y));
       cols[c++].push_back(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
       cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
+    }
+    for (int l = 0; l < nl_; ++l) {
+      const Link& lk = m_.links[static_cast<size_t>(l)];
+      if (!is_rope_with_falls(lk)) continue;
+      cols[c++].push_back(sys_.link_load(l, y) / lk.falls);
+      if (lk.EA > 0.0) cols[c++].push_back(sys_.link(l).free_length(sys_.link(l).drum(y)));
     }
   }
 

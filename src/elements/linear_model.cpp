@@ -73,7 +73,7 @@ Topology initial_topology(const Model& m, double t) {
   for (const Link& l : m.links) {
     const LinkLaw k = LinkLaw::of(m, l);
     const LinkLaw::Kinematics s = k.kinematics(q.data(), v.data());
-    topo.gaps.push_back(k.natural_mode(s.delta, s.rate));
+    topo.gaps.push_back(k.natural_mode(s.delta, s.rate, k.drum(q.data())));
   }
   for (const FrictionContact& fc : m.contacts) {
     const ContactLaw c = ContactLaw::of(fc);

@@ -1,5 +1,6 @@
 #include "machdyn/elements/link.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace machdyn {
@@ -16,10 +17,20 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   if (l.a_point && l.a >= 0) k.pa = m.bodies[static_cast<size_t>(l.a)].machine.get();
   if (l.b_point && l.b >= 0) k.pb = m.bodies[static_cast<size_t>(l.b)].machine.get();
   k.point = k.pa || k.pb;
+  k.falls = l.falls;
+  k.winding = l.EA > 0.0 && l.a >= 0 && l.length > 0.0;
+  k.K = l.falls * l.EA;
+  k.L0 = l.length;
+  k.u0 = l.drum_q0;
   return k;
 }
 
-double LinkLaw::point_load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
+double LinkLaw::general_load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
+  if (winding) {  // d(c e)/dt = c δ̇ + c′ e q̇_a
+    const double qa = drum(q), rate = linear(v), Fc_rate = stiffness(qa) * rate + stiffness_slope(qa) * (linear(q) - flank(g)) * v[a];
+    if (capped && on_cap(linear(q), rate, g, qa)) return 2.0 * Fc_rate;
+    return Fc_rate + d * linear(acc);
+  }
   // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i).
   double delta = 0, rate = 0, dd = 0, p, dp, ddp;
   if (a >= 0) {
@@ -42,6 +53,14 @@ double LinkLaw::point_load_rate(const double* q, const double* v, const double* 
 
 void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
   if (!transmits(g)) return;
+  if (winding) {  // K: the Hessian of V (header), D: d j jᵀ
+    const int n = std::max(a, b) + 1;
+    jacobian(n, g, false, q, [&](int r, int col, double v) {
+      if (col < n) lin.K.emplace_back(r, col, -v);
+      else lin.D.emplace_back(r, col - n, -v);
+    });
+    return;
+  }
   // δ ≈ δ0 + jᵀ Δq: the spring adds c j jᵀ, the damper d j jᵀ. A machine's output point also adds
   // the geometric stiffness of V = ½ c (δ(q) − flank)²: ∂²V/∂q² ∋ c (δ0 − flank) ∂²δ/∂q².
   int idx[2];
@@ -66,6 +85,13 @@ void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
 
 void LinkLaw::add_load_gradient(const double* q, const double* v, GapMode g, double* dFdq, double* dFdv) const {
   if (!transmits(g)) return;
+  if (winding) {  // F = c(q_a) e + d δ̇: ∂F/∂q_a = c s + c′ e, ∂F/∂x = −c
+    const double qa = drum(q);
+    dFdq[a] += stiffness(qa) * inv_ratio + stiffness_slope(qa) * (linear(q) - flank(g));
+    dFdv[a] += d * inv_ratio;
+    if (b >= 0) dFdq[b] -= stiffness(qa), dFdv[b] -= d;
+    return;
+  }
   auto end = [&](int body, const Machine* p_m, double sign) {
     if (body < 0) return;
     double p = q[body], dp = 1.0, ddp = 0.0;

@@ -13,6 +13,7 @@
 #include "machdyn/model/machine.hpp"
 #include "machdyn/common/expression.hpp"
 #include "compile_hybrid.hpp"
+#include "compile_rope.hpp"
 #include "model/compile_drive.hpp"
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
@@ -180,11 +181,20 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
       l.gap = f.positive("slack", qd, 0.0, true).value_or(0.0);
       l.gap_start = 0.0;
     }
+    // A rope with a free length (model/model.hpp Link::EA; law: elements/link.hpp): c = n E A / L_f.
+    if (rope) needs_c = !detail::compile_rope_length(f, l, ld, qd, side, ends_ok ? m.bodies : std::vector<Body>{});
+    else
+      for (const char* k : {"EA", "elastic_modulus", "area", "length", "falls"})
+        if (type && f.map().is_map() && f.map().find(k)) {
+          f.error_at(k, fmt::format("field '{}' belongs to a rope (type: rope)", k));
+          f.node(k);
+        }
     if (needs_c) l.c = f.positive("stiffness", ld / qd).value_or(0.0);
-    else if (type && f.node("stiffness"))
+    else if (type && !rope && f.node("stiffness"))  // a rope with a length reports its own
       f.error_at("stiffness", fmt::format("a {} has no stiffness; use type spring-damper", *type));
     if (needs_d) l.d = f.positive("damping", ld / qd * dim::time, std::nullopt, true).value_or(0.0);
-    else if (type && f.node("damping")) f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
+    else if (type && !rope && f.node("damping"))
+      f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
     if (rope) {
       for (const char* k : {"gap", "gap_start"})
         if (f.map().find(k)) f.error_at(k, fmt::format("a rope has no '{}'; its 'slack' is the free play", k));

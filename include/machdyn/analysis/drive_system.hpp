@@ -113,7 +113,8 @@ class DriveSystem final : public OdeSystem {
   }
   [[nodiscard]] double link_load(int l, const double* y) const {  ///< F of link l
     const LinkLaw::Kinematics s = link_kinematics(l, y);
-    return links_[static_cast<size_t>(l)].load(s.delta, s.rate, gap_[static_cast<size_t>(l)]);
+    const LinkLaw& k = links_[static_cast<size_t>(l)];
+    return k.load(s.delta, s.rate, gap_[static_cast<size_t>(l)], k.drum(y));
   }
   /// The rate dF/dt of link l from the state y and its derivative dy (0 if open).
   [[nodiscard]] double link_load_rate(int l, const double* y, const double* dy) const {
@@ -122,10 +123,11 @@ class DriveSystem final : public OdeSystem {
     return k.load_rate(y, dy, dy + n_, gap_[static_cast<size_t>(l)]);
   }
   /// Whether link l's load depends on q nonlinearly (a machine's output point).
-  /// Whether link l's load rate needs the state itself (a machine's output point, or the capped
-  /// flank law, whose branch depends on δ and δ̇), not only its derivative.
+  /// Whether link l's load rate needs the state itself (a machine's output point, the capped
+  /// flank law, whose branch depends on δ and δ̇, or a winding rope's c(q_a)), not only its derivative.
   [[nodiscard]] bool link_rate_reads_state(int l) const {
-    return links_[static_cast<size_t>(l)].point || links_[static_cast<size_t>(l)].capped;
+    const LinkLaw& k = links_[static_cast<size_t>(l)];
+    return k.point || k.capped || k.winding;
   }
   /// Whether some body has a position-dependent inertia or a link a machine's output point.
   [[nodiscard]] bool has_machines() const { return has_machines_; }

@@ -24,6 +24,28 @@
 /// −F reaches 0; open ends when δ reaches a flank while pressing (δ₊ − δ ≥ 0, δ − δ₋ ≥ 0; beyond the
 /// flank, the pressing force −F₊ or F₋ decides).
 /// Valid for c ≥ 0, d ≥ 0, i ≠ 0, Δ ≥ 0. Nothing is thrown.
+///
+/// Rope wound on a drum (`winding`; Link::EA > 0 with a body a, model/model.hpp). Geometry: body a
+/// is the drum (angle q_a, radius R), body b the hook (x, m); n falls carry the hook over frictionless
+/// sheaves, so every fall has the same tension T and the hook moves 1/n of the rope speed at the
+/// drum: i = n/R, s = 1/i = R/n. Turning the drum by Δq_a winds in R Δq_a of rope, so each fall's
+/// free (unstretched) length is L_f(q_a) = L_f0 − s (q_a − q_a0): positive q_a hoists. The total
+/// elongation of the n falls is n e with e = δ − δ₊ (δ = s q_a − x in the hook's metres, δ₊ the
+/// slack), the strain ε = n e / (n L_f) = e / L_f, so
+///   T = E A e / L_f (N, per fall),  F = n T = c(q_a) e  (N, the hook load),  c(q_a) = n E A / L_f(q_a).
+/// Stored energy (the strain energy of the n falls, n · E A ε² L_f / 2):
+///   V(q_a, x) = ½ c(q_a) e² = n E A e² / (2 L_f).
+/// The law is conservative: the generalized forces are −∂V/∂q plus the damper, so the energy books
+/// balance with V. With c′ = dc/dq_a = c s / L_f (> 0: winding in stiffens) and the damper part F_d:
+///   on b:  +F,                                F = c e + F_d (capped as above for elasto-backlash)
+///   on a:  −F s − W,                          W = ½ c′ e² = ½ T ε R  (the winding term)
+/// W is the strain energy the rope's stretch carries per radian wound in; it is O(ε) beside the
+/// torque T R (ε = T/(E A) ≲ 1e-2 for steel wire rope) and makes ∂V/∂q_a exact. The damping d is
+/// the hook's (N·s/m), constant. Events and modes are those above with c = c(q_a). The Jacobian
+/// (second derivatives of V, c″ = 2 c s² / L_f²):
+///   ∂²V/∂q_a² = c s² + 2 c′ e s + ½ c″ e²,  ∂²V/∂q_a∂x = −(c s + c′ e),  ∂²V/∂x² = c.
+/// Valid for L_f > 0: below L_min = 1e-3 L_f0 (the hook at the drum, outside the model) L_f is held
+/// at L_min, where c′ = c″ = 0.
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +66,36 @@ struct LinkLaw {
   double lo = 0.0, hi = 0.0;    ///< flanks δ₋, δ₊
   const Machine* pa = nullptr;  ///< a's output point, or null (q_a itself)
   const Machine* pb = nullptr;
+  bool winding = false;         ///< a rope wound on drum a: c(q_a) = K / L_f(q_a) (see above)
+  double K = 0.0;               ///< n E A, N
+  double L0 = 0.0;              ///< L_f0, m
+  double u0 = 0.0;              ///< q_a0, where L_f = L_f0
+  int falls = 1;                ///< n
+
+  /// The drum's position q_a from positions q (0 for the ground).
+  [[nodiscard]] double drum(const double* q) const { return a >= 0 ? q[a] : 0.0; }
+  /// L_f(q_a), the free length of one fall, m (winding ropes; L0 otherwise).
+  [[nodiscard]] double free_length(double qa) const {
+    return winding ? std::max(L0 - inv_ratio * (qa - u0), 1e-3 * L0) : L0;
+  }
+  /// Whether L_f is held at L_min (c′ = c″ = 0 there).
+  [[nodiscard]] bool at_min_length(double qa) const { return L0 - inv_ratio * (qa - u0) < 1e-3 * L0; }
+  /// c(q_a): the stiffness at drum position q_a (c itself for every other link).
+  [[nodiscard]] double stiffness(double qa) const { return winding ? K / free_length(qa) : c; }
+  /// c′ = dc/dq_a and c″ (0 for every other link).
+  [[nodiscard]] double stiffness_slope(double qa) const {
+    return winding && !at_min_length(qa) ? stiffness(qa) * inv_ratio / free_length(qa) : 0.0;
+  }
+  [[nodiscard]] double stiffness_curvature(double qa) const {
+    const double L = free_length(qa);
+    return winding && !at_min_length(qa) ? 2.0 * stiffness(qa) * inv_ratio * inv_ratio / (L * L) : 0.0;
+  }
+  /// The winding term W = ½ c′ e² on the drum (acts on a with −W), mode g; 0 for every other link.
+  [[nodiscard]] double winding_force(double delta, double qa, GapMode g) const {
+    if (!winding || !transmits(g)) return 0.0;
+    const double e = delta - flank(g);
+    return 0.5 * stiffness_slope(qa) * e * e;
+  }
 
   /// The law of `link` of model `m` (machines resolved from its bodies).
   static LinkLaw of(const Model& m, const Link& link);
@@ -75,12 +127,14 @@ struct LinkLaw {
   }
   /// Whether the link transmits load in mode g.
   [[nodiscard]] bool transmits(GapMode g) const { return !gap || g != GapMode::open; }
-  /// F in mode g for deflection δ and rate δ̇.
-  [[nodiscard]] double load(double delta, double rate, GapMode g) const {
+  /// F in mode g for deflection δ and rate δ̇, drum position q_a (the stiffness c(q_a)). The
+  /// overloads without q_a use c (a winding rope's stiffness at q_a0): for constant-stiffness links.
+  [[nodiscard]] double load(double delta, double rate, GapMode g, double qa) const {
     if (!transmits(g)) return 0.0;
-    const double Fc = c * (delta - flank(g));
+    const double Fc = stiffness(qa) * (delta - flank(g));
     return Fc + damping_force(Fc, rate, g);
   }
+  [[nodiscard]] double load(double delta, double rate, GapMode g) const { return load(delta, rate, g, u0); }
   /// The damper's part of the load for spring part Fc = c e: d δ̇, or with the cap min(Fc, d δ̇) on
   /// the positive flank and max(Fc, d δ̇) on the negative one.
   [[nodiscard]] double damping_force(double Fc, double rate, GapMode g) const {
@@ -89,29 +143,34 @@ struct LinkLaw {
     return g == GapMode::closed_pos ? std::min(Fc, Fd) : g == GapMode::closed_neg ? std::max(Fc, Fd) : Fd;
   }
   /// Whether the capped law is on its cap (F = 2 c e: the damper acts as a second spring) at (δ, δ̇).
-  [[nodiscard]] bool on_cap(double delta, double rate, GapMode g) const {
-    return capped && gap && transmits(g) && damping_force(c * (delta - flank(g)), rate, g) != d * rate;
+  [[nodiscard]] bool on_cap(double delta, double rate, GapMode g, double qa) const {
+    return capped && gap && transmits(g) && damping_force(stiffness(qa) * (delta - flank(g)), rate, g) != d * rate;
   }
+  [[nodiscard]] bool on_cap(double delta, double rate, GapMode g) const { return on_cap(delta, rate, g, u0); }
   /// The spring part of the law, c e, for a deflection e measured from the flank (quasi-static loads).
   [[nodiscard]] double spring_load(double e) const { return c * e; }
-  /// Elastic energy ½ c (δ − flank)² in mode g, J.
-  [[nodiscard]] double elastic_energy(double delta, GapMode g) const {
+  /// Elastic energy ½ c(q_a) (δ − flank)² in mode g, J.
+  [[nodiscard]] double elastic_energy(double delta, GapMode g, double qa) const {
     if (!transmits(g)) return 0.0;
     const double e = delta - flank(g);
-    return 0.5 * c * e * e;
+    return 0.5 * stiffness(qa) * e * e;
   }
+  [[nodiscard]] double elastic_energy(double delta, GapMode g) const { return elastic_energy(delta, g, u0); }
   /// Power dissipated by the damper, F_d δ̇ (W; d δ̇² without the cap), in mode g.
-  [[nodiscard]] double dissipation(double delta, double rate, GapMode g) const {
+  [[nodiscard]] double dissipation(double delta, double rate, GapMode g, double qa) const {
     if (!transmits(g)) return 0.0;
     if (!capped) return d * rate * rate;
-    return damping_force(c * (delta - flank(g)), rate, g) * rate;
+    return damping_force(stiffness(qa) * (delta - flank(g)), rate, g) * rate;
   }
+  [[nodiscard]] double dissipation(double delta, double rate, GapMode g) const { return dissipation(delta, rate, g, u0); }
 
   /// The two event functions of mode g (both ≥ 0 while g holds; 1 for a link without a gap).
-  void events(double delta, double rate, GapMode g, double* ev) const {
+  void events(double delta, double rate, GapMode g, double* ev) const { events(delta, rate, g, u0, ev); }
+  void events(double delta, double rate, GapMode g, double qa, double* ev) const {
     ev[0] = ev[1] = 1.0;
     if (!gap) return;
-    const double Fp = c * (delta - hi) + d * rate, Fn = c * (delta - lo) + d * rate;
+    const double cq = stiffness(qa);
+    const double Fp = cq * (delta - hi) + d * rate, Fn = cq * (delta - lo) + d * rate;
     switch (g) {
       case GapMode::closed_pos: ev[0] = Fp; break;
       case GapMode::closed_neg: ev[1] = -Fn; break;
@@ -128,9 +187,11 @@ struct LinkLaw {
     return which == 0 ? GapMode::closed_pos : GapMode::closed_neg;
   }
   /// The mode a state implies on its own (the initial state): closed on a flank it presses.
-  [[nodiscard]] GapMode natural_mode(double delta, double rate) const {
+  [[nodiscard]] GapMode natural_mode(double delta, double rate) const { return natural_mode(delta, rate, u0); }
+  [[nodiscard]] GapMode natural_mode(double delta, double rate, double qa) const {
     if (!gap) return GapMode::open;
-    const double Fp = c * (delta - hi) + d * rate, Fn = c * (delta - lo) + d * rate;
+    const double cq = stiffness(qa);
+    const double Fp = cq * (delta - hi) + d * rate, Fn = cq * (delta - lo) + d * rate;
     if ((delta > hi && Fp > 0) || (delta == hi && rate > 0)) return GapMode::closed_pos;
     if ((delta < lo && Fn < 0) || (delta == lo && rate < 0)) return GapMode::closed_neg;
     return GapMode::open;
@@ -140,6 +201,14 @@ struct LinkLaw {
   void apply(double F, const Kinematics& k, double* f) const {
     if (a >= 0) f[a] -= F * k.ja;
     if (b >= 0) f[b] += F * k.jb;
+  }
+  /// Adds all generalized forces of the link at positions q (velocities v) in mode g to f (n):
+  /// the load F (returned) and a winding rope's W. Plain links (no machine point).
+  double apply_at(const double* q, const double* v, GapMode g, double* f) const {
+    const double qa = drum(q), delta = linear(q), F = load(delta, linear(v), g, qa);
+    if (a >= 0) f[a] -= F * inv_ratio + winding_force(delta, qa, g);
+    if (b >= 0) f[b] += F;
+    return F;
   }
   /// The load's weights over y = [q; v] (2n states) for a plain link in a transmitting mode:
   /// F = Σ w_k y_k − c·flank. Calls add(index, weight) at most four times.
@@ -151,18 +220,40 @@ struct LinkLaw {
   /// The rate dF/dt from the state (q, v) and its derivative (v, acc), mode g (on the cap: 2 c δ̇).
   [[nodiscard]] double load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
     if (!transmits(g)) return 0.0;
-    if (point) [[unlikely]] return point_load_rate(q, v, acc, g);
+    if (point || winding) [[unlikely]] return general_load_rate(q, v, acc, g);
     if (capped && on_cap(linear(q), linear(v), g)) return 2.0 * c * linear(v);
     return c * linear(v) + d * linear(acc);
   }
-  /// load_rate of a link with a machine's output point at an end (p′, p″ of the point).
-  [[nodiscard]] double point_load_rate(const double* q, const double* v, const double* acc, GapMode g) const;
+  /// load_rate of a rope wound on a drum (c(q_a)) or of a link with a machine's output point at an
+  /// end (p′, p″ of the point), in a transmitting mode.
+  [[nodiscard]] double general_load_rate(const double* q, const double* v, const double* acc, GapMode g) const;
   /// The terms of ∂(acceleration)/∂(q, v) before the division by the inertias: for a plain link
   /// calls add(row, column, value) with columns < n for q and ≥ n for v. Mode g, off the cap of the
   /// elasto-backlash law (its Jacobian on the cap is 2c, 0: jacobian(n, g, on_cap, add)).
   template <class Add>
   void jacobian(int n, GapMode g, Add&& add) const {
     jacobian(n, g, false, add);
+  }
+  /// The same at positions q for every plain link: a winding rope adds the terms of c(q_a) (the
+  /// second derivatives of V above, and ∂F_d/∂q_a of the cap).
+  template <class Add>
+  void jacobian(int n, GapMode g, bool cap, const double* q, Add&& add) const {
+    if (!winding) return jacobian(n, g, cap, add);
+    if (!transmits(g)) return;
+    const double qa = drum(q), e = linear(q) - flank(g), s = inv_ratio;
+    const double cq = stiffness(qa), c1 = stiffness_slope(qa), c2 = stiffness_curvature(qa);
+    const double k = cap ? 2.0 : 1.0, ds = cap ? 0.0 : d;
+    // F = k (c e) + F_d: ∂F/∂q_a, ∂F/∂x, ∂F/∂v_a, ∂F/∂v_b.
+    const double Fa = k * (cq * s + c1 * e), Fb = -k * cq, Fva = ds * s, Fvb = -ds;
+    if (b >= 0) {
+      if (a >= 0) add(b, a, Fa), add(b, n + a, Fva);
+      add(b, b, Fb), add(b, n + b, Fvb);
+    }
+    if (a >= 0) {  // f_a = −F s − ½ c′ e²
+      add(a, a, -(Fa * s + c1 * e * s + 0.5 * c2 * e * e));
+      add(a, n + a, -Fva * s);
+      if (b >= 0) add(a, b, -(Fb * s - c1 * e)), add(a, n + b, -Fvb * s);
+    }
   }
   template <class Add>
   void jacobian(int n, GapMode g, bool cap, Add&& add) const {

@@ -70,6 +70,15 @@ struct Link {
   /// A rope (`type: rope`): tension only. Its only flank is δ₊ = gap (the slack); there is no
   /// negative flank (δ₋ = −∞): slack, it carries nothing, however far it is compressed.
   bool tension_only = false;
+  /// A rope wound on a drum (`length` with `EA`, or `elastic_modulus` and `area`; `falls`). Law and
+  /// derivation: elements/link.hpp. n falls carry body b (the hook); `ratio` is then n/R (the drum's
+  /// angle per metre of hook travel), compiled from the file's drum ratio 1/R times n. The free
+  /// length of one fall is L_f(q_a) = L_f0 − (q_a − q_a0)/i: positive q_a winds the rope up (hoists).
+  /// The hook stiffness c(q_a) = n E A / L_f(q_a); `c` holds its value at q_a0. EA = 0: constant c.
+  int falls = 1;           ///< n, the number of falls carrying b, >= 1
+  double EA = 0.0;         ///< axial stiffness E·A of the rope, N (0: a rope of constant stiffness c)
+  double length = 0.0;     ///< L_f0, the free length of one fall at q_a = q_a0, m (> 0 when EA > 0)
+  double drum_q0 = 0.0;    ///< q_a0: the drum's position (body a's initial position) where L_f = L_f0
   /// The flank law of a gap or a rope (`flank_law: elasto-backlash`, Modelica's ElastoBacklash and
   /// ElastoGap): the damping force on a flank is capped at the spring force, so the load starts from
   /// 0 at contact instead of jumping to d δ̇ (law: elements/link.hpp).
@@ -305,6 +314,10 @@ struct Model {
   /// clutch (its normal force) or a surface velocity jumps or has a kink in t: the integrator stops there (solve/event_system.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
+
+/// Whether link l is a rope with falls (n > 1) or a free length (EA > 0): its runs add the columns
+/// "NAME.fall_tension_N" (T = F/n) and, with a length, "NAME.fall_length_m" (L_f).
+[[nodiscard]] inline bool is_rope_with_falls(const Link& l) { return l.tension_only && (l.falls > 1 || l.EA > 0.0); }
 
 /// Unit suffixes for output columns: "rad" or "m", "rad/s" or "m/s", "N*m" or "N".
 const char* position_unit(BodyKind k);

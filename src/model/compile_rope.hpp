@@ -1,0 +1,22 @@
+#pragma once
+// Compiler part for a rope's free length (`length`, `EA` or `elastic_modulus` + `area`, `falls`).
+// Called from compile.cpp for `type: rope`; the law is elements/link.hpp.
+#include <vector>
+
+#include "machdyn/common/spec.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn::detail {
+
+/// Reads a rope's `falls` (n, default 1) and, if given, its free length: `length` (L_f0, one fall,
+/// in b's position unit) with `EA` (N) or `elastic_modulus` (Pa) and `area` (m²). With n falls the
+/// link's ratio becomes n × the file's drum ratio (1/R) and c = n E A / L_f0 (N/m at the hook).
+/// Sets l.falls, l.EA, l.length, l.drum_q0 (body a's initial position), l.c. Reports located errors:
+/// `length` without EA (or the reverse), both EA and elastic_modulus, `stiffness` beside `length`,
+/// a machine's output point as an end, a rotational hook. `bodies` is empty when the ends are invalid.
+/// ld, qd: the load and position dimensions of b's side. Returns whether c was set here (the rope
+/// then takes no `stiffness`).
+bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, BodyKind side,
+                         const std::vector<Body>& bodies);
+
+}  // namespace machdyn::detail
