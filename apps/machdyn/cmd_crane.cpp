@@ -1,7 +1,8 @@
 // `machdyn crane MODEL [-o DIR] [--json] [--set ...]`: the crane analysis (analysis/crane.hpp) of a
 // model with a `crane:` section — each dynamic factor simulated beside the EN 13001-2 value. Writes
 // DIR/crane.json and DIR/crane.csv (default out/MODEL) and prints the table (or the JSON);
-// --phi2-speeds FROM:TO:N adds φ2(vh) beside the standard's line (DIR/phi2_sweep.csv).
+// --phi2-speeds FROM:TO:N adds φ2(vh) beside the standard's line (DIR/phi2_sweep.csv; with --plot
+// also the figure crane_phi2_sweep.svg/.png).
 #include <iostream>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -65,11 +66,14 @@ int run_crane(const CraneArgs& a) {
   const CraneReport r = crane_analysis(m);
   nlohmann::json j = crane_json(r);
   std::string sweep_csv;
+  std::vector<plot::Figure> figures = a.plot ? crane_figures(r) : std::vector<plot::Figure>{};
   if (!a.phi2_speeds.empty()) {  // φ2(vh) beside the standard's line
     const std::vector<double> speeds = speed_list(a.phi2_speeds);
     sweep_csv = "vh_m_s,phi2_simulated,phi2_standard\n";
     nlohmann::json pts = nlohmann::json::array();
-    for (const Phi2Point& p : phi2_sweep(m, speeds)) {
+    const std::vector<Phi2Point> sweep = phi2_sweep(m, speeds);
+    if (a.plot) figures.push_back(phi2_sweep_figure(sweep));
+    for (const Phi2Point& p : sweep) {
       sweep_csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", p.vh, p.simulated, p.standard);
       pts.push_back({{"vh_m_s", p.vh}, {"simulated", p.simulated}, {"standard", p.standard}});
     }
@@ -77,7 +81,7 @@ int run_crane(const CraneArgs& a) {
   }
   write_file_atomic((out_dir / "crane.csv").string(), crane_csv(r));
   if (!sweep_csv.empty()) write_file_atomic((out_dir / "phi2_sweep.csv").string(), sweep_csv);
-  const std::vector<std::string> files = a.plot ? write_figures(out_dir, crane_figures(r)) : std::vector<std::string>{};
+  const std::vector<std::string> files = a.plot ? write_figures(out_dir, figures) : std::vector<std::string>{};
   write_file_atomic((out_dir / "crane.json").string(), j.dump(2) + "\n");
   if (a.json) {
     std::cout << j.dump(2) << '\n';
@@ -101,7 +105,7 @@ void register_crane(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--out", a->out, "Output folder (default out/MODEL): crane.csv, crane.json");
   cmd->add_option("--phi2-speeds", a->phi2_speeds,
                   "phi2 over hoisting speeds FROM:TO:N (m/s) beside the standard's line: phi2_sweep.csv and "
-                  "'phi2_sweep' in the JSON");
+                  "'phi2_sweep' in the JSON (with --plot: crane_phi2_sweep.svg/.png)");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_crane(*a); }); });
 }

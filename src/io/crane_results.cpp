@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 #include <fmt/format.h>
 
@@ -84,6 +85,23 @@ std::vector<plot::Figure> crane_figures(const CraneReport& r) {
     out.push_back(std::move(f));
   }
   return out;
+}
+
+plot::Figure phi2_sweep_figure(const std::vector<Phi2Point>& pts) {
+  if (pts.empty()) throw std::invalid_argument("phi2_sweep_figure: no sweep points");
+  std::vector<double> vh, sim, std_line;
+  for (const Phi2Point& p : pts) vh.push_back(p.vh), sim.push_back(p.simulated), std_line.push_back(p.standard);
+  plot::Figure f;
+  f.id = "crane_phi2_sweep";
+  f.title = "phi2 over the hoisting speed, simulated beside EN 13001-2";
+  f.x = plot::make_axis("hoisting speed vh", "m/s");
+  f.y = plot::make_axis("phi2 (max rope force / m g)", "");
+  f.series.push_back(plot::make_series("simulated", vh, std::move(sim), plot::Style::linepoints));
+  plot::Series line = plot::make_series("EN 13001-2: phi2,min + beta2 vh", std::move(vh), std::move(std_line));
+  line.dashed = true;
+  f.series.push_back(std::move(line));
+  f.legend = plot::Figure::Legend::top_left;
+  return f;
 }
 
 }  // namespace machdyn

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/crane.hpp"
@@ -256,6 +257,29 @@ TEST(CraneOutput, HistoryAndFigure) {
   ASSERT_EQ(figs[0].ref_lines.size(), 1u);
   EXPECT_EQ(figs[0].ref_lines[0].value, x.standard_hi);
   EXPECT_EQ(figs[0].series[0].y, x.history);
+}
+
+// Claim: the φ2(vh) figure draws the sweep's simulated points (the rigid drive's closed form
+// 1 + vh ω / g, ω = √(c/m)) beside the standard's line 1.10 + 0.34 vh of HC2/HD1 (EN 13001-2
+// Tables 2 and 3, crane-standards.md), both against vh; an empty sweep is refused.
+TEST(CraneOutput, Phi2SweepFigureDrawsBothLines) {
+  const Model m = model_of(with_drive_class("HD1"));
+  const std::vector<double> speeds = {0.1, 0.3, 0.5};
+  const plot::Figure f = phi2_sweep_figure(phi2_sweep(m, speeds));
+  EXPECT_EQ(f.id, "crane_phi2_sweep");
+  ASSERT_EQ(f.series.size(), 2u);
+  const double w = std::sqrt(1e6 / 1000.0);
+  for (const auto& s : f.series) {
+    EXPECT_EQ(s.x, speeds);
+    ASSERT_EQ(s.y.size(), speeds.size());
+  }
+  for (size_t k = 0; k < speeds.size(); ++k) {
+    EXPECT_NEAR(f.series[0].y[k], 1 + speeds[k] * w / 9.81, 1e-9) << speeds[k];
+    EXPECT_DOUBLE_EQ(f.series[1].y[k], 1.10 + 0.34 * speeds[k]) << speeds[k];
+  }
+  EXPECT_FALSE(f.series[0].dashed);
+  EXPECT_TRUE(f.series[1].dashed);
+  EXPECT_THROW(phi2_sweep_figure({}), std::invalid_argument);
 }
 
 // Claim: the table's three forms carry the same rows: JSON (NaN → null), CSV (header + one line per

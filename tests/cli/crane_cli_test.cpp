@@ -2,6 +2,7 @@
 // written as crane.csv and crane.json with the same rows; a model without `crane:` exits 2.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -78,6 +79,22 @@ TEST(CraneCli, Phi2SpeedsWritesTheCurve) {
                                  (test::temp_dir() / "crane-bad").string() + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("--phi2-speeds"), std::string::npos) << bad.err;
+}
+
+// Claim: --plot with --phi2-speeds adds the figure crane_phi2_sweep (SVG and PNG) whose SVG carries
+// both series by their legend entries: the simulated curve and the standard's line.
+TEST(CraneCli, Phi2SpeedsPlotDrawsTheCurveAndTheStandardLine) {
+  const auto dir = test::temp_dir() / "crane-sweep-plot";
+  const auto r = test::run_cli("crane '" + test::example("crane/main-hoist.yaml") + "' --plot --phi2-speeds 0.1:0.3:3 -o '" +
+                               dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir / "crane_phi2_sweep.svg"));
+  EXPECT_TRUE(fs::exists(dir / "crane_phi2_sweep.png"));
+  std::ifstream in(dir / "crane_phi2_sweep.svg");
+  const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(svg.find("simulated"), std::string::npos);
+  EXPECT_NE(svg.find("EN 13001-2: phi2,min + beta2 vh"), std::string::npos);
+  EXPECT_NE(r.out.find("crane_phi2_sweep"), std::string::npos) << r.out;
 }
 
 // Claim: the slewing example's φ5 row compares the ring's dynamic factor with 3.0 ("considerable

@@ -22,5 +22,10 @@ std::string crane_table(const CraneReport& r);
 /// One figure per simulated row (id "crane_FACTOR_K", K its row index): the factor's time history
 /// with the standard's value (both ends of a range) as dashed lines.
 std::vector<plot::Figure> crane_figures(const CraneReport& r);
+/// φ2 over the hoisting speed (`--phi2-speeds`, analysis/crane.hpp phi2_sweep), id "crane_phi2_sweep":
+/// the simulated φ2 at each speed (series 0, "simulated", line with markers) and the standard's
+/// straight line φ2,min + β2 vh at the same speeds (series 1, dashed), against vh in m/s.
+/// Throws std::invalid_argument for an empty sweep.
+plot::Figure phi2_sweep_figure(const std::vector<Phi2Point>& pts);
 
 }  // namespace machdyn
