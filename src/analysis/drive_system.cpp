@@ -161,6 +161,11 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   r_.resize(ns);
   lam_.resize(ns);
   stuck_machine_ = false;
+  one_sided_.clear();
+  masked_.clear();
+  if (ns >= 2)
+    for (Eigen::Index j = 0; j < std::min<Eigen::Index>(ns, 64); ++j)
+      if (contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].lock != 0) one_sided_.push_back(j);
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     stuck_machine_ = stuck_machine_ || machine_[static_cast<size_t>(c.a)] || (c.b >= 0 && machine_[static_cast<size_t>(c.b)]);
@@ -222,6 +227,35 @@ void DriveSystem::form_stuck_solution(const double* im) {
   cod.setThreshold(1e-12);
   cod.compute(A * w.asDiagonal());
   P_ = w.asDiagonal() * cod.pseudoInverse();
+}
+
+void DriveSystem::share_one_sided(const double* im) {
+  // The one-sided contacts whose least-norm share pulls against their lock.
+  uint64_t mask = 0;
+  for (Eigen::Index j : one_sided_) {
+    const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
+    if (c.lock * lam_(j) < 0.0) mask |= uint64_t{1} << j;
+  }
+  if (mask == 0) return;
+  auto it = masked_.find(mask);
+  if (it == masked_.end() || stuck_machine_) {
+    // λ = D z, min ‖z‖ subject to A D z = r, with weight 0 for the masked contacts; used only if the
+    // others carry every load alone (rank A D = rank A), else (empty) the plain share stands.
+    const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
+    const Eigen::MatrixXd A = stuck_matrix(im);
+    Eigen::VectorXd w(ns);
+    for (Eigen::Index i = 0; i < ns; ++i)
+      w(i) = (mask >> i & 1) != 0 ? 0.0 : contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].share_weight();
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> full, cod;
+    full.setThreshold(1e-12);
+    cod.setThreshold(1e-12);
+    full.compute(A);
+    cod.compute(A * w.asDiagonal());
+    Eigen::MatrixXd P;
+    if (cod.rank() == full.rank()) P = w.asDiagonal() * cod.pseudoInverse();
+    it = masked_.insert_or_assign(mask, std::move(P)).first;
+  }
+  if (it->second.size() > 0) mat_vec(it->second, r_, lam_);
 }
 
 void DriveSystem::inverse_inertias(const double* y, double* im) const {
@@ -339,6 +373,7 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
   if constexpr (kMach)
     if (stuck_machine_) form_stuck_solution(im);
   mat_vec(P_, r_, lam_);
+  if (!one_sided_.empty()) share_one_sided(im);
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));

@@ -373,5 +373,262 @@ TEST_P(MslExample, OneWayClutchMatchesAnIndependentSolution) {
   for (size_t i = 0; i < locks.size(); ++i) EXPECT_NEAR(locks[i], ref.lock_times[i], 1e-8) << "lock " << i;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Claim (the share of a redundant stuck pair, analysis/drive_system.hpp): in one-way-clutch.yaml,
+// while the clutch holds the two inertias together the freewheel in parallel is stuck too — never
+// labelled as slipping with zero sliding speed — and carries no load against its lock: its force
+// is ≥ 0 at every row, and where both are stuck the two forces add up to the load that keeps
+// inertiaOut with inertiaIn, λ = J_out ω̇ = M(t)/2 (M = 10 sin 6πt N·m on inertiaIn, equal inertias),
+// all of it on the clutch when M < 0. Before the fix the freewheel went stuck → slip at 0.5 s
+// (M turning negative) and stayed "slip-" with u ≡ 0 until the clutch opened at 0.95 s.
+TEST_P(MslExample, OneWayClutchFreewheelStaysStuckWhileTheClutchHolds) {
+  const SimulationResult r = simulate(example("one-way-clutch.yaml", GetParam()));
+  const auto& ts = column(r, "t_s");
+  const auto& cm = column(r, "clutch.mode");
+  const auto& fm = column(r, "freewheel.mode");
+  const auto& cf = column(r, "clutch.force_N_m");
+  const auto& ff = column(r, "freewheel.force_N_m");
+  int held = 0, held_negative = 0;
+  for (size_t i = 0; i < ts.size(); ++i) {
+    EXPECT_GE(ff[i], 0.0) << "t = " << ts[i];
+    if (cm[i] != 0.0) continue;
+    ++held;
+    EXPECT_EQ(fm[i], 0.0) << "freewheel not stuck at t = " << ts[i] << " while the clutch holds";
+    const double M = 10 * std::sin(6 * std::numbers::pi * ts[i]);
+    EXPECT_NEAR(cf[i] + ff[i], M / 2, 1e-9) << "t = " << ts[i];
+    if (M < 0) {
+      ++held_negative;
+      EXPECT_NEAR(cf[i], M / 2, 1e-9) << "t = " << ts[i];
+    }
+  }
+  EXPECT_GT(held, 500);          // [0.4307, 0.95) and [1.7562, 2] s
+  EXPECT_GT(held_negative, 300);  // M < 0 on (0.5, 0.6667) and (0.8333, 0.95) s, (1.8333, 2) s
+  // No freewheel slip event at an instant where the clutch stays stuck.
+  for (const auto& e : r.hybrid.events) {
+    if (e.element != "freewheel" || e.kind != "slip") continue;
+    const size_t i = static_cast<size_t>(std::lround(e.t / 1e-3));
+    if (i + 1 < ts.size()) {
+      EXPECT_NE(cm[i + 1], 0.0) << "freewheel slips at " << e.t << " while the clutch holds";
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// An independent solution of MSL OneWayClutchDisengaged: inertiaIn a and inertiaOut b (J = 1 kg·m²
+// each), M(t) = 0.3 + 10 sin(4π t) N·m on a, the constant −0.3 N·m on b, only the freewheel
+// (g = ω_b − ω_a ≥ 0). Phases in closed form, P(t) = −(10/(4π)) cos(4π t):
+//   free (g > 0):  ω_a = ω_a0 + 0.3 (t − t0) + P(t) − P(t0),  ω_b = ω_b0 − 0.3 (t − t0); it locks
+//                  where g falls to 0;
+//   locked:        2 ω̇ = M − 0.3 = 10 sin 4πt  ⇒  ω = ω0 + (P(t) − P(t0))/2; the freewheel carries
+//                  λ = J_b ω̇ + 0.3 = 0.3 + 5 sin(4π t) ≥ 0 and releases where it turns negative,
+//                  at t = k/2 + 1/4 + asin(0.06)/(4π).
+// Each phase ends at the first sign change of its event function on a 1e-4 s scan, bisected to the
+// last bit.
+struct DisengagedReference {
+  static constexpr double kW = 4 * std::numbers::pi;
+  static double P(double t) { return -10 / kW * std::cos(kW * t); }
+  struct Phase {
+    double t0, t1, wa0, wb0;
+    bool locked;
+  };
+  std::vector<Phase> phases;
+  std::vector<double> lock_times, release_times;
+  static double wa(const Phase& p, double t) {
+    return p.locked ? p.wa0 + (P(t) - P(p.t0)) / 2 : p.wa0 + 0.3 * (t - p.t0) + P(t) - P(p.t0);
+  }
+  static double wb(const Phase& p, double t) { return p.locked ? wa(p, t) : p.wb0 - 0.3 * (t - p.t0); }
+  static double event(const Phase& p, double t) { return p.locked ? 0.3 + 5 * std::sin(kW * t) : wb(p, t) - wa(p, t); }
+  void run(double t_end) {
+    double t = 0, a = -0.5, b = 0.0;
+    bool locked = false;
+    while (t < t_end) {
+      Phase p{t, t_end, a, b, locked};
+      double lo = t, end = t_end;
+      bool hit = false;
+      for (double s = t + 1e-4;; s += 1e-4) {
+        const double s1 = std::min(s, t_end);
+        if (event(p, s1) < 0) {
+          double x0 = lo, x1 = s1;
+          while (std::nextafter(x0, x1) < x1) {
+            const double mid = 0.5 * (x0 + x1);
+            (event(p, mid) < 0 ? x1 : x0) = mid;
+          }
+          end = x1;
+          hit = true;
+          break;
+        }
+        lo = s1;
+        if (s1 >= t_end) break;
+      }
+      p.t1 = end;
+      phases.push_back(p);
+      a = wa(p, end);
+      b = wb(p, end);
+      t = end;
+      if (!hit) break;
+      locked = !locked;
+      (locked ? lock_times : release_times).push_back(end);
+    }
+  }
+  std::pair<double, double> at(double t) const {
+    for (const auto& p : phases)
+      if (t <= p.t1) return {wa(p, t), wb(p, t)};
+    return {NAN, NAN};
+  }
+};
+
+// Claim: examples/msl/one-way-clutch-disengaged.yaml (MSL Rotational.Examples.OneWayClutchDisengaged)
+// has the speeds of the independent solution above within 1e-7 rad/s (dopri5) or 1e-5 rad/s (bdf)
+// at every output row, locks where it locks (within 1e-8 s) and releases at the closed-form
+// instants k/2 + 1/4 + asin(0.06)/(4π) (within 1e-9 s).
+TEST_P(MslExample, OneWayClutchDisengagedMatchesAnIndependentSolution) {
+  const SimulationResult r = simulate(example("one-way-clutch-disengaged.yaml", GetParam()));
+  DisengagedReference ref;
+  ref.run(2.0);
+  ASSERT_EQ(ref.lock_times.size(), 4u);
+  ASSERT_EQ(ref.release_times.size(), 4u);
+  const double tol = GetParam() == IntegratorChoice::dopri5 ? 1e-7 : 1e-5;
+  EXPECT_LT(max_error(r, "inertiaIn.velocity_rad_s", [&](double t) { return ref.at(t).first; }), tol);
+  EXPECT_LT(max_error(r, "inertiaOut.velocity_rad_s", [&](double t) { return ref.at(t).second; }), tol);
+  std::vector<double> locks, releases;
+  for (const auto& e : r.hybrid.events)
+    if (e.element == "freewheel") {
+      if (e.kind == "stick") locks.push_back(e.t);
+      if (e.kind == "slip") releases.push_back(e.t);
+    }
+  ASSERT_EQ(locks.size(), ref.lock_times.size());
+  for (size_t i = 0; i < locks.size(); ++i) EXPECT_NEAR(locks[i], ref.lock_times[i], 1e-8) << "lock " << i;
+  ASSERT_EQ(releases.size(), 4u);
+  for (size_t k = 0; k < releases.size(); ++k) {
+    const double closed = 0.5 * static_cast<double>(k) + 0.25 + std::asin(0.06) / DisengagedReference::kW;
+    EXPECT_NEAR(releases[k], closed, 1e-9) << "release " << k;
+    EXPECT_NEAR(ref.release_times[k], closed, 1e-12) << "reference release " << k;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// An independent integration of one MSL MassWithStopAndFriction (Translational Friction example),
+// written from MSL's equations as functions of the state, not from the library's engine:
+//   m ẍ = F(t) − c x − F_prop ẋ − f,   sliding in direction s = sign ẋ: f = s (F_C + F_S e^(−fexp |ẋ|));
+//   stuck (ẋ ≡ 0) while |F(t) − c x| ≤ F_C + F_S, on a stop while the net force presses it on (or is
+//   within F_C + F_S pulling it off); reaching a stop: x set on the stop, ẋ = 0 (MSL's reinit).
+// At ẋ = 0 (end of a slide or an impact) the next mode is decided from the net force n = F − c x:
+// stuck within the limit, else sliding in the direction of n. Fixed-step RK4 (h = 1e-5 s) with the
+// mode held along a step; a step at whose end an event function of the mode is negative (sliding:
+// s ẋ and the distance to the stop ahead; stuck: the margin to the limit) is shortened by bisection
+// to the switching instant.
+struct StopFrictionReference {
+  double m = 1, c = 0, d = 1, Fc = 0, FS = 0, fexp = 2, xmin = 0, xmax = 0;
+  double (*F)(double) = nullptr;
+  int s = 0;  // +1, −1 sliding; 0 stuck
+  std::vector<double> stick_times, impact_times;
+
+  double limit() const { return Fc + FS; }
+  double acc(int md, double t, double x, double v) const {
+    if (md == 0) return 0.0;
+    return (F(t) - c * x - d * v - md * (Fc + FS * std::exp(-fexp * std::abs(v)))) / m;
+  }
+  double margin(double t, double x) const {
+    const double n = F(t) - c * x;
+    if (x >= xmax) return limit() + n;
+    if (x <= xmin) return limit() - n;
+    return limit() - std::abs(n);
+  }
+  /// The smallest event function of the current mode at (t, x, v).
+  double event(double t, double x, double v) const {
+    if (s == 0) return margin(t, x);
+    return std::min(s * v, s > 0 ? xmax - x : x - xmin);
+  }
+  int decide(double t, double x) const {
+    if (margin(t, x) >= 0) return 0;
+    return F(t) - c * x > 0 ? 1 : -1;
+  }
+  std::array<double, 2> step(const std::array<double, 2>& y, double t, double h) const {
+    auto f = [&](double tt, const std::array<double, 2>& z) { return std::array<double, 2>{s == 0 ? 0.0 : z[1], acc(s, tt, z[0], z[1])}; };
+    const auto k1 = f(t, y);
+    const auto k2 = f(t + h / 2, {y[0] + 0.5 * h * k1[0], y[1] + 0.5 * h * k1[1]});
+    const auto k3 = f(t + h / 2, {y[0] + 0.5 * h * k2[0], y[1] + 0.5 * h * k2[1]});
+    const auto k4 = f(t + h, {y[0] + h * k3[0], y[1] + h * k3[1]});
+    return {y[0] + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0]), y[1] + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])};
+  }
+  /// (x, ẋ) on the grid k dt, k = 0 … n.
+  std::vector<std::array<double, 2>> run(double x0, double v0, double dt, int n) {
+    std::array<double, 2> y{x0, v0};
+    s = v0 > 0 ? 1 : v0 < 0 ? -1 : decide(0.0, x0);
+    std::vector<std::array<double, 2>> out{y};
+    double t = 0;
+    for (int k = 1; k <= n; ++k) {
+      const double stop = k * dt;
+      while (t < stop) {
+        double h = std::min(1e-5, stop - t);
+        auto y1 = step(y, t, h);
+        if (event(t + h, y1[0], y1[1]) < 0) {
+          double lo = 0, hi = h;
+          for (int it = 0; it < 100 && std::nextafter(lo, hi) < hi; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            const auto ym = step(y, t, mid);
+            (event(t + mid, ym[0], ym[1]) < 0 ? hi : lo) = mid;
+          }
+          h = hi;
+          y1 = step(y, t, h);
+          if (s == 0) {
+            s = F(t + h) - c * y1[0] > 0 ? 1 : -1;  // breaks away
+          } else {
+            if ((s > 0 ? xmax - y1[0] : y1[0] - xmin) < 0) {
+              y1[0] = s > 0 ? xmax : xmin;  // reaches the stop: reinit
+              impact_times.push_back(t + h);
+            }
+            y1[1] = 0.0;
+            s = decide(t + h, y1[0]);
+            if (s == 0) stick_times.push_back(t + h);
+          }
+        }
+        y = y1;
+        t += h;
+      }
+      out.push_back(y);
+    }
+    return out;
+  }
+};
+
+double sine_force(double t) { return 25 * std::sin(2 * std::numbers::pi * 0.25 * t); }
+double no_force(double) { return 0.0; }
+
+// Claim: examples/msl/friction.yaml (MSL Translational.Examples.Friction, parts stop1 and stop2)
+// follows the independent integration above: positions within 1e-6 m and velocities within 1e-5 m/s
+// at every output row, the same instants of sticking (within 1e-8 s). stop2 hits its lower stop
+// once (at 0.0606 s, from −6.2 m/s) and is pushed off at once by the spring (75 N > 8 N).
+TEST_P(MslExample, TranslationalFrictionFollowsAnIndependentSolution) {
+  const SimulationResult r = simulate(example("friction.yaml", GetParam()));
+  const auto& ts = column(r, "t_s");
+  ASSERT_EQ(ts.size(), 5001u);
+  for (int k = 0; k < 2; ++k) {
+    StopFrictionReference ref;
+    if (k == 0) ref.c = 0, ref.Fc = 5, ref.FS = 10, ref.xmin = -24.5, ref.xmax = 24.5, ref.F = sine_force;
+    else ref.c = 500, ref.Fc = 3, ref.FS = 5, ref.xmin = -0.15, ref.xmax = 0.65, ref.F = no_force;
+    const auto y = k == 0 ? ref.run(0.0, 0.0, 1e-3, 5000) : ref.run(0.25, -5.0, 1e-3, 5000);
+    const std::string b = k == 0 ? "stop1" : "stop2", fr = k == 0 ? "friction1" : "friction2";
+    const auto& q = column(r, b + ".position_m");
+    const auto& w = column(r, b + ".velocity_m_s");
+    double eq = 0, ew = 0;
+    for (size_t i = 0; i < ts.size(); ++i) {
+      eq = std::max(eq, std::abs(q[i] - y[i][0]));
+      ew = std::max(ew, std::abs(w[i] - y[i][1]));
+    }
+    EXPECT_LT(eq, 1e-6) << b;
+    EXPECT_LT(ew, 1e-5) << b;
+    std::vector<double> sticks;
+    for (const auto& e : r.hybrid.events)
+      if (e.element == fr && e.kind == "stick") sticks.push_back(e.t);
+    ASSERT_EQ(sticks.size(), ref.stick_times.size()) << b;
+    for (size_t i = 0; i < sticks.size(); ++i) EXPECT_NEAR(sticks[i], ref.stick_times[i], 1e-8) << b << " stick " << i;
+    if (k == 1) {
+      ASSERT_EQ(ref.impact_times.size(), 1u);
+      EXPECT_NEAR(ref.impact_times[0], 0.0606, 1e-3);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace machdyn

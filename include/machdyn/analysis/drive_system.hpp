@@ -15,7 +15,13 @@
 ///   (G M⁻¹ Gᵀ) λ = G M⁻¹ f̃ − ẇ     (f̃: all forces but λ; ẇ: the prescribed surface acceleration).
 /// G M⁻¹ Gᵀ is singular when two stuck contacts lock one motion; λ is then the weighted least-norm
 /// solution (minimum Σ λ_k² / F_s0,k): the locked load is shared in proportion to the static limits,
-/// so the motion stays locked exactly while it is within their sum. The pseudo-inverse is formed once
+/// so the motion stays locked exactly while it is within their sum. A one-sided contact (freewheel,
+/// end stop: elements/contact.hpp) takes no share of a load against its lock while the others lock
+/// the same motion: if its weighted share has lock·λ < 0 and the others alone carry every load
+/// (rank unchanged without it), λ is the weighted least-norm solution with its share fixed at 0 —
+/// continuous where its share passes 0, and the accelerations are the same for every share. So a
+/// freewheel parallel to a holding clutch stays stuck, unloaded, and a body resting on an end stop
+/// held by friction stays on the stop. The pseudo-inverse is formed once
 /// per set of stuck contacts (complete orthogonal decomposition, rank threshold 1e-12) and cached.
 ///
 /// Bodies with position-dependent inertia (Body::machine, model/machine.hpp): M(q) = diag(I_i(q_i)),
@@ -192,6 +198,9 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] Eigen::MatrixXd stuck_matrix(const double* im) const;
   /// P_ for the inverse inertias `im` (machines in the stuck set: at every evaluation).
   void form_stuck_solution(const double* im);
+  /// The one-sided rule of the share (header): moves the share of a redundant freewheel or end stop
+  /// loaded against its lock to the other stuck contacts (lam_ from r_).
+  void share_one_sided(const double* im);
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
   /// Adds the drives' torques to f; returns their power Σ M v (source work rate).
   double drive_forces(double t, const double* y, double* f) const;
@@ -252,6 +261,8 @@ class DriveSystem final : public OdeSystem {
   };
   std::unordered_map<uint64_t, Projectors> projector_cache_;
   Eigen::MatrixXd P_;         // λ = P_ r (weighted least norm)
+  std::vector<Eigen::Index> one_sided_;  // positions in stuck_ of freewheels and end stops (≥ 2 stuck)
+  std::unordered_map<uint64_t, Eigen::MatrixXd> masked_;  // λ = P r with those of mask at share 0, this stuck set
   Eigen::MatrixXd Pproj_;     // plain pseudo-inverse of G M⁻¹ Gᵀ (velocity projection)
   std::vector<double> f_, fc_;
   Eigen::VectorXd r_, lam_;
