@@ -223,9 +223,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         names.push_back(l.name + ".deflection_" + u);
         names.push_back(l.name + ".deflection_rate_" + rate_unit(u));
       }
-    if (extra_.acceleration)
+    if (extra_.acceleration)  // a machine body has its acceleration column already (machine_outputs.hpp)
       for (const auto& b : m_.bodies)
-        names.push_back(b.name + ".acceleration_" + (b.kind == BodyKind::rotational ? "rad_s2" : "m_s2"));
+        if (!b.machine) names.push_back(b.name + ".acceleration_" + (b.kind == BodyKind::rotational ? "rad_s2" : "m_s2"));
     if (extra_.power) {
       for (const auto& ld : m_.loads) names.push_back(ld.name + ".power_W");
       for (const auto& d : m_.drives) names.push_back(d.name + ".power_W");
@@ -258,7 +258,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       }
     if (extra_.acceleration || extra_.heat) sys_.evaluate(t, y, acc_.data(), fc_.data());
     if (extra_.acceleration)
-      for (int i = 0; i < n_; ++i) cols[c++].push_back(acc_[static_cast<size_t>(i)]);
+      for (int i = 0; i < n_; ++i)
+        if (!m_.bodies[static_cast<size_t>(i)].machine) cols[c++].push_back(acc_[static_cast<size_t>(i)]);
     if (extra_.power) {
       for (const Load& ld : m_.loads)
         cols[c++].push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);

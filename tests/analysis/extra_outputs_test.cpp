@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
@@ -150,6 +151,18 @@ simulation: {t_end: 1 s, dt_out: 0.01 s}
   for (const char* n : {"s.deflection_rad", "s.deflection_rate_rad_s", "a.acceleration_rad_s2", "s.damping_power_W",
                         "B.heat_power_W", "B.heat_J"})
     EXPECT_NE(std::find(extra.column_names.begin(), extra.column_names.end(), n), extra.column_names.end()) << n;
+}
+
+// Claim: with every group on, a model with a machine (crank-slider with a brake) has each column
+// name once: a machine body's acceleration is its machine column (the same right-hand side).
+TEST(ExtraOutputs, ColumnNamesAreUniqueWithMachines) {
+  const Model m = load_model(test::example("crank-slider-brake.yaml"));
+  const SimulationResult r = simulate(m, SimulateOptions{}, all_outputs());
+  std::vector<std::string> names = r.column_names;
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
+  EXPECT_EQ(r.columns.size(), r.column_names.size());
+  for (const auto& c : r.columns) EXPECT_EQ(c.size(), r.columns[0].size());
 }
 
 // Claim: an unknown group is a located input error; the CLI writes the columns with --outputs and
