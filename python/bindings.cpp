@@ -22,6 +22,7 @@
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/linear_results.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
 #include "machdyn/gears/gear_model.hpp"
@@ -266,12 +267,13 @@ PYBIND11_MODULE(_machdyn, mod) {
       .def_property_readonly("method_reason", [](const PyResult& r) { return r.result.method_reason; })
       .def_property_readonly("wall_time_s", [](const PyResult& r) { return r.result.stats.wall_time_s; });
 
-  mod.def("simulate", [](const PyModel& p) {
+  mod.def("simulate", [](const PyModel& p, const std::vector<std::string>& outputs) {
     auto r = std::make_shared<PyResult>();
     r->model = p.model;
-    r->result = nogil([&] { return simulate(*p.model); });
+    const OutputSelection extra = output_selection(outputs);  // the groups of `--outputs`
+    r->result = nogil([&] { return simulate(*p.model, SimulateOptions{}, extra); });
     return r;
-  });
+  }, pybind11::arg("model"), pybind11::arg("outputs") = std::vector<std::string>{});
 
   // For bench/python_bench.py: the median wall time of `repeats` calls of simulate() timed in C++,
   // the reference for the Python call's overhead.

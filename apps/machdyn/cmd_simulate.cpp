@@ -13,6 +13,7 @@
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -34,6 +35,7 @@ struct SimulateArgs {
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: write a time series above the size limit
   bool rpm = false;           ///< --rpm: angular speeds of the figures in rpm
+  std::vector<std::string> outputs;  ///< --outputs: extra column groups (analysis/extra_outputs.hpp)
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -103,7 +105,7 @@ int run_all_cases(const SimulateArgs& a) {
     try {
       SimulateOptions every_case;
       every_case.event_driven = true;  // event-driven for every case, smooth or not
-      results.push_back(simulate(models[c], every_case));
+      results.push_back(simulate(models[c], every_case, output_selection(a.outputs)));
     } catch (const SolverError&) {
       std::cerr << fmt::format("machdyn: case '{}' ({} of {}) failed; no result of this run was written\n", names[c],
                                c + 1, names.size());
@@ -163,7 +165,7 @@ int run_simulate(const SimulateArgs& a) {
   ProgressBar bar(a.quiet);
   SimulateOptions options;
   options.progress = bar.callback();
-  const SimulationResult r = simulate(m, options);
+  const SimulationResult r = simulate(m, options, output_selection(a.outputs));
   bar.clear();
   const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
   const auto summary = simulation_summary(m, r);
@@ -210,6 +212,11 @@ void register_simulate(CLI::App& app, int& exit_code) {
                 "Run every load case: one table of peak link loads and dynamic factors, outputs in OUT/CASE/; "
                 "if a case fails nothing is written");
   cmd->add_flag("--rpm", args->rpm, "With --plot: angular speeds in rpm instead of rad/s");
+  cmd->add_option("--outputs", args->outputs,
+                  "Extra columns of timeseries.csv, comma-separated groups: deflection (per link), acceleration "
+                  "(per body), power (per load and drive, damping power per damped link), heat (per friction "
+                  "element: heat power and heat since t = 0), or all (docs/model-files.md, Outputs)")
+      ->delimiter(',');
   cmd->add_flag("--large-output", args->large_output,
                 "Write the time series even when it would exceed 1 GB (simulation.t_end/dt_out rows)");
   cmd->callback([args, &exit_code] {

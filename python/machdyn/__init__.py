@@ -99,16 +99,18 @@ def from_dict(spec: Mapping, set: Mapping[str, object] | Iterable[str] | None = 
     return loads(_json.dumps(spec, indent=1, allow_nan=False), set=set, case=case, source=source)
 
 
-def simulate(model: Model, case: str | None = None) -> Result:
+def simulate(model: Model, case: str | None = None, outputs: list[str] | None = None) -> Result:
     """Simulates the model with its ``simulation:`` settings, as ``machdyn simulate`` does.
 
     case: run this load case of the model's file instead (as ``--case NAME``).
+    outputs: extra column groups, as ``--outputs``: ``"deflection"``, ``"acceleration"``,
+             ``"power"``, ``"heat"`` or ``"all"`` (docs/model-files.md, "Outputs").
     Returns a :class:`Result`: ``r.t`` (s), ``r["c1.load"]`` (N*m or N), every series as a numpy
     array, ``r.summary`` (the summary.json dict), ``r.events`` (mode events of an event-driven run).
     Raises SolverError (element, time) on a numerical failure. The GIL is released during the run.
     """
     m = model.with_case(case) if case else model
-    return Result(_machdyn.simulate(m._core), m)
+    return Result(_machdyn.simulate(m._core, list(outputs or [])), m)
 
 
 def modes(model: Model, topology: str | None = None) -> Modes:

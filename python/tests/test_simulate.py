@@ -214,3 +214,17 @@ def test_speed_drive_case_equals_the_cli(tmp):
     assert "drive.torque_N_m" in r.columns
     assert [(d["name"], d["type"], d["body"], d["states"]) for d in m.with_case("inverter").drives] == \
         [("drive", "speed-drive", "I1", 2)]
+
+
+def test_extra_outputs_equal_the_cli(tmp):
+    """--outputs all: the same columns and doubles as the CLI's timeseries.csv (no logic in Python)."""
+    path = example("crank-slider-brake.yaml")
+    run_cli("simulate", path, "-o", tmp, "--quiet", "--outputs", "all")
+    r = machdyn.simulate(machdyn.load(path), outputs=["all"])
+    assert r.to_csv() == (tmp / "timeseries.csv").read_text()
+    assert any(c.endswith(".heat_J") for c in r.columns)
+    assert any(c.endswith(".acceleration_rad_s2") for c in r.columns)
+    df = r.to_pandas()
+    assert list(df.columns) == r.columns
+    with pytest.raises(machdyn.InputError):
+        machdyn.simulate(machdyn.load(path), outputs=["temperature"])

@@ -3,6 +3,7 @@
 // breakpoints, the decision of the new modes of all elements together at an event — and the
 // observers (outputs, peaks, quasi-static loads, slip phases, energy books, progress).
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/analysis/equilibrium.hpp"
 
 #include <algorithm>
@@ -27,8 +28,8 @@ namespace {
 
 class DriveRun final : public EventSystem, public StepObserver, public PeakSignals {
  public:
-  DriveRun(const Model& m, const SimulateOptions& opt, SimulationResult& out)
-      : m_(m), opt_(opt), out_(out), sys_(m, m.is_hybrid() || opt.event_driven), jumps_(m, sys_), n_(m.dof()),
+  DriveRun(const Model& m, const SimulateOptions& opt, SimulationResult& out, const OutputSelection& extra = {})
+      : m_(m), opt_(opt), extra_(extra), out_(out), sys_(m, m.is_hybrid() || opt.event_driven), jumps_(m, sys_), n_(m.dof()),
         N_(sys_.size()), nl_(static_cast<int>(m.links.size())), nc_(static_cast<int>(m.contacts.size())),
         nd_(static_cast<int>(m.drives.size())), peaks_(sys_.size(), *this) {
     y_.assign(static_cast<size_t>(N_), 0.0);
@@ -152,8 +153,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   // ---- the observer of the driver ----
-  void on_step(const Stepper& st) override { report_progress(st, start_, false); }
+  void on_step(const Stepper& st) override {
+    step_ = &st;
+    report_progress(st, start_, false);
+  }
   void on_segment(const Stepper& st, double ta, double tb) override {
+    if (extra_.heat) {  // the heat of each friction element over the piece, in its modes
+      heat_integral(st, ta, tb, heat_.data());
+      heat_t_ = tb;
+    }
     peaks_.on_segment(st, ta, tb, on_new_max_, phases_open_ > 0 ? on_candidate_ : PeakTracker::Candidate{});
     jumps_.on_segment(st, ta, tb);
   }
@@ -189,6 +197,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       names.push_back(l.name + ".fall_tension_N");
       if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
     }
+    if (extra_.any()) extra_columns(names);
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     const auto rows = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
@@ -225,6 +234,97 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (!is_rope_with_falls(lk)) continue;
       cols[c++].push_back(sys_.link_load(l, y) / lk.falls);
       if (lk.EA > 0.0) cols[c++].push_back(sys_.link(l).free_length(sys_.link(l).drum(y)));
+    }
+    if (extra_.any()) extra_output(t, y, c);
+  }
+
+  // ---- the optional columns (analysis/extra_outputs.hpp) ----
+  void extra_columns(std::vector<std::string>& names) {
+    auto rate_unit = [](const std::string& pos) { return pos == "rad" ? std::string("rad_s") : std::string("m_s"); };
+    if (extra_.deflection)
+      for (const auto& l : m_.links) {
+        const std::string u = link_deflection_unit(l);
+        names.push_back(l.name + ".deflection_" + u);
+        names.push_back(l.name + ".deflection_rate_" + rate_unit(u));
+      }
+    if (extra_.acceleration)  // a machine body has its acceleration column already (machine_outputs.hpp)
+      for (const auto& b : m_.bodies)
+        if (!b.machine) names.push_back(b.name + ".acceleration_" + (b.kind == BodyKind::rotational ? "rad_s2" : "m_s2"));
+    if (extra_.power) {
+      for (const auto& ld : m_.loads) names.push_back(ld.name + ".power_W");
+      for (const auto& d : m_.drives) names.push_back(d.name + ".power_W");
+      for (const auto& l : m_.links)
+        if (l.d > 0.0) names.push_back(l.name + ".damping_power_W");
+    }
+    if (extra_.heat) {
+      for (const auto& k : m_.contacts) {
+        names.push_back(k.name + ".heat_power_W");
+        names.push_back(k.name + ".heat_J");
+      }
+      heat_.assign(static_cast<size_t>(nc_), 0.0);
+      part_.assign(static_cast<size_t>(nc_), 0.0);
+      p_.assign(static_cast<size_t>(nc_), 0.0);
+      yq_.assign(static_cast<size_t>(N_), 0.0);
+    }
+  }
+  /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
+  std::string link_deflection_unit(const Link& l) const {
+    return std::string(link_load_unit(m_, l)) == "N*m" ? "rad" : "m";
+  }
+
+  void extra_output(double t, const double* y, size_t& c) {
+    auto& cols = out_.columns;
+    if (extra_.deflection)
+      for (int l = 0; l < nl_; ++l) {
+        const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
+        cols[c++].push_back(s.delta);
+        cols[c++].push_back(s.rate);
+      }
+    if (extra_.acceleration || extra_.heat) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    if (extra_.acceleration)
+      for (int i = 0; i < n_; ++i)
+        if (!m_.bodies[static_cast<size_t>(i)].machine) cols[c++].push_back(acc_[static_cast<size_t>(i)]);
+    if (extra_.power) {
+      for (const Load& ld : m_.loads)
+        cols[c++].push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
+      for (int d = 0; d < nd_; ++d)
+        cols[c++].push_back(sys_.drive_torque(d, t, y) * y[n_ + m_.drives[static_cast<size_t>(d)].body]);
+      for (int l = 0; l < nl_; ++l)
+        if (m_.links[static_cast<size_t>(l)].d > 0.0) {
+          const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
+          cols[c++].push_back(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l)));
+        }
+    }
+    if (extra_.heat) {
+      // The heat up to t: that of the finished pieces, plus the open piece [heat_t_, t] of the
+      // current step (the outputs inside a step come before its piece is closed).
+      std::copy(heat_.begin(), heat_.end(), part_.begin());
+      if (step_ && t > heat_t_) heat_integral(*step_, heat_t_, t, part_.data());
+      heat_power(t, y, p_.data());
+      for (int k = 0; k < nc_; ++k) {
+        cols[c++].push_back(p_[static_cast<size_t>(k)]);
+        cols[c++].push_back(part_[static_cast<size_t>(k)]);
+      }
+    }
+  }
+  /// P_k = F_k u_k of every contact at (t, y) in the current modes: 0 while stuck (u ≡ 0), as the
+  /// energy books' friction loss (analysis/drive_system.cpp).
+  void heat_power(double t, const double* y, double* p) {
+    sys_.evaluate(t, y, acc_.data(), fc_.data());
+    for (int k = 0; k < nc_; ++k)
+      p[k] = sys_.contact_mode(k) == ContactMode::stuck ? 0.0 : fc_[static_cast<size_t>(k)] * sys_.sliding_velocity(k, t, y);
+  }
+  /// Adds ∫_ta^tb P_k dt to h_k: 3-point Gauss–Legendre on the stepper's dense output.
+  void heat_integral(const Stepper& st, double ta, double tb, double* h) {
+    if (!(tb > ta) || nc_ == 0) return;
+    static constexpr double kX[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};  // ±√(3/5), 0
+    static constexpr double kW[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
+    for (int j = 0; j < 3; ++j) {
+      const double tq = mid + half * kX[j];
+      st.interpolate(tq, yq_.data());
+      heat_power(tq, yq_.data(), p_.data());
+      for (int k = 0; k < nc_; ++k) h[k] += half * kW[j] * p_[static_cast<size_t>(k)];
     }
   }
 
@@ -530,6 +630,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   const Model& m_;
   const SimulateOptions& opt_;
+  OutputSelection extra_;
+  const Stepper* step_ = nullptr;  // the stepper of the current step (heat of an open piece)
+  double heat_t_ = 0.0;            // heat_ holds ∫₀^heat_t_ F u dt per contact
+  std::vector<double> heat_, part_, p_, yq_;
   SimulationResult& out_;
   DriveSystem sys_;
   detail::MachineJumps jumps_;
@@ -557,6 +661,29 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 }  // namespace
 
 SimulationResult simulate(const Model& m) { return simulate(m, SimulateOptions{}); }
+
+OutputSelection output_selection(const std::vector<std::string>& groups) {
+  OutputSelection s;
+  for (const auto& g : groups) {
+    if (g == "deflection") s.deflection = true;
+    else if (g == "acceleration") s.acceleration = true;
+    else if (g == "power") s.power = true;
+    else if (g == "heat") s.heat = true;
+    else if (g == "all") s.deflection = s.acceleration = s.power = s.heat = true;
+    else
+      throw InputError(Location{"--outputs", 0, 0},
+                       fmt::format("unknown output group '{}'; expected deflection, acceleration, power, heat or all", g));
+  }
+  return s;
+}
+
+SimulationResult simulate(const Model& m, const SimulateOptions& options, const OutputSelection& extra) {
+  if (m.simulation.initial == InitialState::equilibrium) return simulate(with_equilibrium_start(m), options, extra);
+  SimulationResult out;
+  DriveRun run(m, options, out, extra);
+  run.run();
+  return out;
+}
 
 SimulationResult simulate(const Model& m, const SimulateOptions& options) {
   // `initial: equilibrium`: the same run from the static equilibrium at t = 0 (analysis/equilibrium.hpp).

@@ -1,0 +1,49 @@
+#pragma once
+/// @file
+/// The optional output columns a drive engineer puts in a report, beyond the positions, velocities
+/// and link loads every run writes. Off by default (the default files stay small and the output
+/// rows of the plain run stay a copy of the state); `machdyn simulate --outputs LIST` turns groups on.
+/// Each value comes from the one statement of its element's law, in the modes in force at the row:
+///   deflection:   per link  NAME.deflection_rad|m = δ and NAME.deflection_rate_rad_s|m_s = δ̇
+///                 (elements/link.hpp: δ = p_a(q_a)/i − p_b(q_b), in b's coordinate)
+///   acceleration: per body  NAME.acceleration_rad_s2|m_s2 = the right-hand side M⁻¹ f at the row
+///                 (with stuck contacts their constraint forces; not a finite difference)
+///   power:        per load and per drive  NAME.power_W = M v (W; > 0: it drives the body), and per
+///                 link with damping  NAME.damping_power_W = F_d δ̇ (the link law's dissipation)
+///   heat:         per contact, brake, clutch, freewheel and stop  NAME.heat_power_W = F u (W, ≥ 0,
+///                 0 while stuck; elements/contact.hpp: u = v_a − v_b, F on b) and
+///                 NAME.heat_J = ∫₀ᵗ F u dt (J), integrated by 3-point Gauss–Legendre quadrature on
+///                 the dense output of every step piece (exact for loads and speeds of degree ≤ 5 in t;
+///                 otherwise to the integrator's tolerance, as the energy books' friction loss).
+
+#include <string>
+#include <vector>
+
+#include "machdyn/analysis/simulate.hpp"
+
+namespace machdyn {
+
+/// Which groups of extra columns a run writes (all off: the plain run).
+struct OutputSelection {
+  bool deflection = false;
+  bool acceleration = false;
+  bool power = false;
+  bool heat = false;
+  [[nodiscard]] bool any() const { return deflection || acceleration || power || heat; }
+};
+
+/// The group names accepted by `--outputs` (and "all").
+inline const std::vector<std::string>& output_group_names() {
+  static const std::vector<std::string> names{"deflection", "acceleration", "power", "heat", "all"};
+  return names;
+}
+
+/// The selection from group names ("deflection", "acceleration", "power", "heat", "all").
+/// Throws InputError (located at `--outputs`) for an unknown name.
+OutputSelection output_selection(const std::vector<std::string>& groups);
+
+/// simulate(m, options) with the extra columns of `extra` appended after the standard ones (the
+/// same run: the standard columns, peaks, events and energies are the same numbers).
+SimulationResult simulate(const Model& m, const SimulateOptions& options, const OutputSelection& extra);
+
+}  // namespace machdyn
