@@ -677,8 +677,25 @@ OutputSelection output_selection(const std::vector<std::string>& groups) {
   return s;
 }
 
+std::size_t extra_columns_bound(const Model& m, const OutputSelection& s) {
+  std::size_t n = 0;
+  if (s.deflection) n += 2 * m.links.size();
+  if (s.acceleration) n += m.bodies.size();
+  if (s.power) n += m.loads.size() + m.drives.size() + m.links.size();
+  if (s.heat) n += 2 * m.contacts.size();
+  return n;
+}
+
 SimulationResult simulate(const Model& m, const SimulateOptions& options, const OutputSelection& extra) {
   if (m.simulation.initial == InitialState::equilibrium) return simulate(with_equilibrium_start(m), options, extra);
+  // Compile bounded the standard grid by kMaxOutputBytes; the extra columns widen every row.
+  const double base = static_cast<double>(output_columns_bound(m));
+  const double bytes = output_bytes_bound(m) * (base + static_cast<double>(extra_columns_bound(m, extra))) / base;
+  if (options.record_series && bytes > kMaxOutputBytes)
+    throw InputError(Location{"--outputs", 0, 0},
+                     fmt::format("the output with these groups needs {:.3g} GB in memory, more than the limit of {:.3g} "
+                                 "GB; raise 'simulation.dt_out', shorten 't_end' or choose fewer groups",
+                                 bytes / 1e9, kMaxOutputBytes / 1e9));
   SimulationResult out;
   DriveRun run(m, options, out, extra);
   run.run();

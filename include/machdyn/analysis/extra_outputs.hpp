@@ -42,8 +42,12 @@ inline const std::vector<std::string>& output_group_names() {
 /// Throws InputError (located at `--outputs`) for an unknown name.
 OutputSelection output_selection(const std::vector<std::string>& groups);
 
+/// The number of extra columns `s` adds to a run of `m`, at most.
+std::size_t extra_columns_bound(const Model& m, const OutputSelection& s);
+
 /// simulate(m, options) with the extra columns of `extra` appended after the standard ones (the
-/// same run: the standard columns, peaks, events and energies are the same numbers).
+/// same run: the standard columns, peaks, events and energies are the same numbers). Throws
+/// InputError (at `--outputs`) when the widened output grid would exceed kMaxOutputBytes in memory.
 SimulationResult simulate(const Model& m, const SimulateOptions& options, const OutputSelection& extra);
 
 }  // namespace machdyn
