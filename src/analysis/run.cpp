@@ -81,6 +81,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (jumps_.count() > 0) drive.event_tol = 4e-16;  // jump positions of stepwise gears: to the last bits of t
     start_ = start;
     out_.stats = integrate(st, *this, 0.0, y_.data(), s.t_end, drive, *this);
+    if (opt_.record_series)
+      for (auto& col : out_.columns) col.resize(row_);
     std::copy(st.y(), st.y() + N_, y_.begin());
     // Close the books.
     for (int k = 0; k < nc_; ++k) close_phase(k, s.t_end);
@@ -200,42 +202,54 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (extra_.any()) extra_columns(names);
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
-    const auto rows = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
-    for (auto& col : out_.columns) col.reserve(rows);
+    // Sized once (compile bounded the bytes); rows are written in place and the columns cut to
+    // the rows written at the end: no capacity check per value on the output path.
+    row_cap_ = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
+    for (auto& col : out_.columns) col.resize(row_cap_);
+  }
+  /// The index of the next output row (more room if the grid ever outgrows its bound).
+  size_t next_row() {
+    if (row_ == row_cap_) {
+      row_cap_ = 2 * row_cap_ + 16;
+      for (auto& col : out_.columns) col.resize(row_cap_);
+    }
+    return row_++;
   }
 
   void output(double t, const double* y) {
     size_t c = 0;
     auto& cols = out_.columns;
-    cols[c++].push_back(t);
+    const size_t row = next_row();
+    auto put = [&](double v) { cols[c++][row] = v; };
+    put(t);
     for (int i = 0; i < n_; ++i) {
-      cols[c++].push_back(y[i]);
-      cols[c++].push_back(y[n_ + i]);
+      put(y[i]);
+      put(y[n_ + i]);
     }
-    for (int l = 0; l < nl_; ++l) cols[c++].push_back(sys_.link_load(l, y));
+    for (int l = 0; l < nl_; ++l) put(sys_.link_load(l, y));
     if (nc_ > 0 || sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
     for (int k = 0; k < nc_; ++k) {
-      cols[c++].push_back(fc_[static_cast<size_t>(k)]);
-      cols[c++].push_back(sys_.sliding_velocity(k, t, y));
-      cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
+      put(fc_[static_cast<size_t>(k)]);
+      put(sys_.sliding_velocity(k, t, y));
+      put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
     }
     for (int l = 0; l < nl_; ++l)
       if (m_.links[static_cast<size_t>(l)].has_gap)
-        cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+        put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
     for (int d = 0; d < nd_; ++d) {
       const Drive& dr = m_.drives[static_cast<size_t>(d)];
-      cols[c++].push_back(sys_.drive_torque(d, t, y));
-      cols[c++].push_back(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
-      cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
+      put(sys_.drive_torque(d, t, y));
+      put(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
+      put(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
     }
     for (int l = 0; l < nl_; ++l) {
       const Link& lk = m_.links[static_cast<size_t>(l)];
       if (!is_rope_with_falls(lk)) continue;
-      cols[c++].push_back(sys_.link_load(l, y) / lk.falls);
-      if (lk.EA > 0.0) cols[c++].push_back(sys_.link(l).free_length(sys_.link(l).drum(y)));
+      put(sys_.link_load(l, y) / lk.falls);
+      if (lk.EA > 0.0) put(sys_.link(l).free_length(sys_.link(l).drum(y)));
     }
-    if (extra_.any()) extra_output(t, y, c);
+    if (extra_.any()) extra_output(t, y, row, c);
   }
 
   // ---- the optional columns (analysis/extra_outputs.hpp) ----
@@ -272,27 +286,28 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return std::string(link_load_unit(m_, l)) == "N*m" ? "rad" : "m";
   }
 
-  void extra_output(double t, const double* y, size_t& c) {
+  void extra_output(double t, const double* y, size_t row, size_t& c) {
     auto& cols = out_.columns;
+    auto put = [&](double v) { cols[c++][row] = v; };
     if (extra_.deflection)
       for (int l = 0; l < nl_; ++l) {
         const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
-        cols[c++].push_back(s.delta);
-        cols[c++].push_back(s.rate);
+        put(s.delta);
+        put(s.rate);
       }
     if (extra_.acceleration || extra_.heat) sys_.evaluate(t, y, acc_.data(), fc_.data());
     if (extra_.acceleration)
       for (int i = 0; i < n_; ++i)
-        if (!m_.bodies[static_cast<size_t>(i)].machine) cols[c++].push_back(acc_[static_cast<size_t>(i)]);
+        if (!m_.bodies[static_cast<size_t>(i)].machine) put(acc_[static_cast<size_t>(i)]);
     if (extra_.power) {
       for (const Load& ld : m_.loads)
-        cols[c++].push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
+        put(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
       for (int d = 0; d < nd_; ++d)
-        cols[c++].push_back(sys_.drive_torque(d, t, y) * y[n_ + m_.drives[static_cast<size_t>(d)].body]);
+        put(sys_.drive_torque(d, t, y) * y[n_ + m_.drives[static_cast<size_t>(d)].body]);
       for (int l = 0; l < nl_; ++l)
         if (m_.links[static_cast<size_t>(l)].d > 0.0) {
           const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
-          cols[c++].push_back(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l)));
+          put(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l)));
         }
     }
     if (extra_.heat) {
@@ -302,8 +317,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (step_ && t > heat_t_) heat_integral(*step_, heat_t_, t, part_.data());
       heat_power(t, y, p_.data());
       for (int k = 0; k < nc_; ++k) {
-        cols[c++].push_back(p_[static_cast<size_t>(k)]);
-        cols[c++].push_back(part_[static_cast<size_t>(k)]);
+        put(p_[static_cast<size_t>(k)]);
+        put(part_[static_cast<size_t>(k)]);
       }
     }
   }
@@ -638,7 +653,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   DriveSystem sys_;
   detail::MachineJumps jumps_;
   int n_, N_, nl_, nc_, nd_;
-  bool has_events_ = false;  // some element has an event function (else event_count() is 0)
+  bool has_events_ = false;
+  size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
   PeakTracker::Candidate on_candidate_;
