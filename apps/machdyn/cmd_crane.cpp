@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "machdyn/analysis/crane.hpp"
+#include "machdyn/analysis/crane_standard.hpp"
 #include "machdyn/io/crane_results.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
@@ -20,6 +21,7 @@ namespace {
 struct CraneArgs {
   std::string model, out;
   std::string phi2_speeds;  ///< --phi2-speeds FROM:TO:N (m/s)
+  std::string drive_classes;  ///< --drive-classes HD1,HD4 | all
   bool json = false;
   bool plot = false;  ///< --plot: one figure per factor (SVG + PNG, gnuplot)
   std::vector<std::string> sets;
@@ -59,11 +61,31 @@ std::vector<double> speed_list(const std::string& text) {
   return out;
 }
 
+/// "all" (HD1…HD5) or a comma list of HD1…HD5, in the order given.
+std::vector<int> drive_class_list(const std::string& text) {
+  if (text.empty()) return {};
+  if (text == "all") return {1, 2, 3, 4, 5};
+  std::vector<int> out;
+  for (size_t start = 0;;) {
+    const size_t comma = text.find(',', start);
+    const std::string word = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    try {
+      out.push_back(static_cast<int>(crane::parse_hoist_drive_class(word)));
+    } catch (const std::invalid_argument&) {
+      throw InputError(Location{"--drive-classes", 0, 0},
+                       fmt::format("'{}': expected 'all' or a comma list of HD1, HD2, HD3, HD4, HD5", word));
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
 int run_crane(const CraneArgs& a) {
   const std::filesystem::path out_dir = output_dir(a.model, a.out, "");
   const Model m = load_model(a.model, a.sets);
   if (a.plot) plot::find_gnuplot();  // before the work, not after
-  const CraneReport r = crane_analysis(m);
+  const CraneReport r = crane_analysis(m, drive_class_list(a.drive_classes));
   nlohmann::json j = crane_json(r);
   std::string sweep_csv;
   std::vector<plot::Figure> figures = a.plot ? crane_figures(r) : std::vector<plot::Figure>{};
@@ -106,6 +128,9 @@ void register_crane(CLI::App& app, int& exit_code) {
   cmd->add_option("--phi2-speeds", a->phi2_speeds,
                   "phi2 over hoisting speeds FROM:TO:N (m/s) beside the standard's line: phi2_sweep.csv and "
                   "'phi2_sweep' in the JSON (with --plot: crane_phi2_sweep.svg/.png)");
+  cmd->add_option("--drive-classes", a->drive_classes,
+                  "phi2 in each of these hoist drive classes instead of the section's own: 'all' or e.g. HD1,HD2,HD4 "
+                  "(vh,max, the creep speed, 0.5 vh,max; HD5 starts from zero speed and is not simulated)");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_crane(*a); }); });
 }

@@ -61,6 +61,12 @@ CraneFactorRow phi2_row(const Model& m) {
   r.standard_lo = r.standard_hi = phi2(hc, hd, vh);
   r.clause = fmt::format("EN 13001-2 phi2 = phi2,min + beta2 vh ({}: beta2 = {:.2f} s/m; {}: phi2,min = {:.2f})",
                          to_string(hc), beta2(hc), to_string(hd), phi2_min(hc, hd));
+  if ((hd == HoistDriveClass::HD2 || hd == HoistDriveClass::HD3) && !(c.creep_speed > 0.0)) {
+    r.simulated = kNaN;
+    r.margin = kNaN;
+    r.note = fmt::format("{} hoists at the creep speed: give 'creep_speed' in the crane section", to_string(hd));
+    return r;
+  }
   if (vh == 0.0) {  // HD5: the drive starts from zero speed; no dynamic lift-off to simulate
     r.simulated = kNaN;
     r.margin = kNaN;
@@ -263,13 +269,24 @@ std::vector<Phi2Point> phi2_sweep(const Model& m, const std::vector<double>& spe
   return out;
 }
 
-CraneReport crane_analysis(const Model& m) {
+CraneReport crane_analysis(const Model& m) { return crane_analysis(m, {}); }
+
+CraneReport crane_analysis(const Model& m, const std::vector<int>& drive_classes) {
   if (!m.crane.given)
     throw InputError(Location{m.source, 0, 0}, "the model has no 'crane:' section (docs/crane-factors.md)");
+  for (int k : drive_classes)
+    if (k < 1 || k > 5) throw std::invalid_argument(fmt::format("hoist drive class HD{} does not exist (HD1…HD5)", k));
   CraneReport out;
   out.model = m.name;
   const CraneSpec& c = m.crane;
-  if (c.rope >= 0 && c.hoist_speed > 0.0) out.rows.push_back(phi2_row(m));
+  if (c.rope >= 0 && c.hoist_speed > 0.0) {
+    if (drive_classes.empty()) out.rows.push_back(phi2_row(m));
+    for (int k : drive_classes) {
+      Model mk = m;
+      mk.crane.drive_class = k;
+      out.rows.push_back(phi2_row(mk));
+    }
+  }
   if (c.rope >= 0 && c.release_mass > 0.0) out.rows.push_back(phi3_row(m));
   if (!c.drive_links.empty() || !c.buffers.empty()) {
     const SimulationResult res = simulate(m);  // the model's own run

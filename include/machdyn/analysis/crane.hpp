@@ -60,6 +60,11 @@ struct CraneReport {
 
 /// Runs every case the `crane:` section of `m` enables (see above).
 CraneReport crane_analysis(const Model& m);
+/// The same with one φ2 row per hoist drive class in `drive_classes` (1…5 for HD1…HD5, in that
+/// order; empty: the section's own class): the crane's main hoist in each drive class. A class
+/// that hoists at the creep speed (HD2, HD3) without `creep_speed` gives a row without a
+/// simulation that says so. Throws std::invalid_argument for a class outside 1…5.
+CraneReport crane_analysis(const Model& m, const std::vector<int>& drive_classes);
 
 /// One point of φ2 over the hoisting speed: the φ2 case run at vh beside the standard's line.
 struct Phi2Point {
