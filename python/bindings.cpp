@@ -324,7 +324,9 @@ PYBIND11_MODULE(_machdyn, mod) {
   });
 
   // As `machdyn crane --json`: the crane table (analysis/crane.hpp), GIL released for its runs.
-  mod.def("crane", [](const PyModel& p) { return nogil([&] { return crane_json(crane_analysis(*p.model)).dump(); }); });
+  mod.def("crane", [](const PyModel& p, const std::vector<int>& drive_classes) {
+    return nogil([&] { return crane_json(crane_analysis(*p.model, drive_classes)).dump(); });
+  });
 
   mod.def("gears", [](const std::string& path, const std::vector<std::string>& sets) {
     SpecNode root = read_yaml_file(path);

@@ -149,13 +149,23 @@ def energy(model: Model, to: str | float | None = None, points: int = 201, delta
                                        float(delta or 0.0), "" if mean_speed is None else _value_text(mean_speed)))
 
 
-def crane(model: Model) -> dict:
+def crane(model: Model, drive_classes=None) -> dict:
     """The crane dynamic factors of a model with a ``crane:`` section, as ``machdyn crane --json``
     (docs/crane-factors.md): ``{"model": NAME, "rows": [{"factor", "case", "simulated",
     "standard_lo", "standard_hi", "clause", "margin", "note"}, ...]}``, NaN as None.
-    Raises InputError for a model without ``crane:`` or a case it cannot build.
+    ``drive_classes``: "all" or a list such as ``["HD1", "HD4"]`` gives one φ2 row per hoist drive
+    class (as ``--drive-classes``). Raises InputError for a model without ``crane:`` or a case it
+    cannot build, ValueError for an unknown drive class.
     """
-    return _json.loads(_machdyn.crane(model._core))
+    classes = []
+    if drive_classes == "all":
+        classes = [1, 2, 3, 4, 5]
+    elif drive_classes is not None:
+        for hd in drive_classes:
+            if not (isinstance(hd, str) and len(hd) == 3 and hd[:2] == "HD" and hd[2] in "12345"):
+                raise ValueError(f"drive class {hd!r}: expected 'all' or HD1 ... HD5")
+            classes.append(int(hd[2]))
+    return _json.loads(_machdyn.crane(model._core, classes))
 
 
 def gears(spec: str | _os.PathLike, set: Mapping[str, object] | Iterable[str] | None = None) -> dict:

@@ -89,6 +89,16 @@ def test_modes_per_topology_equal_the_cli_and_paper_001():
         machdyn.modes(m, topology="c=shut")
 
 
+def test_crane_drive_classes_equal_the_cli():
+    path = example("crane/main-hoist-inverter.yaml")
+    t = machdyn.crane(machdyn.load(path), drive_classes=["HD1", "HD4"])
+    assert t == cli_json("crane", path, "--json", "--drive-classes", "HD1,HD4", "-o",
+                         str(__import__("tempfile").mkdtemp()))
+    assert [r["case"].split(",")[1].strip()[:7] for r in t["rows"] if r["factor"] == "phi2"] == ["HC2/HD1", "HC2/HD4"]
+    with pytest.raises(ValueError, match="HD9"):
+        machdyn.crane(machdyn.load(path), drive_classes=["HD9"])
+
+
 def test_crane_equals_the_cli_and_the_closed_form():
     path = example("crane/trolley-buffers.yaml")
     t = machdyn.crane(machdyn.load(path))
