@@ -587,23 +587,23 @@ double DriveSystem::elastic_energy(const double* y) const {
   return V;
 }
 
-void DriveSystem::event_functions(double t, const double* y, double* g) {
-  if (!stuck_.empty()) {
-    // λ of the stuck contacts, into fc_: from the mode's affine rows where the mode is affine.
-    if (affine_eligible_ && !dense_) {
-      if (!affine_) affine_ = &compile_affine();
-      const AffineMode& a = *affine_;
-      for (int k = 0; k < nc_; ++k) {
-        double s = a.force_c[k];
-        for (int i = a.force_start[static_cast<size_t>(k)]; i < a.force_start[static_cast<size_t>(k) + 1]; ++i)
-          s += a.force_val[static_cast<size_t>(i)] * y[a.force_col[static_cast<size_t>(i)]];
-        fc_[static_cast<size_t>(k)] = s;
-      }
-    } else {
-      std::vector<double>& acc = f_;
-      evaluate(t, y, acc.data(), fc_.data());
+void DriveSystem::contact_forces(double t, const double* y, double* fc) {
+  if (affine_eligible_ && !dense_) {  // the mode's affine rows (compile_affine)
+    if (!affine_) affine_ = &compile_affine();
+    const AffineMode& a = *affine_;
+    for (int k = 0; k < nc_; ++k) {
+      double s = a.force_c[k];
+      for (int i = a.force_start[static_cast<size_t>(k)]; i < a.force_start[static_cast<size_t>(k) + 1]; ++i)
+        s += a.force_val[static_cast<size_t>(i)] * y[a.force_col[static_cast<size_t>(i)]];
+      fc[k] = s;
     }
+    return;
   }
+  evaluate(t, y, f_.data(), fc);
+}
+
+void DriveSystem::event_functions(double t, const double* y, double* g) {
+  if (!stuck_.empty()) contact_forces(t, y, fc_.data());  // λ of the stuck contacts
   for (int l = 0; l < nl_; ++l) {
     const LinkLaw& k = links_[static_cast<size_t>(l)];
     if (!k.gap) {

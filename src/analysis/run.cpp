@@ -227,7 +227,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(y[n_ + i]);
     }
     for (int l = 0; l < nl_; ++l) put(sys_.link_load(l, y));
-    if (nc_ > 0 || sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    if (sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    else if (nc_ > 0) sys_.contact_forces(t, y, fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
     for (int k = 0; k < nc_; ++k) {
       put(fc_[static_cast<size_t>(k)]);

@@ -140,6 +140,9 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] double sliding_velocity(int k, double t, const double* y) const {
     return contacts_[static_cast<size_t>(k)].sliding_velocity(t, y + n_);
   }
+  /// The contact forces F_k of evaluate() alone (stuck: λ; sliding: ±F_k): from the mode's affine
+  /// map where the model is affine in its state, without solving for the accelerations.
+  void contact_forces(double t, const double* y, double* fc);
   /// Accelerations (n) and contact forces F_k (stuck: λ; sliding: ±F_k; size = contacts).
   void evaluate(double t, const double* y, double* acc, double* contact_force);
   /// Generalized external forces f (n): loads, machine forces and the contact forces `fc`.
