@@ -182,6 +182,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
                                                     : d.name + ".reference_" + unit_suffix(velocity_unit(k)));
       names.push_back(d.name + ".mode");
     }
+    // Bodies slaved by ideal gears (model.hpp: RigidSlave): q = ρ q_master, v = ρ v_master.
+    for (const auto& sl : m_.slaves) {
+      names.push_back(sl.name + ".position_" + unit_suffix(position_unit(sl.kind)));
+      names.push_back(sl.name + ".velocity_" + unit_suffix(velocity_unit(sl.kind)));
+    }
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     const auto rows = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
@@ -212,6 +217,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       cols[c++].push_back(sys_.drive_torque(d, t, y));
       cols[c++].push_back(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
       cols[c++].push_back(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
+    }
+    for (const auto& sl : m_.slaves) {
+      cols[c++].push_back(sl.ratio * y[sl.master]);
+      cols[c++].push_back(sl.ratio * y[n_ + sl.master]);
     }
   }
 
