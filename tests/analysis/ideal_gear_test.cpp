@@ -143,7 +143,7 @@ loads:
   };
   const SimulationResult rigid = run(yaml(fmt::format("{{type: ideal-gear, between: [A, B], ratio: {}}}", kI)), 0.5);
   std::vector<double> dev;
-  for (double c : {1e3, 1e5}) {
+  for (double c : {1e3, 1e5, 1e7}) {
     const SimulationResult r =
         run(yaml(fmt::format("{{type: spring, between: [A, B], ratio: {}, stiffness: {}}}", kI, c)), 0.5, 1e-10);
     const auto& w = test::series(r, "B.velocity_rad_s");
@@ -153,9 +153,11 @@ loads:
     dev.push_back(d);
   }
   const double scale = test::series(rigid, "B.velocity_rad_s").back();
-  EXPECT_LT(dev[1], 2e-3 * scale);
-  EXPECT_GT(dev[0] / dev[1], 5.0);
-  EXPECT_LT(dev[0] / dev[1], 20.0);
+  EXPECT_LT(dev[2], 1e-3 * scale);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GT(dev[k] / dev[k + 1], 5.0) << k;
+    EXPECT_LT(dev[k] / dev[k + 1], 20.0) << k;
+  }
 }
 
 // Claim: the modes of a chain with an ideal gear are those of the chain reduced by hand, whichever
@@ -206,7 +208,7 @@ links:
 // equations written here in inertia2's angle φ2 (φ_motor = 10 φ2, the gear's torque balance
 // τ_b = −10 τ_a eliminated): (J2 + 10² J1) φ2'' = 10 τ(t) − d φ2' − c (φ2 − φ3), J3 φ3'' = c (φ2 − φ3),
 // τ = 10 sin(2π 5 t), J1 = 0.1, J2 = J3 = 2, c = 1e4, d = 10, at rest at t = 0. RK4 with h = 1e-5 s
-// (h ω_max ≈ 1e-3): speeds at every 10 ms within 1e-8 rad/s.
+// (h ω_max ≈ 1e-3): speeds at every 10 ms within 1e-8 rad/s (dopri5), 1e-6 rad/s (bdf).
 TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) {
   Model m = load_model(test::example("msl/first.yaml"), {std::string("simulation.integrator=") + GetParam()});
   ASSERT_EQ(m.dof(), 2);
@@ -224,6 +226,7 @@ TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) {
   const auto& w1 = test::series(r, "motor.velocity_rad_s");
   long step = 0;
   int checked = 0;
+  const double tol = std::string(GetParam()) == "dopri5" ? 1e-8 : 1e-6;  // rad/s; bdf measured ≤ 1e-7
   for (size_t k = 0; k < t.size(); k += 10) {
     const long target = std::lround(t[k] / h);
     for (; step < target; ++step) {
@@ -237,9 +240,9 @@ TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) {
       const auto k4 = f(s + h, y4);
       for (int i = 0; i < 4; ++i) y[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
     }
-    EXPECT_NEAR(w2[k], y[1], 1e-8) << "t = " << t[k];
-    EXPECT_NEAR(w3[k], y[3], 1e-8) << "t = " << t[k];
-    EXPECT_NEAR(w1[k], 10.0 * y[1], 1e-7) << "t = " << t[k];
+    EXPECT_NEAR(w2[k], y[1], tol) << "t = " << t[k];
+    EXPECT_NEAR(w3[k], y[3], tol) << "t = " << t[k];
+    EXPECT_NEAR(w1[k], 10.0 * y[1], 10 * tol) << "t = " << t[k];
     ++checked;
   }
   EXPECT_EQ(checked, 101);
@@ -292,7 +295,8 @@ links:
   BC: {type: ideal-gear, between: [B, C], ratio: 3}
   AC: {type: ideal-gear, between: [A, C], ratio: 5}
 )");
-  EXPECT_NE(loop.find("gear.yaml:8:"), std::string::npos) << loop;
+  // The error sits at the ratio of the gear that closes the loop in the search (BC or AC, lines 7-8).
+  EXPECT_TRUE(loop.find("gear.yaml:7:") != std::string::npos || loop.find("gear.yaml:8:") != std::string::npos) << loop;
   EXPECT_NE(loop.find("ratios disagree"), std::string::npos) << loop;
   const std::string start = errors_of(
       "bodies:\n  A: {inertia: 1, velocity: 3}\n  B: {inertia: 1, velocity: 2}\nlinks:\n"
