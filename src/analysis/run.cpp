@@ -199,6 +199,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       names.push_back(l.name + ".fall_tension_N");
       if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
     }
+    // Bodies slaved by ideal gears (model.hpp: RigidSlave): q = ρ q_master, v = ρ v_master.
+    for (const auto& sl : m_.slaves) {
+      names.push_back(sl.name + ".position_" + unit_suffix(position_unit(sl.kind)));
+      names.push_back(sl.name + ".velocity_" + unit_suffix(velocity_unit(sl.kind)));
+    }
     if (extra_.any()) extra_columns(names);
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
@@ -249,6 +254,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (!is_rope_with_falls(lk)) continue;
       put(sys_.link_load(l, y) / lk.falls);
       if (lk.EA > 0.0) put(sys_.link(l).free_length(sys_.link(l).drum(y)));
+    }
+    for (const auto& sl : m_.slaves) {  // bodies slaved by ideal gears: q = ρ q_master, v = ρ v_master
+      put(sl.ratio * y[sl.master]);
+      put(sl.ratio * y[n_ + sl.master]);
     }
     if (extra_.any()) extra_output(t, y, row, c);
   }

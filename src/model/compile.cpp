@@ -18,6 +18,7 @@
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 #include "model/compile_crane.hpp"
+#include "model/compile_rigid.hpp"
 
 namespace machdyn {
 namespace {
@@ -37,7 +38,7 @@ std::string_view section_of_type(std::string_view type) {
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
-      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"speed-drive", "drives"}};
+      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"ideal-gear", "links"}, {"speed-drive", "drives"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -93,8 +94,9 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
     b.name = name;
     auto type = f.word("type", {"rotational", "translational"}, "rotational");
     b.kind = type && *type == "translational" ? BodyKind::translational : BodyKind::rotational;
-    auto inertia = b.kind == BodyKind::rotational ? f.positive("inertia", dim::inertia)
-                                                   : f.positive("mass", dim::mass);
+    // 0 (a massless flange) is checked once the ideal gears are known (model/compile_rigid.cpp).
+    auto inertia = b.kind == BodyKind::rotational ? f.positive("inertia", dim::inertia, std::nullopt, true)
+                                                   : f.positive("mass", dim::mass, std::nullopt, true);
     b.inertia = inertia.value_or(1.0);
     b.q0 = f.quantity("position", position_dim(b.kind), 0.0).value_or(0.0);
     b.v0 = f.quantity("velocity", velocity_dim(b.kind), 0.0).value_or(0.0);
@@ -111,7 +113,7 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
   }
 }
 
-void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
+void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears, Diagnostics& diag) {
   if (!section) return;
   if (!section->is_map()) {
     diag.error(section->loc, "'links' must be a map of NAME: {fields}");
@@ -119,10 +121,14 @@ void compile_links(const SpecNode* section, Model& m, Diagnostics& diag) {
   }
   for (const auto& [name, spec] : section->fields) {
     if (wrong_section(spec, "links", fmt::format("link '{}'", name), diag)) continue;
+    if (const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr; t && t->is_scalar() && t->scalar == "ideal-gear") {
+      detail::read_ideal_gear(name, spec, m, gears, diag);  // a rigid connection: model/compile_rigid.cpp
+      continue;
+    }
     FieldReader f(spec, fmt::format("link '{}'", name), diag);
     Link l;
     l.name = name;
-    auto type = f.word("type", {"spring", "damper", "spring-damper", "rope"});
+    auto type = f.word("type", {"spring", "damper", "spring-damper", "rope", "ideal-gear"});
     const SpecNode* between = f.node("between");
     bool ends_ok = false;
     if (!between) {
@@ -499,7 +505,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   if (m.bodies.empty())
     diag.error(bodies ? bodies->loc : Location{source, 1, 1},
                "the model has no body with mass or inertia: add at least one under 'bodies'");
-  compile_links(top.node("links"), m, diag);
+  std::vector<detail::IdealGear> gears;
+  compile_links(top.node("links"), m, gears, diag);
   compile_loads(top.node("loads"), m, diag);
   compile_gravity(top, m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
@@ -509,6 +516,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_buffers(top.node("buffers"), m, diag);
   detail::compile_crane(top.node("crane"), m, diag);
   detail::compile_drives(top.node("drives"), m, diag);
+  // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
+  if (diag.empty()) detail::resolve_rigid(m, gears, bodies, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);

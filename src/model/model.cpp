@@ -74,18 +74,22 @@ double load_law(const Load& l, double t, double q, double v, double* dMdq, doubl
 }
 }  // namespace
 
-double Load::evaluate(double t, double q, double v) const { return load_law<false>(*this, t, q, v, nullptr, nullptr); }
+// A load on a body slaved by ideal gears (ratio ρ ≠ 1): ρ M(t, ρ q, ρ v), slopes ρ² ∂M (model.hpp).
+double Load::evaluate(double t, double q, double v) const {
+  if (ratio == 1.0) return load_law<false>(*this, t, q, v, nullptr, nullptr);
+  return ratio * load_law<false>(*this, t, ratio * q, ratio * v, nullptr, nullptr);
+}
 
 double Load::slope(double t, double q, double v) const {
   double dq, dv;
-  (void)load_law<true>(*this, t, q, v, &dq, &dv);
-  return dv;
+  (void)load_law<true>(*this, t, ratio * q, ratio * v, &dq, &dv);
+  return ratio * ratio * dv;
 }
 
 double Load::position_slope(double t, double q, double v) const {
   double dq, dv;
-  (void)load_law<true>(*this, t, q, v, &dq, &dv);
-  return dq;
+  (void)load_law<true>(*this, t, ratio * q, ratio * v, &dq, &dv);
+  return ratio * ratio * dq;
 }
 
 std::vector<double> Load::breakpoints(double t0, double t1) const {
@@ -149,7 +153,8 @@ std::vector<std::string> chain_column_names(const Model& m) {
 }
 
 std::size_t output_columns_bound(const Model& m) {
-  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size() + 3 * m.drives.size();
+  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size() + 3 * m.drives.size() +
+                  2 * m.slaves.size();
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   return n;

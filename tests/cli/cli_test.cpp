@@ -55,7 +55,7 @@ TEST(Cli, BadInputExitsTwoWithPlaceAndWritesNothing) {
   const auto dir = test::temp_dir() / "never";
   const auto r = test::run_cli("simulate '" + bad + "' -o '" + dir.string() + "'");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find(bad + ":2:16: error: body 'A': field 'inertia' must be positive"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad + ":2:16: error: body 'A': field 'inertia' must be zero or positive"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(bad + ":4:34: error: link 'c': unknown body 'B'"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir));
   const auto s = test::run_cli("modes '" + test::example("hoist-3mass.yaml") + "' --set c9.stiffness=1");

@@ -68,8 +68,8 @@ struct Broken {
 const Broken kCatalogue[] = {
     {"unknown key", "bodies:\n  A: {inertia: 1, colour: red}\n", {"2:19: error: body 'A': unknown field 'colour'"}},
     {"missing field", "bodies:\n  A: {type: rotational}\n", {"2:6: error: body 'A': missing field 'inertia'"}},
-    {"negative inertia", "bodies:\n  A: {inertia: -1 kg*m^2}\n", {"2:16: error: body 'A': field 'inertia' must be positive"}},
-    {"zero inertia", "bodies:\n  A: {inertia: 0}\n", {"2:16: error: body 'A': field 'inertia' must be positive"}},
+    {"negative inertia", "bodies:\n  A: {inertia: -1 kg*m^2}\n", {"2:16: error: body 'A': field 'inertia' must be zero or positive"}},
+    {"zero inertia", "bodies:\n  A: {inertia: 0}\n", {"2:16: error: body 'A': zero inertia; a massless body"}},
     {"unknown body in link",
      "bodies:\n  A: {inertia: 1}\nlinks:\n  c: {type: spring, between: [A, Z], stiffness: 1}\n",
      {"4:34: error: link 'c': unknown body 'Z'"}},
@@ -90,7 +90,7 @@ const Broken kCatalogue[] = {
      {"error: load 'M': times must not decrease"}},
     {"several problems at once",
      "bodies:\n  A: {inertia: -1}\n  B: {mass: 2}\nlinks:\n  c: {type: spring, between: [A, X], stiffness: 1}\n",
-     {"2:16: error: body 'A': field 'inertia' must be positive", "3:6: error: body 'B': missing field 'inertia'",
+     {"2:16: error: body 'A': field 'inertia' must be zero or positive", "3:6: error: body 'B': missing field 'inertia'",
       "3:7: error: body 'B': unknown field 'mass'", "5:34: error: link 'c': unknown body 'X'"}},
 };
 

@@ -34,7 +34,9 @@ enum class BodyKind { rotational, translational };
 struct Body {
   std::string name;
   BodyKind kind = BodyKind::rotational;
-  double inertia = 0.0;  ///< I in kg·m² (rotational) or m in kg (translational); > 0
+  /// I in kg·m² (rotational) or m in kg (translational); > 0 in a compiled model. The file may give
+  /// 0 (a massless flange) only on a body that an ideal gear ties to one with inertia (RigidSlave).
+  double inertia = 0.0;
   double q0 = 0.0;       ///< initial position, rad or m
   double v0 = 0.0;       ///< initial velocity, rad/s or m/s
   /// Gravity (`vertical:` of a translational body): +1 when q points up (its weight −m g acts
@@ -196,6 +198,12 @@ struct Load {
   /// whose "time" is the speed or the position).
   Signal signal;
   std::shared_ptr<const Expression> law;  ///< expression: f over (t, q, v) in that order
+  /// ρ ≠ 1 when the load was given on a body slaved by ideal gears (q_slave = ρ q_body, RigidSlave):
+  /// the law sees the slave's own position and velocity and acts on `body` reduced by the ratio,
+  ///   M_body(t, q, v) = ρ M(t, ρ q, ρ v)     (virtual work: M δq_slave = ρ M δq_body)
+  /// evaluate(), slope() and position_slope() apply it (slopes ρ² ∂M). A constant load is reduced
+  /// by compile into `value` instead (ρ stays 1).
+  double ratio = 1.0;
   Signal on = Signal::constant(1.0);         ///< motors: contactor, 0 or 1
   Signal direction = Signal::constant(1.0);  ///< motors: +1 or −1
   bool switched = false;                     ///< motors: `on` or `direction` is not the constant 1
@@ -280,6 +288,21 @@ struct SimulationSettings {
   InitialState initial = InitialState::given;  ///< `initial: given | equilibrium`
 };
 
+/// A body removed by compile because ideal gears (`type: ideal-gear` under links) tie it rigidly to
+/// another body, its master (model/compile_rigid.cpp). Its motion follows the master's exactly,
+///   q_slave = ρ q_master,   v_slave = ρ v_master      (ρ: the product of the gear ratios on the path,
+///                                                      dimension [q_slave]/[q_master]),
+/// and its inertia is part of the master's reduced inertia I_master + Σ ρ² I_slave. Its loads act
+/// on the master reduced by ρ (Load::ratio); its links end on the master with ratio i/ρ. The run
+/// still writes its position and velocity columns (analysis/run.cpp).
+struct RigidSlave {
+  std::string name;      ///< the slaved body's name
+  BodyKind kind = BodyKind::rotational;
+  int master = 0;        ///< index into Model::bodies
+  double ratio = 1.0;    ///< ρ = q_slave / q_master, nonzero
+  double inertia = 0.0;  ///< its own inertia (kg·m² or kg) as given, >= 0
+};
+
 struct Model {
   std::string name;         ///< from the file's `name:` (or its file name)
   std::string description;
@@ -295,6 +318,9 @@ struct Model {
   double gravity = 0.0;
   SimulationSettings simulation;
   CraneSpec crane;                        ///< the `crane:` section (given = false without one)
+  /// Bodies removed by ideal gears (RigidSlave), in the file's order; empty without ideal gears.
+  std::vector<RigidSlave> slaves;
+  std::vector<std::string> ideal_gears;   ///< names of the ideal gears compile resolved
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
   /// Index of the body called `name`, kGround for "ground", or -2 if none. A hashed look-up once

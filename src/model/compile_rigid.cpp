@@ -1,0 +1,258 @@
+// Ideal gears: rigid connections resolved at compile time (model/compile_rigid.hpp).
+//
+// A group G of bodies tied by ideal gears moves as one: q_s = ρ_s q_M for every s in G, with the
+// master M (ρ_M = 1) the group's first body in the file. ρ follows each gear q_a = i q_b along a
+// spanning tree (ρ_a = i ρ_b); a gear that closes a loop must agree with the tree (|ρ_a − i ρ_b|
+// within 1e-12 of |ρ_a|), otherwise the group could not move at all and that gear is an error.
+// Virtual work over the group, δW = Σ_s F_s δq_s = (Σ_s ρ_s F_s) δq_M, and the kinetic energy
+// T = ½ Σ_s I_s v_s² = ½ (Σ_s ρ_s² I_s) v_M², give the master's equation of motion
+//   (I_M + Σ_s ρ_s² I_s) a_M = Σ_s ρ_s F_s(t, ρ_s q_M, ρ_s v_M)
+// (Lagrange's equation of the constrained system): the reduced inertia, and each slave's load
+// reduced by its ratio and evaluated at the slave's own position and speed (Load::ratio).
+// A link whose first end a is a slave, δ = q_a/i − q_b = ρ_a q_M/i − q_b, is the same link on M
+// with the ratio i/ρ_a: its law and load are unchanged.
+#include "model/compile_rigid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <fmt/format.h>
+
+namespace machdyn::detail {
+
+void read_ideal_gear(const std::string& name, const SpecNode& spec, const Model& m, std::vector<IdealGear>& out,
+                     Diagnostics& diag) {
+  FieldReader f(spec, fmt::format("ideal gear '{}'", name), diag);
+  f.word("type", {"ideal-gear"});
+  IdealGear g;
+  g.name = name;
+  g.where = Location(spec.key_loc);
+  g.ratio_where = g.where;
+  const SpecNode* between = f.node("between");
+  bool ok = false;
+  if (!between) {
+    diag.error(spec.loc, fmt::format("ideal gear '{}': missing field 'between' (two body names, e.g. [motor, drum])", name));
+  } else if (!between->is_seq() || between->items.size() != 2 || !between->items[0].is_scalar() ||
+             !between->items[1].is_scalar()) {
+    diag.error(between->loc, fmt::format("ideal gear '{}': 'between' expected two body names, e.g. [motor, drum]", name));
+  } else {
+    ok = true;
+    int idx[2];
+    for (int k = 0; k < 2; ++k) {
+      const SpecNode& item = between->items[static_cast<size_t>(k)];
+      idx[k] = m.body_index(item.scalar);
+      if (item.scalar == "ground") {
+        diag.error(item.loc, fmt::format("ideal gear '{}': an ideal gear to the ground would hold the other body "
+                                         "fixed; to hold a body use a stop or a brake, or remove the body", name));
+        ok = false;
+      } else if (idx[k] < 0) {
+        diag.error(item.loc, fmt::format("ideal gear '{}': unknown body '{}' (an ideal gear joins two bodies by "
+                                         "name; a machine's output point is not supported)", name, item.scalar));
+        ok = false;
+      } else if (m.bodies[static_cast<size_t>(idx[k])].machine) {
+        diag.error(item.loc, fmt::format("ideal gear '{}': '{}' has a variable inertia; an ideal gear to a machine "
+                                         "body is not supported yet (use a stiff link)", name, item.scalar));
+        ok = false;
+      }
+    }
+    if (ok && idx[0] == idx[1]) {
+      diag.error(between->loc, fmt::format("ideal gear '{}': joins '{}' to itself", name, between->items[0].scalar));
+      ok = false;
+    }
+    g.a = idx[0], g.b = idx[1];
+  }
+  auto pdim = [&](int i) {
+    return ok && m.bodies[static_cast<size_t>(i)].kind == BodyKind::translational ? dim::length : dim::none;
+  };
+  std::optional<double> r;
+  if (ok) r = f.quantity("ratio", pdim(g.a) / pdim(g.b), 1.0);
+  else f.node("ratio");
+  if (const SpecNode* rn = spec.is_map() ? spec.find("ratio") : nullptr) g.ratio_where = Location(rn->loc);
+  if (r && (*r == 0.0 || !std::isfinite(*r))) {
+    f.error_at("ratio", "field 'ratio' must be finite and not zero (q_a = ratio · q_b)");
+    ok = false;
+  }
+  f.finish();
+  if (!ok || !r) return;
+  g.ratio = *r;
+  out.push_back(g);
+}
+
+namespace {
+
+/// The place of field `key` of body `name` in the `bodies:` section, if the file gives it.
+const SpecNode* body_field(const SpecNode* bodies, const std::string& name, const char* key) {
+  const SpecNode* b = bodies && bodies->is_map() ? bodies->find(name) : nullptr;
+  return b && b->is_map() ? b->find(key) : nullptr;
+}
+
+bool agree(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-12; }
+
+}  // namespace
+
+void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies, Diagnostics& diag) {
+  const size_t n = m.bodies.size();
+  std::vector<int> master(n, -1);
+  std::vector<double> rho(n, 1.0);
+  if (!gears.empty()) {
+    std::vector<std::vector<size_t>> adj(n);
+    for (size_t k = 0; k < gears.size(); ++k) {
+      adj[static_cast<size_t>(gears[k].a)].push_back(k);
+      adj[static_cast<size_t>(gears[k].b)].push_back(k);
+    }
+    std::vector<char> gear_used(gears.size(), 0);
+    for (size_t s = 0; s < n; ++s) {  // the group's first body in the file is its master
+      if (master[s] >= 0 || adj[s].empty()) continue;
+      master[s] = static_cast<int>(s);
+      std::vector<size_t> todo{s};
+      while (!todo.empty()) {
+        const size_t u = todo.back();
+        todo.pop_back();
+        for (size_t k : adj[u]) {
+          if (gear_used[k]) continue;
+          gear_used[k] = 1;
+          const IdealGear& g = gears[k];
+          const auto a = static_cast<size_t>(g.a), b = static_cast<size_t>(g.b);
+          const size_t w = a == u ? b : a;
+          const double want = a == u ? rho[a] / g.ratio : g.ratio * rho[b];  // q_a = i q_b
+          if (master[w] < 0) {
+            master[w] = static_cast<int>(s);
+            rho[w] = want;
+            todo.push_back(w);
+          } else if (std::abs(rho[w] - want) > 1e-12 * std::abs(rho[w])) {  // a loop
+            diag.error(g.ratio_where,
+                       fmt::format("ideal gear '{}': closes a loop of ideal gears whose ratios disagree: the other "
+                                   "gears give q_{}/q_{} = {:.12g}, this one {:.12g}; a rigid loop must have a "
+                                   "consistent product of ratios", g.name, m.bodies[a].name, m.bodies[b].name,
+                                   rho[a] / rho[b], g.ratio));
+          }
+        }
+      }
+    }
+  }
+  // Initial positions and velocities along the gears: the master's, or a slave's when only it gives one.
+  for (size_t s = 0; s < n; ++s) {
+    if (master[s] != static_cast<int>(s)) continue;
+    for (const char* key : {"position", "velocity"}) {
+      const bool pos = key[0] == 'p';
+      // The group's value in the master's coordinate: from the first body that gives one.
+      std::optional<double> base;
+      size_t from = s;
+      for (size_t u = s; u < n; ++u) {
+        if (master[u] != static_cast<int>(s) || !body_field(bodies, m.bodies[u].name, key)) continue;
+        base = (pos ? m.bodies[u].q0 : m.bodies[u].v0) / rho[u];
+        from = u;
+        break;
+      }
+      const double x0 = base.value_or(0.0);
+      for (size_t u = s; u < n; ++u) {
+        if (master[u] != static_cast<int>(s)) continue;
+        double& x = pos ? m.bodies[u].q0 : m.bodies[u].v0;
+        const SpecNode* at = body_field(bodies, m.bodies[u].name, key);
+        if (at && !agree(x, rho[u] * x0))
+          diag.error(at->loc, fmt::format("body '{}': {} {:.12g} contradicts the ideal gears that tie it to '{}': "
+                                          "{} {:.12g} there gives {:.12g} here (q = {:.12g} q_{}); give it on one body "
+                                          "of the group only", m.bodies[u].name, key, x, m.bodies[from].name, key,
+                                          pos ? m.bodies[from].q0 : m.bodies[from].v0, rho[u] * x0,
+                                          rho[u] / rho[from], m.bodies[from].name));
+        x = rho[u] * x0;
+      }
+    }
+  }
+  // Reduced inertia I_M + Σ ρ² I_s, and massless bodies.
+  for (size_t s = 0; s < n; ++s)
+    if (master[s] >= 0 && master[s] != static_cast<int>(s))
+      m.bodies[static_cast<size_t>(master[s])].inertia += rho[s] * rho[s] * m.bodies[s].inertia;
+  for (size_t s = 0; s < n; ++s) {
+    const Body& b = m.bodies[s];
+    if (b.machine || b.inertia > 0.0 || (master[s] >= 0 && master[s] != static_cast<int>(s))) continue;
+    const SpecNode* at = body_field(bodies, b.name, b.kind == BodyKind::rotational ? "inertia" : "mass");
+    diag.error(at ? Location(at->loc) : m.where(b.name),
+               master[s] < 0
+                   ? fmt::format("body '{}': zero {}; a massless body has no equation of motion of its own (its "
+                                 "acceleration is undefined) unless an ideal gear ties it to a body with inertia; "
+                                 "give it an inertia or connect it with 'type: ideal-gear'", b.name,
+                                 b.kind == BodyKind::rotational ? "inertia" : "mass")
+                   : fmt::format("body '{}' and every body tied to it by ideal gears have zero inertia together; "
+                                 "the group's acceleration would be undefined: give one of them an inertia", b.name));
+  }
+  if (gears.empty()) return;
+  // New indices: slaves are removed.
+  std::vector<int> idx(n, -1);
+  int next = 0;
+  for (size_t s = 0; s < n; ++s)
+    if (master[s] < 0 || master[s] == static_cast<int>(s)) idx[s] = next++;
+  auto is_slave = [&](int i) { return i >= 0 && master[static_cast<size_t>(i)] >= 0 && master[static_cast<size_t>(i)] != i; };
+  auto to = [&](int i) { return i < 0 ? i : is_slave(i) ? idx[static_cast<size_t>(master[static_cast<size_t>(i)])] : idx[static_cast<size_t>(i)]; };
+  auto slave_text = [&](int i) {
+    const auto u = static_cast<size_t>(i);
+    return fmt::format("'{}' is tied by ideal gears to '{}' (q_{} = {:.12g} q_{})", m.bodies[u].name,
+                       m.bodies[static_cast<size_t>(master[u])].name, m.bodies[u].name, rho[u],
+                       m.bodies[static_cast<size_t>(master[u])].name);
+  };
+  for (Load& ld : m.loads) {
+    if (!is_slave(ld.body)) {
+      ld.body = to(ld.body);
+      continue;
+    }
+    const double r = rho[static_cast<size_t>(ld.body)];
+    if (ld.kind == LoadKind::constant) {  // ρ M, once here
+      ld.value *= r;
+      ld.signal = Signal::constant(ld.value);
+    } else {
+      ld.ratio = r;
+    }
+    ld.body = to(ld.body);
+  }
+  for (Link& l : m.links) {
+    if (is_slave(l.b)) {
+      diag.error(m.where(l.name), fmt::format("link '{}': its second end {}; a link whose second end is a slaved "
+                                              "body is not supported yet: write it with that body first (between: "
+                                              "[{}, OTHER], ratio 1/i, stiffness in OTHER's coordinate) or attach it "
+                                              "to '{}'", l.name, slave_text(l.b), m.bodies[static_cast<size_t>(l.b)].name,
+                                              m.bodies[static_cast<size_t>(master[static_cast<size_t>(l.b)])].name));
+      continue;
+    }
+    if (is_slave(l.a)) l.ratio /= rho[static_cast<size_t>(l.a)];  // δ = ρ q_M / i − q_b
+    l.a = to(l.a), l.b = to(l.b);
+    if (l.a == l.b && l.a >= 0)
+      diag.error(m.where(l.name), fmt::format("link '{}': both ends move rigidly together through ideal gears, so "
+                                              "its deflection never changes; remove it or one of the gears", l.name));
+  }
+  for (FrictionContact& c : m.contacts) {
+    for (int e : {c.a, c.b})
+      if (is_slave(e))
+        diag.error(m.where(c.name), fmt::format("'{}': {}; contacts, brakes, clutches, freewheels and stops on a "
+                                                "slaved body are not supported yet: attach it to '{}'", c.name,
+                                                slave_text(e),
+                                                m.bodies[static_cast<size_t>(master[static_cast<size_t>(e)])].name));
+    c.a = to(c.a), c.b = to(c.b);
+  }
+  for (Drive& d : m.drives) {
+    if (is_slave(d.body))
+      diag.error(m.where(d.name), fmt::format("drive '{}': {}; a drive on a slaved body is not supported yet: put it "
+                                              "on '{}'", d.name, slave_text(d.body),
+                                              m.bodies[static_cast<size_t>(master[static_cast<size_t>(d.body)])].name));
+    d.body = to(d.body);
+  }
+  if (m.crane.load >= 0) {
+    if (is_slave(m.crane.load))
+      diag.error(m.where(m.bodies[static_cast<size_t>(m.crane.load)].name),
+                 fmt::format("crane: the hook load {}; it must be a body of its own", slave_text(m.crane.load)));
+    m.crane.load = to(m.crane.load);
+  }
+  std::vector<Body> kept;
+  for (size_t s = 0; s < n; ++s) {
+    if (is_slave(static_cast<int>(s))) {
+      m.slaves.push_back({m.bodies[s].name, m.bodies[s].kind, idx[static_cast<size_t>(master[s])], rho[s],
+                          m.bodies[s].inertia});
+    } else {
+      kept.push_back(std::move(m.bodies[s]));
+    }
+  }
+  m.bodies = std::move(kept);
+  m.index_bodies();
+  for (const IdealGear& g : gears) m.ideal_gears.push_back(g.name);
+}
+
+}  // namespace machdyn::detail

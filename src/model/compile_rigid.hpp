@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// Ideal gears (`type: ideal-gear` under links): rigid connections q_a = i q_b resolved when the model
+/// compiles. The connected bodies become one degree of freedom in the coordinate of a master body;
+/// every consumer downstream sees an ordinary model (model.hpp: RigidSlave, Load::ratio).
+
+#include <string>
+#include <vector>
+
+#include "machdyn/common/diagnostics.hpp"
+#include "machdyn/common/spec.hpp"
+#include "machdyn/model/model.hpp"
+
+namespace machdyn::detail {
+
+/// An ideal gear as read from the file: q_a = ratio · q_b (ratio = ω_a/ω_b, nonzero; negative
+/// reverses; [q_a]/[q_b], e.g. rad/m for a rope drum with ratio 1/R).
+struct IdealGear {
+  std::string name;
+  int a = 0, b = 0;       ///< body indices (never the ground)
+  double ratio = 1.0;
+  Location where;         ///< the gear's key
+  Location ratio_where;   ///< its ratio (or the key)
+};
+
+/// Reads the fields of an ideal gear `name` (between, ratio) into `out`; errors are located.
+void read_ideal_gear(const std::string& name, const SpecNode& spec, const Model& m, std::vector<IdealGear>& out,
+                     Diagnostics& diag);
+
+/// Merges the bodies tied by `gears` into one body per rigid group (the master: the group's first
+/// body in the file), re-attaches loads and links of the slaved bodies, checks initial conditions,
+/// ratios around loops and massless bodies, and fills m.slaves. `bodies` is the file's `bodies:`
+/// section (for the places of positions and velocities). Call after every element is compiled.
+void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies, Diagnostics& diag);
+
+}  // namespace machdyn::detail
