@@ -1,5 +1,6 @@
 #include "machdyn/analysis/crane.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "machdyn/analysis/equilibrium.hpp"
 #include "machdyn/analysis/static_loads.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/elements/link.hpp"
 
 namespace machdyn {
 namespace {
@@ -162,6 +164,61 @@ double rigid_buffer_force(const Model& m, int k, std::string* note) {
   return res.links[0].max;
 }
 
+/// A column of the run by its name's start ("trolley.position_"), or null.
+const std::vector<double>* column(const SimulationResult& res, const std::string& start) {
+  for (size_t c = 0; c < res.column_names.size() && c < res.columns.size(); ++c)
+    if (res.column_names[c].rfind(start, 0) == 0) return &res.columns[c];
+  return nullptr;
+}
+
+/// ξb of buffer link k (EN 13001-2: the energy absorbed over the stroke reached, ∫F ds, over the
+/// rectangle F_max s_max) and how it was found. s_max is the largest stroke of the run. Elastic
+/// characteristics (linear, progressive, table) give ξb from their force–stroke law F_e over
+/// [0, s_max] (linear 1/2, progressive 1/(n + 1), a table exact per piece); the hydraulic buffer's
+/// force depends on the speed, so its ξb comes from the run's own force–stroke curve (the output
+/// samples of the compression, up to s_max). 1/2 when the buffer was not reached.
+double buffer_xi(const Model& m, const SimulationResult& res, int k, std::string* how) {
+  const Link& l = m.links[static_cast<size_t>(k)];
+  const int body = l.a >= 0 ? l.a : l.b;
+  const std::vector<double>* q = column(res, m.bodies[static_cast<size_t>(body)].name + ".position_");
+  const std::vector<double>* F = column(res, l.name + ".load_");
+  *how = "xi_b = 1/2: the buffer was not reached";
+  if (!q || !F || q->empty()) return 0.5;
+  std::vector<double> e(q->size());  // the stroke e = δ − δ₊ (model/model.hpp: Link::buffer)
+  for (size_t j = 0; j < q->size(); ++j) e[j] = (l.a >= 0 ? (*q)[j] : -(*q)[j]) - l.gap;
+  const size_t jmax = static_cast<size_t>(std::max_element(e.begin(), e.end()) - e.begin());
+  const double s_max = e[jmax];
+  if (!(s_max > 0.0)) return 0.5;
+  const LinkLaw law = LinkLaw::of(m, l);
+  std::vector<double> s{0.0}, f{0.0};
+  if (l.characteristic == Link::Characteristic::hydraulic) {
+    for (size_t j = 0; j <= jmax; ++j)
+      if (e[j] > s.back()) s.push_back(e[j]), f.push_back(std::max((*F)[j], 0.0));
+    // The force jumps to k v² at first contact: F(0) from the first two samples, extrapolated.
+    if (s.size() >= 3) f[0] = std::max(f[1] - (f[2] - f[1]) / (s[2] - s[1]) * s[1], 0.0);
+  } else {
+    if (l.characteristic == Link::Characteristic::table)  // the table's points below s_max, then s_max
+      for (size_t j = 1; j < l.table_stroke.size() && l.table_stroke[j] < s_max; ++j)
+        s.push_back(l.table_stroke[j]), f.push_back(l.table_force[j]);
+    if (l.characteristic == Link::Characteristic::progressive) {  // ∫ exact: V(s_max) over F(s_max) s_max
+      const double xi = law.shaped_energy(s_max) / (law.shaped_force(s_max) * s_max);
+      *how = fmt::format("xi_b = {:.4g} = 1/(n + 1) of the progressive characteristic (n = {:.4g}) over the stroke "
+                         "{:.4g}", xi, l.exponent, s_max);
+      return xi;
+    }
+    s.push_back(s_max), f.push_back(law.spring_load(s_max));
+  }
+  if (s.size() < 2) return 0.5;
+  const double xi = crane::buffer_energy_ratio(s, f);
+  if (l.characteristic == Link::Characteristic::hydraulic)
+    *how = fmt::format("xi_b = {:.4g} from the run's force-stroke curve (hydraulic buffer, {} samples up to the "
+                       "stroke {:.4g})", xi, s.size(), s_max);
+  else
+    *how = fmt::format("xi_b = {:.4g} of the {} characteristic over the stroke {:.4g}", xi,
+                       l.characteristic == Link::Characteristic::table ? "table" : "linear", s_max);
+  return xi;
+}
+
 void phi7_rows(const Model& m, const SimulationResult& res, CraneReport& out) {
   for (int k : m.crane.buffers) {
     const Link& l = m.links[static_cast<size_t>(k)];
@@ -171,17 +228,15 @@ void phi7_rows(const Model& m, const SimulationResult& res, CraneReport& out) {
     r.case_name = fmt::format("buffer {}", l.name);
     std::string rigid_note;
     const double F_rigid = rigid_buffer_force(m, k, &rigid_note);
-    // ξb of the buffer's characteristic over its stroke x_max = F/c (a linear spring: 1/2).
-    const double x_max = F_rigid / l.c;
-    const double xi = std::isfinite(x_max) && x_max > 0.0 ? crane::buffer_energy_ratio({0.0, x_max}, {0.0, l.c * x_max})
-                                                            : 0.5;
+    std::string how;
+    const double xi = buffer_xi(m, res, k, &how);
     r.standard_lo = r.standard_hi = crane::phi7(xi);
-    r.clause = fmt::format("EN 13001-2 phi7 = 1.25 (xi_b <= 0.5), 1.25 + 0.7 (xi_b - 0.5) above; xi_b = {:.3g}", xi);
+    r.clause = fmt::format("EN 13001-2 phi7 = 1.25 (xi_b <= 0.5), 1.25 + 0.7 (xi_b - 0.5) above; {}", how);
     r.simulated = s.max / F_rigid;
     r.margin = r.standard_hi - r.simulated;
     if (std::isfinite(F_rigid)) set_history(m, res, k, F_rigid, r);
-    r.note = fmt::format("peak buffer force {:.6g} N at t = {:.6g} s; rigid-body force {:.6g} N ({})", s.max, s.t_max,
-                         F_rigid, rigid_note);
+    r.note = fmt::format("peak buffer force {:.6g} N at t = {:.6g} s; rigid-body force {:.6g} N ({}); {}", s.max, s.t_max,
+                         F_rigid, rigid_note, how);
     out.rows.push_back(r);
   }
 }

@@ -71,8 +71,9 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     else varying_.push_back(&ld);
   }
   affine_eligible_ = varying_.empty() && nd_ == 0 && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
-  // A winding rope's c(q_a) makes its load nonlinear in y: the general path.
-  for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0 && !l.winding;
+  // A winding rope's c(q_a) and a shaped buffer's F_e(e) + F_v(δ̇) make their loads nonlinear in y:
+  // the general path.
+  for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0 && !l.winding && !l.shaped;
   for (const auto& k : contacts_) affine_eligible_ = affine_eligible_ && !k.kinetic_table && !k.moving_surface && !k.applied;
   gap_.assign(static_cast<size_t>(nl_), GapMode::open);
   f_.assign(static_cast<size_t>(n_), 0.0);
@@ -538,7 +539,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   for (int l = 0; l < nl_; ++l) {
     const LinkLaw& k = links_[static_cast<size_t>(l)];
     const GapMode g = gap_[static_cast<size_t>(l)];
-    k.jacobian(n_, g, k.on_cap(k.linear(y), k.linear(y + n_), g, k.drum(y)), y, [&](int r, int c, double v) {
+    k.jacobian(n_, g, k.on_cap(k.linear(y), k.linear(y + n_), g, k.drum(y)), y, y + n_, [&](int r, int c, double v) {
       trip.emplace_back(n_ + r, c, v * im(r));
     });
   }

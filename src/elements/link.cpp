@@ -22,10 +22,65 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   k.K = l.falls * l.EA;
   k.L0 = l.length;
   k.u0 = l.drum_q0;
+  k.shape = l.characteristic;
+  k.shaped = l.buffer && l.characteristic != Link::Characteristic::linear;
+  if (k.shaped) {
+    k.cn = l.characteristic == Link::Characteristic::progressive ? l.coefficient : l.c;
+    k.expo = l.exponent;
+    k.kh = l.characteristic == Link::Characteristic::hydraulic ? l.hydraulic_k : 0.0;
+    k.ts = l.table_stroke.data(), k.tf = l.table_force.data();
+    k.tn = static_cast<int>(l.table_stroke.size());
+  }
   return k;
 }
 
+namespace {
+/// The table's piece j (0 ≤ j ≤ tn − 2) that holds e: the first below s₁, the last beyond s_{n−2}.
+int piece(const double* s, int n, double e) {
+  const int j = static_cast<int>(std::upper_bound(s, s + n, e) - s) - 1;
+  return std::clamp(j, 0, n - 2);
+}
+}  // namespace
+
+double LinkLaw::shaped_force(double e) const {
+  switch (shape) {
+    case Link::Characteristic::progressive: return std::copysign(cn * std::pow(std::abs(e), expo), e);
+    case Link::Characteristic::table: {
+      const int j = piece(ts, tn, e);
+      return tf[j] + (tf[j + 1] - tf[j]) / (ts[j + 1] - ts[j]) * (e - ts[j]);
+    }
+    default: return cn * e;
+  }
+}
+
+double LinkLaw::shaped_slope(double e) const {
+  switch (shape) {
+    case Link::Characteristic::progressive: return cn * expo * std::pow(std::abs(e), expo - 1.0);
+    case Link::Characteristic::table: {
+      const int j = piece(ts, tn, e);
+      return (tf[j + 1] - tf[j]) / (ts[j + 1] - ts[j]);
+    }
+    default: return cn;
+  }
+}
+
+double LinkLaw::shaped_energy(double e) const {
+  switch (shape) {
+    case Link::Characteristic::progressive: return cn * std::pow(std::abs(e), expo + 1.0) / (expo + 1.0);
+    case Link::Characteristic::table: {
+      // ∫₀ᵉ F ds: whole pieces by the trapezoid (exact for a linear piece), then the part of e's piece.
+      if (e <= 0.0) return 0.5 * shaped_force(e) * e;  // the first piece continued below 0 (F₀ = 0)
+      const int j = piece(ts, tn, e);
+      double V = 0.0;
+      for (int i = 0; i < j; ++i) V += 0.5 * (tf[i] + tf[i + 1]) * (ts[i + 1] - ts[i]);
+      return V + 0.5 * (tf[j] + shaped_force(e)) * (e - ts[j]);
+    }
+    default: return 0.5 * cn * e * e;
+  }
+}
+
 double LinkLaw::general_load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
+  if (shaped) return shaped_slope(linear(q) - flank(g)) * linear(v) + damper_slope(linear(v)) * linear(acc);
   if (winding) {  // d(c e)/dt = c δ̇ + c′ e q̇_a
     const double qa = drum(q), rate = linear(v), Fc_rate = stiffness(qa) * rate + stiffness_slope(qa) * (linear(q) - flank(g)) * v[a];
     if (capped && on_cap(linear(q), rate, g, qa)) return 2.0 * Fc_rate;
@@ -53,6 +108,14 @@ double LinkLaw::general_load_rate(const double* q, const double* v, const double
 
 void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
   if (!transmits(g)) return;
+  if (shaped) {  // K: F_e′(e) j jᵀ, D: F_v′(0) j jᵀ (about a state at rest)
+    const int n = std::max(a, b) + 1;
+    jacobian(n, g, false, q, nullptr, [&](int r, int col, double v) {
+      if (col < n) lin.K.emplace_back(r, col, -v);
+      else lin.D.emplace_back(r, col - n, -v);
+    });
+    return;
+  }
   if (winding) {  // K: the Hessian of V (header), D: d j jᵀ
     const int n = std::max(a, b) + 1;
     jacobian(n, g, false, q, [&](int r, int col, double v) {
@@ -85,6 +148,12 @@ void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
 
 void LinkLaw::add_load_gradient(const double* q, const double* v, GapMode g, double* dFdq, double* dFdv) const {
   if (!transmits(g)) return;
+  if (shaped) {  // F = F_e(e) + F_v(δ̇): ∂F/∂q = F_e′ j, ∂F/∂v = F_v′ j
+    const double Fq = shaped_slope(linear(q) - flank(g)), Fv = damper_slope(linear(v));
+    if (a >= 0) dFdq[a] += Fq * inv_ratio, dFdv[a] += Fv * inv_ratio;
+    if (b >= 0) dFdq[b] -= Fq, dFdv[b] -= Fv;
+    return;
+  }
   if (winding) {  // F = c(q_a) e + d δ̇: ∂F/∂q_a = c s + c′ e, ∂F/∂x = −c
     const double qa = drum(q);
     dFdq[a] += stiffness(qa) * inv_ratio + stiffness_slope(qa) * (linear(q) - flank(g));

@@ -1,6 +1,11 @@
 #include "model/compile_crane.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
+
+#include "machdyn/common/units.hpp"
 
 namespace machdyn::detail {
 namespace {
@@ -37,6 +42,90 @@ std::vector<int> link_list(FieldReader& f, const char* key, const Model& m, bool
   return out;
 }
 
+/// The buffer's characteristic (model/model.hpp, law in elements/link.hpp) into l: `linear`
+/// (stiffness), `progressive` (exponent, force at stroke), `hydraulic` (hydraulic_damping, an
+/// optional return-spring stiffness) or `table` ([[stroke, force], ...] from [0, 0], strokes
+/// increasing, forces ≥ 0); `damping` (linear, N·s/m) may join each. Problems are located.
+void read_characteristic(FieldReader& f, const Dim& qd, const Dim& ld, Link& l) {
+  using C = Link::Characteristic;
+  const auto ch = f.word("characteristic", {"linear", "progressive", "hydraulic", "table"}, "linear");
+  l.d = f.positive("damping", ld / qd * dim::time, 0.0, true).value_or(0.0);
+  if (!ch || *ch == "linear") {
+    l.c = f.positive("stiffness", ld / qd).value_or(0.0);
+    return;
+  }
+  if (*ch == "progressive") {
+    l.characteristic = C::progressive;
+    const auto n = f.quantity("exponent", dim::none);
+    const auto F = f.positive("force", ld);
+    const auto s = f.positive("stroke", qd);
+    if (n && !(*n > 1.0)) f.error_at("exponent", fmt::format("the exponent of a progressive buffer must be > 1 "
+                                                         "(1 is 'characteristic: linear'), got {}", *n));
+    if (!n || !F || !s || !(*n > 1.0)) return;
+    l.exponent = *n;
+    l.coefficient = *F / std::pow(*s, *n);  // F = c sⁿ through (s_ref, F_ref)
+    l.c = *n * *F / *s;                     // the slope there (a representative stiffness)
+    return;
+  }
+  if (*ch == "hydraulic") {
+    l.characteristic = C::hydraulic;
+    const Dim wd = qd / dim::time;
+    l.hydraulic_k = f.positive("hydraulic_damping", ld / (wd * wd)).value_or(0.0);
+    l.c = f.positive("stiffness", ld / qd, 0.0, true).value_or(0.0);  // the return spring
+    return;
+  }
+  l.characteristic = C::table;
+  const SpecNode* t = f.node("table");
+  if (!t) {
+    f.error_at("table", "missing field 'table' ([[stroke, force], ...] from [0, 0])");
+    return;
+  }
+  Diagnostics& diag = f.diagnostics();
+  if (!t->is_seq() || t->items.size() < 2) {
+    diag.error(t->loc, fmt::format("{}: 'table' expected two or more [stroke, force] pairs", f.what()));
+    return;
+  }
+  bool ok = true;
+  for (const auto& p : t->items) {
+    if (!p.is_seq() || p.items.size() != 2 || !p.items[0].is_scalar() || !p.items[1].is_scalar()) {
+      diag.error(p.loc, fmt::format("{}: expected a pair [stroke, force]", f.what()));
+      ok = false;
+      continue;
+    }
+    std::string e[2];
+    const auto s = parse_as(p.items[0].scalar, qd, &e[0]);
+    const auto F = parse_as(p.items[1].scalar, ld, &e[1]);
+    for (int k = 0; k < 2; ++k)
+      if (!e[k].empty() || !(k == 0 ? s : F)) {
+        diag.error(p.items[static_cast<size_t>(k)].loc, fmt::format("{}: {}", f.what(), e[k]));
+        ok = false;
+      }
+    if (!s || !F) continue;
+    const bool first = l.table_stroke.empty();
+    if (first && (*s != 0.0 || *F != 0.0)) {
+      diag.error(p.loc, fmt::format("{}: the table starts at [0, 0] (contact begins at the buffer's position "
+                                    "without force), got [{}, {}]", f.what(), *s, *F));
+      ok = false;
+    } else if (!first && !(*s > l.table_stroke.back())) {
+      diag.error(p.items[0].loc, fmt::format("{}: the strokes must increase, got {} after {}", f.what(), *s,
+                                             l.table_stroke.back()));
+      ok = false;
+    } else if (*F < 0.0) {
+      diag.error(p.items[1].loc, fmt::format("{}: a buffer force must be >= 0, got {}", f.what(), *F));
+      ok = false;
+    }
+    l.table_stroke.push_back(*s);
+    l.table_force.push_back(*F);
+  }
+  if (ok && l.table_force.back() <= 0.0) {
+    diag.error(t->loc, fmt::format("{}: the table carries no force", f.what()));
+    ok = false;
+  }
+  if (!ok) return;
+  for (size_t k = 1; k < l.table_stroke.size(); ++k)  // the steepest slope (a representative stiffness)
+    l.c = std::max(l.c, (l.table_force[k] - l.table_force[k - 1]) / (l.table_stroke[k] - l.table_stroke[k - 1]));
+}
+
 }  // namespace
 
 void compile_buffers(const SpecNode* buffers, Model& m, Diagnostics& diag) {
@@ -71,8 +160,7 @@ void compile_buffers(const SpecNode* buffers, Model& m, Diagnostics& diag) {
     l.buffer = true;
     l.tension_only = true;  // the one flank δ₊ (model/model.hpp)
     l.has_gap = true;
-    l.c = f.positive("stiffness", ld / qd).value_or(0.0);
-    l.d = f.positive("damping", ld / qd * dim::time, 0.0, true).value_or(0.0);
+    read_characteristic(f, qd, ld, l);
     l.kind = l.d > 0.0 ? LinkKind::spring_damper : LinkKind::spring;
     l.a = upper ? i : kGround;
     l.b = upper ? kGround : i;

@@ -133,7 +133,7 @@ class DriveSystem final : public OdeSystem {
   /// flank law, whose branch depends on δ and δ̇, or a winding rope's c(q_a)), not only its derivative.
   [[nodiscard]] bool link_rate_reads_state(int l) const {
     const LinkLaw& k = links_[static_cast<size_t>(l)];
-    return k.point || k.capped || k.winding;
+    return k.point || k.capped || k.winding || k.shaped;
   }
   /// Whether some body has a position-dependent inertia or a link a machine's output point.
   [[nodiscard]] bool has_machines() const { return has_machines_; }

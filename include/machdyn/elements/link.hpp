@@ -44,6 +44,20 @@
 /// the hook's (N·s/m), constant. Events and modes are those above with c = c(q_a). The Jacobian
 /// (second derivatives of V, c″ = 2 c s² / L_f²):
 ///   ∂²V/∂q_a² = c s² + 2 c′ e s + ½ c″ e²,  ∂²V/∂q_a∂x = −(c s + c′ e),  ∂²V/∂x² = c.
+/// Buffer characteristics (`shaped`: Link::characteristic other than linear, model/model.hpp). A
+/// buffer has one flank δ₊; with the stroke e = δ − δ₊ and its rate δ̇ the law is
+///   F = F_e(e) + F_v(δ̇)                          (closed+, N or N·m; F ≥ 0 pushes the body back)
+///   progressive:  F_e = c sgn(e) |e|ⁿ, n > 1      V = c |e|ⁿ⁺¹/(n + 1)
+///   hydraulic:    F_e = c e (return spring ≥ 0)   V = ½ c e²;  F_v = d δ̇ + k δ̇|δ̇|
+///   table:        F_e = the table (s_j, F_j) interpolated linearly (s₀ = F₀ = 0), its first slope
+///                 below 0 and its last slope beyond the last point; V = ∫₀ᵉ F_e ds (exact, per piece)
+/// and F_v = d δ̇ for progressive and table. The hydraulic term is signed: it resists compression
+/// with k δ̇² and the return stroke with −k δ̇² (a throttle both ways), so its power k |δ̇|³ ≥ 0 is
+/// always dissipated and F crosses 0 (the contact ends) where the body starts to leave the buffer.
+/// Contact starts at the buffer's position (e = 0, the open mode's event) and ends where F reaches 0
+/// (the closed mode's event), as for the linear law. V is the elastic energy, F_v δ̇ the dissipated
+/// power. Jacobian: ∂F/∂e = F_e′(e), ∂F/∂δ̇ = d + 2 k |δ̇|. These laws are nonlinear in the state: the
+/// drive system takes its general path (not the affine one) and reads the state for dF/dt.
 /// Valid for L_f > 0: below L_min = 1e-3 L_f0 (the hook at the drum, outside the model) L_f is held
 /// at L_min, where c′ = c″ = 0.
 
@@ -71,6 +85,28 @@ struct LinkLaw {
   double L0 = 0.0;              ///< L_f0, m
   double u0 = 0.0;              ///< q_a0, where L_f = L_f0
   int falls = 1;                ///< n
+  bool shaped = false;          ///< a buffer with a nonlinear characteristic (see above)
+  Link::Characteristic shape = Link::Characteristic::linear;
+  double cn = 0.0;              ///< progressive: c, N/mⁿ; hydraulic: the return spring c, N/m
+  double expo = 1.0;            ///< progressive: n
+  double kh = 0.0;              ///< hydraulic: k, N·s²/m²
+  const double* ts = nullptr;   ///< table: strokes s_j (the model's Link::table_stroke)
+  const double* tf = nullptr;   ///< table: forces F_j
+  int tn = 0;                   ///< table: number of points
+
+  /// F_e(e), F_e′(e) and V(e) = ∫₀ᵉ F_e of a shaped buffer (see above).
+  [[nodiscard]] double shaped_force(double e) const;
+  [[nodiscard]] double shaped_slope(double e) const;
+  [[nodiscard]] double shaped_energy(double e) const;
+  /// F_v(δ̇) = d δ̇ + k δ̇|δ̇| and ∂F_v/∂δ̇ = d + 2 k |δ̇| (k = 0 except hydraulic).
+  [[nodiscard]] double damper_force(double rate) const { return d * rate + kh * rate * std::abs(rate); }
+  [[nodiscard]] double damper_slope(double rate) const { return d + 2.0 * kh * std::abs(rate); }
+  /// The law's force before the mode's clamp, for stroke e and rate δ̇: c(q_a) e + d δ̇, or a shaped
+  /// buffer's F_e(e) + F_v(δ̇). The events and the natural mode test its sign.
+  [[nodiscard]] double pressing(double e, double rate, double qa) const {
+    if (shaped) [[unlikely]] return shaped_force(e) + damper_force(rate);
+    return stiffness(qa) * e + d * rate;
+  }
 
   /// The drum's position q_a from positions q (0 for the ground).
   [[nodiscard]] double drum(const double* q) const { return a >= 0 ? q[a] : 0.0; }
@@ -131,6 +167,7 @@ struct LinkLaw {
   /// overloads without q_a use c (a winding rope's stiffness at q_a0): for constant-stiffness links.
   [[nodiscard]] double load(double delta, double rate, GapMode g, double qa) const {
     if (!transmits(g)) return 0.0;
+    if (shaped) [[unlikely]] return pressing(delta - flank(g), rate, qa);
     const double Fc = stiffness(qa) * (delta - flank(g));
     return Fc + damping_force(Fc, rate, g);
   }
@@ -144,22 +181,23 @@ struct LinkLaw {
   }
   /// Whether the capped law is on its cap (F = 2 c e: the damper acts as a second spring) at (δ, δ̇).
   [[nodiscard]] bool on_cap(double delta, double rate, GapMode g, double qa) const {
-    return capped && gap && transmits(g) && damping_force(stiffness(qa) * (delta - flank(g)), rate, g) != d * rate;
+    return capped && !shaped && gap && transmits(g) && damping_force(stiffness(qa) * (delta - flank(g)), rate, g) != d * rate;
   }
   [[nodiscard]] bool on_cap(double delta, double rate, GapMode g) const { return on_cap(delta, rate, g, u0); }
   /// The spring part of the law, c e, for a deflection e measured from the flank (quasi-static loads).
-  [[nodiscard]] double spring_load(double e) const { return c * e; }
+  [[nodiscard]] double spring_load(double e) const { return shaped ? shaped_force(e) : c * e; }
   /// Elastic energy ½ c(q_a) (δ − flank)² in mode g, J.
   [[nodiscard]] double elastic_energy(double delta, GapMode g, double qa) const {
     if (!transmits(g)) return 0.0;
     const double e = delta - flank(g);
+    if (shaped) [[unlikely]] return shaped_energy(e);
     return 0.5 * stiffness(qa) * e * e;
   }
   [[nodiscard]] double elastic_energy(double delta, GapMode g) const { return elastic_energy(delta, g, u0); }
   /// Power dissipated by the damper, F_d δ̇ (W; d δ̇² without the cap), in mode g.
   [[nodiscard]] double dissipation(double delta, double rate, GapMode g, double qa) const {
     if (!transmits(g)) return 0.0;
-    if (!capped) return d * rate * rate;
+    if (!capped || shaped) return damper_force(rate) * rate;
     return damping_force(stiffness(qa) * (delta - flank(g)), rate, g) * rate;
   }
   [[nodiscard]] double dissipation(double delta, double rate, GapMode g) const { return dissipation(delta, rate, g, u0); }
@@ -169,8 +207,7 @@ struct LinkLaw {
   void events(double delta, double rate, GapMode g, double qa, double* ev) const {
     ev[0] = ev[1] = 1.0;
     if (!gap) return;
-    const double cq = stiffness(qa);
-    const double Fp = cq * (delta - hi) + d * rate, Fn = cq * (delta - lo) + d * rate;
+    const double Fp = pressing(delta - hi, rate, qa), Fn = pressing(delta - lo, rate, qa);
     switch (g) {
       case GapMode::closed_pos: ev[0] = Fp; break;
       case GapMode::closed_neg: ev[1] = -Fn; break;
@@ -190,8 +227,7 @@ struct LinkLaw {
   [[nodiscard]] GapMode natural_mode(double delta, double rate) const { return natural_mode(delta, rate, u0); }
   [[nodiscard]] GapMode natural_mode(double delta, double rate, double qa) const {
     if (!gap) return GapMode::open;
-    const double cq = stiffness(qa);
-    const double Fp = cq * (delta - hi) + d * rate, Fn = cq * (delta - lo) + d * rate;
+    const double Fp = pressing(delta - hi, rate, qa), Fn = pressing(delta - lo, rate, qa);
     if ((delta > hi && Fp > 0) || (delta == hi && rate > 0)) return GapMode::closed_pos;
     if ((delta < lo && Fn < 0) || (delta == lo && rate < 0)) return GapMode::closed_neg;
     return GapMode::open;
@@ -220,12 +256,12 @@ struct LinkLaw {
   /// The rate dF/dt from the state (q, v) and its derivative (v, acc), mode g (on the cap: 2 c δ̇).
   [[nodiscard]] double load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
     if (!transmits(g)) return 0.0;
-    if (point || winding) [[unlikely]] return general_load_rate(q, v, acc, g);
+    if (point || winding || shaped) [[unlikely]] return general_load_rate(q, v, acc, g);
     if (capped && on_cap(linear(q), linear(v), g)) return 2.0 * c * linear(v);
     return c * linear(v) + d * linear(acc);
   }
-  /// load_rate of a rope wound on a drum (c(q_a)) or of a link with a machine's output point at an
-  /// end (p′, p″ of the point), in a transmitting mode.
+  /// load_rate of a rope wound on a drum (c(q_a)), of a shaped buffer (F_e′ δ̇ + F_v′ δ̈) or of a link
+  /// with a machine's output point at an end (p′, p″ of the point), in a transmitting mode.
   [[nodiscard]] double general_load_rate(const double* q, const double* v, const double* acc, GapMode g) const;
   /// The terms of ∂(acceleration)/∂(q, v) before the division by the inertias: for a plain link
   /// calls add(row, column, value) with columns < n for q and ≥ n for v. Mode g, off the cap of the
@@ -236,8 +272,17 @@ struct LinkLaw {
   }
   /// The same at positions q for every plain link: a winding rope adds the terms of c(q_a) (the
   /// second derivatives of V above, and ∂F_d/∂q_a of the cap).
+  /// The same at positions q and velocities v (null: at rest) for every plain link: a shaped buffer
+  /// adds F_e′(e) and F_v′(δ̇) (see above).
+  template <class Add>
+  void jacobian(int n, GapMode g, bool cap, const double* q, const double* v, Add&& add) const {
+    if (!shaped) return jacobian(n, g, cap, q, add);
+    if (!transmits(g)) return;
+    jacobian_cd(n, shaped_slope(linear(q) - flank(g)), damper_slope(v ? linear(v) : 0.0), add);
+  }
   template <class Add>
   void jacobian(int n, GapMode g, bool cap, const double* q, Add&& add) const {
+    if (shaped) return jacobian(n, g, cap, q, nullptr, add);
     if (!winding) return jacobian(n, g, cap, add);
     if (!transmits(g)) return;
     const double qa = drum(q), e = linear(q) - flank(g), s = inv_ratio;
@@ -258,7 +303,11 @@ struct LinkLaw {
   template <class Add>
   void jacobian(int n, GapMode g, bool cap, Add&& add) const {
     if (!transmits(g)) return;
-    const double cs = cap ? 2.0 * c : c, ds = cap ? 0.0 : d;
+    jacobian_cd(n, cap ? 2.0 * c : c, cap ? 0.0 : d, add);
+  }
+  /// The Jacobian terms of a load with ∂F/∂δ = cs and ∂F/∂δ̇ = ds.
+  template <class Add>
+  void jacobian_cd(int n, double cs, double ds, Add&& add) const {
     const int idx[2] = {a, b};
     const double w[2] = {inv_ratio, -1.0};
     for (int r = 0; r < 2; ++r) {

@@ -96,6 +96,22 @@ struct Link {
   /// δ₊ = x_b, a lower one (`min: x_b`) is [ground, body] with δ = −q and δ₊ = −x_b; the load
   /// F = c (δ − δ₊) + d δ̇ ≥ 0 is the buffer force (compression). `gap` holds δ₊ (any sign here).
   bool buffer = false;
+  /// A buffer's characteristic (`characteristic:`; the law in elements/link.hpp). With e = δ − δ₊ ≥ 0
+  /// the stroke and δ̇ its rate, the buffer force is F = F_e(e) + F_v(δ̇):
+  ///   linear       F_e = c e                      F_v = d δ̇
+  ///   progressive  F_e = c e^n (n > 1, c = F_ref / s_ref^n, N/mⁿ)   F_v = d δ̇
+  ///   hydraulic    F_e = c e (a return spring, c ≥ 0)               F_v = d δ̇ + k δ̇|δ̇|
+  ///   table        F_e = the force–stroke table (s, F) interpolated linearly, s₀ = 0, F₀ = 0, beyond
+  ///                the last point its last slope continues           F_v = d δ̇
+  /// For `progressive` and `table` Link::c holds a representative stiffness (the slope n F_ref/s_ref at
+  /// the reference stroke; the table's steepest slope) for step-size bounds and tolerances only.
+  enum class Characteristic { linear, progressive, hydraulic, table };
+  Characteristic characteristic = Characteristic::linear;
+  double exponent = 1.0;              ///< n of `progressive`
+  double coefficient = 0.0;           ///< c of `progressive`, N/mⁿ (Link::c is then n F_ref/s_ref)
+  double hydraulic_k = 0.0;           ///< k of `hydraulic`, N·s²/m² (N·m·s²/rad²)
+  std::vector<double> table_stroke;   ///< s of `table`, m (rad), increasing from 0
+  std::vector<double> table_force;    ///< F of `table`, N (N·m), from 0
 };
 
 /// Friction between body a and body b (or the ground, which may move with a prescribed surface
