@@ -15,6 +15,7 @@
 #include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "support/support.hpp"
 
 namespace machdyn {
 namespace {
@@ -355,6 +356,58 @@ crane: {hoist_speed: 0.5 m/s, load: load, rope: rope}
     EXPECT_NE(std::string(e.what()).find("give it a lower stop"), std::string::npos) << e.what();
   }
   EXPECT_THROW(crane_analysis(model_of("bodies: {a: {inertia: 1}}\n")), InputError);
+}
+
+// Claim (`--drive-classes`): one φ2 row per class, in the order asked. The rigid drive of kHoist
+// lifts the load with φ2 = 1 + vh ω/g, ω = √(c/m) (to 1e-9), at the class's characteristic speed:
+// HD1 vh,max = 0.5, HD2 and HD3 the creep speed 0.1, HD4 0.5 vh,max = 0.25 m/s; HD5 starts from zero
+// speed and is not simulated. The standard's value is φ2,min + β2 vh with HC2's β2 = 0.34 s/m and
+// φ2,min = 1.10 for HD1, HD2, HD4 and 1.05 for HD3, HD5 (crane-standards.md, the φ2 table).
+TEST(CraneDriveClasses, Phi2InEveryDriveClassMatchesTheClosedFormAndTheTable) {
+  const Model m = model_of(with_drive_class("HD1"));
+  const CraneReport r = crane_analysis(m, {1, 2, 3, 4, 5});
+  ASSERT_EQ(r.rows.size(), 5u);
+  const double w = std::sqrt(1e6 / 1000.0), g = 9.81;
+  const double vh[] = {0.5, 0.1, 0.1, 0.25, 0.0};
+  const double phi2_min[] = {1.10, 1.10, 1.05, 1.10, 1.05};
+  for (int k = 0; k < 5; ++k) {
+    const CraneFactorRow& x = r.rows[static_cast<size_t>(k)];
+    EXPECT_EQ(x.factor, "phi2");
+    EXPECT_NE(x.case_name.find("HD" + std::to_string(k + 1)), std::string::npos) << x.case_name;
+    EXPECT_NEAR(x.standard_lo, phi2_min[k] + 0.34 * vh[k], 1e-12) << "HD" << k + 1;
+    if (k == 4) {
+      EXPECT_TRUE(std::isnan(x.simulated));
+      continue;
+    }
+    const double expected = 1.0 + vh[k] * w / g;
+    EXPECT_NEAR(x.simulated, expected, 1e-9 * expected) << "HD" << k + 1;
+  }
+  EXPECT_THROW(crane_analysis(m, {6}), std::invalid_argument);
+}
+
+// Claim: a class that hoists at the creep speed without `creep_speed` in the section gives a row
+// that says so instead of a simulation at speed 0.
+TEST(CraneDriveClasses, CreepSpeedClassWithoutCreepSpeedSaysSo) {
+  std::string text = with_drive_class("HD1");
+  text.replace(text.find(", creep_speed: 0.1 m/s"), std::string(", creep_speed: 0.1 m/s").size(), "");
+  const Model m = model_of(text);
+  const CraneReport r = crane_analysis(m, {2});
+  ASSERT_EQ(r.rows.size(), 1u);
+  EXPECT_TRUE(std::isnan(r.rows[0].simulated));
+  EXPECT_NE(r.rows[0].note.find("creep_speed"), std::string::npos) << r.rows[0].note;
+}
+
+// Claim: `machdyn crane --drive-classes` prints one φ2 line per class and rejects an unknown class
+// with a non-zero exit naming the option.
+TEST(CraneDriveClasses, CliOption) {
+  const std::string path = test::write_temp("classes.yaml", with_drive_class("HD1"));
+  const auto ok = test::run_cli("crane '" + path + "' --drive-classes HD1,HD4 -o classes_out");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("HC2/HD1"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("HC2/HD4"), std::string::npos) << ok.out;
+  const auto bad = test::run_cli("crane '" + path + "' --drive-classes HD7 -o classes_bad");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--drive-classes"), std::string::npos) << bad.err;
 }
 
 }  // namespace
