@@ -12,9 +12,12 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "support/support.hpp"
 
 namespace machdyn {
 namespace {
+
+using test::series;
 
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "eq.yaml"), "eq.yaml"); }
 
@@ -27,14 +30,6 @@ std::string error_of(const std::string& yaml, bool run = false) {
   }
   ADD_FAILURE() << "no error";
   return "";
-}
-
-const std::vector<double>& column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  ADD_FAILURE() << "no column " << name;
-  static const std::vector<double> none;
-  return none;
 }
 
 double max_deviation(const std::vector<double>& s, double value) {
@@ -65,9 +60,9 @@ simulation: {t_end: 2 s, dt_out: 0.1 s, rtol: 1e-11, atol: 1e-12}
   EXPECT_EQ(m.loads[0].value, -3 * 9.81);
   EXPECT_EQ(m.loads[1].value, 2 * 9.81);
   const SimulationResult r = simulate(m);
-  EXPECT_NEAR(column(r, "up.position_m").back(), -0.5 * 9.81 * 4, 1e-9);
-  EXPECT_NEAR(column(r, "down.position_m").back(), 0.5 * 9.81 * 4, 1e-9);
-  EXPECT_EQ(column(r, "flat.position_m").back(), 0.0);
+  EXPECT_NEAR(series(r, "up.position_m").back(), -0.5 * 9.81 * 4, 1e-9);
+  EXPECT_NEAR(series(r, "down.position_m").back(), 0.5 * 9.81 * 4, 1e-9);
+  EXPECT_EQ(series(r, "flat.position_m").back(), 0.0);
   const Model d = model_of("bodies: {b: {type: translational, mass: 2 kg, vertical: up}}\n");
   EXPECT_EQ(d.gravity, 9.80665);
   EXPECT_EQ(d.loads.at(0).value, -2 * 9.80665);
@@ -109,8 +104,8 @@ simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12, initial: equili
   EXPECT_NEAR(e.q0[0], xe, 1e-15);
   EXPECT_EQ(e.v0[0], 0.0);
   const SimulationResult r = simulate(m);
-  EXPECT_LT(max_deviation(column(r, "load.position_m"), xe), 1e-9);
-  EXPECT_LT(max_deviation(column(r, "load.velocity_m_s"), 0.0), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "load.position_m"), xe), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "load.velocity_m_s"), 0.0), 1e-9);
   EXPECT_NEAR(r.links[0].max, 9810, 1e-9 * 9810);
   EXPECT_NEAR(r.links[0].min, 9810, 1e-9 * 9810);
 }
@@ -137,8 +132,8 @@ simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
   EXPECT_NEAR(e.q0[1], x2, 1e-15);
   EXPECT_GE(e.iterations, 2);
   const SimulationResult r = simulate(m);
-  EXPECT_LT(max_deviation(column(r, "m1.position_m"), x1), 1e-9);
-  EXPECT_LT(max_deviation(column(r, "m2.position_m"), x2), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "m1.position_m"), x1), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "m2.position_m"), x2), 1e-9);
   EXPECT_NEAR(r.links[0].max, 1000 * g, 1e-9 * 1000 * g);
   EXPECT_NEAR(r.links[0].min, 1000 * g, 1e-9 * 1000 * g);
 }
@@ -191,7 +186,7 @@ simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-13, atol: 1e-14, initial: equili
   const SimulationResult r = simulate(m);
   EXPECT_NEAR(r.links[0].max, 300, 1e-9 * 300);
   EXPECT_NEAR(r.links[0].min, 300, 1e-9 * 300);
-  EXPECT_LT(max_deviation(column(r, "I2.velocity_rad_s"), 10), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "I2.velocity_rad_s"), 10), 1e-9);
 }
 
 // Claim: no equilibrium, located errors: a free group whose loads do not balance (names every body
@@ -259,8 +254,8 @@ simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12, initial: equi
   const double x = 0.2 / 10 - 1000 * 9.81 / 2e6;  // δ = φ/i − x = m g / c
   EXPECT_NEAR(e.q0[1], x, 1e-15);
   const SimulationResult r = simulate(m);
-  EXPECT_LT(max_deviation(column(r, "load.position_m"), x), 1e-9);
-  EXPECT_LT(max_deviation(column(r, "drum.position_rad"), 0.2), 1e-12);
+  EXPECT_LT(max_deviation(series(r, "load.position_m"), x), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "drum.position_rad"), 0.2), 1e-12);
 }
 
 }  // namespace

@@ -18,9 +18,9 @@
 namespace machdyn {
 namespace {
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "xo.yaml"), "xo.yaml"); }
+using test::series;
 
-const std::vector<double>& col(const SimulationResult& r, const std::string& name) { return test::series(r, name); }
+Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "xo.yaml"), "xo.yaml"); }
 
 OutputSelection all_outputs() { return output_selection({"all"}); }
 
@@ -37,10 +37,10 @@ simulation: {t_end: 1 s, dt_out: 0.0001 s, rtol: 1e-12, atol: 1e-14}
 )");
   const SimulationResult r = simulate(m, SimulateOptions{}, all_outputs());
   const double v0 = 3.0, W = std::sqrt(150.0);
-  const auto& t = col(r, "t_s");
-  const auto &d = col(r, "s.deflection_rad"), &dr = col(r, "s.deflection_rate_rad_s"), &F = col(r, "s.load_N_m");
-  const auto &aa = col(r, "a.acceleration_rad_s2"), &ab = col(r, "b.acceleration_rad_s2");
-  const auto& vb = col(r, "b.velocity_rad_s");
+  const auto& t = series(r, "t_s");
+  const auto &d = series(r, "s.deflection_rad"), &dr = series(r, "s.deflection_rate_rad_s"), &F = series(r, "s.load_N_m");
+  const auto &aa = series(r, "a.acceleration_rad_s2"), &ab = series(r, "b.acceleration_rad_s2");
+  const auto& vb = series(r, "b.velocity_rad_s");
   ASSERT_EQ(t.size(), 10001u);
   double fd_err = 0.0, fd_scale = 0.0;
   for (size_t k = 1; k + 1 < t.size(); ++k) {
@@ -76,8 +76,8 @@ simulation: {t_end: 3 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
 )");
   m.simulation.integrator = GetParam();
   const SimulationResult r = simulate(m, SimulateOptions{}, output_selection({"heat", "acceleration"}));
-  const auto &t = col(r, "t_s"), &Q = col(r, "B.heat_J"), &P = col(r, "B.heat_power_W");
-  const auto& a = col(r, "w.acceleration_rad_s2");
+  const auto &t = series(r, "t_s"), &Q = series(r, "B.heat_J"), &P = series(r, "B.heat_power_W");
+  const auto& a = series(r, "w.acceleration_rad_s2");
   const double Q_end = 0.5 * 2.0 * 10.0 * 10.0;
   EXPECT_NEAR(Q.back(), Q_end, 1e-9 * Q_end);
   EXPECT_NEAR(Q.back(), r.hybrid.energy.friction_loss, 1e-9 * Q_end);
@@ -109,8 +109,8 @@ simulation: {t_end: 2 s, dt_out: 0.001 s, rtol: 1e-11, atol: 1e-12}
   SimulateOptions books;
   books.event_driven = true;
   const SimulationResult r = simulate(m, books, output_selection({"power"}));
-  const auto &P = col(r, "M.power_W"), &Pd = col(r, "d.damping_power_W"), &w = col(r, "w.velocity_rad_s");
-  const auto& t = col(r, "t_s");
+  const auto &P = series(r, "M.power_W"), &Pd = series(r, "d.damping_power_W"), &w = series(r, "w.velocity_rad_s");
+  const auto& t = series(r, "t_s");
   ASSERT_EQ(t.size() % 2, 1u);  // an even number of intervals for Simpson's rule
   auto simpson = [&](const std::vector<double>& f) {
     double s = f.front() + f.back();

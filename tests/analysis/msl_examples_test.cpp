@@ -12,9 +12,12 @@
 
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "support/support.hpp"
 
 namespace machdyn {
 namespace {
+
+using test::series;
 
 class MslExample : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, MslExample, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
@@ -26,19 +29,11 @@ Model example(const std::string& name, IntegratorChoice integrator) {
   return m;
 }
 
-const std::vector<double>& column(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  ADD_FAILURE() << "no column " << name;
-  static const std::vector<double> none;
-  return none;
-}
-
 /// The largest |column − f(t)| over all output rows.
 template <class F>
 double max_error(const SimulationResult& r, const std::string& name, F f) {
-  const auto& ts = column(r, "t_s");
-  const auto& v = column(r, name);
+  const auto& ts = series(r, "t_s");
+  const auto& v = series(r, name);
   double e = 0.0;
   for (size_t i = 0; i < ts.size() && i < v.size(); ++i) e = std::max(e, std::abs(v[i] - f(ts[i])));
   return ts.empty() ? INFINITY : e;
@@ -68,7 +63,7 @@ TEST_P(MslExample, DamperFollowsTheClosedForms) {
     EXPECT_LT(max_error(r, std::string(b) + ".velocity_m_s", v2), 1e-7) << b;
   }
   // The spring keeps mass2 and mass3 short of mass1's end point v0/k = 0.4 m, and pulls them back.
-  EXPECT_LT(column(r, "mass2.position_m").back(), x1(1.0));
+  EXPECT_LT(series(r, "mass2.position_m").back(), x1(1.0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -108,11 +103,11 @@ TEST_P(MslExample, OscillatorFollowsTheClosedForms) {
   EXPECT_LT(max_error(r, "mass2.velocity_m_s", v2), 1e-7);
   // Near resonance: mass1's swing at 1 s is close to F0 t/(2 m ω0) = 5 mm; mass2's is near F0/(d Ω) = 1 mm.
   double peak1 = 0, peak2 = 0;
-  const auto& ts = column(r, "t_s");
+  const auto& ts = series(r, "t_s");
   for (size_t i = 0; i < ts.size(); ++i)
     if (ts[i] > 0.9) {
-      peak1 = std::max(peak1, std::abs(column(r, "mass1.position_m")[i]));
-      peak2 = std::max(peak2, std::abs(column(r, "mass2.position_m")[i]));
+      peak1 = std::max(peak1, std::abs(series(r, "mass1.position_m")[i]));
+      peak2 = std::max(peak2, std::abs(series(r, "mass2.position_m")[i]));
     }
   EXPECT_NEAR(peak1, F0 * 1.0 / (2 * m * w0), 0.05 * F0 / (2 * m * w0));
   EXPECT_NEAR(peak2, F0 / (d * W), 0.01 * F0 / (d * W));
@@ -142,7 +137,7 @@ TEST_P(MslExample, BrakeStopsAtTheClosedFormInstant) {
       EXPECT_NEAR(e.t, ts, 1e-9) << e.element;
     }
   EXPECT_EQ(stuck, 2);
-  EXPECT_NEAR(column(r, "mass1.position_m").back(), 0.6, 1e-9);
+  EXPECT_NEAR(series(r, "mass1.position_m").back(), 0.6, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -228,7 +223,7 @@ TEST_P(MslExample, BacklashFollowsIndependentSolutions) {
   EXPECT_LT(max_error(r, "inertia1.position_rad", x1), 1e-8);
   EXPECT_LT(max_error(r, "inertia1.velocity_rad_s", v1), 1e-6);
 
-  const auto& ts = column(r, "t_s");
+  const auto& ts = series(r, "t_s");
   ASSERT_EQ(ts.size(), 1001u);
   double amp[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {
@@ -237,8 +232,8 @@ TEST_P(MslExample, BacklashFollowsIndependentSolutions) {
     const auto y = ref.run(phi0, 1e-3, 1000);
     const std::string b = k == 0 ? "inertia2" : "inertia3";
     const std::string link = k == 0 ? "elastoBacklash" : "elastoBacklash2";
-    const auto& q = column(r, b + ".position_rad");
-    const auto& w = column(r, b + ".velocity_rad_s");
+    const auto& q = series(r, b + ".position_rad");
+    const auto& w = series(r, b + ".velocity_rad_s");
     double eq = 0, ew = 0;
     for (size_t i = 0; i < ts.size(); ++i) {
       eq = std::max(eq, std::abs(q[i] - y[i][0]));
@@ -383,11 +378,11 @@ TEST_P(MslExample, OneWayClutchMatchesAnIndependentSolution) {
 // (M turning negative) and stayed "slip-" with u ≡ 0 until the clutch opened at 0.95 s.
 TEST_P(MslExample, OneWayClutchFreewheelStaysStuckWhileTheClutchHolds) {
   const SimulationResult r = simulate(example("one-way-clutch.yaml", GetParam()));
-  const auto& ts = column(r, "t_s");
-  const auto& cm = column(r, "clutch.mode");
-  const auto& fm = column(r, "freewheel.mode");
-  const auto& cf = column(r, "clutch.force_N_m");
-  const auto& ff = column(r, "freewheel.force_N_m");
+  const auto& ts = series(r, "t_s");
+  const auto& cm = series(r, "clutch.mode");
+  const auto& fm = series(r, "freewheel.mode");
+  const auto& cf = series(r, "clutch.force_N_m");
+  const auto& ff = series(r, "freewheel.force_N_m");
   int held = 0, held_negative = 0;
   for (size_t i = 0; i < ts.size(); ++i) {
     EXPECT_GE(ff[i], 0.0) << "t = " << ts[i];
@@ -601,7 +596,7 @@ double no_force(double) { return 0.0; }
 // once (at 0.0606 s, from −6.2 m/s) and is pushed off at once by the spring (75 N > 8 N).
 TEST_P(MslExample, TranslationalFrictionFollowsAnIndependentSolution) {
   const SimulationResult r = simulate(example("friction.yaml", GetParam()));
-  const auto& ts = column(r, "t_s");
+  const auto& ts = series(r, "t_s");
   ASSERT_EQ(ts.size(), 5001u);
   for (int k = 0; k < 2; ++k) {
     StopFrictionReference ref;
@@ -609,8 +604,8 @@ TEST_P(MslExample, TranslationalFrictionFollowsAnIndependentSolution) {
     else ref.c = 500, ref.Fc = 3, ref.FS = 5, ref.xmin = -0.15, ref.xmax = 0.65, ref.F = no_force;
     const auto y = k == 0 ? ref.run(0.0, 0.0, 1e-3, 5000) : ref.run(0.25, -5.0, 1e-3, 5000);
     const std::string b = k == 0 ? "stop1" : "stop2", fr = k == 0 ? "friction1" : "friction2";
-    const auto& q = column(r, b + ".position_m");
-    const auto& w = column(r, b + ".velocity_m_s");
+    const auto& q = series(r, b + ".position_m");
+    const auto& w = series(r, b + ".velocity_m_s");
     double eq = 0, ew = 0;
     for (size_t i = 0; i < ts.size(); ++i) {
       eq = std::max(eq, std::abs(q[i] - y[i][0]));

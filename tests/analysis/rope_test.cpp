@@ -22,15 +22,9 @@
 namespace machdyn {
 namespace {
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
+using test::series;
 
-const std::vector<double>& col(const SimulationResult& r, const std::string& name) {
-  for (size_t c = 0; c < r.column_names.size(); ++c)
-    if (r.column_names[c] == name) return r.columns[c];
-  ADD_FAILURE() << "no column " << name;
-  static std::vector<double> none;
-  return none;
-}
+Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
 class Rope : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Rope, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
@@ -151,8 +145,8 @@ TEST_P(Rope, HoistingMatchesRk4AndBalancesEnergy) {
   Eigen::Vector4d z(0.0, -0.004, 8.0, 1.0);
   const double h = 2e-6;
   const auto& t = r.columns[0];
-  const auto &x = col(r, "hook.position_m"), &F = col(r, "rope.load_N"), &T = col(r, "rope.fall_tension_N"),
-             &Lf = col(r, "rope.fall_length_m"), &qa = col(r, "drum.position_rad");
+  const auto &x = series(r, "hook.position_m"), &F = series(r, "rope.load_N"), &T = series(r, "rope.fall_tension_N"),
+             &Lf = series(r, "rope.fall_length_m"), &qa = series(r, "drum.position_rad");
   double tz = 0.0, worst_x = 0.0, worst_F = 0.0, Fmin = HUGE_VAL;
   for (size_t k = 0; k < t.size(); ++k) {
     const int steps = static_cast<int>(std::lround((t[k] - tz) / h));
@@ -206,7 +200,7 @@ simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
   const SimulationResult r = simulate(m);
   EXPECT_NEAR(r.links[0].max, mg, 1e-9 * mg);
   EXPECT_NEAR(r.links[0].min, mg, 1e-9 * mg);
-  EXPECT_NEAR(col(r, "rope.fall_tension_N").back(), mg / n, 1e-9 * mg / n);
+  EXPECT_NEAR(series(r, "rope.fall_tension_N").back(), mg / n, 1e-9 * mg / n);
 }
 
 // Claim: the hook's frequency on the rope. Drum I and hook m joined by the rope (taut, unloaded at
@@ -264,7 +258,7 @@ TEST_P(Rope, ExampleLiftsTheLoadWhenTheRopeCarriesItsWeight) {
   ASSERT_FALSE(r.hybrid.slip_phases.empty());
   const double mg = 12000 * 9.81;
   EXPECT_NEAR(r.hybrid.slip_phases[0].link_start[1], mg, 1e-9 * mg);
-  const auto &F = col(r, "rope.load_N"), &T = col(r, "rope.fall_tension_N"), &Lf = col(r, "rope.fall_length_m");
+  const auto &F = series(r, "rope.load_N"), &T = series(r, "rope.fall_tension_N"), &Lf = series(r, "rope.fall_length_m");
   for (size_t k = 0; k < F.size(); k += 97) EXPECT_NEAR(T[k], F[k] / 4, 1e-12 * mg);
   EXPECT_LT(Lf.back(), 8.0 - 0.1);
   const EnergyBalance& E = r.hybrid.energy;
