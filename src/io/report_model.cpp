@@ -238,7 +238,9 @@ std::vector<Table> model_tables(const Model& m) {
     for (std::size_t k = 0; k < m.links.size(); ++k) {
       const auto& l = m.links[k];
       const std::string pos = position_unit(link_kind_body(m, l));
-      links.rows[k].push_back(l.has_gap ? fmt::format("{} {} ({} {})", num(l.gap), pos, num(l.gap_start), pos) : "–");
+      links.rows[k].push_back(!l.has_gap         ? "–"
+                              : l.tension_only ? fmt::format("one flank at δ = {} {}", num(l.gap), pos)
+                                               : fmt::format("{} {} ({} {})", num(l.gap), pos, num(l.gap_start), pos));
     }
   }
   links.note = "Deflection δ = q_a / i − q_b, load F = c δ + d δ̇ (positive: tension), in the coordinate of the second body.";

@@ -202,9 +202,9 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     else if (type && !rope && f.node("damping"))
       f.error_at("damping", fmt::format("a {} has no damping; use type spring-damper", *type));
     if (rope) {
-      for (const char* k : {"gap", "gap_start"})
+      for (const char* k : {"gap", "gap_start", "flank"})
         if (f.map().find(k)) f.error_at(k, fmt::format("a rope has no '{}'; its 'slack' is the free play", k));
-      f.node("gap"), f.node("gap_start");
+      f.node("gap"), f.node("gap_start"), f.node("flank");
     } else {
       detail::compile_link_gap(f, l, qd);
     }
@@ -213,8 +213,8 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     if (auto law = f.word("flank_law", {"linear", "elasto-backlash"}, "linear")) {
       l.damping_capped = *law == "elasto-backlash";
       if (law_given && !l.has_gap)
-        f.error_at("flank_law", "field 'flank_law' applies to a link with a 'gap' or to a rope (it shapes the "
-                                "load on a flank)");
+        f.error_at("flank_law", "field 'flank_law' applies to a link with a 'gap' or a 'flank' or to a rope (it shapes "
+                                "the load on a flank)");
     }
     f.finish();
     m.links.push_back(l);

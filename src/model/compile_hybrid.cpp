@@ -216,6 +216,22 @@ int read_housing(FieldReader& f, const Model& m, int body) {
 }  // namespace
 
 void compile_link_gap(FieldReader& f, Link& l, const Dim& qd) {
+  // A one-sided link (MSL's ElastoGap): its only flank δ₊ = `flank`, on either side of δ = 0; the
+  // same representation as a rope's slack, so the one law of elements/link.hpp serves it.
+  if (f.map().is_map() && f.map().find("flank")) {
+    auto flank = f.quantity("flank", qd);
+    if (f.map().find("gap"))
+      f.error_at("flank", "a link has either a 'gap' (two flanks) or a 'flank' (one), not both");
+    if (l.kind == LinkKind::damper) f.error_at("flank", "a damper cannot have a flank; use type spring-damper");
+    f.node("gap"), f.node("gap_start");
+    if (!flank) return;
+    l.has_gap = true;
+    l.tension_only = true;
+    l.gap = *flank;
+    l.gap_start = 0.0;
+    return;
+  }
+  f.node("flank");
   if (!f.map().is_map() || !f.map().find("gap")) {
     if (f.map().is_map() && f.map().find("gap_start")) f.error_at("gap_start", "field 'gap_start' needs a 'gap'");
     f.node("gap_start");

@@ -6,7 +6,8 @@
 
 namespace machdyn::detail {
 
-/// Reads the optional `gap` and `gap_start` fields of a link (qd: the dimension of b's position).
+/// Reads the optional `gap` and `gap_start` fields of a link, or its `flank` (a one-sided link, any
+/// sign; model/model.hpp Link::tension_only) (qd: the dimension of b's position).
 void compile_link_gap(FieldReader& f, Link& l, const Dim& qd);
 
 /// Reads the `contacts:` and `brakes:` sections (either may be null) into m.contacts.

@@ -12,7 +12,7 @@
 ///   no gap:        F = c δ + d δ̇
 ///   gap, open:     F = 0                         (δ₋ < δ < δ₊)
 ///   closed+:       F = c (δ − δ₊) + d δ̇ ≥ 0      (positive flank δ₊ = Δ − gap_start)
-///   closed−:       F = c (δ − δ₋) + d δ̇ ≤ 0      (negative flank δ₋ = −gap_start)
+///   closed−:       F = c (δ − δ₋) + d δ̇ ≤ 0      (δ₋ = −gap_start; one-sided links: δ₋ = −∞, δ₊ any sign)
 /// Flank law `elasto-backlash` (capped = true; Modelica's ElastoBacklash/ElastoGap): the damping
 /// force on a flank is capped at the spring force, e = δ − flank:
 ///   closed+:       F = c e + min(c e, d δ̇)       closed−:  F = c e + max(c e, d δ̇)

@@ -69,8 +69,8 @@ struct Link {
   /// δ₋ = −gap_start, δ₊ = gap − gap_start. gap_start = 0: the link must take up the whole gap in
   /// the positive direction before it pulls. Initial positions with δ(0) > δ₊ give a preload.
   bool has_gap = false;
-  /// A rope (`type: rope`): tension only. Its only flank is δ₊ = gap (the slack); there is no
-  /// negative flank (δ₋ = −∞): slack, it carries nothing, however far it is compressed.
+  /// One-sided: a rope (`type: rope`, δ₊ = gap = the slack ≥ 0) or a link's `flank` (δ₊ = gap, any sign:
+  /// MSL's ElastoGap). No negative flank (δ₋ = −∞): below δ₊ it carries nothing, however far.
   bool tension_only = false;
   /// A rope wound on a drum (`length` with `EA`, or `elastic_modulus` and `area`; `falls`). Law and
   /// derivation: elements/link.hpp. n falls carry body b (the hook); `ratio` is then n/R (the drum's
