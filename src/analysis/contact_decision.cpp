@@ -30,14 +30,21 @@ class Decision {
     for (int k : Z) {
       const ContactMode md = modes[static_cast<size_t>(k)];
       const double s = static_cast<double>(static_cast<int>(md));
-      if (md == ContactMode::stuck ? !holds(k)
-                                   : !sys_.contact(k).can_slide(md) ||
-                                         s * sys_.contact(k).sliding_acceleration(t_, acc_.data()) < 0.0)
+      if (md == ContactMode::stuck ? !holds(k) : !sys_.contact(k).can_slide(md) || s * sliding_acceleration(k) < -rounding(k))
         return false;
     }
     return true;
   }
   double force(int k) const { return fc_[static_cast<size_t>(k)]; }
+  double sliding_acceleration(int k) const { return sys_.contact(k).sliding_acceleration(t_, acc_.data()); }
+  /// The rounding of u̇ = a_a − a_b: 1e-12 (|a_a| + |a_b|). With μ_s = μ_k a breakaway starts with
+  /// u̇ = 0 exactly; formed by the sliding equations it may come out −1e-14 while the stuck load is
+  /// 1e-14 beyond the limit (MSL's Friction example on BDF), and neither mode would be consistent.
+  double rounding(int k) const {
+    const ContactLaw& c = sys_.contact(k);
+    const double ab = c.b >= 0 ? acc_[static_cast<size_t>(c.b)] : c.surface_acceleration(t_);
+    return 1e-12 * (std::abs(acc_[static_cast<size_t>(c.a)]) + std::abs(ab));
+  }
 
  private:
   DriveSystem& sys_;

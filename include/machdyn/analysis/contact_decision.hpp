@@ -6,7 +6,8 @@
 /// The contacts in Z have zero sliding velocity at (t, y); all are decided together: they start
 /// stuck; while some stuck contact needs more than its static limit, the one with the largest
 /// |λ|/F_s is released in the direction of its λ. The result is consistent when every stuck contact
-/// of Z holds and every sliding one accelerates in its own direction (s u̇ ≥ 0); if the release
+/// of Z holds and every sliding one accelerates in its own direction (s u̇ ≥ 0 within the rounding
+/// of u̇ = a_a − a_b, 1e-12 (|a_a| + |a_b|): with μ_s = μ_k a breakaway starts at u̇ = 0); if the release
 /// sequence does not end consistent, every combination is tried, fewest sliding contacts first, then
 /// in index order. Deterministic; no smoothing, no velocity threshold.
 
