@@ -533,9 +533,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int k = 0; k < nc_; ++k) {
       const ContactMode a = old_modes[static_cast<size_t>(k)], b = modes[static_cast<size_t>(k)];
       if (!initial && a == b) continue;
+      // A released element transmits nothing: the mode it is kept in (stuck at zero load, or the
+      // direction it would slide) follows the bodies beside it and is no event of its own. Its
+      // release and its application are logged by time_event.
+      if (!initial && released(k, t)) {
+        close_phase(k, t);
+        continue;
+      }
       const char* kind = initial ? "initial" : b == ContactMode::stuck ? "stick" : a == ContactMode::stuck ? "slip" : "reversal";
-      record(t, kind, nl_ + k, initial ? "" : released(k, t) ? "released" : to_string(a),
-             released(k, t) ? "released" : to_string(b));
+      record(t, kind, nl_ + k, initial ? "" : to_string(a), released(k, t) ? "released" : to_string(b));
       close_phase(k, t);
       if (b != ContactMode::stuck) open_phase(k, t, b);
     }
@@ -636,7 +642,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       const ContactMode md = sys_.contact_mode(k);
       const bool was = was_released_[static_cast<size_t>(k)] != 0, now = released(k, t);
       was_released_[static_cast<size_t>(k)] = now;
-      if (was == now || md == ContactMode::stuck) continue;
+      if (was == now) continue;
+      if (md == ContactMode::stuck) {  // a holding clutch opens: no slip phase to end
+        if (now) record(t, "released", nl_ + k, to_string(md), "released");
+        continue;
+      }
       if (!now && open_phase_[static_cast<size_t>(k)] < 0) {
         record(t, "applied", nl_ + k, "released", to_string(md));
         open_phase(k, t, md);
