@@ -209,8 +209,8 @@ links:
 // τ_b = −10 τ_a eliminated): (J2 + 10² J1) φ2'' = 10 τ(t) − d φ2' − c (φ2 − φ3), J3 φ3'' = c (φ2 − φ3),
 // τ = 10 sin(2π 5 t), J1 = 0.1, J2 = J3 = 2, c = 1e4, d = 10, at rest at t = 0. RK4 with h = 1e-5 s
 // (h ω_max ≈ 1e-3): speeds at every 10 ms within 1e-8 rad/s (dopri5), 1e-6 rad/s (bdf).
-TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) {
-  Model m = load_model(test::example("msl/first.yaml"), {std::string("simulation.integrator=") + GetParam()});
+void check_msl_first(const std::string& file, const std::string& motor, const char* integrator) {
+  Model m = load_model(test::example(file), {std::string("simulation.integrator=") + integrator});
   ASSERT_EQ(m.dof(), 2);
   const SimulationResult r = simulate(m);
   const double J = 2.0 + 100.0 * 0.1, J3 = 2.0, c = 1e4, d = 10.0, pi = std::acos(-1.0);
@@ -223,10 +223,10 @@ TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) {
   const auto& t = test::series(r, "t_s");
   const auto& w2 = test::series(r, "inertia2.velocity_rad_s");
   const auto& w3 = test::series(r, "inertia3.velocity_rad_s");
-  const auto& w1 = test::series(r, "motor.velocity_rad_s");
+  const auto& w1 = test::series(r, motor + ".velocity_rad_s");
   long step = 0;
   int checked = 0;
-  const double tol = std::string(GetParam()) == "dopri5" ? 1e-8 : 1e-6;  // rad/s; bdf measured ≤ 1e-7
+  const double tol = std::string(integrator) == "dopri5" ? 1e-8 : 1e-6;  // rad/s; bdf measured ≤ 1e-7
   for (size_t k = 0; k < t.size(); k += 10) {
     const long target = std::lround(t[k] / h);
     for (; step < target; ++step) {
@@ -246,6 +246,15 @@ TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) {
     ++checked;
   }
   EXPECT_EQ(checked, 101);
+}
+
+TEST_P(IdealGearSim, MslFirstMatchesAnIndependentRk4) { check_msl_first("msl/first.yaml", "motor", GetParam()); }
+
+// Claim: MSL Rotational.Examples.FirstGrounded (examples/msl/first-grounded.yaml: First with the
+// torque source and the gear grounded instead of tied to a housing flange) has First's equations
+// and matches the same independent RK4 within the same tolerances (its motor is `inertia1`).
+TEST_P(IdealGearSim, MslFirstGroundedMatchesAnIndependentRk4) {
+  check_msl_first("msl/first-grounded.yaml", "inertia1", GetParam());
 }
 
 // Claim: a massless flange (inertia 0) tied by an ideal gear to a body with inertia is accepted and
