@@ -80,7 +80,7 @@ struct HandOut {
   double Fmax = 0, t_Fmax = 0;
 };
 
-long hand_loop(const Params& p, double t_end, double dt_out, HandOut& out) {
+__attribute__((noinline)) long hand_loop(const Params& p, double t_end, double dt_out, HandOut& out) {
   Hand sys(p);
   StepperOptions opt;
   opt.rtol = 1e-10, opt.atol = 1e-12;

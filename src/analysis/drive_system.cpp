@@ -1,7 +1,9 @@
 #include "machdyn/analysis/drive_system.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
@@ -22,20 +24,72 @@ void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd
 }  // namespace
 
 namespace {
+// out = A y + c for R rows (DriveSystem::AffineRows): the R sums stay in registers, one column of
+// A at a time. Each sum starts at c and adds the columns in ascending order. C > 0: out[i] = y[C + i]
+// for i < C first (q̇ = v), the rows then from out[C] on.
+template <int R, int C>
+void affine_rows(const int* cols, int ncols, const double* A, const double* c, const double* y, double* out) {
+  for (int i = 0; i < C; ++i) out[i] = y[C + i];
+  double s[R];
+  for (int r = 0; r < R; ++r) s[r] = c[r];
+  for (int k = 0; k < ncols; ++k, A += R) {
+    const double x = y[cols[k]];
+    for (int r = 0; r < R; ++r) s[r] += A[r] * x;
+  }
+  for (int r = 0; r < R; ++r) out[C + r] = s[r];
+}
+
+using RowsKernel = void (*)(const int*, int, const double*, const double*, const double*, double*);
+// The kernels by row count R = 1…16: without a copy (contact forces), with C = R (a chain's
+// accelerations, a mode without energy books) and with C = R − 3 (a mode with the three energy rates).
+template <int... Rs>
+constexpr std::array<RowsKernel, sizeof...(Rs)> kernels(int shift, std::integer_sequence<int, Rs...>) {
+  if (shift == 0) return {affine_rows<Rs + 1, 0>...};
+  if (shift == 1) return {affine_rows<Rs + 1, Rs + 1>...};
+  return {(Rs + 1 > 3 ? affine_rows<Rs + 1, (Rs + 1 > 3 ? Rs + 1 - 3 : 0)> : nullptr)...};
+}
+// A small chain's accelerations: a = Aq q + Av v + b as fixed-size products (A = [Aq, Av], n × 2n
+// column-major), q̇ = v first: the rounding of the chain path as it always was.
 template <int N>
-void dense_rhs(const double* y, double* dydt, const double* Aq, const double* Av, const double* b) {
+void chain_rows(const int*, int, const double* A, const double* b, const double* y, double* dydt) {
   using Vec = Eigen::Matrix<double, N, 1>;
   using Mat = Eigen::Matrix<double, N, N>;
   Eigen::Map<const Vec> q(y), v(y + N), bb(b);
   Eigen::Map<Vec> qd(dydt), acc(dydt + N);
   qd = v;
-  acc.noalias() = Eigen::Map<const Mat>(Aq) * q + Eigen::Map<const Mat>(Av) * v + bb;
+  acc.noalias() = Eigen::Map<const Mat>(A) * q + Eigen::Map<const Mat>(A + N * N) * v + bb;
 }
+constexpr RowsKernel kChain[] = {chain_rows<1>, chain_rows<2>, chain_rows<3>, chain_rows<4>,
+                                 chain_rows<5>, chain_rows<6>, chain_rows<7>, chain_rows<8>};
 
-using DenseFn = void (*)(const double*, double*, const double*, const double*, const double*);
-constexpr DenseFn kDense[] = {dense_rhs<1>, dense_rhs<2>, dense_rhs<3>, dense_rhs<4>,
-                              dense_rhs<5>, dense_rhs<6>, dense_rhs<7>, dense_rhs<8>};
+constexpr auto kRows = kernels(0, std::make_integer_sequence<int, 16>{});
+constexpr auto kRowsCopy = kernels(1, std::make_integer_sequence<int, 16>{});
+constexpr auto kRowsEnergy = kernels(2, std::make_integer_sequence<int, 16>{});
+constexpr int kMaxRowsCols = 32;  // beyond: the compressed rows (dense zeros would cost more)
 }  // namespace
+
+void DriveSystem::AffineRows::build(const Eigen::MatrixXd& M, const Eigen::VectorXd& c0, int r0, int r1, int m) {
+  rows = r1 - r0;
+  copy = m;
+  kernel = nullptr;
+  cols.clear(), A.clear(), c.clear();
+  if (rows < 1 || rows > static_cast<int>(kRows.size())) return;
+  const RowsKernel k = m == 0 ? kRows[static_cast<size_t>(rows - 1)]
+                       : m == rows ? kRowsCopy[static_cast<size_t>(rows - 1)]
+                       : m == rows - 3 ? kRowsEnergy[static_cast<size_t>(rows - 1)]
+                                       : nullptr;
+  if (!k) return;
+  for (Eigen::Index j = 0; j < M.cols(); ++j)
+    if ((M.block(r0, j, rows, 1).array() != 0.0).any()) cols.push_back(static_cast<int>(j));
+  if (static_cast<int>(cols.size()) > kMaxRowsCols) {
+    cols.clear();
+    return;
+  }
+  for (const int j : cols)
+    for (int r = r0; r < r1; ++r) A.push_back(M(r, j));
+  for (int r = r0; r < r1; ++r) c.push_back(c0(r));
+  kernel = k;
+}
 
 DriveSystem::DriveSystem(const Model& model, bool energy_books)
     : m_(model), n_(model.dof()), nl_(static_cast<int>(model.links.size())),
@@ -84,20 +138,18 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   bool gaps = false;
   for (const auto& l : links_) gaps = gaps || l.gap;
   if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && n_ >= 1 && n_ <= 8) {
-    Aq_.assign(static_cast<size_t>(n_ * n_), 0.0);
-    Av_ = Aq_;
+    auto& A = chain_.A;  // [−M⁻¹K, −M⁻¹D], n × 2n column-major
+    A.assign(static_cast<size_t>(2 * n_ * n_), 0.0);
     for (const auto& l : links_)
-      l.jacobian(n_, GapMode::open, [&](int r, int c, double v) {
-        if (c < n_) Aq_[static_cast<size_t>(c * n_ + r)] += v;
-        else Av_[static_cast<size_t>((c - n_) * n_ + r)] += v;
-      });
+      l.jacobian(n_, GapMode::open, [&](int r, int c, double v) { A[static_cast<size_t>(c * n_ + r)] += v; });
     // −K and −D summed over the links first, then scaled: the rounding of M⁻¹ (f − K q − D v).
-    for (size_t e = 0; e < Aq_.size(); ++e) {
-      Aq_[e] *= inv_mass_[e % static_cast<size_t>(n_)];
-      Av_[e] *= inv_mass_[e % static_cast<size_t>(n_)];
-    }
-    for (int i = 0; i < n_; ++i) b_.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
-    dense_ = kDense[n_ - 1];
+    for (size_t e = 0; e < A.size(); ++e) A[e] *= inv_mass_[e % static_cast<size_t>(n_)];
+    for (int i = 0; i < n_; ++i)
+      chain_.c.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
+    chain_.rows = chain_.copy = n_;
+    chain_.kernel = kChain[n_ - 1];
+    dense_ = true;
+    mode_changed();
   }
 }
 
@@ -154,7 +206,7 @@ GapMode DriveSystem::natural_gap_mode(int l, const double* y) const {
 
 void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   mode_ = modes;
-  affine_ = nullptr;
+  mode_changed();
   stuck_.clear();
   for (int k = 0; k < nc_; ++k)
     if (mode_[static_cast<size_t>(k)] == ContactMode::stuck) stuck_.push_back(k);
@@ -451,12 +503,14 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
       a.first_row = 0;
   }
   compress(G, a.force_start, a.force_col, a.force_val);
+  if (a.first_row == n_) a.dense.build(J, a.c, n_, N, n_);  // the whole right-hand side (rhs)
+  a.force_dense.build(G, a.force_c, 0, nc_, 0);
   return affine_cache_.emplace(std::move(key), std::move(a)).first->second;
 }
 
-void DriveSystem::rhs(double t, const double* y, double* dydt) {
+void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
   if (dense_) {
-    dense_(y, dydt, Aq_.data(), Av_.data(), b_.data());
+    chain_.apply(y, dydt);
     for (const Load* ld : varying_)
       dydt[n_ + ld->body] += ld->evaluate(t, y[ld->body], y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
     return;
@@ -466,14 +520,21 @@ void DriveSystem::rhs(double t, const double* y, double* dydt) {
     else rhs_general<false>(t, y, dydt);
     return;
   }
-  if (!affine_) affine_ = &compile_affine();
+  if (!affine_) {
+    affine_ = &compile_affine();
+    if (affine_->dense.kernel) {  // from now on inline (rhs)
+      fast_ = &affine_->dense;
+      rhs(t, y, dydt);
+      return;
+    }
+  }
   const int N = size();
   const AffineMode& a = *affine_;
   const int* rs = a.row_start.data();
   const int* col = a.col.data();
   const double* val = a.val.data();
   const double* c = a.c.data();
-  std::copy(y + n_, y + n_ + a.first_row, dydt);
+  for (int i = 0; i < a.first_row; ++i) dydt[i] = y[n_ + i];
   for (int i = a.first_row; i < N; ++i) {
     double s = c[i];
     for (int k = rs[i]; k < rs[i + 1]; ++k) s += val[k] * y[col[k]];
@@ -588,10 +649,22 @@ double DriveSystem::elastic_energy(const double* y) const {
   return V;
 }
 
+void DriveSystem::link_loads(const double* y, double* F) const {
+  for (int l = 0; l < nl_; ++l) F[l] = link_load(l, y);
+}
+
+void DriveSystem::link_load_rates(const double* y, const double* dy, double* rate) const {
+  for (int l = 0; l < nl_; ++l) rate[l] = link_load_rate(l, y, dy);
+}
+
 void DriveSystem::contact_forces(double t, const double* y, double* fc) {
   if (affine_eligible_ && !dense_) {  // the mode's affine rows (compile_affine)
     if (!affine_) affine_ = &compile_affine();
     const AffineMode& a = *affine_;
+    if (a.force_dense.kernel) {
+      a.force_dense.apply(y, fc);
+      return;
+    }
     for (int k = 0; k < nc_; ++k) {
       double s = a.force_c[k];
       for (int i = a.force_start[static_cast<size_t>(k)]; i < a.force_start[static_cast<size_t>(k) + 1]; ++i)

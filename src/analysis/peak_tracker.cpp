@@ -15,8 +15,8 @@ void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_ne
   consider_value(j, t, signals_.value(j, y), y, on_new_max, on_candidate);
 }
 
-void PeakTracker::consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
-                                 const Candidate& on_candidate) {
+void PeakTracker::new_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
+                            const Candidate& on_candidate) {
   Extremes& g = sig_[static_cast<size_t>(j)];
   if (!started_ || v > g.max) {
     g.max = v, g.t_max = t;

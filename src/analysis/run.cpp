@@ -147,12 +147,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return sys_.link_load_rate(l, y, dy);
   }
   [[nodiscard]] bool rate_reads_state(int l) const override { return sys_.link_rate_reads_state(l); }
-  void values(const double* y, double* out) const override {
-    for (int l = 0; l < nl_; ++l) out[l] = sys_.link_load(l, y);
-  }
-  void rates(const double* y, const double* dy, double* out) const override {
-    for (int l = 0; l < nl_; ++l) out[l] = sys_.link_load_rate(l, y, dy);
-  }
+  void values(const double* y, double* out) const override { sys_.link_loads(y, out); }
+  void rates(const double* y, const double* dy, double* out) const override { sys_.link_load_rates(y, dy, out); }
 
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
@@ -164,7 +160,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       heat_integral(st, ta, tb, heat_.data());
       heat_t_ = tb;
     }
-    peaks_.on_segment(st, ta, tb, on_new_max_, phases_open_ > 0 ? on_candidate_ : PeakTracker::Candidate{});
+    peaks_.on_segment(st, ta, tb, on_new_max_, phases_open_ > 0 ? on_candidate_ : no_candidate_);
     jumps_.on_segment(st, ta, tb);
   }
   void on_output(double t, const double* y) override { output(t, y); }
@@ -181,8 +177,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       names.push_back(c.name + ".sliding_velocity_" + unit_suffix(velocity_unit(k)));
       names.push_back(c.name + ".mode");
     }
-    for (const auto& l : m_.links)
-      if (l.has_gap) names.push_back(l.name + ".gap_mode");
+    for (int l = 0; l < nl_; ++l)
+      if (m_.links[static_cast<size_t>(l)].has_gap) {
+        names.push_back(m_.links[static_cast<size_t>(l)].name + ".gap_mode");
+        gap_links_.push_back(l);
+      }
+    loads_.assign(static_cast<size_t>(nl_), 0.0);
     // Drives: the torque on the body, the DC motor's current or the speed drive's reference speed,
     // and the limiter mode (0 linear, ±1 limited±; always 0 for a DC motor).
     for (const auto& d : m_.drives) {
@@ -194,10 +194,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     // Ropes with falls or a free length (elements/link.hpp): the tension of one fall T = F/n (the
     // link's load F is the hook load) and, wound on a drum, the free length of one fall L_f.
-    for (const auto& l : m_.links) {
+    for (int k = 0; k < nl_; ++k) {
+      const Link& l = m_.links[static_cast<size_t>(k)];
       if (!is_rope_with_falls(l)) continue;
       names.push_back(l.name + ".fall_tension_N");
       if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
+      rope_links_.push_back(k);
     }
     // Bodies slaved by ideal gears (model.hpp: RigidSlave): q = ρ q_master, v = ρ v_master.
     for (const auto& sl : m_.slaves) {
@@ -231,7 +233,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(y[i]);
       put(y[n_ + i]);
     }
-    for (int l = 0; l < nl_; ++l) put(sys_.link_load(l, y));
+    sys_.link_loads(y, loads_.data());
+    for (int l = 0; l < nl_; ++l) put(loads_[static_cast<size_t>(l)]);
+    if (nc_ + nd_ + static_cast<int>(rope_links_.size() + gap_links_.size() + m_.slaves.size()) == 0 && !extra_.any() &&
+        !sys_.has_machines())
+      return;  // a plain chain: states and link loads only
     if (sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
     else if (nc_ > 0) sys_.contact_forces(t, y, fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
@@ -240,19 +246,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(sys_.sliding_velocity(k, t, y));
       put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
     }
-    for (int l = 0; l < nl_; ++l)
-      if (m_.links[static_cast<size_t>(l)].has_gap)
-        put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+    for (const int l : gap_links_) put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
     for (int d = 0; d < nd_; ++d) {
       const Drive& dr = m_.drives[static_cast<size_t>(d)];
       put(sys_.drive_torque(d, t, y));
       put(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
       put(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
     }
-    for (int l = 0; l < nl_; ++l) {
+    for (const int l : rope_links_) {
       const Link& lk = m_.links[static_cast<size_t>(l)];
-      if (!is_rope_with_falls(lk)) continue;
-      put(sys_.link_load(l, y) / lk.falls);
+      put(loads_[static_cast<size_t>(l)] / lk.falls);
       if (lk.EA > 0.0) put(sys_.link(l).free_length(sys_.link(l).drum(y)));
     }
     for (const auto& sl : m_.slaves) {  // bodies slaved by ideal gears: q = ρ q_master, v = ρ v_master
@@ -678,10 +681,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
   PeakTracker::Candidate on_candidate_;
+  const PeakTracker::Candidate no_candidate_;  // while no slip phase is open (no copy per step)
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
   std::vector<int> machine_bodies_;
   std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
   std::vector<double> y_, acc_, fc_;
+  std::vector<double> loads_;                // the link loads of an output row
+  std::vector<int> gap_links_, rope_links_;  // links with a gap-mode column, ropes with fall columns
   std::vector<int> open_phase_;
   std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
   int phases_open_ = 0;

@@ -63,7 +63,14 @@ class DriveSystem final : public OdeSystem {
   DriveSystem(const Model& model, bool energy_books);
 
   [[nodiscard]] int size() const override { return 2 * n_ + nx_ + (energy_ ? 3 : 0); }
-  void rhs(double t, const double* y, double* dydt) override;
+  /// Inline: the small affine maps (a small chain, a mode's map) are the whole right-hand side.
+  void rhs(double t, const double* y, double* dydt) override {
+    if (const AffineRows* a = fast_) {  // q̇ = v, then the rows of v̇ (and the energy rates)
+      a->apply(y, dydt);
+      return;
+    }
+    rhs_other(t, y, dydt);
+  }
   [[nodiscard]] bool has_jacobian() const override { return !energy_; }
   void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override;
   [[nodiscard]] bool has_sparse_jacobian() const override { return !energy_ && !has_machines_; }
@@ -82,7 +89,7 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] ContactMode contact_mode(int k) const { return mode_[static_cast<size_t>(k)]; }
   void set_gap_mode(int l, GapMode g) {
     gap_[static_cast<size_t>(l)] = g;
-    affine_ = nullptr;
+    mode_changed();
   }
   /// Sets all contact modes and forms the constraint solution of the stuck set.
   void set_contact_modes(const std::vector<ContactMode>& modes);
@@ -150,6 +157,9 @@ class DriveSystem final : public OdeSystem {
   /// Kinetic and elastic energy, J.
   [[nodiscard]] double kinetic_energy(const double* y) const;
   [[nodiscard]] double elastic_energy(const double* y) const;
+  /// The loads F of all links (link_load) and their rates (link_load_rate), in one call.
+  void link_loads(const double* y, double* F) const;
+  void link_load_rates(const double* y, const double* dy, double* rate) const;
 
   // Events.
   /// Two per link, then two per contact, then two per drive. Each is ≥ 0 while the mode holds.
@@ -214,19 +224,48 @@ class DriveSystem final : public OdeSystem {
   // dampers, the whole right-hand side (work and losses included) is affine in y: dy = J y + c. Each
   // mode is compiled once, by probing rhs_general at 0 and at the unit vectors (exact for an affine
   // map up to rounding), and cached by its modes.
+  // A few rows of an affine map, out = A y + c, stored densely over the columns of y they read
+  // (column by column, `rows` values each) and applied by a kernel of that fixed row count: for
+  // small systems this beats compressed rows (no index per entry, the rows' sums in registers).
+  // Each row sums c, then the entries in ascending column order: the order of the compressed rows.
+  // With copy = m > 0 the kernel first writes out[i] = y[m + i] for i < m (q̇ = v), then the rows
+  // from out[m] on: the whole right-hand side in one call.
+  struct AffineRows {
+    int rows = 0, copy = 0;
+    std::vector<int> cols;  // the columns with a nonzero entry in some row, ascending
+    std::vector<double> A, c;
+    using Kernel = void (*)(const int* cols, int ncols, const double* A, const double* c, const double* y,
+                            double* out);
+    Kernel kernel = nullptr;  // null: not used (too many rows or columns)
+    /// From rows [r0, r1) of M and c, if their count and columns are small enough for the kernels
+    /// (and a kernel copies `copy` states first: 0, rows or rows − 3).
+    void build(const Eigen::MatrixXd& M, const Eigen::VectorXd& c0, int r0, int r1, int copy);
+    void apply(const double* y, double* out) const {
+      kernel(cols.data(), static_cast<int>(cols.size()), A.data(), c.data(), y, out);
+    }
+  };
   struct AffineMode {
     Eigen::VectorXd c;
     std::vector<int> row_start, col;  // J in compressed rows: a handful of nonzeros per row
     std::vector<double> val;
     int first_row = 0;  // rows before it are q̇_i = v_i (copied, not multiplied)
+    AffineRows dense;   // rows [first_row, N) of J, when small (else the compressed rows)
     // The contact forces F_k (stuck: λ) are affine in y in the mode too: their rows, for the event
     // functions of stuck contacts (|λ| ≤ F_s) without solving the equations of motion again.
     Eigen::VectorXd force_c;
     std::vector<int> force_start, force_col;
     std::vector<double> force_val;
+    AffineRows force_dense;
   };
   bool affine_eligible_ = false;
   const AffineMode* affine_ = nullptr;  // the current mode's, or null until compiled
+  const AffineRows* fast_ = nullptr;     // rows n… of the whole right-hand side, when small and current
+  void rhs_other(double t, const double* y, double* dydt);
+  /// A mode changed: its affine map is compiled (or found) at the next evaluation.
+  void mode_changed() {
+    affine_ = nullptr;
+    fast_ = dense_ && varying_.empty() ? &chain_ : nullptr;
+  }
   std::unordered_map<std::string, AffineMode> affine_cache_;
   const AffineMode& compile_affine();
   void enforce_stuck(double t, double* acc) const;
@@ -269,11 +308,10 @@ class DriveSystem final : public OdeSystem {
   Eigen::MatrixXd Pproj_;     // plain pseudo-inverse of G M⁻¹ Gᵀ (velocity projection)
   std::vector<double> f_, fc_;
   Eigen::VectorXd r_, lam_;
-  // Small chains without events (n ≤ 8): a = Aq q + Av v + M⁻¹ f_const as fixed-size dense
-  // products, which beat the link loop there. Aq = −M⁻¹K, Av = −M⁻¹D, column-major n × n.
-  using DenseRhs = void (*)(const double* y, double* dydt, const double* Aq, const double* Av, const double* b);
-  DenseRhs dense_ = nullptr;
-  std::vector<double> Aq_, Av_, b_;
+  // Small chains without events (n ≤ 8): a = −M⁻¹K q − M⁻¹D v + M⁻¹ f_const by a fixed-size dense
+  // kernel in the AffineRows slot (A = [−M⁻¹K, −M⁻¹D], c = M⁻¹ f_const), which beats the link loop.
+  bool dense_ = false;
+  AffineRows chain_;
 };
 
 }  // namespace machdyn
