@@ -18,8 +18,10 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
+#include "analysis/friction_heat.hpp"
 #include "analysis/machine_jumps.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/common/units.hpp"
 #include "machdyn/solve/driver.hpp"
 #include "machdyn/solve/roots.hpp"
 
@@ -29,7 +31,7 @@ namespace {
 class DriveRun final : public EventSystem, public StepObserver, public PeakSignals {
  public:
   DriveRun(const Model& m, const SimulateOptions& opt, SimulationResult& out, const OutputSelection& extra = {})
-      : m_(m), opt_(opt), extra_(extra), out_(out), sys_(m, m.is_hybrid() || opt.event_driven), jumps_(m, sys_), n_(m.dof()),
+      : m_(m), opt_(opt), extra_(extra), out_(out), sys_(m, m.is_hybrid() || opt.event_driven), jumps_(m, sys_), heat_(m, sys_), n_(m.dof()),
         N_(sys_.size()), nl_(static_cast<int>(m.links.size())), nc_(static_cast<int>(m.contacts.size())),
         nd_(static_cast<int>(m.drives.size())), peaks_(sys_.size(), *this) {
     y_.assign(static_cast<size_t>(N_), 0.0);
@@ -156,10 +158,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     report_progress(st, start_, false);
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
-    if (extra_.heat) {  // the heat of each friction element over the piece, in its modes
-      heat_integral(st, ta, tb, heat_.data());
-      heat_t_ = tb;
-    }
+    if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
     peaks_.on_segment(st, ta, tb, on_new_max_, phases_open_ > 0 ? on_candidate_ : no_candidate_);
     jumps_.on_segment(st, ta, tb);
   }
@@ -206,6 +205,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       names.push_back(sl.name + ".position_" + unit_suffix(position_unit(sl.kind)));
       names.push_back(sl.name + ".velocity_" + unit_suffix(velocity_unit(sl.kind)));
     }
+    // Friction elements with a thermal model (elements/thermal.hpp): the temperature, in °C.
+    for (const auto& c : m_.contacts)
+      if (c.thermal) names.push_back(c.name + ".temperature_degC");
+    temperature_.assign(static_cast<size_t>(std::count_if(m_.contacts.begin(), m_.contacts.end(),
+                                                          [](const FrictionContact& c) { return c.thermal.has_value(); })),
+                        0.0);
     if (extra_.any()) extra_columns(names);
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
@@ -262,6 +267,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(sl.ratio * y[sl.master]);
       put(sl.ratio * y[n_ + sl.master]);
     }
+    if (heat_.any_thermal()) {
+      heat_.at(step_, t, y, nullptr, nullptr, temperature_.data());
+      for (double T : temperature_) put(T - kZeroCelsius);
+    }
     if (extra_.any()) extra_output(t, y, row, c);
   }
 
@@ -288,10 +297,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         names.push_back(k.name + ".heat_power_W");
         names.push_back(k.name + ".heat_J");
       }
-      heat_.assign(static_cast<size_t>(nc_), 0.0);
-      part_.assign(static_cast<size_t>(nc_), 0.0);
       p_.assign(static_cast<size_t>(nc_), 0.0);
-      yq_.assign(static_cast<size_t>(N_), 0.0);
+      q_.assign(static_cast<size_t>(nc_), 0.0);
     }
   }
   /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
@@ -308,7 +315,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         put(s.delta);
         put(s.rate);
       }
-    if (extra_.acceleration || extra_.heat) sys_.evaluate(t, y, acc_.data(), fc_.data());
+    if (extra_.acceleration) sys_.evaluate(t, y, acc_.data(), fc_.data());
     if (extra_.acceleration)
       for (int i = 0; i < n_; ++i)
         if (!m_.bodies[static_cast<size_t>(i)].machine) put(acc_[static_cast<size_t>(i)]);
@@ -324,38 +331,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         }
     }
     if (extra_.heat) {
-      // The heat up to t: that of the finished pieces, plus the open piece [heat_t_, t] of the
-      // current step (the outputs inside a step come before its piece is closed).
-      std::copy(heat_.begin(), heat_.end(), part_.begin());
-      if (step_ && t > heat_t_) heat_integral(*step_, heat_t_, t, part_.data());
-      heat_power(t, y, p_.data());
+      heat_.at(step_, t, y, p_.data(), q_.data(), nullptr);
       for (int k = 0; k < nc_; ++k) {
         put(p_[static_cast<size_t>(k)]);
-        put(part_[static_cast<size_t>(k)]);
+        put(q_[static_cast<size_t>(k)]);
       }
     }
   }
-  /// P_k = F_k u_k of every contact at (t, y) in the current modes: 0 while stuck (u ≡ 0), as the
-  /// energy books' friction loss (analysis/drive_system.cpp).
-  void heat_power(double t, const double* y, double* p) {
-    sys_.evaluate(t, y, acc_.data(), fc_.data());
-    for (int k = 0; k < nc_; ++k)
-      p[k] = sys_.contact_mode(k) == ContactMode::stuck ? 0.0 : fc_[static_cast<size_t>(k)] * sys_.sliding_velocity(k, t, y);
-  }
-  /// Adds ∫_ta^tb P_k dt to h_k: 3-point Gauss–Legendre on the stepper's dense output.
-  void heat_integral(const Stepper& st, double ta, double tb, double* h) {
-    if (!(tb > ta) || nc_ == 0) return;
-    static constexpr double kX[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};  // ±√(3/5), 0
-    static constexpr double kW[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-    const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
-    for (int j = 0; j < 3; ++j) {
-      const double tq = mid + half * kX[j];
-      st.interpolate(tq, yq_.data());
-      heat_power(tq, yq_.data(), p_.data());
-      for (int k = 0; k < nc_; ++k) h[k] += half * kW[j] * p_[static_cast<size_t>(k)];
-    }
-  }
-
   // ---- quasi-static loads at the extremes ----
   /// What the generalized forces at (t, y) are made of beyond the constant loads: the values of the
   /// time- or speed-dependent loads and the machines' forces Q(q) — O(loads + machines), not O(n),
@@ -670,11 +652,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   const SimulateOptions& opt_;
   OutputSelection extra_;
   const Stepper* step_ = nullptr;  // the stepper of the current step (heat of an open piece)
-  double heat_t_ = 0.0;            // heat_ holds ∫₀^heat_t_ F u dt per contact
-  std::vector<double> heat_, part_, p_, yq_;
+  std::vector<double> p_, q_, temperature_;  // heat power, heat, temperatures at an output row
   SimulationResult& out_;
   DriveSystem sys_;
   detail::MachineJumps jumps_;
+  detail::FrictionHeat heat_;
   int n_, N_, nl_, nc_, nd_;
   bool has_events_ = false;
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)

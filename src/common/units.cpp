@@ -33,7 +33,7 @@ constexpr UnitDef kUnits[] = {
     {"Nm", 1.0, dim::torque, false},     {"kNm", 1e3, dim::torque, false},
     {"A", 1.0, dim::current, true},      {"V", 1.0, dim::voltage, true},
     {"ohm", 1.0, dim::resistance, true}, {"Ω", 1.0, dim::resistance, true},
-    {"H", 1.0, dim::inductance, true},
+    {"H", 1.0, dim::inductance, true},   {"K", 1.0, dim::temperature, true},
 };
 
 struct Prefix {
@@ -197,9 +197,13 @@ std::string describe(const Dim& d) {
       {dim::inductance, "an inductance (H)"},
       {dim::torque / dim::current, "a motor constant (N*m/A = V*s/rad)"},
       {dim::force / dim::current, "a motor constant (N/A = V*s/m)"},
+      {dim::temperature, "a temperature difference (K)"},
+      {dim::heat_capacity, "a heat capacity (J/K)"},
+      {dim::thermal_conductance, "a thermal conductance (W/K)"},
   };
   for (const auto& n : names)
     if (n.d == d) return n.text;
+  if (d.K != 0) return fmt::format("a quantity of dimension kg^{}*m^{}*s^{}*A^{}*K^{}", d.kg, d.m, d.s, d.A, d.K);
   if (d.A != 0) return fmt::format("a quantity of dimension kg^{}*m^{}*s^{}*A^{}", d.kg, d.m, d.s, d.A);
   return fmt::format("a quantity of dimension kg^{}*m^{}*s^{}", d.kg, d.m, d.s);
 }
@@ -265,6 +269,37 @@ std::optional<double> parse_as(std::string_view text, const Dim& expected, std::
     return std::nullopt;
   }
   return q->value;
+}
+
+std::optional<double> parse_temperature(std::string_view text, std::string* error) {
+  std::string_view t = text;
+  while (!t.empty() && t.back() == ' ') t.remove_suffix(1);
+  double offset = 0.0;
+  std::optional<double> v;
+  for (std::string_view celsius : {std::string_view("degC"), std::string_view("°C")}) {
+    if (t.size() > celsius.size() && t.substr(t.size() - celsius.size()) == celsius) {
+      v = parse_as(t.substr(0, t.size() - celsius.size()), dim::none, error);
+      if (!v) return std::nullopt;
+      offset = kZeroCelsius;
+      break;
+    }
+  }
+  if (!v) {
+    auto q = parse_quantity(text, error);
+    if (!q) return std::nullopt;
+    if (!q->has_unit || !(q->dim == dim::temperature)) {
+      if (error)
+        *error = fmt::format("expected a temperature with its unit, e.g. '20 degC', '20 °C' or '293.15 K', got '{}'", text);
+      return std::nullopt;
+    }
+    v = q->value;
+  }
+  const double kelvin = *v + offset;
+  if (!(kelvin >= 0.0)) {
+    if (error) *error = fmt::format("'{}' is below absolute zero", text);
+    return std::nullopt;
+  }
+  return kelvin;
 }
 
 }  // namespace machdyn

@@ -215,6 +215,41 @@ int read_housing(FieldReader& f, const Model& m, int body) {
 }
 }  // namespace
 
+/// `thermal: {heat_capacity, conductance, ambient, initial}` of a friction element (elements/thermal.hpp).
+void read_thermal(FieldReader& f, FrictionContact& c) {
+  const SpecNode* node = f.node("thermal");
+  if (!node) return;
+  Diagnostics& diag = f.diagnostics();
+  if (!node->is_map()) {
+    diag.error(node->loc, fmt::format("{}: 'thermal' expected a map {{heat_capacity: 4 kJ/K, conductance: 10 W/K, "
+                                      "ambient: 20 degC}}", f.what()));
+    return;
+  }
+  FieldReader t(*node, f.what() + ": thermal", diag);
+  ThermalMass th;
+  auto temperature = [&](const char* key, double fallback) {
+    const SpecNode* v = t.node(key);
+    if (!v) return fallback;
+    std::string err;
+    std::optional<double> T = v->is_scalar() ? parse_temperature(v->scalar, &err) : std::nullopt;
+    if (!T) {
+      diag.error(v->loc, fmt::format("{}: thermal: '{}' {}", f.what(), key,
+                                     err.empty() ? "expected a temperature, e.g. 20 degC" : err));
+      return fallback;
+    }
+    return *T;
+  };
+  const auto C = t.positive("heat_capacity", dim::heat_capacity);
+  const auto G = t.positive("conductance", dim::thermal_conductance, 0.0, true);
+  th.ambient = temperature("ambient", th.ambient);
+  th.initial = temperature("initial", th.ambient);
+  t.finish();
+  if (!C || !G) return;
+  th.heat_capacity = *C;
+  th.conductance = *G;
+  c.thermal = th;
+}
+
 void compile_link_gap(FieldReader& f, Link& l, const Dim& qd) {
   // A one-sided link (MSL's ElastoGap): its only flank δ₊ = `flank`, on either side of δ = 0; the
   // same representation as a rope's slack, so the one law of elements/link.hpp serves it.
@@ -293,6 +328,7 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
       }
       check_levels(f, by_mu ? "mu_k" : "kinetic", c);
       read_stribeck(f, spec, vd, by_mu ? "mu_k" : "kinetic", c);
+      read_thermal(f, c);
       f.finish();
       m.contacts.push_back(c);
     }
@@ -345,6 +381,7 @@ void compile_contacts(const SpecNode* contacts, const SpecNode* brakes, Model& m
         }
       }
       read_stribeck(f, spec, vd, by_mu ? "mu_k" : "braking", c);
+      read_thermal(f, c);
       f.finish();
       m.contacts.push_back(c);
     }
@@ -378,6 +415,7 @@ void compile_clutches(const SpecNode* clutches, Model& m, Diagnostics& diag) {
     read_normal_force(f, spec, c);
     check_levels(f, "mu_k", c);
     read_stribeck(f, spec, velocity_dim(kind), "mu_k", c);
+    read_thermal(f, c);
     f.finish();
     m.contacts.push_back(c);
   }
@@ -431,6 +469,7 @@ void compile_freewheels(const SpecNode* freewheels, Model& m, Diagnostics& diag)
     c.static_limit = 1.0;  // unused by a freewheel's law (no upper limit)
     if (spec.find("drag")) read_level(f, "drag", load_dim(kind), velocity_dim(kind), c, 1.0);
     if (c.kinetic.empty()) c.kinetic = {0.0};
+    read_thermal(f, c);
     f.finish();
     // The initial relative speed must not turn the freewheel in its locked direction (that would be
     // an impact the model does not describe).

@@ -157,6 +157,7 @@ std::size_t output_columns_bound(const Model& m) {
                   2 * m.slaves.size();
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
+  for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature
   return n;
 }
 

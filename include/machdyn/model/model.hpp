@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -145,6 +146,15 @@ struct Link {
 /// v⁺ = −e v⁻ (e: restitution in [0, 1]); a rebound too slow to leave the stop within the event time
 /// resolution, and every impact with e = 0, ends at rest on the stop. A lower stop (q ≥ q_stop) has
 /// lock = −1, an upper one lock = +1.
+/// The lumped thermal model of a friction element (`thermal:` of a brake, clutch, contact or freewheel;
+/// law and valid range: elements/thermal.hpp). SI: J/K, W/K, K.
+struct ThermalMass {
+  double heat_capacity = 0.0;  ///< C > 0, J/K
+  double conductance = 0.0;    ///< G ≥ 0, W/K (0: adiabatic)
+  double ambient = 293.15;     ///< T_a, K
+  double initial = 293.15;     ///< T(0), K
+};
+
 struct FrictionContact {
   std::string name;
   bool brake = false;
@@ -167,6 +177,7 @@ struct FrictionContact {
   double application_gain = 1.0;     ///< g: 1, or 1/f_N,ref
   bool by_normal_force = false;      ///< s is a normal force (compile scales by f_N,ref once t_end is known)
   double t_apply = 0.0;              ///< the first time r > 0 (0: from the start), for displays
+  std::optional<ThermalMass> thermal;  ///< the element's temperature is an output (none: no thermal model)
 
   [[nodiscard]] double scale(double t) const;             ///< r(t)
   /// Whether r is 0 at t and stays 0 just after (r(t) = 0 and no rise on the right): released.
