@@ -7,6 +7,7 @@
 #include <string>
 #include <gtest/gtest.h>
 
+#include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -120,6 +121,26 @@ simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
               return -(xr - xe2) * w2 * std::sin(w2 * tau) + vr * std::cos(w2 * tau);
             }),
             1e-8 * amp * w2);
+}
+
+// Claim: the power column of the weight load (`--outputs power`, P = F v) follows the weight the
+// releases left: −m g v before t_r, −(m − Δm) g v after it, at every output row (the oscillation of
+// ReleaseInTheMiddleOfAFreeOscillation; v is the run's own velocity column).
+TEST(ReleaseOutputs, WeightPowerFollowsTheReleasedWeight) {
+  const Model mod = model_of(R"(
+gravity: 9.81 m/s^2
+bodies: {m: {type: translational, mass: 2 kg, vertical: up, position: 0.1 m}}
+links: {c: {type: spring, between: [ground, m], stiffness: 800 N/m}}
+releases: {part: {body: m, mass: 1.5 kg, time: 0.37 s}}
+simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
+)");
+  const SimulationResult r = simulate(mod, SimulateOptions{}, output_selection({"power"}));
+  const auto& t = series(r, "t_s");
+  const auto& v = series(r, "m.velocity_m_s");
+  const auto& P = series(r, "m.weight.power_W");
+  ASSERT_EQ(P.size(), t.size());
+  for (size_t k = 0; k < t.size(); ++k)
+    ASSERT_NEAR(P[k], -(t[k] <= 0.37 ? 2.0 : 0.5) * 9.81 * v[k], 1e-12) << t[k];
 }
 
 // Claim: a rigid drive (1e15 kg, its speed changes by < 1e-11 relative) hoists at vh a load m hanging
