@@ -10,6 +10,7 @@
 #include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/report.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
@@ -141,6 +142,25 @@ simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
   ASSERT_EQ(P.size(), t.size());
   for (size_t k = 0; k < t.size(); ++k)
     ASSERT_NEAR(P[k], -(t[k] <= 0.37 ? 2.0 : 0.5) * 9.81 * v[k], 1e-12) << t[k];
+}
+
+// Claim: the report's model tables list each release: its body, Δm, t_r and the weight change
+// +Δm g = 300 kg · 9.81 m/s² = 2943 N of a load hanging `vertical: up`.
+TEST(ReleaseOutputs, ReportListsTheReleases) {
+  const Model mod = model_of(R"(
+gravity: 9.81 m/s^2
+bodies: {load: {type: translational, mass: 1000 kg, vertical: up}}
+links: {rope: {type: rope, between: [ground, load], stiffness: 1e6 N/m}}
+releases: {grab: {body: load, mass: 300 kg, time: 0.0421 s}}
+)");
+  bool found = false;
+  for (const report::Table& t : report::model_tables(mod)) {
+    if (t.caption != "Releases") continue;
+    found = true;
+    ASSERT_EQ(t.rows.size(), 1u);
+    EXPECT_EQ(t.rows[0], (std::vector<std::string>{"grab", "load", "300 kg", "0.0421 s", "2943 N"}));
+  }
+  EXPECT_TRUE(found);
 }
 
 // Claim: a rigid drive (1e15 kg, its speed changes by < 1e-11 relative) hoists at vh a load m hanging
