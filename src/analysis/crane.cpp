@@ -96,13 +96,27 @@ CraneFactorRow phi3_row(const Model& m) {
   r.standard_lo = r.standard_hi = phi3(c.release_mass, mass, kind);
   r.clause = fmt::format("EN 13001-2 phi3 = 1 - (dm/m)(1 + beta3), beta3 = {:.1f} ({} release)", beta3(kind),
                          c.rapid_release ? "rapid" : "slow");
-  const SimulationResult res = simulate(phi3_case_model(m, c.release_mass));
+  if (c.release_time < 0.0) {  // at once from the hanging equilibrium
+    const SimulationResult res = simulate(phi3_case_model(m, c.release_mass));
+    const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
+    r.simulated = s.min / load_weight(m);
+    r.margin = r.simulated - r.standard_lo;
+    set_history(m, res, c.rope, load_weight(m), r);
+    r.note = fmt::format("min rope force {:.6g} N at t = {:.6g} s after the release; m g = {:.6g} N", s.min, s.t_min,
+                         load_weight(m));
+    return r;
+  }
+  // Released at t_r of a run: the rope's minimum from t_r on (before it the rope may be slack).
+  r.case_name += fmt::format(" at t = {:.6g} s {}", c.release_time, c.release_hoisting ? "while hoisting" : "hanging");
+  SimulateOptions opt;
+  opt.extremes_from = c.release_time;
+  const SimulationResult res = simulate(phi3_release_case_model(m, c.release_mass, c.release_time), opt);
   const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
   r.simulated = s.min / load_weight(m);
   r.margin = r.simulated - r.standard_lo;
   set_history(m, res, c.rope, load_weight(m), r);
-  r.note = fmt::format("min rope force {:.6g} N at t = {:.6g} s after the release; m g = {:.6g} N", s.min, s.t_min,
-                       load_weight(m));
+  r.note = fmt::format("min rope force {:.6g} N at t = {:.6g} s, after the release at {:.6g} s; m g = {:.6g} N", s.min,
+                       s.t_min, c.release_time, load_weight(m));
   return r;
 }
 
@@ -274,7 +288,11 @@ Model phi2_case_model(const Model& m, double vh) {
   return out;
 }
 
-Model phi3_case_model(const Model& m, double released_mass) {
+namespace {
+
+/// The φ3 case's start: the load hanging at rest in static equilibrium, its stop removed, the rope's
+/// first body held by a brake that never slips.
+Model hanging_start(const Model& m, double released_mass) {
   const CraneSpec& c = m.crane;
   if (c.rope < 0) case_error(m, m.name, "the phi3 case needs 'load' and 'rope'");
   const Body& load = load_body(m);
@@ -283,6 +301,7 @@ Model phi3_case_model(const Model& m, double released_mass) {
                                          released_mass, load.inertia));
   // The load hangs: no ground under it, at rest, the rope on its flank (δ = δ₊) to start the search.
   Model hang = m;
+  hang.releases.clear();  // the case's release is its own: the model's `releases:` do not act in it
   hang.simulation.initial = InitialState::equilibrium;
   std::erase_if(hang.contacts, [&](const FrictionContact& s) { return s.stop && s.a == c.load; });
   for (auto& b : hang.bodies) b.v0 = 0.0;
@@ -299,7 +318,14 @@ Model phi3_case_model(const Model& m, double released_mass) {
   }
   const double qa = rope.a >= 0 ? hang.bodies[static_cast<size_t>(rope.a)].q0 : 0.0;
   hang.bodies[static_cast<size_t>(c.load)].q0 = qa / rope.ratio - rope.gap;
-  Model out = with_equilibrium_start(hang);
+  return with_equilibrium_start(hang);
+}
+
+}  // namespace
+
+Model phi3_case_model(const Model& m, double released_mass) {
+  const CraneSpec& c = m.crane;
+  Model out = hanging_start(m, released_mass);
   // At t = 0 the load loses Δm: its mass and weight drop, position and velocity are continuous.
   Body& b = out.bodies[static_cast<size_t>(c.load)];
   b.inertia -= released_mass;
@@ -308,6 +334,21 @@ Model phi3_case_model(const Model& m, double released_mass) {
       ld.value = -b.vertical * b.inertia * out.gravity;
       ld.signal = Signal::constant(ld.value);
     }
+  return out;
+}
+
+Model phi3_release_case_model(const Model& m, double released_mass, double release_time) {
+  const CraneSpec& c = m.crane;
+  if (!(release_time < m.simulation.t_end))
+    case_error(m, m.name, fmt::format("the phi3 release time {} s is not before the end of the run, t_end = {} s",
+                                      release_time, m.simulation.t_end));
+  Model out = c.release_hoisting ? phi2_case_model(m, c.hoist_speed) : hanging_start(m, released_mass);
+  out.releases.clear();  // the case's release is its own: the model's `releases:` do not act in it
+  const Body& load = out.bodies[static_cast<size_t>(c.load)];
+  if (!(released_mass > 0.0 && released_mass < load.inertia))
+    case_error(m, load.name, fmt::format("the released mass {} kg must lie between 0 and the load's mass {} kg",
+                                         released_mass, load.inertia));
+  out.releases.push_back(body_release(out, "crane_release", c.load, released_mass, release_time));
   return out;
 }
 

@@ -96,6 +96,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
       nc_(static_cast<int>(model.contacts.size())), energy_(energy_books),
       q_lo_(static_cast<size_t>(n_), -HUGE_VAL), q_hi_(static_cast<size_t>(n_), HUGE_VAL) {
   for (const auto& b : model.bodies) {
+    inertia_.push_back(b.inertia);
     inv_mass_.push_back(1.0 / b.inertia);
     machine_.push_back(b.machine.get());
     if (b.machine) machine_bodies_.push_back(static_cast<int>(machine_.size()) - 1);
@@ -137,20 +138,43 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   // Jacobian terms (elements/link.hpp).
   bool gaps = false;
   for (const auto& l : links_) gaps = gaps || l.gap;
-  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && n_ >= 1 && n_ <= 8) {
-    auto& A = chain_.A;  // [−M⁻¹K, −M⁻¹D], n × 2n column-major
-    A.assign(static_cast<size_t>(2 * n_ * n_), 0.0);
-    for (const auto& l : links_)
-      l.jacobian(n_, GapMode::open, [&](int r, int c, double v) { A[static_cast<size_t>(c * n_ + r)] += v; });
-    // −K and −D summed over the links first, then scaled: the rounding of M⁻¹ (f − K q − D v).
-    for (size_t e = 0; e < A.size(); ++e) A[e] *= inv_mass_[e % static_cast<size_t>(n_)];
-    for (int i = 0; i < n_; ++i)
-      chain_.c.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
-    chain_.rows = chain_.copy = n_;
-    chain_.kernel = kChain[n_ - 1];
-    dense_ = true;
-    mode_changed();
+  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && n_ >= 1 && n_ <= 8) form_dense();
+}
+
+void DriveSystem::form_dense() {
+  auto& A = chain_.A;  // [−M⁻¹K, −M⁻¹D], n × 2n column-major
+  A.assign(static_cast<size_t>(2 * n_ * n_), 0.0);
+  for (const auto& l : links_)
+    l.jacobian(n_, GapMode::open, [&](int r, int c, double v) { A[static_cast<size_t>(c * n_ + r)] += v; });
+  // −K and −D summed over the links first, then scaled: the rounding of M⁻¹ (f − K q − D v).
+  for (size_t e = 0; e < A.size(); ++e) A[e] *= inv_mass_[e % static_cast<size_t>(n_)];
+  chain_.c.clear();
+  for (int i = 0; i < n_; ++i) chain_.c.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
+  chain_.rows = chain_.copy = n_;
+  chain_.kernel = kChain[n_ - 1];
+  dense_ = true;
+  mode_changed();
+}
+
+double DriveSystem::apply_release(const Release& r, const double* v) {
+  const auto i = static_cast<size_t>(r.body);
+  const double released = 0.5 * r.amount * v[r.body] * v[r.body];
+  inertia_[i] -= r.amount;
+  inv_mass_[i] = im_[i] = 1.0 / inertia_[i];
+  f_const_[i] += r.weight_change;  // the released part's weight leaves with it (model.hpp: Release)
+  // Everything formed from the masses, formed again: the momentum shares of stuck contacts, the
+  // dense chain, the affine map of each mode, the projectors of each stuck set.
+  for (int k = 0; k < nc_; ++k) {
+    const auto& c = m_.contacts[static_cast<size_t>(k)];
+    const double ma = inertia_[static_cast<size_t>(c.a)];
+    stuck_share_[static_cast<size_t>(k)] = c.b >= 0 ? ma / (ma + inertia_[static_cast<size_t>(c.b)]) : 1.0;
   }
+  affine_cache_.clear();  // before mode_changed(): no pointer into the old cache stays
+  projector_cache_.clear();
+  mode_changed();
+  if (dense_) form_dense();
+  set_contact_modes(std::vector<ContactMode>(mode_));
+  return released;
 }
 
 void DriveSystem::initial_state(double* y) const {
@@ -634,7 +658,7 @@ double DriveSystem::kinetic_energy(const double* y) const {
   double T = 0;
   const double* q = machine_positions(y);
   for (int i = 0; i < n_; ++i) {
-    double I = m_.bodies[static_cast<size_t>(i)].inertia, dI;
+    double I = inertia_[static_cast<size_t>(i)], dI;
     if (const Machine* mach = machine_[static_cast<size_t>(i)]) mach->inertia(q[i], &I, &dI);  // ½ I(q) v²
     T += 0.5 * I * y[n_ + i] * y[n_ + i];
   }

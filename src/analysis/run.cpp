@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/contact_decision.hpp"
@@ -64,11 +65,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const Method method = choose_method(m_, &out_.method_reason);
     sys_.initial_state(y_.data());
     jumps_.start(0.0, y_.data());
+    apply_releases(0.0);  // a release at t = 0 acts at 0⁺: the start state is the full bodies'
     initial_modes();
     initial_events_ = static_cast<long>(out_.hybrid.events.size());
     auto& E = out_.hybrid.energy;
     if (sys_.energy_books()) {
-      E.kinetic_start = sys_.kinetic_energy(y_.data());
+      // The bodies' kinetic energy before a release at t = 0 (its part is in released_kinetic).
+      E.kinetic_start = sys_.kinetic_energy(y_.data()) + E.released_kinetic;
       E.elastic_start = sys_.elastic_energy(y_.data());
     }
     StepperOptions so;
@@ -129,6 +132,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
     std::copy(y, y + N_, y_.begin());
+    apply_releases(t);  // at its breakpoint, or at an event located on it
     std::vector<int> own;
     int jump = -1;
     for (int f : fired) {
@@ -159,7 +163,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
     if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
-    peaks_.on_segment(st, ta, tb, on_new_max_, phases_open_ > 0 ? on_candidate_ : no_candidate_);
+    // The extremes over [extremes_from, t_end] (SimulateOptions): the part of the piece from there.
+    if (tb >= opt_.extremes_from)
+      peaks_.on_segment(st, std::max(ta, opt_.extremes_from), tb, on_new_max_,
+                        phases_open_ > 0 ? on_candidate_ : no_candidate_);
     jumps_.on_segment(st, ta, tb);
   }
   void on_output(double t, const double* y) override { output(t, y); }
@@ -211,7 +218,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     temperature_.assign(static_cast<size_t>(std::count_if(m_.contacts.begin(), m_.contacts.end(),
                                                           [](const FrictionContact& c) { return c.thermal.has_value(); })),
                         0.0);
+    // Bodies that release mass (model.hpp: Release): their current mass or inertia.
+    for (int b : released_bodies_) {
+      const Body& bd = m_.bodies[static_cast<size_t>(b)];
+      names.push_back(bd.name + (bd.kind == BodyKind::translational ? ".mass_kg" : ".inertia_kg_m2"));
+    }
     if (extra_.any()) extra_columns(names);
+    // Rows of only t, states and link loads (and no machine, whose accelerations are kept per row).
+    plain_rows_ = names.size() == 1 + 2 * m_.bodies.size() + m_.links.size() && !sys_.has_machines();
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     // Sized once (compile bounded the bytes); rows are written in place and the columns cut to
@@ -240,9 +254,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     sys_.link_loads(y, loads_.data());
     for (int l = 0; l < nl_; ++l) put(loads_[static_cast<size_t>(l)]);
-    if (nc_ + nd_ + static_cast<int>(rope_links_.size() + gap_links_.size() + m_.slaves.size()) == 0 && !extra_.any() &&
-        !sys_.has_machines())
-      return;  // a plain chain: states and link loads only
+    if (plain_rows_) return;  // a plain chain: states and link loads only
     if (sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
     else if (nc_ > 0) sys_.contact_forces(t, y, fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
@@ -271,6 +283,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       heat_.at(step_, t, y, nullptr, nullptr, temperature_.data());
       for (double T : temperature_) put(T - kZeroCelsius);
     }
+    for (int b : released_bodies_) put(sys_.inertia(b));
     if (extra_.any()) extra_output(t, y, row, c);
   }
 
@@ -320,7 +333,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (int i = 0; i < n_; ++i)
         if (!m_.bodies[static_cast<size_t>(i)].machine) put(acc_[static_cast<size_t>(i)]);
     if (extra_.power) {
-      for (const Load& ld : m_.loads)
+      for (const Load& ld : now().loads)  // the weights as the releases so far left them
         put(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
       for (int d = 0; d < nd_; ++d)
         put(sys_.drive_torque(d, t, y) * y[n_ + m_.drives[static_cast<size_t>(d)].body]);
@@ -348,9 +361,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     double t = 0.0;
     std::vector<double> y;
     std::vector<ContactMode> modes;
+    size_t stage = 0;  // releases applied at its instant: the masses and weights it belongs to
   };
   void ingredients(double t, const double* y, Extreme& out) {
     out.vals.clear();
+    out.stage = released_;
     for (size_t k : varying_) {
       const Load& ld = m_.loads[k];
       out.vals.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
@@ -369,12 +384,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.evaluate(e.t, e.y.data(), acc_.data(), fc_.data());
     e.vals.insert(e.vals.end(), fc_.begin(), fc_.end());
   }
-  /// The generalized forces f (n) of a set of ingredients.
-  Eigen::VectorXd forces(const std::vector<double>& vals) const {
+  /// The generalized forces f (n) of a set of ingredients, with the constant loads of `mm` (the
+  /// model after the releases of the extreme's instant).
+  Eigen::VectorXd forces(const std::vector<double>& vals, const Model& mm) const {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(n_);
     size_t v = 0, k = 0;
-    for (size_t j = 0; j < m_.loads.size(); ++j) {
-      const Load& ld = m_.loads[j];
+    for (size_t j = 0; j < mm.loads.size(); ++j) {
+      const Load& ld = mm.loads[j];
       const bool varies = k < varying_.size() && varying_[k] == j;
       f(ld.body) += varies ? (v < vals.size() ? vals[v] : 0.0) : ld.evaluate(0.0, 0.0, 0.0);
       if (varies) ++k, ++v;
@@ -388,11 +404,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void summarize_links() {
     // One sparse factorization, one solve per distinct force vector (constant loads: one solve).
     if (nl_ == 0) return;
-    const ParticularSolver particular(m_);
-    std::map<std::vector<double>, Eigen::VectorXd> solved;
-    auto static_loads = [&](const std::vector<double>& vals) -> const Eigen::VectorXd& {
-      auto it = solved.find(vals);
-      if (it == solved.end()) it = solved.emplace(vals, particular.solve(forces(vals))).first;
+    // One solver per set of masses: the model's, and after each release an extreme falls behind.
+    std::map<size_t, std::unique_ptr<ParticularSolver>> particular;
+    std::map<std::pair<size_t, std::vector<double>>, Eigen::VectorXd> solved;
+    auto static_loads = [&](const Extreme& e) -> const Eigen::VectorXd& {
+      const auto key = std::make_pair(e.stage, e.vals);
+      auto it = solved.find(key);
+      if (it == solved.end()) {
+        auto& p = particular[e.stage];
+        if (!p) p = std::make_unique<ParticularSolver>(stage(e.stage));
+        it = solved.emplace(key, p->solve(forces(e.vals, stage(e.stage)))).first;
+      }
       return it->second;
     };
     for (int l = 0; l < nl_; ++l) {
@@ -402,8 +424,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int l = 0; l < nl_; ++l) {
       LinkSummary s;
       s.max = peaks_.max(l), s.min = peaks_.min(l), s.t_max = peaks_.t_max(l), s.t_min = peaks_.t_min(l);
-      s.static_at_max = static_loads(at_max_[static_cast<size_t>(l)].vals)(l);
-      s.static_at_min = static_loads(at_min_[static_cast<size_t>(l)].vals)(l);
+      s.static_at_max = static_loads(at_max_[static_cast<size_t>(l)])(l);
+      s.static_at_min = static_loads(at_min_[static_cast<size_t>(l)])(l);
       set_peak(s);
       out_.links.push_back(s);
     }
@@ -617,6 +639,26 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     apply_contact_modes(t, old, now, false);
   }
 
+  // ---- releases (model.hpp: Release): the masses are run state ----
+  /// Applies every release due at t (time ≤ t) not yet applied: the drive system's mass and weight,
+  /// the kinetic energy the released part carries away, an event "release".
+  void apply_releases(double t) {
+    while (released_ < m_.releases.size() && m_.releases[released_].time <= t) {
+      const Release& r = m_.releases[released_];
+      const double before = sys_.inertia(r.body);
+      out_.hybrid.energy.released_kinetic += sys_.apply_release(r, y_.data() + n_);
+      const char* unit = m_.bodies[static_cast<size_t>(r.body)].kind == BodyKind::translational ? "kg" : "kg*m^2";
+      out_.hybrid.events.push_back({t, "release", r.name, fmt::format("{:.6g} {}", before, unit),
+                                    fmt::format("{:.6g} {}", sys_.inertia(r.body), unit)});
+      ++released_;
+      stages_.push_back(std::make_unique<Model>(model_after_releases(m_, released_)));
+    }
+  }
+  /// The model after its first k releases (k = 0: the model itself).
+  const Model& stage(size_t k) const { return k == 0 ? m_ : *stages_[k - 1]; }
+  /// The model as the releases so far left it.
+  const Model& now() const { return stage(released_); }
+
   void time_event(double t) {
     // A jump of a speed reference may carry the command across the torque limit.
     for (int d = 0; d < nd_; ++d)
@@ -659,6 +701,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   detail::FrictionHeat heat_;
   int n_, N_, nl_, nc_, nd_;
   bool has_events_ = false;
+  bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
@@ -679,6 +722,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
   double release_loss_ = 0.0;
+  size_t released_ = 0;                        // releases applied so far (Model::releases order)
+  std::vector<std::unique_ptr<Model>> stages_;  // the model after 1, 2, … releases
+  std::vector<int> released_bodies_ = released_bodies(m_);  // their mass columns
   std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
 };
 

@@ -51,8 +51,11 @@ Method choose_method(const Model& m, std::string* reason) {
     for (const auto& e : lin.K) rowK[static_cast<size_t>(e.row())] += std::abs(e.value());
     rho_D = std::max(rho_D, k.rate_bound());
   }
+  // The smallest masses of the run (after every release) give the largest rates.
+  std::vector<double> released(static_cast<size_t>(n), 0.0);
+  for (const Release& r : m.releases) released[static_cast<size_t>(r.body)] += r.amount;
   for (int i = 0; i < m.dof(); ++i) {
-    const double I = m.bodies[static_cast<size_t>(i)].inertia;
+    const double I = m.bodies[static_cast<size_t>(i)].inertia - released[static_cast<size_t>(i)];
     rho_D = std::max(rho_D, rowD[static_cast<size_t>(i)] / I);
     omega_K = std::max(omega_K, std::sqrt(rowK[static_cast<size_t>(i)] / I));
   }

@@ -283,11 +283,20 @@ std::vector<Table> model_tables(const Model& m) {
   }
   drives.note = "Drives with states of their own: L di/dt = u − R i − k ω, M = k i (DC motor); PI speed control "
                 "M = K_p e + (K_p/T_i) ∫e dt, |M| ≤ M_max, integral held while limited (speed drive).";
+  Table releases = table("Releases", {"release", "body", "released", "time", "weight change"});
+  for (const auto& r : m.releases) {
+    const bool tr = m.bodies[static_cast<size_t>(r.body)].kind == BodyKind::translational;
+    releases.rows.push_back({r.name, body_name(m, r.body), num(r.amount) + (tr ? " kg" : " kg·m²"), num(r.time) + " s",
+                             r.weight_load >= 0 ? num(r.weight_change) + " N" : "–"});
+  }
+  releases.note = "At its time the body loses the released mass (or inertia) with position and velocity continuous; "
+                  "the released part's weight and kinetic energy leave with it (docs/model-files.md#releases).";
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
   if (!m.contacts.empty()) t.push_back(std::move(contacts));
   if (!m.loads.empty()) t.push_back(std::move(loads));
   if (!m.drives.empty()) t.push_back(std::move(drives));
+  if (!m.releases.empty()) t.push_back(std::move(releases));
   return t;
 }
 

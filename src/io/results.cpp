@@ -104,7 +104,7 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
                  {"kinetic_end_J", E.kinetic_end},     {"elastic_start_J", E.elastic_start},
                  {"elastic_end_J", E.elastic_end},     {"friction_loss_J", E.friction_loss},
                  {"damping_loss_J", E.damping_loss},   {"gap_release_loss_J", E.release_loss},
-                 {"impact_loss_J", E.impact_loss},
+                 {"impact_loss_J", E.impact_loss},     {"released_kinetic_J", E.released_kinetic},
                  {"residual_J", E.residual()}};
 }
 }  // namespace

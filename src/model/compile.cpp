@@ -18,6 +18,7 @@
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 #include "model/compile_crane.hpp"
+#include "model/compile_release.hpp"
 #include "model/compile_rigid.hpp"
 
 namespace machdyn {
@@ -482,7 +483,7 @@ void check_cases(const SpecNode& root, const std::string& source, Diagnostics& d
 
 const std::vector<std::string>& element_sections() {
   static const std::vector<std::string> kSections = {"bodies", "links", "loads", "contacts", "brakes", "clutches", "freewheels", "stops",
-                                                     "buffers", "drives"};
+                                                     "buffers", "drives", "releases"};
   return kSections;
 }
 
@@ -518,6 +519,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_drives(top.node("drives"), m, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
   if (diag.empty()) detail::resolve_rigid(m, gears, bodies, diag);
+  // Releases refer to the bodies as merged (a slaved body's release acts on its master).
+  detail::compile_releases(top.node("releases"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);

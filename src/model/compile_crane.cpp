@@ -216,6 +216,15 @@ void compile_crane(const SpecNode* crane, Model& m, Diagnostics& diag) {
     c.release_mass = r.positive("mass", dim::mass).value_or(-1.0);
     auto kind = r.word("kind", {"rapid", "slow"}, "rapid");
     c.rapid_release = !kind || *kind == "rapid";
+    // Released during a run (a Release at t_r): hanging at rest with the drum held, or hoisting.
+    if (rel->is_map() && rel->find("time")) c.release_time = r.positive("time", dim::time, std::nullopt, true).value_or(-1.0);
+    auto during = r.word("while", {"hanging", "hoisting"}, "hanging");
+    c.release_hoisting = during && *during == "hoisting";
+    if (rel->is_map() && rel->find("while") && !rel->find("time"))
+      r.error_at("while", "crane: release: 'while' needs the release 'time' (without it the load is released at once "
+                          "from the hanging equilibrium)");
+    if (c.release_hoisting && !(c.hoist_speed > 0.0))
+      r.error_at("while", "crane: release: 'while: hoisting' hoists at 'hoist_speed': give it in the crane section");
     r.finish();
     if (c.load < 0) diag.error(rel->loc, "crane: a 'release' needs the hook 'load' and its 'rope'");
     else if (c.release_mass > m.bodies[static_cast<size_t>(c.load)].inertia)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "machdyn/common/expression.hpp"
 
@@ -158,7 +159,47 @@ std::size_t output_columns_bound(const Model& m) {
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature
-  return n;
+  return n + released_bodies(m).size();
+}
+
+std::vector<int> released_bodies(const Model& m) {
+  std::vector<int> b;
+  for (const auto& r : m.releases)
+    if (std::find(b.begin(), b.end(), r.body) == b.end()) b.push_back(r.body);
+  std::sort(b.begin(), b.end());
+  return b;
+}
+
+Release body_release(const Model& m, std::string name, int body, double amount, double time) {
+  Release r;
+  r.name = std::move(name);
+  r.body = body;
+  r.amount = amount;
+  r.time = time;
+  const Body& b = m.bodies[static_cast<size_t>(body)];
+  const std::string weight = b.name + ".weight";  // compile's gravity load: −vertical · m · g
+  for (size_t k = 0; k < m.loads.size(); ++k)
+    if (m.loads[k].name == weight && m.loads[k].kind == LoadKind::constant) {
+      r.weight_load = static_cast<int>(k);
+      r.weight_change = b.vertical * amount * m.gravity;  // −vertical · (m − Δm) · g − (−vertical · m · g)
+    }
+  return r;
+}
+
+Model model_after_releases(const Model& m, std::size_t count) {
+  Model out = m;
+  count = std::min(count, m.releases.size());
+  for (size_t k = 0; k < count; ++k) {
+    const Release& r = m.releases[k];
+    out.bodies[static_cast<size_t>(r.body)].inertia -= r.amount;
+    if (r.weight_load >= 0) {  // a constant load: its value and its signal
+      Load& w = out.loads[static_cast<size_t>(r.weight_load)];
+      w.value += r.weight_change;
+      w.signal = Signal::constant(w.value);
+    }
+  }
+  out.releases.erase(out.releases.begin(), out.releases.begin() + static_cast<long>(count));
+  return out;
 }
 
 double output_bytes_bound(const Model& m) {
@@ -261,6 +302,7 @@ std::vector<double> Model::breakpoints(double t_end) const {
     t.insert(t.end(), r.begin(), r.end());
     t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
   }
+  for (const auto& r : releases) t.push_back(r.time);  // the mass matrix changes there
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
   std::erase_if(t, [&](double x) { return !(x > 0.0 && x < t_end); });

@@ -176,6 +176,92 @@ crane: {load: load, rope: rope, release: {mass: 500 kg, kind: slow}}
   EXPECT_NEAR(x.margin, -0.125, 1e-9);
 }
 
+// Claim: `release: {time: t_r}` releases Δm at t_r of a run that hangs at rest in the same
+// equilibrium (drum held): nothing moves before t_r, then the oscillation of the release at once,
+// shifted by t_r — rope force between m g and (m − 2Δm) g, the minimum at t_r + π/ω', ω' = √(c/(m −
+// Δm)) — so the row's φ3 is again 1 − 2Δm/m (to 1e-9) beside the same standard value.
+TEST_P(Crane, Phi3ReleasedAtATimeOfAHangingRun) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {inertia: 50 kg*m^2}
+  load: {type: translational, mass: 2000 kg, vertical: up}
+links: {rope: {type: rope, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}}
+simulation: {t_end: 0.3 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+crane: {load: load, rope: rope, release: {mass: 500 kg, kind: rapid, time: 0.07 s}}
+)");
+  m.simulation.integrator = GetParam();
+  const double g = 9.81, mass = 2000, dm = 500, c = 2e6, tr = 0.07;
+  const CraneFactorRow x = row(crane_analysis(m), "phi3");
+  EXPECT_NEAR(x.simulated, 1 - 2 * dm / mass, 1e-9);
+  EXPECT_DOUBLE_EQ(x.standard_lo, crane::phi3(dm, mass, crane::ReleaseKind::rapid));
+  EXPECT_NE(x.case_name.find("at t = 0.07 s hanging"), std::string::npos) << x.case_name;
+  SimulateOptions opt;
+  opt.extremes_from = tr;
+  const SimulationResult res = simulate(phi3_release_case_model(m, dm, tr), opt);
+  EXPECT_NEAR(res.links[0].t_min, tr + std::numbers::pi / std::sqrt(c / (mass - dm)), 1e-9);
+  EXPECT_NEAR(res.links[0].max, mass * g, 1e-9 * mass * g);
+}
+
+// Claim: `release: {time: t_r, while: hoisting}` hoists as the φ2 case — a rigid drive at vh takes up
+// the slack s0 and lifts the grounded load m off at t_l = s0/vh + m g/(c vh), at rest — and releases
+// Δm at t_r > t_l. Rope stretch e (F = c e): after lift-off e'' = −(c/m) e + g, e(t_l) = m g/c,
+// e'(t_l) = vh ⇒ e = m g/c + (vh/ω) sin ω(t − t_l), ω = √(c/m). After t_r the same with m' = m − Δm
+// from (e_r, e'_r): e = m' g/c + A cos ω'τ + B sin ω'τ, A = e_r − m' g/c, B = e'_r/ω', so the rope's
+// minimum after the release is F_min = m' g − c √(A² + B²) (the rope stays taut) and φ3 = F_min/(m g)
+// (to 1e-9). Before t_r the rope is slack (force 0): the minimum counts from t_r only.
+TEST_P(Crane, Phi3ReleasedWhileHoistingMatchesTheClosedForm) {
+  std::string yaml = with_drive_class("HD1");
+  yaml.replace(yaml.find("hoist_speed: 0.5 m/s"), 20, "hoist_speed: 0.1 m/s");
+  yaml.replace(yaml.find("rope: rope}"), 11, "rope: rope, release: {mass: 300 kg, time: 0.25 s, while: hoisting}}");
+  Model m = model_of(yaml);
+  m.simulation.integrator = GetParam();
+  const double g = 9.81, mass = 1000, dm = 300, c = 1e6, vh = 0.1, s0 = 0.01, tr = 0.25;
+  const double w = std::sqrt(c / mass), w2 = std::sqrt(c / (mass - dm));
+  const double tl = s0 / vh + mass * g / (c * vh);
+  const double er = mass * g / c + vh / w * std::sin(w * (tr - tl)), der = vh * std::cos(w * (tr - tl));
+  const double A = er - (mass - dm) * g / c, B = der / w2;
+  const double F_min = (mass - dm) * g - c * std::hypot(A, B);
+  ASSERT_GT(F_min, 0.0);  // the closed form needs the rope taut
+  const CraneFactorRow x = row(crane_analysis(m), "phi3");
+  EXPECT_NEAR(x.simulated, F_min / (mass * g), 1e-9);
+  EXPECT_NE(x.case_name.find("while hoisting"), std::string::npos) << x.case_name;
+  // The whole run's minimum is the slack rope before lift-off: 0.
+  const SimulationResult all = simulate(phi3_release_case_model(m, dm, tr));
+  EXPECT_EQ(all.links[0].min, 0.0);
+}
+
+// Claim: the new release fields are checked with located errors: `while` without `time`, `while:
+// hoisting` without the hoisting speed, a negative time.
+TEST(CraneInput, ReleaseDuringARunErrors) {
+  try {
+    model_of(R"(
+gravity: 9.81 m/s^2
+bodies: {load: {type: translational, mass: 1000 kg, vertical: up}}
+links: {rope: {type: rope, between: [ground, load], stiffness: 1e6 N/m}}
+crane: {load: load, rope: rope, release: {mass: 300 kg, while: hoisting}}
+)");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string s = e.what();
+    EXPECT_NE(s.find("crane.yaml:5:"), std::string::npos) << s;
+    EXPECT_NE(s.find("'while' needs the release 'time'"), std::string::npos) << s;
+    EXPECT_NE(s.find("give it in the crane section"), std::string::npos) << s;
+  }
+  try {
+    model_of(R"(
+gravity: 9.81 m/s^2
+bodies: {load: {type: translational, mass: 1000 kg, vertical: up}}
+links: {rope: {type: rope, between: [ground, load], stiffness: 1e6 N/m}}
+crane: {load: load, rope: rope, release: {mass: 300 kg, time: -1 s}}
+)");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crane.yaml:5:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("field 'time' must be zero or positive"), std::string::npos) << e.what();
+  }
+}
+
 // Claim (crane-standards.md, closed forms): a rigid mass m at v into a linear buffer c has
 // F_max = v √(c m) (the buffer closes at x_b, then x − x_b = (v/ω) sin ω t, ω = √(c/m)); it is its
 // own rigid-body reference, so φ7 simulated = 1 against 1.25 (ξb = 1/2 of a linear spring).

@@ -82,5 +82,11 @@ Model phi2_case_model(const Model& m, double vh);
 /// The φ3 case's model: the hanging equilibrium of `m` with the load's mass (and weight) reduced by
 /// `released_mass` (kg) at t = 0.
 Model phi3_case_model(const Model& m, double released_mass);
+/// The φ3 case released during a run (CraneSpec::release_time t_r ≥ 0): the load loses
+/// `released_mass` at t_r (a Release of the model, model.hpp). It hangs in equilibrium with the drum
+/// held, as phi3_case_model's start, or, with release_hoisting, it is hoisted as the φ2 case at
+/// vh,max (phi2_case_model). Its run's extremes count from t_r (SimulateOptions::extremes_from).
+/// Both φ3 cases drop the model's own `releases:`: the case's release is the one it is about.
+Model phi3_release_case_model(const Model& m, double released_mass, double release_time);
 
 }  // namespace machdyn

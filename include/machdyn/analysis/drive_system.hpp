@@ -84,6 +84,17 @@ class DriveSystem final : public OdeSystem {
   /// y0 from the bodies' initial positions and velocities, the drives' initial states, zero energies.
   void initial_state(double* y) const;
 
+  // Releases (model.hpp: Release): the masses are run state, the Model keeps those at t = 0.
+  /// Applies release r at its instant: its body's inertia drops by ΔI and its constant load changes
+  /// by the release's weight_change; the dense chain, the affine modes and the stuck contacts'
+  /// projectors are formed again for the new mass matrix. The state y is not touched (position and
+  /// velocity are continuous); the run restarts the stepper. Returns ½ ΔI v² at velocities `v` (n),
+  /// the kinetic energy the released part carries away, J.
+  double apply_release(const Release& r, const double* v);
+  /// The current inertia of body i: I at t = 0 less the releases applied, kg·m² or kg (a machine's
+  /// I(q0) for a body with variable inertia).
+  [[nodiscard]] double inertia(int i) const { return inertia_[static_cast<size_t>(i)]; }
+
   // Modes.
   [[nodiscard]] GapMode gap_mode(int l) const { return gap_[static_cast<size_t>(l)]; }
   [[nodiscard]] ContactMode contact_mode(int k) const { return mode_[static_cast<size_t>(k)]; }
@@ -271,8 +282,12 @@ class DriveSystem final : public OdeSystem {
   void enforce_stuck(double t, double* acc) const;
   void enforce_stuck_weighted(double t, double* acc, const double* im) const;
 
+  /// chain_ (the small chain's dense map) from the links' terms and the current masses.
+  void form_dense();
+
   const Model& m_;
   int n_, nl_, nc_;
+  std::vector<double> inertia_;          // current inertias (releases applied)
   int nd_ = 0, nx_ = 0;                  // drives and their states in y
   std::vector<DriveLaw> drives_;
   std::vector<int> drive_off_;           // index of each drive's first state in y

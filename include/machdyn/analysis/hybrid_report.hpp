@@ -38,10 +38,14 @@ struct EnergyBalance {
   double elastic_start = 0.0, elastic_end = 0.0;
   double friction_loss = 0.0, damping_loss = 0.0, release_loss = 0.0;
   double impact_loss = 0.0;  ///< kinetic energy lost in end-stop impacts, ½ m v⁻² (1 − e²) each, J
-  /// W − (ΔT + ΔV + losses).
+  /// Kinetic energy the parts released by `releases:` carried away, ½ ΔI v(t_r)² each, J. (Their
+  /// weight's work is not a stored energy here: a weight is a load, its work is source work, and the
+  /// released part's weight stops working on the body at t_r.)
+  double released_kinetic = 0.0;
+  /// W − (ΔT + ΔV + losses + the released parts' kinetic energy).
   [[nodiscard]] double residual() const {
     return source_work - (kinetic_end - kinetic_start + elastic_end - elastic_start + friction_loss + damping_loss +
-                          release_loss + impact_loss);
+                          release_loss + impact_loss + released_kinetic);
   }
 };
 

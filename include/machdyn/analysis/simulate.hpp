@@ -100,6 +100,10 @@ struct SimulateOptions {
   /// set); the peaks, events, slip phases and energies are the same bytes. For callers that need
   /// only the summaries (sweeps).
   bool record_series = true;
+  /// The link extremes (LinkSummary: max, min, their quasi-static loads, the peak) and the slip
+  /// phases' link extremes over [extremes_from, t_end] only, s (0: the whole run). The crane's φ3
+  /// case released during a hoisting run asks for the rope's minimum after the release.
+  double extremes_from = 0.0;
   long max_events = 1'000'000;  ///< SolverError when exceeded
   int chatter_count = 50;       ///< switches of one element ...
   double chatter_window = 1e-6; ///< ... within this fraction of t_end (or of 1 s) mean chattering

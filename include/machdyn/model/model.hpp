@@ -294,6 +294,12 @@ struct CraneSpec {
   int rope = -1;                  ///< the rope link that carries it (the load is its second end)
   double release_mass = -1.0;     ///< Δm of the φ3 case, kg (< 0: no φ3 case)
   bool rapid_release = true;      ///< β3 = 1.0 (rapid) or 0.5 (grabs, slow release)
+  /// t_r of the φ3 case, s: the load loses Δm at t_r of a run (a Release, below). < 0 (not given):
+  /// at once, the case's mass reduced from the start of the hanging equilibrium (the original case).
+  double release_time = -1.0;
+  /// With release_time: the φ3 run hoists as the φ2 case does (the load starting on the ground, the
+  /// drive at vh,max) instead of hanging at rest with the drum held.
+  bool release_hoisting = false;
   std::vector<int> drive_links;   ///< links of the φ5 case (the model's own run)
   int force_change = 1;           ///< φ5 range: 0 centrifugal, 1 smooth, 2 sudden, 3 backlash
   std::vector<int> buffers;       ///< buffer links of the φ7 case (the model's own run)
@@ -313,6 +319,25 @@ struct SimulationSettings {
   IntegratorChoice integrator = IntegratorChoice::automatic;
   long max_steps = 50'000'000;
   InitialState initial = InitialState::given;  ///< `initial: given | equilibrium`
+};
+
+/// A body that loses part of its mass (or inertia) at an instant (`releases:`): a grab opening, a load
+/// slipping off the hook. At t_r the body's inertia drops from I to I − ΔI, position and velocity are
+/// continuous: the released part leaves with the body's velocity and carries away ½ ΔI v² of kinetic
+/// energy. A body with `vertical:` loses the released part's weight too: its constant load
+/// "NAME.weight" changes by `weight_change` = vertical · Δm · g at t_r. The state at t = 0 (given or
+/// `initial: equilibrium`) belongs to the masses before every release, also for t_r = 0 (the release
+/// then acts at 0⁺). Compile checks 0 < ΔI, Σ ΔI of a body < its own inertia, t_r ≥ 0, and a body
+/// with a constant inertia that no ideal gear slaves. The Model keeps the masses at t = 0 (what
+/// modes, equilibrium and the integrator choice see); a run keeps the current ones (DriveSystem::
+/// apply_release), and model_after_releases() is the model between two releases.
+struct Release {
+  std::string name;
+  int body = 0;                ///< index into Model::bodies
+  double amount = 0.0;         ///< ΔI in kg·m² (rotational) or Δm in kg (translational), > 0
+  double time = 0.0;           ///< t_r, s, >= 0
+  int weight_load = -1;        ///< index of the body's "NAME.weight" in Model::loads, or −1 (no weight)
+  double weight_change = 0.0;  ///< the change of that load at t_r, N: +vertical · Δm · g (0 without one)
 };
 
 /// A body removed by compile because ideal gears (`type: ideal-gear` under links) tie it rigidly to
@@ -348,6 +373,9 @@ struct Model {
   /// Bodies removed by ideal gears (RigidSlave), in the file's order; empty without ideal gears.
   std::vector<RigidSlave> slaves;
   std::vector<std::string> ideal_gears;   ///< names of the ideal gears compile resolved
+  /// Bodies losing part of their mass during the run (Release), in the order of their times (file
+  /// order at equal times); empty without `releases:`.
+  std::vector<Release> releases;
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
   /// Index of the body called `name`, kGround for "ground", or -2 if none. A hashed look-up once
@@ -364,9 +392,20 @@ struct Model {
   /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
   [[nodiscard]] bool is_hybrid() const;
   /// Times in (0, t_end), increasing without repeats, where a load, the application of a brake or
-  /// clutch (its normal force) or a surface velocity jumps or has a kink in t: the integrator stops there (solve/event_system.hpp).
+  /// clutch (its normal force) or a surface velocity jumps or has a kink in t, or a body releases
+  /// part of its mass: the integrator stops there (solve/event_system.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
+
+/// The release of `amount` (ΔI, kg·m² or kg) from body `body` of `m` (a body of its own, not a slave)
+/// at `time`, s: the rule of Release for its weight, +vertical · Δm · g on the body's "NAME.weight"
+/// load when it has one. Compile and the crane's φ3 case build their releases with it.
+Release body_release(const Model& m, std::string name, int body, double amount, double time);
+
+/// `m` after its first `count` releases (Model::releases, in time order): each released body's
+/// inertia less ΔI and its weight load changed by the release's weight_change; those releases are
+/// removed from the copy, the later ones kept. count = 0 gives a copy of `m`.
+Model model_after_releases(const Model& m, std::size_t count);
 
 /// Whether link l is a rope with falls (n > 1) or a free length (EA > 0): its runs add the columns
 /// "NAME.fall_tension_N" (T = F/n) and, with a length, "NAME.fall_length_m" (L_f).
@@ -384,9 +423,14 @@ std::string unit_suffix(const char* unit);
 /// "NAME.velocity_rad_s|m_s", then per link "NAME.load_N_m|N".
 std::vector<std::string> chain_column_names(const Model& m);
 
+/// The bodies that release mass (Model::releases), ascending, each once: a run writes the column
+/// "NAME.mass_kg" (translational) or "NAME.inertia_kg_m2" (rotational) of its current inertia.
+std::vector<int> released_bodies(const Model& m);
+
 /// Output columns a run of `m` holds in memory, at most: the chain columns, three per contact or
-/// brake, one per gap, up to eight per machine body (its parts' loads, output point, extras) and
-/// three per drive (torque, and current or reference speed, and the limiter mode).
+/// brake, one per gap, up to eight per machine body (its parts' loads, output point, extras),
+/// three per drive (torque, and current or reference speed, and the limiter mode) and one per
+/// released body.
 std::size_t output_columns_bound(const Model& m);
 /// Bytes the output grid of `m` needs in memory, at most: (t_end/dt_out + 2) rows × output_columns_bound
 /// × 8 bytes. The runs reserve all of it before the first step, so compile checks it against
