@@ -73,6 +73,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     so.rtol = s.rtol;
     so.atol = s.atol;
     so.max_steps = s.max_steps;
+    // A stuck lossy gear holds its bodies at rest: the error control sees a constant state and would grow
+    // the step across a start margin that dips below 0 and back within one step (a double sign change
+    // the event check cannot see). The output step bounds the step while the model has lossy gears.
+    if (ng_ > 0) so.h_max = s.dt_out;
     auto stepper = make_stepper(method, *this, so);
     Stepper& st = *stepper;
     DriveOptions drive;
