@@ -164,6 +164,51 @@ loads:
   EXPECT_TRUE(gear_events(r, "G").empty());
 }
 
+// Claim: a lossy gear on a body slaved by an ideal gear acts through the ideal gear's ratio. A2 is tied
+// to A by an ideal gear q_A = 2 q_A2; the lossy gear [A2, B] has q_A2 = 3 q_B and bearing friction
+// 0.2 N·m in A2's coordinate. Reduced by hand to A's coordinate (q_A2 = q_A/2): inertia I_A + I_A2/4, the
+// load 5 N·m on A2 is 2.5 N·m on A, the gear [A, B] has ratio 6 and bearing friction 0.1 N·m (power
+// τ ω_A2 = (τ/2) ω_A). Both models give the same speeds and heat to 1e-10, and the gear's torque at its
+// first body is A2's in the first model, twice A's.
+TEST_P(LossyGearSim, OnAnIdealGearSlaveActsThroughItsRatio) {
+  const SimulationResult r1 = run(R"(bodies:
+  A: {inertia: 0.3 kg*m^2}
+  A2: {inertia: 0.4 kg*m^2}
+  B: {inertia: 2 kg*m^2}
+links:
+  I: {type: ideal-gear, between: [A, A2], ratio: 2}
+  G: {type: lossy-gear, between: [A2, B], ratio: 3, efficiency: 0.7, efficiency_reverse: 0.4, bearing_friction: 0.2 N*m}
+loads:
+  M: {type: constant, body: A2, value: 5 N*m}
+  MB: {type: constant, body: B, value: -3 N*m}
+)", 1.0);
+  const SimulationResult r2 = run(R"(bodies:
+  A: {inertia: 0.4 kg*m^2}
+  B: {inertia: 2 kg*m^2}
+links:
+  G: {type: lossy-gear, between: [A, B], ratio: 6, efficiency: 0.7, efficiency_reverse: 0.4, bearing_friction: 0.1 N*m}
+loads:
+  M: {type: constant, body: A, value: 2.5 N*m}
+  MB: {type: constant, body: B, value: -3 N*m}
+)", 1.0);
+  const auto& w1 = series(r1, "B.velocity_rad_s");
+  const auto& w2 = series(r2, "B.velocity_rad_s");
+  const auto& wa2 = series(r1, "A2.velocity_rad_s");
+  const auto& wa = series(r2, "A.velocity_rad_s");
+  const auto& t1 = series(r1, "G.torque_a_N_m");
+  const auto& t2 = series(r2, "G.torque_a_N_m");
+  const auto& l1 = series(r1, "G.loss_power_W");
+  const auto& l2 = series(r2, "G.loss_power_W");
+  ASSERT_EQ(w1.size(), w2.size());
+  ASSERT_GT(w2.back(), 0.1);  // it moves
+  for (size_t k = 0; k < w1.size(); ++k) {
+    EXPECT_NEAR(w1[k], w2[k], 1e-10 * (1.0 + std::abs(w2[k])));
+    EXPECT_NEAR(wa2[k], wa[k] / 2.0, 1e-10 * (1.0 + std::abs(wa[k])));
+    EXPECT_NEAR(t1[k], 2.0 * t2[k], 1e-10 * (1.0 + std::abs(t2[k])));
+    EXPECT_NEAR(l1[k], l2[k], 1e-10 * (1.0 + std::abs(l2[k])));
+  }
+}
+
 // Claim: a self-locking gear (η_mf2 = 0: B cannot drive A) holds any load on B at rest, and MSL's
 // flange_b.tau is the holding torque M_B. A motor torque lifts the load only when η_mf1 i M_A > −M_B
 // (the forward numerator above): M_A = 30 N·m gives 0.4 · 3.5 · 30 = 42 < 50 and stays stuck; M_A =
