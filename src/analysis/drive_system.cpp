@@ -118,6 +118,12 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     nx_ += drives_.back().states;
   }
   nd_ = static_cast<int>(drives_.size());
+  for (const auto& g : model.lossy_gears) gears_.push_back(LossyGearLaw::of(g));
+  ng_ = static_cast<int>(gears_.size());
+  gear_mode_.assign(static_cast<size_t>(ng_), GearMode::stuck);
+  gear_t_.assign(static_cast<size_t>(ng_), {});
+  gear_fa_.assign(static_cast<size_t>(ng_), 0.0);
+  gear_fb_.assign(static_cast<size_t>(ng_), 0.0);
   general_ = has_machines_ || nd_ > 0;
   drive_mode_.assign(static_cast<size_t>(nd_), LimitMode::linear);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
@@ -125,7 +131,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
     else varying_.push_back(&ld);
   }
-  affine_eligible_ = varying_.empty() && nd_ == 0 && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
+  affine_eligible_ = varying_.empty() && nd_ == 0 && ng_ == 0 && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
   // A winding rope's c(q_a) and a shaped buffer's F_e(e) + F_v(δ̇) make their loads nonlinear in y:
   // the general path.
   for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0 && !l.winding && !l.shaped;
@@ -138,7 +144,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   // Jacobian terms (elements/link.hpp).
   bool gaps = false;
   for (const auto& l : links_) gaps = gaps || l.gap;
-  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && n_ >= 1 && n_ <= 8) form_dense();
+  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && ng_ == 0 && n_ >= 1 && n_ <= 8) form_dense();
 }
 
 void DriveSystem::form_dense() {
@@ -442,8 +448,10 @@ template <bool kMach>
 __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, const double* y, double* acc, double* fc,
                                                                        double* src, double* fric, double* damp) {
   forces<kMach>(t, y, acc, fc, src, fric, damp);
+  if (ng_ > 0) apply_gears(y, acc, fric);
   const double* im = kMach ? im_.data() : inv_mass_.data();
   for (int i = 0; i < n_; ++i) acc[i] *= im[i];
+  if (ng_ > 0) enforce_gears(acc);
   if (stuck_.empty()) return;
   for (size_t j = 0; j < stuck_.size(); ++j)
     r_(static_cast<Eigen::Index>(j)) = contacts_[static_cast<size_t>(stuck_[j])].sliding_acceleration(t, acc);
@@ -461,6 +469,48 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
   }
   if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
   else enforce_stuck(t, acc);
+}
+
+void DriveSystem::apply_gears(const double* y, double* f, double* p_fric) {
+  for (int g = 0; g < ng_; ++g) {
+    const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+    const auto gi = static_cast<size_t>(g);
+    gear_fa_[gi] = f[k.a];
+    gear_fb_[gi] = f[k.b];
+    const double va = y[n_ + k.a];
+    gear_t_[gi] = k.solve(gear_mode_[gi], f[k.a], f[k.b], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
+                          1.0 / inv_mass_[static_cast<size_t>(k.b)], va);
+    k.apply(gear_t_[gi], f);
+    if (p_fric) *p_fric += LossyGearLaw::loss_power(gear_t_[gi], va);
+  }
+}
+
+void DriveSystem::enforce_gears(double* acc) const {
+  // The rounding of (F_a − X)/I_a removed: the two bodies stay exactly on v_a = i v_b.
+  for (int g = 0; g < ng_; ++g) {
+    const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+    const double a = gear_mode_[static_cast<size_t>(g)] == GearMode::stuck ? 0.0 : gear_t_[static_cast<size_t>(g)].acc;
+    acc[k.a] = a;
+    acc[k.b] = a / k.i;
+  }
+}
+
+GearMode DriveSystem::natural_gear_mode(int g, double t, const double* y, bool strict) {
+  evaluate(t, y, f_.data(), fc_.data());
+  const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+  const double Fa = gear_fa_[static_cast<size_t>(g)], Fb = gear_fb_[static_cast<size_t>(g)];
+  return k.decide(Fa, Fb, 1.0 / inv_mass_[static_cast<size_t>(k.a)], 1.0 / inv_mass_[static_cast<size_t>(k.b)],
+                  y[n_ + k.a], strict ? 0.0 : k.allowance(Fa, Fb));
+}
+
+LossyGearLaw::Torques DriveSystem::gear_torques(int g, double t, const double* y) {
+  evaluate(t, y, f_.data(), fc_.data());
+  return gear_t_[static_cast<size_t>(g)];
+}
+
+void DriveSystem::stop_gear(int g, double* y) const {
+  const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+  y[n_ + k.a] = y[n_ + k.b] = 0.0;
 }
 
 void DriveSystem::enforce_stuck(double t, double* acc) const {
@@ -721,6 +771,15 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
   bool accelerations = false;
   for (int d = 0; d < nd_; ++d) accelerations = accelerations || on_limit(drive_mode_[static_cast<size_t>(d)]);
   if (accelerations) evaluate(t, y, f_.data(), fc_.data());
+  if (ng_ > 0) {  // lossy gears: from the forces on their bodies in the current modes
+    if (!accelerations) evaluate(t, y, f_.data(), fc_.data());
+    for (int gi = 0; gi < ng_; ++gi) {
+      const LossyGearLaw& k = gears_[static_cast<size_t>(gi)];
+      const auto u = static_cast<size_t>(gi);
+      k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
+               1.0 / inv_mass_[static_cast<size_t>(k.b)], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
+    }
+  }
   for (int d = 0; d < nd_; ++d) {
     const DriveLaw& k = drives_[static_cast<size_t>(d)];
     k.events(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)],

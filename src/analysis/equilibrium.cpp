@@ -35,6 +35,10 @@ void check_supported(const Model& m) {
                                             "holds anything within its limit); start with 'initial: given'",
                                             pre, c.brake ? "brake" : c.lock != 0 ? "freewheel" : "contact", c.name));
   }
+  for (const auto& g : m.lossy_gears)
+    diag.error(m.where(g.name), fmt::format("{}: the torque lossy gear '{}' holds at rest is not decided by its law (it "
+                                            "holds anything within its locking range); start with 'initial: given'",
+                                            pre, g.name));
   diag.throw_if_any();
 }
 

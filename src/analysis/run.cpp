@@ -34,20 +34,20 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   DriveRun(const Model& m, const SimulateOptions& opt, SimulationResult& out, const OutputSelection& extra = {})
       : m_(m), opt_(opt), extra_(extra), out_(out), sys_(m, m.is_hybrid() || opt.event_driven), jumps_(m, sys_), heat_(m, sys_), n_(m.dof()),
         N_(sys_.size()), nl_(static_cast<int>(m.links.size())), nc_(static_cast<int>(m.contacts.size())),
-        nd_(static_cast<int>(m.drives.size())), peaks_(sys_.size(), *this) {
+        nd_(static_cast<int>(m.drives.size())), ng_(static_cast<int>(m.lossy_gears.size())), peaks_(sys_.size(), *this) {
     y_.assign(static_cast<size_t>(N_), 0.0);
     acc_.assign(static_cast<size_t>(n_), 0.0);
     fc_.assign(static_cast<size_t>(nc_), 0.0);
     open_phase_.assign(static_cast<size_t>(nc_), -1);
     for (int k = 0; k < nc_; ++k) was_released_.push_back(m_.contacts[static_cast<size_t>(k)].released(0.0));
-    switches_.resize(static_cast<size_t>(nl_ + nc_ + nd_));
+    switches_.resize(static_cast<size_t>(nl_ + nc_ + nd_ + ng_));
     at_max_.resize(static_cast<size_t>(nl_));
     at_min_.resize(static_cast<size_t>(nl_));
     for (size_t k = 0; k < m.loads.size(); ++k)
       if (m.loads[k].kind != LoadKind::constant) varying_.push_back(k);
     for (int i = 0; i < n_; ++i)
       if (m.bodies[static_cast<size_t>(i)].machine) machine_bodies_.push_back(i);
-    has_events_ = nc_ > 0 || jumps_.count() > 0;
+    has_events_ = nc_ > 0 || ng_ > 0 || jumps_.count() > 0;
     for (int l = 0; l < nl_; ++l) has_events_ = has_events_ || sys_.link(l).gap;
     for (int d = 0; d < nd_; ++d) has_events_ = has_events_ || sys_.drive(d).has_events();
     on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
@@ -78,6 +78,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     so.rtol = s.rtol;
     so.atol = s.atol;
     so.max_steps = s.max_steps;
+    // A stuck lossy gear holds its bodies at rest: the error control sees a constant state and would grow
+    // the step across a start margin that dips below 0 and back within one step (a double sign change
+    // the event check cannot see). The output step bounds the step while the model has lossy gears.
+    if (ng_ > 0) so.h_max = s.dt_out;
     auto stepper = make_stepper(method, *this, so);
     Stepper& st = *stepper;
     DriveOptions drive;
@@ -198,6 +202,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
                                                     : d.name + ".reference_" + unit_suffix(velocity_unit(k)));
       names.push_back(d.name + ".mode");
     }
+    // Lossy gears (elements/lossy_gear.hpp): the direction −1, 0, +1 (MSL's gear.mode), the torques
+    // at its two bodies (MSL's flange_a.tau, flange_b.tau) and the heat (X − Y) v_a.
+    for (const auto& g : m_.lossy_gears) {
+      const BodyKind k = m_.bodies[static_cast<size_t>(g.a)].kind;
+      names.push_back(g.name + ".mode");
+      names.push_back(g.name + ".torque_a_" + unit_suffix(load_unit(k)));
+      names.push_back(g.name + ".torque_b_" + unit_suffix(load_unit(m_.bodies[static_cast<size_t>(g.b)].kind)));
+      names.push_back(g.name + ".loss_power_W");
+    }
     // Ropes with falls or a free length (elements/link.hpp): the tension of one fall T = F/n (the
     // link's load F is the hook load) and, wound on a drum, the free length of one fall L_f.
     for (int k = 0; k < nl_; ++k) {
@@ -269,6 +282,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(sys_.drive_torque(d, t, y));
       put(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
       put(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
+    }
+    for (int g = 0; g < ng_; ++g) {
+      const LossyGearLaw& k = sys_.lossy_gear(g);
+      const LossyGearLaw::Torques T = sys_.gear_torques(g, t, y);
+      put(static_cast<double>(direction(sys_.gear_mode(g))));
+      put(k.torque_at_a(T));
+      put(k.torque_at_b(T));
+      put(LossyGearLaw::loss_power(T, y[n_ + k.a]));
     }
     for (const int l : rope_links_) {
       const Link& lk = m_.links[static_cast<size_t>(l)];
@@ -451,11 +472,29 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   // ---- events and slip phases ----
-  /// Element e of the events: links, then contacts, then drives.
+  /// Element e of the events: links, then contacts, then drives, then lossy gears.
   const std::string& element_name(int e) const {
-    return e < nl_        ? m_.links[static_cast<size_t>(e)].name
-           : e < nl_ + nc_ ? m_.contacts[static_cast<size_t>(e - nl_)].name
-                          : m_.drives[static_cast<size_t>(e - nl_ - nc_)].name;
+    return e < nl_               ? m_.links[static_cast<size_t>(e)].name
+           : e < nl_ + nc_       ? m_.contacts[static_cast<size_t>(e - nl_)].name
+           : e < nl_ + nc_ + nd_ ? m_.drives[static_cast<size_t>(e - nl_ - nc_)].name
+                                 : m_.lossy_gears[static_cast<size_t>(e - nl_ - nc_ - nd_)].name;
+  }
+  /// Decides every lossy gear at (t, y_) with the other elements in their new modes (each gear's
+  /// bodies carry no contacts, so the gears decide independently); `fired`: gears whose event fired,
+  /// judged without the rounding allowance. Records the changes (`initial`: all).
+  void decide_gears(double t, const std::vector<int>& fired, bool initial) {
+    for (int g = 0; g < ng_; ++g) {
+      const bool strict = std::find(fired.begin(), fired.end(), g) != fired.end();
+      const GearMode old = sys_.gear_mode(g), now = sys_.natural_gear_mode(g, t, y_.data(), strict);
+      if (!initial && now == old) continue;
+      sys_.set_gear_mode(g, now);
+      const char* kind = initial ? "initial"
+                         : now == GearMode::stuck ? "stick"
+                         : old == GearMode::stuck ? "slip"
+                         : direction(old) != direction(now) ? "reversal"
+                                                            : "driving_side";
+      record(t, kind, nl_ + nc_ + nd_ + g, initial ? "" : to_string(old), to_string(now));
+    }
   }
   /// Sets drive d's limiter mode and records the switch.
   void set_drive_mode(int d, double t, LimitMode now, bool initial) {
@@ -595,15 +634,30 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.set_contact_modes(modes);
     if (!Z.empty()) modes = decide_contacts(sys_, 0.0, y_.data(), Z, strict_);
     apply_contact_modes(0.0, modes, modes, true);
+    if (ng_ > 0) decide_gears(0.0, {}, true);
   }
 
   void handle_event(double t, const std::vector<int>& fired) {
+    std::vector<int> gears;  // lossy gears whose event fired: decided after the others
+    for (int slot : fired) {
+      if (!sys_.slot_is_gear(slot)) continue;
+      const int g = sys_.slot_element(slot);
+      gears.push_back(g);
+      // Its speed reached zero: decided at rest (the located time lies a rounding error past it).
+      if (slot % 2 == 0 && sys_.gear_mode(g) != GearMode::stuck) sys_.stop_gear(g, y_.data());
+    }
+    handle_contact_event(t, fired);
+    if (ng_ > 0) decide_gears(t, gears, false);
+  }
+
+  void handle_contact_event(double t, const std::vector<int>& fired) {
     std::vector<int> Z;
     strict_.clear();
     const double V_before = sys_.elastic_energy(y_.data());
     bool gap_changed = false;
     for (int slot : fired) {
       const int e = sys_.slot_element(slot);
+      if (sys_.slot_is_gear(slot)) continue;
       if (sys_.slot_is_drive(slot)) {  // a speed drive reaches or leaves its torque limit
         const LimitMode now = SpeedDriveLaw::mode_after(sys_.drive_mode(e), slot % 2);
         set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false);
@@ -660,6 +714,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   const Model& now() const { return stage(released_); }
 
   void time_event(double t) {
+    contact_time_event(t);
+    if (ng_ > 0) decide_gears(t, {}, false);  // a load's jump may start or stop a gear
+  }
+
+  void contact_time_event(double t) {
     // A jump of a speed reference may carry the command across the torque limit.
     for (int d = 0; d < nd_; ++d)
       if (sys_.drive(d).has_events()) set_drive_mode(d, t, sys_.natural_drive_mode(d, t, y_.data()), false);
@@ -699,7 +758,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   DriveSystem sys_;
   detail::MachineJumps jumps_;
   detail::FrictionHeat heat_;
-  int n_, N_, nl_, nc_, nd_;
+  int n_, N_, nl_, nc_, nd_, ng_;
   bool has_events_ = false;
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)

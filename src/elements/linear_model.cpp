@@ -6,6 +6,7 @@
 #include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/linearize.hpp"
+#include "machdyn/elements/lossy_gear.hpp"
 
 namespace machdyn {
 
@@ -62,6 +63,8 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
   // Drives in their linear mode (a limited speed drive is a constant torque and adds nothing): a DC
   // motor its quasi-static slope k²/R, a speed drive its PI law as damper K_p and spring K_p/T_i.
   for (const Drive& d : m.drives) DriveLaw::of(d).add_linear(LimitMode::linear, lin);
+  // Lossy gears: for modes the ideal gear, v_a − i v_b = 0 (elements/lossy_gear.hpp).
+  for (const LossyGear& g : m.lossy_gears) LossyGearLaw::of(g).add_linear(lin);
   return lin;
 }
 

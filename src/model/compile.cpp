@@ -18,6 +18,7 @@
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 #include "model/compile_crane.hpp"
+#include "model/compile_lossy.hpp"
 #include "model/compile_release.hpp"
 #include "model/compile_rigid.hpp"
 
@@ -39,7 +40,8 @@ std::string_view section_of_type(std::string_view type) {
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
-      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"ideal-gear", "links"}, {"speed-drive", "drives"}};
+      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"ideal-gear", "links"}, {"lossy-gear", "links"},
+      {"speed-drive", "drives"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
   return {};
@@ -114,7 +116,8 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
   }
 }
 
-void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears, Diagnostics& diag) {
+void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears,
+                   std::vector<detail::LossyGearSpec>& lossy, Diagnostics& diag) {
   if (!section) return;
   if (!section->is_map()) {
     diag.error(section->loc, "'links' must be a map of NAME: {fields}");
@@ -124,6 +127,10 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     if (wrong_section(spec, "links", fmt::format("link '{}'", name), diag)) continue;
     if (const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr; t && t->is_scalar() && t->scalar == "ideal-gear") {
       detail::read_ideal_gear(name, spec, m, gears, diag);  // a rigid connection: model/compile_rigid.cpp
+      continue;
+    }
+    if (const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr; t && t->is_scalar() && t->scalar == "lossy-gear") {
+      detail::read_lossy_gear(name, spec, m, lossy, diag);  // model/compile_lossy.cpp
       continue;
     }
     FieldReader f(spec, fmt::format("link '{}'", name), diag);
@@ -507,7 +514,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
     diag.error(bodies ? bodies->loc : Location{source, 1, 1},
                "the model has no body with mass or inertia: add at least one under 'bodies'");
   std::vector<detail::IdealGear> gears;
-  compile_links(top.node("links"), m, gears, diag);
+  std::vector<detail::LossyGearSpec> lossy;
+  compile_links(top.node("links"), m, gears, lossy, diag);
   compile_loads(top.node("loads"), m, diag);
   compile_gravity(top, m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
@@ -519,6 +527,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_drives(top.node("drives"), m, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
   if (diag.empty()) detail::resolve_rigid(m, gears, bodies, diag);
+  if (diag.empty()) detail::resolve_lossy(m, lossy, diag);  // on the bodies the merge left
   // Releases refer to the bodies as merged (a slaved body's release acts on its master).
   detail::compile_releases(top.node("releases"), m, diag);
   top.node("cases");  // load cases: model/cases.hpp

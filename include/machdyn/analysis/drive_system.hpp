@@ -10,6 +10,9 @@
 ///   gap link     open (F = 0), closed+ on the positive flank, closed- on the negative one
 ///   contact      stuck (u ≡ 0, a bilateral velocity constraint) or sliding in direction ±1
 ///   speed drive  its torque limiter linear or limited± (elements/speed_drive.hpp)
+///   lossy gear   stuck, or rolling forward/backward with side a or b driving (elements/lossy_gear.hpp):
+///                its torques X, Y are solved from the forces on its two bodies after every other
+///                force (its bodies carry no contacts, compile checks), then a_b = a_a / i exactly
 /// In a mode:  M(q) v' = f(t, q, v) − Jᵀ F_links − Gᵀ λ − Σ_sliding ĝ_k F_k,
 /// where row k of G is the sliding velocity u_k = v_a − v_b of stuck contact k and λ solves
 ///   (G M⁻¹ Gᵀ) λ = G M⁻¹ f̃ − ẇ     (f̃: all forces but λ; ẇ: the prescribed surface acceleration).
@@ -48,6 +51,7 @@
 #include "machdyn/elements/contact.hpp"
 #include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
+#include "machdyn/elements/lossy_gear.hpp"
 #include "machdyn/elements/modes.hpp"
 #include "machdyn/model/model.hpp"
 #include "machdyn/solve/ode_system.hpp"
@@ -71,9 +75,9 @@ class DriveSystem final : public OdeSystem {
     }
     rhs_other(t, y, dydt);
   }
-  [[nodiscard]] bool has_jacobian() const override { return !energy_; }
+  [[nodiscard]] bool has_jacobian() const override { return !energy_ && ng_ == 0; }
   void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override;
-  [[nodiscard]] bool has_sparse_jacobian() const override { return !energy_ && !has_machines_; }
+  [[nodiscard]] bool has_sparse_jacobian() const override { return !energy_ && !has_machines_ && ng_ == 0; }
   void sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override;
   [[nodiscard]] std::string state_name(int i) const override;
 
@@ -126,6 +130,19 @@ class DriveSystem final : public OdeSystem {
     return k.torque(t, y[n_ + k.body], y + drive_offset(d), drive_mode(d));
   }
 
+  // Lossy gears (elements/lossy_gear.hpp), in the order of Model::lossy_gears.
+  [[nodiscard]] int gear_count() const { return ng_; }
+  [[nodiscard]] const LossyGearLaw& lossy_gear(int g) const { return gears_[static_cast<size_t>(g)]; }
+  [[nodiscard]] GearMode gear_mode(int g) const { return gear_mode_[static_cast<size_t>(g)]; }
+  void set_gear_mode(int g, GearMode md) { gear_mode_[static_cast<size_t>(g)] = md; }
+  /// The mode gear g takes at (t, y), the other elements in their modes (LossyGearLaw::decide);
+  /// `strict`: its event fired, no rounding allowance on the start margins.
+  [[nodiscard]] GearMode natural_gear_mode(int g, double t, const double* y, bool strict);
+  /// Gear g's torques X, Y and the acceleration of its body a at (t, y) in its mode.
+  [[nodiscard]] LossyGearLaw::Torques gear_torques(int g, double t, const double* y);
+  /// Puts both bodies of gear g exactly at rest (its speed reached zero: decided at rest, as a contact).
+  void stop_gear(int g, double* y) const;
+
   [[nodiscard]] const LinkLaw& link(int l) const { return links_[static_cast<size_t>(l)]; }
   [[nodiscard]] const ContactLaw& contact(int k) const { return contacts_[static_cast<size_t>(k)]; }
 
@@ -173,14 +190,20 @@ class DriveSystem final : public OdeSystem {
   void link_load_rates(const double* y, const double* dy, double* rate) const;
 
   // Events.
-  /// Two per link, then two per contact, then two per drive. Each is ≥ 0 while the mode holds.
-  [[nodiscard]] int event_slots() const { return 2 * (nl_ + nc_ + nd_); }
+  /// Two per link, then two per contact, two per drive, two per lossy gear. Each is ≥ 0 while the
+  /// mode holds.
+  [[nodiscard]] int event_slots() const { return 2 * (nl_ + nc_ + nd_ + ng_); }
   void event_functions(double t, const double* y, double* g);
   /// The element of a slot: link index (slot < 2·links), contact index or drive index.
   [[nodiscard]] bool slot_is_link(int slot) const { return slot < 2 * nl_; }
-  [[nodiscard]] bool slot_is_drive(int slot) const { return slot >= 2 * (nl_ + nc_); }
+  [[nodiscard]] bool slot_is_drive(int slot) const { return slot >= 2 * (nl_ + nc_) && slot < 2 * (nl_ + nc_ + nd_); }
+  [[nodiscard]] bool slot_is_gear(int slot) const { return slot >= 2 * (nl_ + nc_ + nd_); }
+  /// The element of a slot: link, contact, drive or gear index.
   [[nodiscard]] int slot_element(int slot) const {
-    return slot < 2 * nl_ ? slot / 2 : slot < 2 * (nl_ + nc_) ? (slot - 2 * nl_) / 2 : (slot - 2 * (nl_ + nc_)) / 2;
+    return slot < 2 * nl_            ? slot / 2
+           : slot < 2 * (nl_ + nc_)  ? (slot - 2 * nl_) / 2
+           : slot_is_gear(slot)      ? (slot - 2 * (nl_ + nc_ + nd_)) / 2
+                                     : (slot - 2 * (nl_ + nc_)) / 2;
   }
 
   /// Sets the sliding velocity of contact k to exactly 0 by the M-orthogonal (momentum-keeping)
@@ -225,6 +248,11 @@ class DriveSystem final : public OdeSystem {
   /// The one-sided rule of the share (header): moves the share of a redundant freewheel or end stop
   /// loaded against its lock to the other stuck contacts (lam_ from r_).
   void share_one_sided(const double* im);
+  /// Solves every lossy gear in its mode on the forces f (before the inertias divide them) and adds
+  /// its torques; adds the losses to *p_fric (if given).
+  void apply_gears(const double* y, double* f, double* p_fric);
+  /// a_b = a_a / i exactly (0 when stuck), after the inertias divided the forces.
+  void enforce_gears(double* acc) const;
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
   /// Adds the drives' torques to f; returns their power Σ M v (source work rate).
   double drive_forces(double t, const double* y, double* f) const;
@@ -304,6 +332,11 @@ class DriveSystem final : public OdeSystem {
   bool windows_ = false;                 // some window is set
   mutable std::vector<double> qw_;       // positions clamped into the windows
   std::vector<LinkLaw> links_;
+  int ng_ = 0;                              // lossy gears
+  std::vector<LossyGearLaw> gears_;
+  std::vector<GearMode> gear_mode_;
+  std::vector<LossyGearLaw::Torques> gear_t_;  // the last evaluation's torques
+  std::vector<double> gear_fa_, gear_fb_;       // the last evaluation's F_a, F_b (without the gear)
   std::vector<ContactLaw> contacts_;
   std::vector<double> f_const_;        // sum of the constant loads per body
   std::vector<const Load*> varying_;   // loads that depend on t or v

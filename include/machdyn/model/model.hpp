@@ -355,6 +355,28 @@ struct RigidSlave {
   double inertia = 0.0;  ///< its own inertia (kg·m² or kg) as given, >= 0
 };
 
+/// A lossy gear (`type: lossy-gear` under links; law, modes and derivation in elements/lossy_gear.hpp,
+/// Modelica's Rotational.Components.LossyGear): the rigid kinematics of an ideal gear between two
+/// degrees of freedom, v_a = i v_b, plus the mesh loss (efficiency η_mf1 while power flows from a to
+/// b, η_mf2 from b to a) and the bearing friction τ_bf1, τ_bf2; at rest it may be stuck (self-locking).
+/// Unlike an ideal gear its two sides stay two bodies of the model (each may be an ideal-gear group):
+/// the gear's torques are constraint forces, solved in each mode by its law.
+struct LossyGear {
+  std::string name;
+  int a = 0, b = 0;      ///< the two bodies (indices into Model::bodies after the ideal-gear merge), a ≠ b
+  double ratio = 1.0;    ///< i = v_a / v_b in the bodies' coordinates (the file's ratio times ρ_B/ρ_A)
+  /// ρ_A: the file's body A moves as q_A = ρ_A q_a (1 unless ideal gears slave A to a); the
+  /// efficiencies and bearing friction are given over |v_A| and in A's coordinate.
+  double rho_a = 1.0;
+  double rho_b = 1.0;    ///< ρ_B of the file's body B (q_B = ρ_B q_b), for its torque column
+  /// |v_A| of the loss table (ascending from 0), or empty: constant values (one entry each below).
+  std::vector<double> speeds;
+  std::vector<double> eta_forward;   ///< η_mf1 ∈ (0, 1]: a drives b
+  std::vector<double> eta_reverse;   ///< η_mf2 ∈ [0, 1]: b drives a (0: self-locking)
+  std::vector<double> bearing_forward;  ///< τ_bf1 ≥ 0 (a drives), N·m or N in A's coordinate
+  std::vector<double> bearing_reverse;  ///< τ_bf2 ≥ 0 (b drives), N·m or N in A's coordinate
+};
+
 struct Model {
   std::string name;         ///< from the file's `name:` (or its file name)
   std::string description;
@@ -376,6 +398,7 @@ struct Model {
   /// Bodies losing part of their mass during the run (Release), in the order of their times (file
   /// order at equal times); empty without `releases:`.
   std::vector<Release> releases;
+  std::vector<LossyGear> lossy_gears;     ///< lossy gears (law: elements/lossy_gear.hpp)
 
   [[nodiscard]] int dof() const { return static_cast<int>(bodies.size()); }
   /// Index of the body called `name`, kGround for "ground", or -2 if none. A hashed look-up once
@@ -389,7 +412,8 @@ struct Model {
   std::unordered_map<std::string, Location> element_where;
   /// The place of `element` (a name), or the model file without a line if unknown.
   [[nodiscard]] Location where(const std::string& element) const;
-  /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact or a brake.
+  /// Whether the model needs the hybrid (event-driven) simulation: a gap, a contact, a brake or a
+  /// lossy gear.
   [[nodiscard]] bool is_hybrid() const;
   /// Times in (0, t_end), increasing without repeats, where a load, the application of a brake or
   /// clutch (its normal force) or a surface velocity jumps or has a kink in t, or a body releases
@@ -429,8 +453,8 @@ std::vector<int> released_bodies(const Model& m);
 
 /// Output columns a run of `m` holds in memory, at most: the chain columns, three per contact or
 /// brake, one per gap, up to eight per machine body (its parts' loads, output point, extras),
-/// three per drive (torque, and current or reference speed, and the limiter mode) and one per
-/// released body.
+/// three per drive (torque, and current or reference speed, and the limiter mode), one per released
+/// body, four per lossy gear (mode, the torques at its two bodies, loss power) and one per thermal model.
 std::size_t output_columns_bound(const Model& m);
 /// Bytes the output grid of `m` needs in memory, at most: (t_end/dt_out + 2) rows × output_columns_bound
 /// × 8 bytes. The runs reserve all of it before the first step, so compile checks it against

@@ -1,0 +1,121 @@
+#include "machdyn/elements/lossy_gear.hpp"
+
+#include <algorithm>
+
+namespace machdyn {
+namespace {
+
+/// y(x) piecewise linear through (xs, ys), held constant outside; one value: constant.
+double table(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
+  if (ys.size() == 1 || x <= xs.front()) return ys.front();
+  if (x >= xs.back()) return ys.back();
+  const auto k = static_cast<size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
+  const double w = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
+  return ys[k - 1] + w * (ys[k] - ys[k - 1]);
+}
+
+}  // namespace
+
+const char* to_string(GearMode md) {
+  switch (md) {
+    case GearMode::backward_b: return "backward_b_drives";
+    case GearMode::backward: return "backward";
+    case GearMode::stuck: return "stuck";
+    case GearMode::forward: return "forward";
+    case GearMode::forward_b: return "forward_b_drives";
+  }
+  return "?";
+}
+
+LossyGearLaw LossyGearLaw::of(const LossyGear& g) {
+  LossyGearLaw k;
+  k.spec = &g;
+  k.a = g.a, k.b = g.b;
+  k.i = g.ratio;
+  k.speed_scale = std::abs(g.rho_a);
+  return k;
+}
+
+LossyGearLaw::Coefficients LossyGearLaw::at(double v_a) const {
+  const double s = std::abs(v_a) * speed_scale;
+  const LossyGear& g = *spec;
+  Coefficients c;
+  c.eta1 = table(g.speeds, g.eta_forward, s);
+  c.eta2 = table(g.speeds, g.eta_reverse, s);
+  c.bf1 = speed_scale * table(g.speeds, g.bearing_forward, s);
+  c.bf2 = speed_scale * table(g.speeds, g.bearing_reverse, s);
+  // The split into the bearing before and after the mesh (header); MSL's tau_bf_a.
+  if (c.eta1 == 1.0 && c.eta2 == 1.0) c.bf_a = 0.5 * c.bf1;
+  else c.bf_a = c.eta2 * (c.bf1 - c.bf2) / (c.eta1 * c.eta2 - 1.0);
+  c.bf_b = c.bf1 - c.eta1 * c.bf_a;
+  return c;
+}
+
+bool LossyGearLaw::b_side_drives(int s, const Coefficients& c, double Fa, double Fb, double Ia, double Ib) const {
+  // sign(X̃) = sign(D), D = F̃_a J_b − I_a F̃_b (header): a drives while s D ≥ 0.
+  const double Jb = Ib / (i * i), Fbp = Fb / i;
+  const double D = (Fa - s * c.bf_a) * Jb - Ia * (Fbp - s * c.bf_b);
+  return s * D < 0.0;
+}
+
+LossyGearLaw::Torques LossyGearLaw::solve(GearMode md, double Fa, double Fb, double Ia, double Ib, double va) const {
+  const double Jb = Ib / (i * i), Fbp = Fb / i;
+  Torques T;
+  const int s = direction(md);
+  if (s == 0) {  // stuck: a = 0, the gear holds both sides
+    T.X = Fa;
+    T.Y = -Fbp;
+    return T;
+  }
+  const Coefficients c = at(va);
+  if (b_drives(md)) T.acc = (Fa + c.eta2 * Fbp - s * c.eta2 * c.bf2) / (Ia + c.eta2 * Jb);
+  else T.acc = (c.eta1 * Fa + Fbp - s * c.bf1) / (c.eta1 * Ia + Jb);
+  T.X = Fa - Ia * T.acc;
+  T.Y = Jb * T.acc - Fbp;
+  return T;
+}
+
+double LossyGearLaw::start_margin(int s, double Fa, double Fb, double Ia, double Ib) const {
+  (void)Ia, (void)Ib;
+  const Coefficients c = at(0.0);
+  const double Fbp = Fb / i;
+  if (s * (Fa - s * c.bf_a) > 0.0) return -s * (c.eta1 * Fa + Fbp - s * c.bf1);  // a would drive
+  const double N = Fa + c.eta2 * Fbp - s * c.eta2 * c.bf2;                     // b would drive
+  return c.eta2 > 0.0 ? -s * N / c.eta2 : -s * N;
+}
+
+void LossyGearLaw::events(GearMode md, double Fa, double Fb, double Ia, double Ib, double va, const Torques& T,
+                          double* ev) const {
+  const int s = direction(md);
+  if (s == 0) {
+    ev[0] = start_margin(+1, Fa, Fb, Ia, Ib);
+    ev[1] = start_margin(-1, Fa, Fb, Ia, Ib);
+    return;
+  }
+  const Coefficients c = at(va);
+  ev[0] = s * va;  // comes to rest
+  ev[1] = b_drives(md) ? -s * (T.Y + s * c.bf_b) : s * (T.X - s * c.bf_a);  // the driving side changes
+}
+
+double LossyGearLaw::allowance(double Fa, double Fb) const {
+  const Coefficients c = at(0.0);
+  return 1e-12 * (std::abs(Fa) + std::abs(Fb / i) + c.bf1 + c.bf2);
+}
+
+GearMode LossyGearLaw::decide(double Fa, double Fb, double Ia, double Ib, double va, double tol) const {
+  int s = va > 0.0 ? 1 : va < 0.0 ? -1 : 0;
+  if (s == 0) {
+    if (start_margin(+1, Fa, Fb, Ia, Ib) < -tol) s = 1;
+    else if (start_margin(-1, Fa, Fb, Ia, Ib) < -tol) s = -1;
+    else return GearMode::stuck;
+  }
+  const bool bd = b_side_drives(s, at(va), Fa, Fb, Ia, Ib);
+  return s > 0 ? (bd ? GearMode::forward_b : GearMode::forward) : (bd ? GearMode::backward_b : GearMode::backward);
+}
+
+void LossyGearLaw::add_linear(LinearModel& lin) const {
+  lin.G.push_back({{a, 1.0}, {b, -i}});
+  lin.constraint_names.push_back(spec->name);
+}
+
+}  // namespace machdyn

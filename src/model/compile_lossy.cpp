@@ -1,0 +1,222 @@
+// Lossy gears: read with the links, put on the merged bodies after the ideal gears (model/compile_lossy.hpp).
+//
+// An end slaved by ideal gears moves as q_A = ρ_A q_a (RigidSlave), so the file's q_A = i q_B becomes
+// q_a = (i ρ_B/ρ_A) q_b on the bodies that remain; the loss data stay in A's coordinate and the law
+// converts them by |ρ_A| (elements/lossy_gear.hpp).
+#include "model/compile_lossy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <fmt/format.h>
+
+#include "machdyn/common/units.hpp"
+
+namespace machdyn::detail {
+namespace {
+
+Dim position_dim(BodyKind k) { return k == BodyKind::rotational ? dim::none : dim::length; }
+Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
+Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
+
+/// The checks of one set of loss data (a constant or a table row); `at` locates the error.
+void check_losses(const std::string& name, double eta1, double eta2, double bf1, double bf2, const SpecLoc& at,
+                  Diagnostics& diag) {
+  if (!(eta1 > 0.0 && eta1 <= 1.0))
+    diag.error(at, fmt::format("lossy gear '{}': efficiency {:.12g} outside (0, 1] (η_mf1, power flowing from the "
+                               "first body to the second)", name, eta1));
+  if (!(eta2 >= 0.0 && eta2 <= 1.0))
+    diag.error(at, fmt::format("lossy gear '{}': efficiency_reverse {:.12g} outside [0, 1] (η_mf2, power flowing "
+                               "from the second body to the first; 0: self-locking)", name, eta2));
+  if (!(bf1 >= 0.0) || !(bf2 >= 0.0) || !std::isfinite(bf1) || !std::isfinite(bf2))
+    diag.error(at, fmt::format("lossy gear '{}': bearing friction must be finite and >= 0", name));
+  if (eta1 == 1.0 && eta2 == 1.0 && bf1 != bf2)
+    diag.error(at, fmt::format("lossy gear '{}': with both efficiencies 1 the bearing friction cannot depend on the "
+                               "direction of the power flow (τ_bf1 = τ_bf,a + τ_bf,b = τ_bf2); give one value", name));
+}
+
+/// `loss_table: [[|v_A|, η_mf1, η_mf2, τ_bf1, τ_bf2], ...]` (MSL's lossTable), speeds increasing from 0.
+void read_table(const SpecNode& n, const std::string& name, BodyKind k, LossyGear& g, Diagnostics& diag) {
+  if (!n.is_seq() || n.items.empty()) {
+    diag.error(n.loc, fmt::format("lossy gear '{}': 'loss_table' expected rows [speed, efficiency, "
+                                  "efficiency_reverse, bearing_friction, bearing_friction_reverse]", name));
+    return;
+  }
+  const Dim dims[5] = {velocity_dim(k), dim::none, dim::none, load_dim(k), load_dim(k)};
+  for (const auto& row : n.items) {
+    if (!row.is_seq() || row.items.size() != 5) {
+      diag.error(row.loc, fmt::format("lossy gear '{}': 'loss_table' row expected 5 entries [speed, efficiency, "
+                                      "efficiency_reverse, bearing_friction, bearing_friction_reverse]", name));
+      continue;
+    }
+    double v[5];
+    bool ok = true;
+    for (size_t j = 0; j < 5; ++j) {
+      std::string err;
+      const auto x = row.items[j].is_scalar() ? parse_as(row.items[j].scalar, dims[j], &err) : std::nullopt;
+      if (!x) {
+        diag.error(row.items[j].loc, fmt::format("lossy gear '{}': 'loss_table': {}", name,
+                                                 err.empty() ? "expected a number" : err));
+        ok = false;
+      }
+      v[j] = x.value_or(0.0);
+    }
+    if (!ok) continue;
+    if ((g.speeds.empty() && v[0] != 0.0) || (!g.speeds.empty() && v[0] <= g.speeds.back())) {
+      diag.error(row.items[0].loc, fmt::format("lossy gear '{}': 'loss_table': the speeds must increase from 0", name));
+      continue;
+    }
+    check_losses(name, v[1], v[2], v[3], v[4], row.loc, diag);
+    g.speeds.push_back(v[0]);
+    g.eta_forward.push_back(v[1]);
+    g.eta_reverse.push_back(v[2]);
+    g.bearing_forward.push_back(v[3]);
+    g.bearing_reverse.push_back(v[4]);
+  }
+}
+
+bool agree(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-12; }
+
+}  // namespace
+
+void read_lossy_gear(const std::string& name, const SpecNode& spec, const Model& m, std::vector<LossyGearSpec>& out,
+                     Diagnostics& diag) {
+  FieldReader f(spec, fmt::format("lossy gear '{}'", name), diag);
+  f.word("type", {"lossy-gear"});
+  LossyGearSpec s;
+  s.gear.name = name;
+  s.where = Location(spec.key_loc);
+  const SpecNode* between = f.node("between");
+  bool ok = false;
+  int idx[2] = {0, 0};
+  if (!between) {
+    diag.error(spec.loc, fmt::format("lossy gear '{}': missing field 'between' (two body names, e.g. [motor, drum])", name));
+  } else if (!between->is_seq() || between->items.size() != 2 || !between->items[0].is_scalar() ||
+             !between->items[1].is_scalar()) {
+    diag.error(between->loc, fmt::format("lossy gear '{}': 'between' expected two body names, e.g. [motor, drum]", name));
+  } else {
+    ok = true;
+    for (int k = 0; k < 2; ++k) {
+      const SpecNode& item = between->items[static_cast<size_t>(k)];
+      idx[k] = m.body_index(item.scalar);
+      if (item.scalar == "ground") {
+        diag.error(item.loc, fmt::format("lossy gear '{}': a gear to the ground would hold the other body fixed; to "
+                                         "hold a body use a brake or a stop", name));
+        ok = false;
+      } else if (idx[k] < 0) {
+        diag.error(item.loc, fmt::format("lossy gear '{}': unknown body '{}' (a lossy gear joins two bodies by name)",
+                                         name, item.scalar));
+        ok = false;
+      } else if (m.bodies[static_cast<size_t>(idx[k])].machine) {
+        diag.error(item.loc, fmt::format("lossy gear '{}': '{}' has a variable inertia; a lossy gear to a machine "
+                                         "body is not supported yet", name, item.scalar));
+        ok = false;
+      }
+    }
+    if (ok && idx[0] == idx[1]) {
+      diag.error(between->loc, fmt::format("lossy gear '{}': joins '{}' to itself", name, between->items[0].scalar));
+      ok = false;
+    }
+    if (ok) s.body_a = between->items[0].scalar, s.body_b = between->items[1].scalar;
+  }
+  const BodyKind ka = ok ? m.bodies[static_cast<size_t>(idx[0])].kind : BodyKind::rotational;
+  const BodyKind kb = ok ? m.bodies[static_cast<size_t>(idx[1])].kind : BodyKind::rotational;
+  std::optional<double> r = f.quantity("ratio", position_dim(ka) / position_dim(kb), 1.0);
+  if (r && (*r == 0.0 || !std::isfinite(*r))) {
+    f.error_at("ratio", "field 'ratio' must be finite and not zero (q_a = ratio · q_b)");
+    ok = false;
+  }
+  LossyGear& g = s.gear;
+  if (const SpecNode* table = f.node("loss_table")) {
+    for (const char* k : {"efficiency", "efficiency_reverse", "bearing_friction", "bearing_friction_reverse"})
+      if (spec.find(k)) {
+        f.error_at(k, fmt::format("field '{}' and 'loss_table' exclude each other; give the values in the table", k));
+        f.node(k);
+      }
+    read_table(*table, name, ka, g, diag);
+  } else {
+    const auto eta1 = f.quantity("efficiency", dim::none);
+    const auto eta2 = f.quantity("efficiency_reverse", dim::none, eta1.value_or(1.0));
+    const auto bf1 = f.quantity("bearing_friction", load_dim(ka), 0.0);
+    const auto bf2 = f.quantity("bearing_friction_reverse", load_dim(ka), bf1.value_or(0.0));
+    if (eta1 && eta2 && bf1 && bf2) {
+      const SpecNode* at = spec.find("efficiency");
+      check_losses(name, *eta1, *eta2, *bf1, *bf2, at ? at->loc : spec.loc, diag);
+      g.eta_forward = {*eta1};
+      g.eta_reverse = {*eta2};
+      g.bearing_forward = {*bf1};
+      g.bearing_reverse = {*bf2};
+    } else {
+      ok = false;
+    }
+  }
+  f.finish();
+  if (!ok || !r || g.eta_forward.empty()) return;
+  g.a = idx[0], g.b = idx[1];
+  g.ratio = *r;
+  out.push_back(std::move(s));
+}
+
+void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostics& diag) {
+  // The body (after the merge) and ρ of a file's body: itself with ρ = 1, or its ideal-gear master.
+  auto place = [&](const std::string& name, int* body, double* rho) {
+    *body = m.body_index(name);
+    *rho = 1.0;
+    if (*body >= 0) return;
+    for (const RigidSlave& sl : m.slaves)
+      if (sl.name == name) *body = sl.master, *rho = sl.ratio;
+  };
+  std::vector<int> used(m.bodies.size(), -1);
+  for (size_t k = 0; k < gears.size(); ++k) {
+    const LossyGearSpec& s = gears[k];
+    LossyGear g = s.gear;
+    place(s.body_a, &g.a, &g.rho_a);
+    place(s.body_b, &g.b, &g.rho_b);
+    if (g.a < 0 || g.b < 0) continue;  // reported by the merge
+    g.ratio = s.gear.ratio * g.rho_b / g.rho_a;  // q_A = i q_B, q_A = ρ_A q_a, q_B = ρ_B q_b
+    if (g.a == g.b) {
+      diag.error(s.where, fmt::format("lossy gear '{}': '{}' and '{}' move rigidly together through ideal gears, so "
+                                      "the gear would close a rigid loop; remove it or one of the ideal gears",
+                                      g.name, s.body_a, s.body_b));
+      continue;
+    }
+    bool ok = true;
+    for (int e : {g.a, g.b}) {
+      int& u = used[static_cast<size_t>(e)];
+      if (u >= 0) {
+        diag.error(s.where, fmt::format("lossy gear '{}': body '{}' is already geared by lossy gear '{}'; two lossy "
+                                        "gears on one body (a multi-stage lossy gearbox) are not supported yet: put "
+                                        "an inertia or a stiff spring between the stages", g.name,
+                                        m.bodies[static_cast<size_t>(e)].name, gears[static_cast<size_t>(u)].gear.name));
+        ok = false;
+      }
+      u = static_cast<int>(k);
+      for (const FrictionContact& c : m.contacts)
+        if (c.a == e || c.b == e) {
+          diag.error(s.where, fmt::format("lossy gear '{}': body '{}' has the friction element '{}'; contacts, brakes, "
+                                          "clutches, freewheels and stops on a lossy gear's bodies are not supported "
+                                          "yet (the gear and the contact would lock together)", g.name,
+                                          m.bodies[static_cast<size_t>(e)].name, c.name));
+          ok = false;
+        }
+    }
+    // Initial velocities on v_a = i v_b: one side's value gives the other's.
+    Body& A = m.bodies[static_cast<size_t>(g.a)];
+    Body& B = m.bodies[static_cast<size_t>(g.b)];
+    if (A.v0 != 0.0 && B.v0 != 0.0 && !agree(A.v0, g.ratio * B.v0)) {
+      diag.error(s.where, fmt::format("lossy gear '{}': the initial velocities contradict the gear: {} {:.12g} and "
+                                      "{} {:.12g} with v_a = {:.12g} v_b; give the velocity on one side only",
+                                      g.name, A.name, A.v0, B.name, B.v0, g.ratio));
+      ok = false;
+    } else if (B.v0 != 0.0) {
+      A.v0 = g.ratio * B.v0;
+    } else {
+      B.v0 = A.v0 / g.ratio;
+    }
+    if (A.q0 == 0.0 && B.q0 != 0.0) A.q0 = g.ratio * B.q0;
+    else if (B.q0 == 0.0) B.q0 = A.q0 / g.ratio;
+    if (ok) m.lossy_gears.push_back(std::move(g));
+  }
+}
+
+}  // namespace machdyn::detail
