@@ -176,6 +176,31 @@ SpecNode read_yaml_file(const std::string& path) {
   return parse_yaml_string(ss.str(), path);
 }
 
+namespace {
+/// Sets FIELD (or a dotted path into nested maps, `release.time`) of the map `m`; missing maps on
+/// the way are created, a scalar on the way is an error.
+void set_field(SpecNode& m, const std::string& field, SpecNode value, const Location& cli) {
+  const auto dot = field.find('.');
+  if (dot == std::string::npos) {
+    m.set(field, std::move(value));
+    return;
+  }
+  const std::string key = field.substr(0, dot), rest = field.substr(dot + 1);
+  if (key.empty() || rest.empty()) throw InputError(cli, "expected NAME.FIELD=VALUE (an empty name between dots)");
+  SpecNode* child = m.find(key);
+  if (!child) {
+    SpecNode fresh;
+    fresh.kind = SpecNode::Kind::Map;
+    fresh.loc = value.loc;
+    m.set(key, std::move(fresh));
+    child = m.find(key);
+  }
+  if (!child->is_map())
+    throw InputError(cli, fmt::format("'{}' is not a map of fields, so it has no field '{}'", key, rest));
+  set_field(*child, rest, std::move(value), cli);
+}
+}  // namespace
+
 void apply_set(SpecNode& root, std::string_view assignment) {
   const Location cli{fmt::format("--set {}", assignment), 0, 0};
   auto eq = assignment.find('=');
@@ -201,7 +226,7 @@ void apply_set(SpecNode& root, std::string_view assignment) {
   std::string name = path.substr(0, dot), field = path.substr(dot + 1);
   if (field.empty() || name.empty()) throw InputError(cli, "expected NAME.FIELD=VALUE");
   if (auto* top = root.find(name); top && top->is_map()) {
-    top->set(field, std::move(value));
+    set_field(*top, field, std::move(value), cli);
     return;
   }
   if (!root.find(name)) {
@@ -212,7 +237,7 @@ void apply_set(SpecNode& root, std::string_view assignment) {
         if (!body.is_map()) continue;
         names.push_back(elem);
         if (elem == name) {
-          body.set(field, std::move(value));
+          set_field(body, field, std::move(value), cli);
           return;
         }
       }
@@ -224,7 +249,7 @@ void apply_set(SpecNode& root, std::string_view assignment) {
   SpecNode m;
   m.kind = SpecNode::Kind::Map;
   m.loc = value.loc;
-  m.set(field, std::move(value));
+  set_field(m, field, std::move(value), cli);
   root.set(name, std::move(m));
 }
 

@@ -7,6 +7,8 @@
 #include <vector>
 #include <gtest/gtest.h>
 
+#include "support/support.hpp"
+
 #include "machdyn/analysis/crane.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
@@ -36,7 +38,7 @@ const CraneFactorRow& phi7_row(const CraneReport& r) {
 
 class BufferShape : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, BufferShape, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 // The trolley m at v0 runs into a buffer at x_b = 0.3 m (contact at t_c = x_b / v0 = 0.25 s).
 constexpr double kM = 2000.0, kV0 = 1.2, kXb = 0.3, kTc = kXb / kV0;

@@ -31,7 +31,7 @@ Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string
 
 class Clutch : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Clutch, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 // ---------------------------------------------------------------------------------------------
 // An independent solution of MSL CoupledClutches: four unit inertias in a chain, clutch k between

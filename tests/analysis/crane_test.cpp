@@ -26,7 +26,7 @@ Model model_of(const std::string& yaml) {
 
 class Crane : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Crane, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 const CraneFactorRow& row(const CraneReport& r, const std::string& factor, size_t nth = 0) {
   for (const auto& x : r.rows)

@@ -105,7 +105,7 @@ struct Reference {
 
 class DriveOnLimit : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, DriveOnLimit, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 // Claim: the run goes linear → on-limit+ → linear at the instants of the independent reference (to
 // 1e-10 s, about 1e-9 relative), reports mode +2 on the limit without chattering, and ends at the

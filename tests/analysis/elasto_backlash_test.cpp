@@ -21,7 +21,7 @@ Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string
 
 class ElastoBacklash : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, ElastoBacklash, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 constexpr double kM = 2.0, kC = 1e5, kD = 200.0, kV0 = 1.0, kGap = 0.01;
 

@@ -40,7 +40,7 @@ double max_deviation(const std::vector<double>& s, double value) {
 
 class Equilibrium : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Equilibrium, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 // Claim: `vertical: up` gives the body the constant load −m g (named "NAME.weight"), `down` +m g;
 // a free body falls as x = −g t²/2 (up) and x = +g t²/2 (down). g defaults to 9.80665 m/s².

@@ -66,7 +66,7 @@ simulation: {t_end: 1 s, dt_out: 0.0001 s, rtol: 1e-12, atol: 1e-14}
 class ExtraOutputsIntegrators : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, ExtraOutputsIntegrators,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 TEST_P(ExtraOutputsIntegrators, BrakeHeatIsTheFlywheelsKineticEnergy) {
   Model m = model_of(R"(

@@ -5,6 +5,8 @@
 #include <string>
 #include <gtest/gtest.h>
 
+#include "support/support.hpp"
+
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -17,7 +19,7 @@ Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string
 
 class Freewheel : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Freewheel, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 double column_at_end(const SimulationResult& r, const std::string& name) {
   for (size_t c = 0; c < r.column_names.size(); ++c)

@@ -367,7 +367,7 @@ struct Demo1Reference {
 
 class LossyGearMsl : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, LossyGearMsl, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 Model msl_example(const std::string& name, IntegratorChoice integrator) {
   Model m = load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/msl/" + name);

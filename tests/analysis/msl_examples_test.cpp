@@ -26,7 +26,7 @@ using test::series;
 
 class MslExample : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, MslExample, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 /// x in a short scientific notation (the measured errors recorded with the tests' results).
 std::string sci(double x) {

@@ -18,20 +18,13 @@ namespace {
 
 using test::series;
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
+Model model_of(const std::string& yaml) { return test::model_text(yaml, "test.yaml"); }
 
-std::string errors_of(const std::string& yaml) {
-  try {
-    model_of(yaml);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string errors_of(const std::string& yaml) { return test::compile_errors(yaml, "test.yaml"); }
 
 class OneSidedLink : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, OneSidedLink, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 constexpr double kMA = 2.0, kMB = 3.0, kC = 6e4;
 

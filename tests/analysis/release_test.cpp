@@ -20,13 +20,11 @@ namespace {
 
 using test::series;
 
-Model model_of(const std::string& yaml) {
-  return compile_model(parse_yaml_string(yaml, "release.yaml"), "release.yaml");
-}
+Model model_of(const std::string& yaml) { return test::model_text(yaml, "release.yaml"); }
 
 class Release : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Release, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 /// The relative tolerance of a run's values against a closed form: DOPRI5 1e-9; CVODE's BDF restarts at
 /// order 1 at the release and carries a larger global error at the same rtol (up to ~5e-8 here).

@@ -28,7 +28,7 @@ Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string
 
 class Rope : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Rope, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 // The hoist of these tests: drum R = 0.25 m (ratio 1/R = 4 rad/m), n = 2 falls, so i = n/R = 8 rad/m
 // and s = 1/i = 0.125 m of hook travel per radian; E A = 2e7 N, fall length L_f0 = 10 m, so

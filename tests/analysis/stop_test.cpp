@@ -7,6 +7,8 @@
 #include <string>
 #include <gtest/gtest.h>
 
+#include "support/support.hpp"
+
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -19,7 +21,7 @@ Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string
 
 class Stop : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Stop, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& kind) {
   std::vector<ModeEvent> out;

@@ -21,21 +21,14 @@ namespace {
 
 using test::series;
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "th.yaml"), "th.yaml"); }
+Model model_of(const std::string& yaml) { return test::model_text(yaml, "th.yaml"); }
 
-std::string compile_error(const std::string& yaml) {
-  try {
-    model_of(yaml);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string compile_error(const std::string& yaml) { return test::compile_errors(yaml, "th.yaml"); }
 
 class ThermalIntegrators : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, ThermalIntegrators,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
-                         [](const auto& p) { return std::string(p.param == IntegratorChoice::bdf ? "bdf" : "dopri5"); });
+                         test::IntegratorName{});
 
 // A brake of constant braking torque M_b = 8 N·m stops a flywheel (I = 2 kg·m², ω0 = 10 rad/s) at
 // t_s = I ω0 / M_b = 2.5 s: while it slides P(s) = M_b (ω0 − α s), α = M_b / I = 4 rad/s², then P = 0.

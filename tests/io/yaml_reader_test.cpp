@@ -110,3 +110,39 @@ TEST(YamlReader, EmptyFileIsPlacedAtItsStart) {
 
 }  // namespace
 }  // namespace machdyn
+
+namespace machdyn {
+namespace {
+
+// Claim: `--set NAME.A.B=V` descends into nested maps: it sets one field of a nested map and keeps
+// its siblings, creates a missing map on the way, and refuses to descend into a plain value.
+TEST(ApplySet, DottedPathsReachNestedMaps) {
+  SpecNode root = parse_yaml_string(R"(
+crane: {release: {mass: 4 t, kind: rapid}}
+brakes: {B: {body: w, holding: 10, thermal: {heat_capacity: 50}}}
+simulation: {t_end: 1}
+)", "set.yaml");
+  apply_set(root, "crane.release.time=2.5 s");
+  const SpecNode* rel = root.find("crane")->find("release");
+  ASSERT_NE(rel, nullptr);
+  ASSERT_NE(rel->find("time"), nullptr);
+  EXPECT_EQ(rel->find("time")->scalar, "2.5 s");
+  ASSERT_NE(rel->find("mass"), nullptr);  // the sibling stays
+  EXPECT_EQ(rel->find("mass")->scalar, "4 t");
+  apply_set(root, "B.thermal.conductance=2 W/K");  // an element's nested map
+  EXPECT_EQ(root.find("brakes")->find("B")->find("thermal")->find("conductance")->scalar, "2 W/K");
+  EXPECT_EQ(root.find("brakes")->find("B")->find("thermal")->find("heat_capacity")->scalar, "50");
+  apply_set(root, "simulation.settings.x=1");  // a missing nested map is created
+  EXPECT_EQ(root.find("simulation")->find("settings")->find("x")->scalar, "1");
+  EXPECT_EQ(root.find("simulation")->find("t_end")->scalar, "1");
+  try {
+    apply_set(root, "B.holding.x=1");
+    FAIL() << "descended into a plain value";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'holding' is not a map"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(apply_set(root, "crane..time=1"), InputError);
+}
+
+}  // namespace
+}  // namespace machdyn

@@ -48,4 +48,20 @@ const std::vector<double>& series(const SimulationResult& r, const std::string& 
 /// if no row is there.
 double at(const SimulationResult& r, const std::string& name, double t, double tol = 1e-9);
 
+/// The model compiled from YAML text as if read from a file called `file` (errors name it).
+Model model_text(const std::string& yaml, const std::string& file = "test.yaml");
+
+/// The compile errors of YAML text (InputError's message, each problem at file:line:col), or "" if
+/// it compiles.
+std::string compile_errors(const std::string& yaml, const std::string& file = "test.yaml");
+
+/// The name suffix of a test parameterized over the integrators: "dopri5" or "bdf"
+/// (INSTANTIATE_TEST_SUITE_P(..., ::testing::Values(...), test::IntegratorName{})).
+struct IntegratorName {
+  template <class Info>
+  std::string operator()(const Info& p) const {
+    return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  }
+};
+
 }  // namespace machdyn::test

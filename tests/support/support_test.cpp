@@ -2,6 +2,9 @@
 #include "support/support.hpp"
 
 #include "machdyn/io/plot.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/compile.hpp"
+#include "machdyn/common/diagnostics.hpp"
 
 #include <array>
 #include <cmath>
@@ -88,6 +91,19 @@ const char* const kCrankSliderBody = R"Y(
     piston_mass: 1.6 kg
     crank_inertia: 0.08 kg*m^2
 )Y";
+
+Model model_text(const std::string& yaml, const std::string& file) {
+  return compile_model(parse_yaml_string(yaml, file), file);
+}
+
+std::string compile_errors(const std::string& yaml, const std::string& file) {
+  try {
+    model_text(yaml, file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 std::size_t column(const SimulationResult& r, const std::string& name) {
   for (std::size_t c = 0; c < r.column_names.size(); ++c)
