@@ -22,18 +22,9 @@ namespace {
 
 using test::series;
 
-Model compile_text(const std::string& text) {
-  return compile_model_case(parse_yaml_string(text, "gear.yaml"), "gear.yaml", {}, "");
-}
+Model compile_text(const std::string& text) { return test::model_text(text, "gear.yaml"); }
 
-std::string errors_of(const std::string& text) {
-  try {
-    compile_text(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string errors_of(const std::string& text) { return test::compile_errors(text, "gear.yaml"); }
 
 class LossyGearSim : public ::testing::TestWithParam<const char*> {
  protected:
