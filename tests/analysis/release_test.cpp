@@ -87,19 +87,23 @@ simulation: {t_end: 0.3 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
   }
 }
 
+// The oscillation the next three tests release in: m = 2 kg on c = 800 N/m under g = 9.81 m/s²,
+// from x0 = 0.1 m at rest, Δm = 1.5 kg released at t_r = 0.37 s.
+constexpr const char* kMidOscillation = R"(
+gravity: 9.81 m/s^2
+bodies: {m: {type: translational, mass: 2 kg, vertical: up, position: 0.1 m}}
+links: {c: {type: spring, between: [ground, m], stiffness: 800 N/m}}
+releases: {part: {body: m, mass: 1.5 kg, time: 0.37 s}}
+simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
+)";
+
 // Claim: a release in the middle of a free oscillation. A body m on a spring c to the ground under
 // its weight (x up) starts at x0 at rest: x = x_eq + (x0 − x_eq) cos ωt, x_eq = −m g/c, ω = √(c/m).
 // At t_r it loses Δm with x, v continuous (x_r, v_r from that form), then
 //   x = x_eq' + (x_r − x_eq') cos ω'τ + (v_r/ω') sin ω'τ,  τ = t − t_r,  x_eq' = −(m − Δm) g/c,
 // ω' = √(c/(m − Δm)). Every output row before and after t_r is checked against these.
 TEST_P(Release, ReleaseInTheMiddleOfAFreeOscillation) {
-  Model mod = model_of(R"(
-gravity: 9.81 m/s^2
-bodies: {m: {type: translational, mass: 2 kg, vertical: up, position: 0.1 m}}
-links: {c: {type: spring, between: [ground, m], stiffness: 800 N/m}}
-releases: {part: {body: m, mass: 1.5 kg, time: 0.37 s}}
-simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
-)");
+  Model mod = model_of(kMidOscillation);
   mod.simulation.integrator = GetParam();
   const double g = 9.81, m = 2, dm = 1.5, c = 800, x0 = 0.1, tr = 0.37;
   const double w = std::sqrt(c / m), w2 = std::sqrt(c / (m - dm));
@@ -126,13 +130,7 @@ simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
 // releases left: −m g v before t_r, −(m − Δm) g v after it, at every output row (the oscillation of
 // ReleaseInTheMiddleOfAFreeOscillation; v is the run's own velocity column).
 TEST(ReleaseOutputs, WeightPowerFollowsTheReleasedWeight) {
-  const Model mod = model_of(R"(
-gravity: 9.81 m/s^2
-bodies: {m: {type: translational, mass: 2 kg, vertical: up, position: 0.1 m}}
-links: {c: {type: spring, between: [ground, m], stiffness: 800 N/m}}
-releases: {part: {body: m, mass: 1.5 kg, time: 0.37 s}}
-simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
-)");
+  const Model mod = model_of(kMidOscillation);
   const SimulationResult r = simulate(mod, SimulateOptions{}, output_selection({"power"}));
   const auto& t = series(r, "t_s");
   const auto& v = series(r, "m.velocity_m_s");
@@ -198,13 +196,7 @@ simulation: {t_end: 0.4 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
 // away ½ Δm v_r² (v_r from the closed form), and W − (ΔT + ΔV + ½ Δm v_r²) is the integration error
 // only (< tol of the energies moved); without that term the balance would miss it by ½ Δm v_r².
 TEST_P(Release, EnergyBooksCloseWithTheReleasedKineticEnergy) {
-  Model mod = model_of(R"(
-gravity: 9.81 m/s^2
-bodies: {m: {type: translational, mass: 2 kg, vertical: up, position: 0.1 m}}
-links: {c: {type: spring, between: [ground, m], stiffness: 800 N/m}}
-releases: {part: {body: m, mass: 1.5 kg, time: 0.37 s}}
-simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
-)");
+  Model mod = model_of(kMidOscillation);
   mod.simulation.integrator = GetParam();
   const double g = 9.81, m = 2, dm = 1.5, c = 800, x0 = 0.1, tr = 0.37;
   const double w = std::sqrt(c / m), xe = -m * g / c;
