@@ -65,8 +65,7 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     s.derivative(tb, db_.data());
     y1 = yb_.data(), dy1 = db_.data();
   }
-  signals_.rates(y1, dy1, rates_.data());
-  signals_.values(y1, vals_.data());
+  signals_.values_and_rates(y1, dy1, vals_.data(), rates_.data());
   for (int j = 0; j < n; ++j) {
     Extremes& g = sig_[static_cast<size_t>(j)];
     const double r1 = rates_[static_cast<size_t>(j)];

@@ -23,14 +23,11 @@ class PeakSignals {
   [[nodiscard]] virtual double rate(int j, const double* y, const double* dy) const = 0;
   /// Whether rate(j, …) reads y (else only dy: the tracker then skips interpolating y).
   [[nodiscard]] virtual bool rate_reads_state(int /*j*/) const { return false; }
-  /// All values s_j(y) into out (count()), and all rates into rate_out: one call per step instead
-  /// of one per signal and quantity (the per-step path of the tracker). Defaults loop over value()
-  /// and rate(); a system overrides them to keep its loop free of virtual calls.
-  virtual void values(const double* y, double* out) const {
-    for (int j = 0; j < count(); ++j) out[j] = value(j, y);
-  }
-  virtual void rates(const double* y, const double* dy, double* rate_out) const {
-    for (int j = 0; j < count(); ++j) rate_out[j] = rate(j, y, dy);
+  /// All values s_j(y) into out and all rates into rate_out (count() each): one call per step
+  /// instead of one per signal and quantity (the per-step path of the tracker). The default loops
+  /// over value() and rate(); a system overrides it to keep its loop free of virtual calls.
+  virtual void values_and_rates(const double* y, const double* dy, double* out, double* rate_out) const {
+    for (int j = 0; j < count(); ++j) out[j] = value(j, y), rate_out[j] = rate(j, y, dy);
   }
 };
 
