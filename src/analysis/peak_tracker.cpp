@@ -1,6 +1,5 @@
 #include "machdyn/analysis/peak_tracker.hpp"
 
-#include <array>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -11,13 +10,14 @@ namespace machdyn {
 namespace {
 
 constexpr int kDegree = 6;  // bounds the dense output's degree (solve/stepper.hpp)
-using Samples = std::array<double, kDegree + 1>;
+using Samples = Eigen::Matrix<double, kDegree + 1, 1>;
+using SampleMap = Eigen::Matrix<double, kDegree + 1, kDegree + 1>;
 
 /// The map from a polynomial's values at u_k = k/6 (k = 0…6) to its Bernstein coefficients on
 /// [0, 1]: the inverse of B_kl = C(6, l) u_k^l (1 − u_k)^(6−l).
-const std::array<Samples, kDegree + 1>& bernstein_from_samples() {
-  static const std::array<Samples, kDegree + 1> T = [] {
-    Eigen::Matrix<double, kDegree + 1, kDegree + 1> B;
+const SampleMap& bernstein_from_samples() {
+  static const SampleMap T = [] {
+    SampleMap B;
     for (int k = 0; k <= kDegree; ++k)
       for (int l = 0; l <= kDegree; ++l) {
         const double u = static_cast<double>(k) / kDegree;
@@ -25,11 +25,7 @@ const std::array<Samples, kDegree + 1>& bernstein_from_samples() {
         for (int i = 1; i <= l; ++i) binom = binom * (kDegree - l + i) / i;
         B(k, l) = binom * std::pow(u, l) * std::pow(1.0 - u, kDegree - l);
       }
-    const Eigen::Matrix<double, kDegree + 1, kDegree + 1> inv = B.inverse();
-    std::array<Samples, kDegree + 1> t{};
-    for (int l = 0; l <= kDegree; ++l)
-      for (int k = 0; k <= kDegree; ++k) t[static_cast<size_t>(l)][static_cast<size_t>(k)] = inv(l, k);
-    return t;
+    return SampleMap(B.inverse());
   }();
   return T;
 }
@@ -83,16 +79,10 @@ bool PeakTracker::inside_extremes(const Stepper& s, int j, double ta, double tb,
     sampled_ = true;
   }
   Samples v;
-  v[0] = v0, v[kDegree] = v1;
-  for (int k = 1; k < kDegree; ++k)
-    v[static_cast<size_t>(k)] = signals_.value(j, samples_.data() + static_cast<size_t>(k - 1) * n);
-  double lo = HUGE_VAL, hi = -HUGE_VAL, scale = 0.0;
-  for (const auto& row : bernstein_from_samples()) {
-    double b = 0.0;
-    for (size_t k = 0; k < v.size(); ++k) b += row[k] * v[k];
-    lo = std::min(lo, b), hi = std::max(hi, b);
-  }
-  for (const double x : v) scale = std::max(scale, std::abs(x));
+  v(0) = v0, v(kDegree) = v1;
+  for (int k = 1; k < kDegree; ++k) v(k) = signals_.value(j, samples_.data() + static_cast<size_t>(k - 1) * n);
+  const Samples b = bernstein_from_samples() * v;
+  const double lo = b.minCoeff(), hi = b.maxCoeff(), scale = v.cwiseAbs().maxCoeff();
   // The margin covers the rounding of the samples, of the coefficients and of a located value.
   const double margin = 1e-6 * scale;
   return hi + margin <= g.max && lo - margin >= g.min;
