@@ -27,7 +27,8 @@ class PeakSignals {
   [[nodiscard]] virtual double value(int j, const double* y) const = 0;
   /// ds_j/dt at state y with derivative dy.
   [[nodiscard]] virtual double rate(int j, const double* y, const double* dy) const = 0;
-  /// Whether rate(j, …) reads y (else only dy: the tracker then skips interpolating y).
+  /// Whether rate(j, …) reads y. False says the rate is linear in dy alone, so s_j is affine in the
+  /// state: the tracker then skips interpolating y and bounds s_j by its dense-output polynomial.
   [[nodiscard]] virtual bool rate_reads_state(int /*j*/) const { return false; }
   /// All values s_j(y) into out and all rates into rate_out (count() each): one call per step
   /// instead of one per signal and quantity (the per-step path of the tracker). The default loops
