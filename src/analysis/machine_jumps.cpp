@@ -39,8 +39,7 @@ void MachineJumps::start(double t0, const double* y0) {
   arm(y0);
 }
 
-void MachineJumps::on_segment(const Stepper& s, double ta, double tb) {
-  if (traces_.empty()) return;
+void MachineJumps::sample_piece(const Stepper& s, double ta, double tb) {
   const double t0 = ta, h = tb - ta;
   for (int j = 1; j <= 4; ++j) {
     const double t = j == 4 ? tb : t0 + 0.25 * j * h;

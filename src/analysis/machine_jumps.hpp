@@ -25,8 +25,11 @@ class MachineJumps {
 
   /// The first sample, at the start; arms the first jumps.
   void start(double t0, const double* y0);
-  /// Samples the traced bodies at four points of the piece [ta, tb] of the stepper's last step.
-  void on_segment(const Stepper& s, double ta, double tb);
+  /// Samples the traced bodies at four points of the piece [ta, tb] of the stepper's last step
+  /// (inline: most runs trace none).
+  void on_segment(const Stepper& s, double ta, double tb) {
+    if (!traces_.empty()) sample_piece(s, ta, tb);
+  }
   void event_functions(const double* y, double* g) const;
   /// The jump of event function `which` at t: maps y across it and re-arms.
   void jump(double t, double* y, int which);
@@ -34,6 +37,7 @@ class MachineJumps {
   [[nodiscard]] std::vector<MachineRunReport> reports() const;
 
  private:
+  void sample_piece(const Stepper& s, double ta, double tb);
   struct Trace {
     int body = 0;
     std::string name;

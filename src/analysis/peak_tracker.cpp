@@ -2,13 +2,39 @@
 
 #include <cmath>
 
+#include <Eigen/LU>
+
 #include "machdyn/solve/roots.hpp"
 
 namespace machdyn {
+namespace {
+
+constexpr int kDegree = 6;  // bounds the dense output's degree (solve/stepper.hpp)
+using Samples = Eigen::Matrix<double, kDegree + 1, 1>;
+using SampleMap = Eigen::Matrix<double, kDegree + 1, kDegree + 1>;
+
+/// The map from a polynomial's values at u_k = k/6 (k = 0…6) to its Bernstein coefficients on
+/// [0, 1]: the inverse of B_kl = C(6, l) u_k^l (1 − u_k)^(6−l).
+const SampleMap& bernstein_from_samples() {
+  static const SampleMap T = [] {
+    SampleMap B;
+    for (int k = 0; k <= kDegree; ++k)
+      for (int l = 0; l <= kDegree; ++l) {
+        const double u = static_cast<double>(k) / kDegree;
+        double binom = 1;
+        for (int i = 1; i <= l; ++i) binom = binom * (kDegree - l + i) / i;
+        B(k, l) = binom * std::pow(u, l) * std::pow(1.0 - u, kDegree - l);
+      }
+    return SampleMap(B.inverse());
+  }();
+  return T;
+}
+
+}  // namespace
 
 PeakTracker::PeakTracker(int state_size, const PeakSignals& signals)
     : signals_(signals), sig_(static_cast<size_t>(signals.count())), y_(static_cast<size_t>(state_size)),
-      dy_(static_cast<size_t>(state_size)), vals_(static_cast<size_t>(signals.count())),
+      dy_(static_cast<size_t>(state_size)), samples_(static_cast<size_t>((kDegree - 1) * state_size)), vals_(static_cast<size_t>(signals.count())),
       rates_(static_cast<size_t>(signals.count())) {}
 
 void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate) {
@@ -43,6 +69,25 @@ double PeakTracker::locate_extremum(const Stepper& s, int j, double t0, double r
   return 0.5 * (br.lo + br.hi);
 }
 
+bool PeakTracker::inside_extremes(const Stepper& s, int j, double ta, double tb, double v0, double v1) {
+  const Extremes& g = sig_[static_cast<size_t>(j)];
+  if (!started_ || signals_.rate_reads_state(j)) return false;  // not affine in the state: no bound
+  const size_t n = y_.size();
+  if (!sampled_) {  // one set of samples serves every signal of the piece
+    for (int k = 1; k < kDegree; ++k)
+      s.interpolate(ta + (tb - ta) * k / kDegree, samples_.data() + static_cast<size_t>(k - 1) * n);
+    sampled_ = true;
+  }
+  Samples v;
+  v(0) = v0, v(kDegree) = v1;
+  for (int k = 1; k < kDegree; ++k) v(k) = signals_.value(j, samples_.data() + static_cast<size_t>(k - 1) * n);
+  const Samples b = bernstein_from_samples() * v;
+  const double lo = b.minCoeff(), hi = b.maxCoeff(), scale = v.cwiseAbs().maxCoeff();
+  // The margin covers the rounding of the samples, of the coefficients and of a located value.
+  const double margin = 1e-6 * scale;
+  return hi + margin <= g.max && lo - margin >= g.min;
+}
+
 void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max,
                              const Candidate& on_candidate) {
   const int n = static_cast<int>(sig_.size());
@@ -51,8 +96,10 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     s.interpolate(ta, y_.data());
     s.derivative(ta, dy_.data());
     for (int j = 0; j < n; ++j) {
-      sig_[static_cast<size_t>(j)].rate_prev = signals_.rate(j, y_.data(), dy_.data());
-      consider(j, ta, y_.data(), on_new_max, on_candidate);
+      Extremes& g = sig_[static_cast<size_t>(j)];
+      g.rate_prev = signals_.rate(j, y_.data(), dy_.data());
+      g.value_prev = signals_.value(j, y_.data());
+      consider_value(j, ta, g.value_prev, y_.data(), on_new_max, on_candidate);
     }
     started_ = true;
   }
@@ -65,18 +112,19 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     s.derivative(tb, db_.data());
     y1 = yb_.data(), dy1 = db_.data();
   }
-  signals_.rates(y1, dy1, rates_.data());
-  signals_.values(y1, vals_.data());
+  signals_.values_and_rates(y1, dy1, vals_.data(), rates_.data());
+  sampled_ = false;
   for (int j = 0; j < n; ++j) {
     Extremes& g = sig_[static_cast<size_t>(j)];
-    const double r1 = rates_[static_cast<size_t>(j)];
-    if ((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) {
+    const double r1 = rates_[static_cast<size_t>(j)], v1 = vals_[static_cast<size_t>(j)];
+    if (((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) &&
+        (on_candidate || !inside_extremes(s, j, ta, tb, g.value_prev, v1))) {
       const double te = locate_extremum(s, j, ta, g.rate_prev, tb, r1);
       s.interpolate(te, y_.data());
       consider(j, te, y_.data(), on_new_max, on_candidate);
     }
-    consider_value(j, tb, vals_[static_cast<size_t>(j)], y1, on_new_max, on_candidate);
-    g.rate_prev = r1;
+    consider_value(j, tb, v1, y1, on_new_max, on_candidate);
+    g.rate_prev = r1, g.value_prev = v1;
   }
   last_end_ = tb == s.t() ? tb : -1.0;
 }

@@ -157,8 +157,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return sys_.link_load_rate(l, y, dy);
   }
   [[nodiscard]] bool rate_reads_state(int l) const override { return sys_.link_rate_reads_state(l); }
-  void values(const double* y, double* out) const override { sys_.link_loads(y, out); }
-  void rates(const double* y, const double* dy, double* out) const override { sys_.link_load_rates(y, dy, out); }
+  void values_and_rates(const double* y, const double* dy, double* out, double* rate_out) const override {
+    sys_.link_loads_and_rates(y, dy, out, rate_out);
+  }
 
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {

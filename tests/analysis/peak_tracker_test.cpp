@@ -56,5 +56,75 @@ TEST_P(Peaks, ExtremesOfAKnownSignal) {
   }
 }
 
+/// y'' = −ω² y − 2ζω y' from y(0) = 1, y'(0) = 0: ζ > 0 decays (every extremum after the first
+/// two lies inside them), ζ < 0 grows (every extremum is a new one).
+class Damped final : public EventSystem {
+ public:
+  Damped(double w, double zeta) : w_(w), z_(zeta) {}
+  int size() const override { return 2; }
+  void rhs(double, const double* y, double* dy) override {
+    dy[0] = y[1];
+    dy[1] = -w_ * w_ * y[0] - 2 * z_ * w_ * y[1];
+  }
+
+ private:
+  double w_, z_;
+};
+
+/// s = 2 y − 0.5 y', counting the rate evaluations; `reads_state` declares the rate as reading the
+/// state, which keeps the tracker from bounding the signal: it then locates every extremum.
+class Counted final : public PeakSignals {
+ public:
+  explicit Counted(bool reads_state) : reads_(reads_state) {}
+  int count() const override { return 1; }
+  double value(int j, const double* y) const override { return s_.value(j, y); }
+  double rate(int j, const double* y, const double* dy) const override {
+    ++rates;
+    return s_.rate(j, y, dy);
+  }
+  bool rate_reads_state(int) const override { return reads_; }
+  mutable long rates = 0;
+
+ private:
+  bool reads_;
+  LinearSignals s_{{SparseWeights{{0, 1}, {2.0, -0.5}}}};
+};
+
+struct FeedTwo final : StepObserver {
+  void on_segment(const Stepper& s, double ta, double tb) override {
+    bounded.on_segment(s, ta, tb, {});
+    located.on_segment(s, ta, tb, {});
+  }
+  void on_output(double, const double*) override {}
+  Counted sb{false}, sl{true};
+  PeakTracker bounded{2, sb}, located{2, sl};
+};
+
+// Claim: not locating the extrema that the dense output's Bernstein bound keeps inside the extremes
+// so far changes no reported value or time — the same bits as locating every one — on a decaying
+// oscillation (where it skips) and a growing one (where every extremum is a
+// new extreme), 20 periods each.
+TEST_P(Peaks, BoundedExtremaChangeNothing) {
+  for (const double zeta : {0.02, -0.02}) {
+    Damped sys(3.0, zeta);
+    StepperOptions o;
+    o.rtol = 1e-9;
+    o.atol = 1e-12;
+    auto st = make_stepper(GetParam(), sys, o);
+    FeedTwo feed;
+    DriveOptions d;
+    d.dt_out = 1.0;
+    const double y0[2] = {1.0, 0.0};
+    integrate(*st, sys, 0.0, y0, 40.0, d, feed);
+    EXPECT_EQ(feed.bounded.max(0), feed.located.max(0)) << zeta;
+    EXPECT_EQ(feed.bounded.t_max(0), feed.located.t_max(0)) << zeta;
+    EXPECT_EQ(feed.bounded.min(0), feed.located.min(0)) << zeta;
+    EXPECT_EQ(feed.bounded.t_min(0), feed.located.t_min(0)) << zeta;
+    // Locating one takes at least one rate evaluation: ≥ 30 of the ~40 extrema were not located.
+    if (zeta > 0) EXPECT_GE(feed.sl.rates - feed.sb.rates, 30);
+    else EXPECT_GT(feed.bounded.max(0), 10.0);                  // the growth: e^(ζω·40) ≈ 11
+  }
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -185,9 +185,10 @@ class DriveSystem final : public OdeSystem {
   /// Kinetic and elastic energy, J.
   [[nodiscard]] double kinetic_energy(const double* y) const;
   [[nodiscard]] double elastic_energy(const double* y) const;
-  /// The loads F of all links (link_load) and their rates (link_load_rate), in one call.
+  /// The loads F of all links (link_load), in one call; with their rates (link_load_rate) from the
+  /// state's derivative dy.
   void link_loads(const double* y, double* F) const;
-  void link_load_rates(const double* y, const double* dy, double* rate) const;
+  void link_loads_and_rates(const double* y, const double* dy, double* F, double* rate) const;
 
   // Events.
   /// Two per link, then two per contact, two per drive, two per lossy gear. Each is ≥ 0 while the

@@ -4,6 +4,12 @@
 /// extremum of a step is where the rate s_j' changes sign, located by the Illinois method on the
 /// stepper's dense output. One dense derivative per step serves all signals, so the cost per step
 /// is O(n + the signals' own cost).
+///
+/// An interior extremum that cannot be a new extreme is not located: a signal whose rate reads only
+/// the derivative is affine in the state, so on a step it is a polynomial of degree ≤ 6 in t (the
+/// dense output, solve/stepper.hpp), and the Bernstein coefficients of that polynomial on the piece
+/// (from seven samples) bound it. Inside the extremes so far by a margin, nothing the tracker
+/// reports could change, and the located value would be thrown away.
 
 #include <functional>
 #include <vector>
@@ -21,16 +27,14 @@ class PeakSignals {
   [[nodiscard]] virtual double value(int j, const double* y) const = 0;
   /// ds_j/dt at state y with derivative dy.
   [[nodiscard]] virtual double rate(int j, const double* y, const double* dy) const = 0;
-  /// Whether rate(j, …) reads y (else only dy: the tracker then skips interpolating y).
+  /// Whether rate(j, …) reads y. False says the rate is linear in dy alone, so s_j is affine in the
+  /// state: the tracker then skips interpolating y and bounds s_j by its dense-output polynomial.
   [[nodiscard]] virtual bool rate_reads_state(int /*j*/) const { return false; }
-  /// All values s_j(y) into out (count()), and all rates into rate_out: one call per step instead
-  /// of one per signal and quantity (the per-step path of the tracker). Defaults loop over value()
-  /// and rate(); a system overrides them to keep its loop free of virtual calls.
-  virtual void values(const double* y, double* out) const {
-    for (int j = 0; j < count(); ++j) out[j] = value(j, y);
-  }
-  virtual void rates(const double* y, const double* dy, double* rate_out) const {
-    for (int j = 0; j < count(); ++j) rate_out[j] = rate(j, y, dy);
+  /// All values s_j(y) into out and all rates into rate_out (count() each): one call per step
+  /// instead of one per signal and quantity (the per-step path of the tracker). The default loops
+  /// over value() and rate(); a system overrides it to keep its loop free of virtual calls.
+  virtual void values_and_rates(const double* y, const double* dy, double* out, double* rate_out) const {
+    for (int j = 0; j < count(); ++j) out[j] = value(j, y), rate_out[j] = rate(j, y, dy);
   }
 };
 
@@ -82,7 +86,7 @@ class PeakTracker {
 
  private:
   struct Extremes {
-    double rate_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
+    double rate_prev = 0.0, value_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
   };
   void consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
   /// Inline: most values are neither a new extreme nor wanted as candidates.
@@ -94,12 +98,17 @@ class PeakTracker {
   }
   void new_value(int j, double t, double v, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
   double locate_extremum(const Stepper& s, int j, double t0, double r0, double t1, double r1);
+  /// Whether signal j on the piece [ta, tb] (values v0, v1 at its ends) stays inside its extremes
+  /// so far by a margin: then its interior extremum need not be located.
+  bool inside_extremes(const Stepper& s, int j, double ta, double tb, double v0, double v1);
 
   const PeakSignals& signals_;
   std::vector<Extremes> sig_;
   bool started_ = false;
   double last_end_ = -1.0;  // end of the last piece when it ended its step, else −1
   std::vector<double> y_, dy_, yb_, db_, ym_;
+  std::vector<double> samples_;  // the state at the piece's interior sample times (inside_extremes)
+  bool sampled_ = false;         // samples_ holds the current piece's
   std::vector<double> vals_, rates_;  // the signals' values and rates at the end of a piece
 };
 

@@ -39,7 +39,8 @@ class Stepper {
   [[nodiscard]] virtual const double* y() const = 0;
   /// f(t(), y()), the derivative at the end of the last step.
   [[nodiscard]] virtual const double* dydt() const = 0;
-  /// The dense-output solution at t ∈ [t_prev(), t()].
+  /// The dense-output solution at t ∈ [t_prev(), t()]: a polynomial in t of degree ≤ 6 (dopri5: 4;
+  /// BDF: its order ≤ 5), which the peak tracker's bounds rely on (analysis/peak_tracker.hpp).
   virtual void interpolate(double t, double* y_out) const = 0;
   /// The time derivative of the dense-output solution at t ∈ [t_prev(), t()]; at the step ends it
   /// equals f(t, y).
