@@ -17,6 +17,7 @@
 #include "model/compile_drive.hpp"
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
+#include "model/compile_motion.hpp"
 #include "model/compile_crane.hpp"
 #include "model/compile_lossy.hpp"
 #include "model/compile_release.hpp"
@@ -111,6 +112,7 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
       else if (up)
         b.vertical = *up == "up" ? 1 : -1;
     }
+    detail::read_motion(f, b);
     f.finish();
     m.bodies.push_back(b);
   }
@@ -525,11 +527,13 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_buffers(top.node("buffers"), m, diag);
   detail::compile_crane(top.node("crane"), m, diag);
   detail::compile_drives(top.node("drives"), m, diag);
+  detail::check_motion_elements(m, gears, lossy, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
   if (diag.empty()) detail::resolve_rigid(m, gears, bodies, diag);
   if (diag.empty()) detail::resolve_lossy(m, lossy, diag);  // on the bodies the merge left
   // Releases refer to the bodies as merged (a slaved body's release acts on its master).
   detail::compile_releases(top.node("releases"), m, diag);
+  detail::check_motion_releases(m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);
