@@ -480,6 +480,15 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
     if (c.b >= 0) acc[c.b] += im[c.b] * lam;
     else *src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
   }
+  if constexpr (kMach)  // a stuck contact's force on a prescribed body is carried by its source
+    for (size_t j = 0; j < motions_.size() && !stuck_.empty(); ++j)
+      for (size_t i = 0; i < stuck_.size(); ++i) {
+        const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[i])];
+        const int b = motions_[j].body;
+        const double dR = c.a == b ? lam_(static_cast<Eigen::Index>(i)) : c.b == b ? -lam_(static_cast<Eigen::Index>(i)) : 0.0;
+        motion_f_[j] += dR;
+        *src += dR * y[n_ + b];
+      }
   if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
   else enforce_stuck(t, acc);
 }

@@ -50,12 +50,14 @@ bool prescribed(const Model& m, int i) { return i >= 0 && m.bodies[static_cast<s
 
 void check_motion_elements(const Model& m, const std::vector<IdealGear>& gears, const std::vector<LossyGearSpec>& lossy,
                            Diagnostics& diag) {
+  // A friction element between a prescribed body and a free one acts (its stuck force is carried by the
+  // source); to the ground or between two prescribed bodies its stuck mode would contradict the motion.
   for (const auto& c : m.contacts)
-    for (const int i : {c.a, c.b})
-      if (prescribed(m, i))
-        diag.error(m.where(c.name), fmt::format("'{}': body '{}' has a prescribed motion ('motion'); friction elements "
-                                                "on such a body are not supported yet", c.name,
-                                                m.bodies[static_cast<size_t>(i)].name));
+    if (prescribed(m, c.a) && (c.b < 0 || prescribed(m, c.b)))
+      diag.error(m.where(c.name), fmt::format("'{}': body '{}' has a prescribed motion ('motion'); a friction element "
+                                              "between it and {} is not supported (it could not stick)", c.name,
+                                              m.bodies[static_cast<size_t>(c.a)].name,
+                                              c.b < 0 ? "the ground" : "another prescribed body"));
   for (const auto& g : gears)
     for (const int i : {g.a, g.b})
       if (prescribed(m, i))

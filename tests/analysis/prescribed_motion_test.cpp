@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 #include <gtest/gtest.h>
 
@@ -173,6 +174,37 @@ simulation: {t_end: 1.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   EXPECT_NEAR(test::at(r, "driver.motion_force_N", 0.201) - test::at(r, "driver.motion_force_N", 0.199), md * 2.0, 0.5);
 }
 
+// Claim: a friction contact between a prescribed body and a free one acts as between two free bodies,
+// the prescribed one infinitely heavy. Driver (I_d = 1 kg·m²) at the prescribed speed 10 rad/s, ramped
+// to 20 rad/s over [6, 8] s (a_d = 5 rad/s²); flywheel I = 0.5 kg·m² from rest under a load −1 N·m;
+// contact [driver, fly], static 3 N·m, kinetic 2 N·m (the force F on fly, −F on the driver). Phases:
+//   [0, 5)   sliding, u > 0: I ω' = 2 − 1 ⇒ ω = 2 t, reaches 10 at 5 s; R = I_d a_d + F = 2
+//   [5, 6)   stuck: F = λ = 1 ≤ 3 (the load held); R = 1
+//   [6, 11)  holding would need λ = I a_d + 1 = 3.5 > 3: slips at 6 s, ω = 10 + 2 (t − 6) (the driver
+//            runs ahead); R = 5 + 2 = 7 on [6, 8), 2 on [8, 11); ω reaches 20 at 11 s
+//   [11, 12] stuck again, R = 1.
+// Within 1e-7 rad/s (1e-5 bdf) at every 1 ms row; R within 1e-6 N·m at rows inside each phase.
+TEST_P(PrescribedMotion, AContactWithAPrescribedBodyActsOnBoth) {
+  Model m = test::model_text(R"(
+bodies:
+  driver: {inertia: 1, motion: {speed: {type: table, unit: rad/s, points: [[0, 10], [6, 10], [8, 20]]}}}
+  fly: {inertia: 0.5}
+contacts:
+  c: {between: [driver, fly], static: 3 N*m, kinetic: 2 N*m}
+loads:
+  drag: {type: constant, body: fly, value: -1 N*m}
+simulation: {t_end: 12 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)");
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  auto w = [](double t) { return t < 5 ? 2 * t : t < 6 ? 10.0 : t < 11 ? 10 + 2 * (t - 6) : 20.0; };
+  EXPECT_LT(max_error(r, "fly.velocity_rad_s", w), GetParam() == IntegratorChoice::bdf ? 1e-5 : 1e-7);
+  for (const auto& [t, R] : std::vector<std::pair<double, double>>{{3, 2}, {5.5, 1}, {7, 7}, {9, 2}, {11.5, 1}})
+    EXPECT_NEAR(test::at(r, "driver.motion_torque_N_m", t), R, 1e-6) << t;
+  EXPECT_NEAR(test::at(r, "c.force_N_m", 5.5), 1.0, 1e-6);
+  EXPECT_NEAR(test::at(r, "driver.velocity_rad_s", 7.0), 15.0, 1e-8);
+}
+
 // Claim: in modes a prescribed body is a fixed support: driver – spring c – mass m has the one elastic
 // frequency √(c/m) = 20 rad/s and no rigid-body mode, as the mass on a spring to the ground.
 TEST(PrescribedMotionModes, APrescribedBodyIsAFixedSupport) {
@@ -247,7 +279,7 @@ TEST(PrescribedMotionCompile, BadFieldsAreLocatedErrors) {
       {"bodies:\n  b: {inertia: 1, motion: {speed: 2 m/s}}\n", "test.yaml:2:"},
       {"bodies:\n  b: {type: translational, mass: 1, velocity: 3 m/s, motion: {speed: 2 m/s}}\n", "contradicts"},
       {"bodies:\n  b: {type: translational, mass: 1, motion: {speed: 2 m/s}}\n"
-       "contacts:\n  c: {between: [b, ground], static: 1 N, kinetic: 1 N}\n", "friction elements"},
+       "contacts:\n  c: {between: [b, ground], static: 1 N, kinetic: 1 N}\n", "friction element between it and the ground"},
       {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1}\n"
        "links:\n  g: {type: ideal-gear, between: [a, b], ratio: 2}\n", "ideal gear 'g'"},
       {"bodies:\n  b: {type: translational, mass: 2, motion: {speed: 2 m/s}}\n"

@@ -9,8 +9,10 @@
 ///   R = I q'' − f,      f: the sum of all other forces on the body (links, loads, drives).
 /// The body is infinitely heavy for everything mass-weighted: its inverse inertia is 0 in the drive
 /// system, and in modes (linearize) it is a fixed support (the constraint row q̇_i = 0).
-/// Valid on a body with a constant inertia, tied to no ideal or lossy gear and carrying no friction
-/// element and no release (compile refuses those, located).
+/// A friction contact between the body and a free one acts on both; while stuck its force λ is
+/// carried by the source too (R includes it). Valid on a body with a constant inertia, tied to no
+/// ideal or lossy gear, with no release and no friction element to the ground or to another
+/// prescribed body (compile refuses those, located).
 
 #include <string>
 
