@@ -448,6 +448,13 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
       diag.error(m.where(d.name), fmt::format("drive '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
                                               "lengthen the period or give a count", d.name, n, kMaxBreakpoints));
   }
+  for (const auto& b : m.bodies) {
+    const double n = b.motion != MotionKind::free ? b.motion_signal.breakpoint_count(0.0, m.simulation.t_end) : 0.0;
+    if (n > kMaxBreakpoints)
+      diag.error(m.where(b.name), fmt::format("body '{}': its motion has {:.3g} jumps and kinks before t_end, more "
+                                              "than {:.0e}; lengthen the period or give a count", b.name, n,
+                                              kMaxBreakpoints));
+  }
 }
 
 void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
