@@ -4,6 +4,7 @@
 // form derived in its comment or an RK4 written here, on both integrators where it runs.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -298,6 +299,23 @@ TEST(PrescribedMotionCompile, BadFieldsAreLocatedErrors) {
   const Model m = test::model_text("bodies:\n  b: {inertia: 2, motion: {acceleration: 3 rad/s^2}}\n");
   EXPECT_EQ(m.bodies[0].motion, MotionKind::acceleration);
   EXPECT_EQ(m.bodies[0].motion_signal.value(0.7), 3.0);
+}
+
+// Claim: the command line refuses a bad `motion:` with exit code 2 and the error located, writing
+// nothing; a good one writes the source's force column to timeseries.csv.
+TEST(PrescribedMotionCompile, CliExitsTwoOnABadMotionAndWritesTheForceColumn) {
+  const auto bad = test::write_temp("bad-motion.yaml", "bodies:\n  b: {type: translational, mass: 1,\n"
+                                                       "      motion: {speed: 1 m/s^2}}\n");
+  const auto out = test::temp_dir() / "bad-motion-out";
+  const auto r = test::run_cli("simulate '" + bad + "' -o '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad-motion.yaml:3:"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out / "timeseries.csv"));
+  const auto good_out = test::temp_dir() / "accelerate-out";
+  const auto g = test::run_cli("simulate '" + test::example("msl/accelerate.yaml") + "' -o '" + good_out.string() + "'");
+  EXPECT_EQ(g.exit_code, 0) << g.err;
+  const std::string csv = test::slurp(good_out / "timeseries.csv");
+  EXPECT_NE(csv.find("mass.motion_force_N"), std::string::npos);
 }
 
 // Claim: a rotational body with prescribed acceleration α = 3 rad/s² and inertia 2 kg·m² needs the
