@@ -1,5 +1,6 @@
 #include "model/compile_motion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <fmt/format.h>
