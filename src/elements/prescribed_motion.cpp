@@ -1,7 +1,5 @@
 #include "machdyn/elements/prescribed_motion.hpp"
 
-#include <cmath>
-
 namespace machdyn {
 
 PrescribedMotionLaw PrescribedMotionLaw::of(const Model& m, int i) {
@@ -12,10 +10,6 @@ PrescribedMotionLaw PrescribedMotionLaw::of(const Model& m, int i) {
 void PrescribedMotionLaw::add_linear(const std::string& name, LinearModel& lin) const {
   lin.G.push_back({{body, 1.0}});
   lin.constraint_names.push_back(name);
-}
-
-double prescribed_initial_velocity(const Body& b) {
-  return b.motion == MotionKind::speed ? b.motion_signal.value(0.0) : std::nan("");
 }
 
 }  // namespace machdyn

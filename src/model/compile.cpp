@@ -450,7 +450,15 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
   }
   for (const auto& b : m.bodies) {
     const double n = b.motion != MotionKind::free ? b.motion_signal.breakpoint_count(0.0, m.simulation.t_end) : 0.0;
-    if (n > kMaxBreakpoints)
+    // q'' = d²s/dt² needs s without jumps or kinks (a kink would be a velocity jump, an impulse).
+    const double kinks = b.motion != MotionKind::position || n == 0.0 ? 0.0
+                         : n > kMaxBreakpoints ? n
+                                               : static_cast<double>(b.motion_signal.breakpoints(0.0, m.simulation.t_end).size());
+    if (kinks > 0.0)
+      diag.error(m.where(b.name), fmt::format("body '{}': its prescribed position has {:.3g} jumps or kinks before t_end; "
+                                              "a position must be smooth (a sine, an expression, a constant speed): "
+                                              "give 'speed' or 'acceleration' for a motion with kinks", b.name, kinks));
+    else if (n > kMaxBreakpoints)
       diag.error(m.where(b.name), fmt::format("body '{}': its motion has {:.3g} jumps and kinks before t_end, more "
                                               "than {:.0e}; lengthen the period or give a count", b.name, n,
                                               kMaxBreakpoints));

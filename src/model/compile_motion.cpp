@@ -14,35 +14,46 @@ void read_motion(FieldReader& f, Body& b) {
   if (!node) return;
   Diagnostics& diag = f.diagnostics();
   const std::string what = fmt::format("body '{}': field 'motion'", b.name);
+  const bool rot = b.kind == BodyKind::rotational;
+  const std::string expects = fmt::format(" expects exactly one of 'acceleration' (a signal in {}), 'speed' ({}) or "
+                                          "'position' ({})", rot ? "rad/s^2" : "m/s^2", rot ? "rad/s" : "m/s",
+                                          rot ? "rad" : "m");
   if (!node->is_map()) {
-    diag.error(node->loc, what + " expected {acceleration: SIGNAL} or {speed: SIGNAL}");
+    diag.error(node->loc, what + expects);
     return;
   }
-  const bool rot = b.kind == BodyKind::rotational;
-  const Dim acc = rot ? Dim{0, 0, -2} : dim::acceleration;
-  const Dim vel = rot ? dim::angular_velocity : dim::velocity;
   FieldReader g(*node, what, diag);
   const SpecNode* a = g.node("acceleration");
   const SpecNode* v = g.node("speed");
+  const SpecNode* p = g.node("position");
   g.finish();
-  if ((a == nullptr) == (v == nullptr)) {
-    diag.error(node->loc, what + " expects exactly one of 'acceleration' (a signal in " + (rot ? "rad/s^2" : "m/s^2") +
-                              ") or 'speed' (a signal in " + (rot ? "rad/s" : "m/s") + ")");
+  if ((a != nullptr) + (v != nullptr) + (p != nullptr) != 1) {
+    diag.error(node->loc, what + expects);
     return;
   }
-  auto s = a ? compile_signal(*a, acc, what + " 'acceleration'", diag)
-             : compile_signal(*v, vel, what + " 'speed'", diag);
+  const Dim d = a ? (rot ? Dim{0, 0, -2} : dim::acceleration)
+                  : v ? (rot ? dim::angular_velocity : dim::velocity)
+                      : (rot ? dim::none : dim::length);
+  const MotionKind kind = a ? MotionKind::acceleration : v ? MotionKind::speed : MotionKind::position;
+  const char* field = a ? "acceleration" : v ? "speed" : "position";
+  auto s = compile_signal(a ? *a : v ? *v : *p, d, fmt::format("{} '{}'", what, field), diag);
   if (!s) return;
-  b.motion = a ? MotionKind::acceleration : MotionKind::speed;
+  b.motion = kind;
   b.motion_signal = *s;
-  if (b.motion != MotionKind::speed) return;
-  // The speed signal fixes the initial velocity; a `velocity` that says otherwise is a contradiction.
-  const double v0 = s->value(0.0);
-  if (const SpecNode* given = f.map().find("velocity"); given && std::abs(b.v0 - v0) > 1e-9 * std::max(1.0, std::abs(v0)))
-    diag.error(given->loc, fmt::format("body '{}': 'velocity' {:.6g} {} contradicts its prescribed speed at t = 0, {:.6g} {} "
-                                       "(leave 'velocity' out)", b.name, b.v0, velocity_unit(b.kind), v0,
-                                       velocity_unit(b.kind)));
-  b.v0 = v0;
+  // A prescribed speed fixes the initial velocity, a prescribed position the initial position and
+  // velocity; a `position` or `velocity` in the file that says otherwise is a contradiction.
+  auto fix = [&](const char* key, double& given_value, double value, const char* unit) {
+    const SpecNode* given = f.map().find(key);
+    if (given && std::abs(given_value - value) > 1e-9 * std::max(1.0, std::abs(value)))
+      diag.error(given->loc, fmt::format("body '{}': '{}' {:.6g} {} contradicts its prescribed {} at t = 0, {:.6g} {} "
+                                         "(leave '{}' out)", b.name, key, given_value, unit, field, value, unit, key));
+    given_value = value;
+  };
+  if (kind == MotionKind::speed) fix("velocity", b.v0, s->value(0.0), velocity_unit(b.kind));
+  if (kind == MotionKind::position) {
+    fix("position", b.q0, s->value(0.0), position_unit(b.kind));
+    fix("velocity", b.v0, s->slope(0.0), velocity_unit(b.kind));
+  }
 }
 
 namespace {

@@ -4,6 +4,7 @@
 //
 //   motion: {acceleration: SIGNAL}   q'' = a(t), rad/s² or m/s²
 //   motion: {speed: SIGNAL}          q' = v(t), rad/s or m/s; the body starts at v(0)
+//   motion: {position: SIGNAL}       q = s(t), rad or m (smooth before t_end); starts at s(0), ds/dt(0)
 #include <vector>
 
 #include "machdyn/common/spec.hpp"
@@ -13,8 +14,9 @@
 
 namespace machdyn::detail {
 
-/// Reads `motion` of body b from its fields `f` (if given). A prescribed speed sets b.v0 = v(0); a
-/// `velocity` in the file that contradicts it (beyond 1e-9 relative) is a located error.
+/// Reads `motion` of body b from its fields `f` (if given). A prescribed speed sets b.v0 = v(0), a
+/// position b.q0 = s(0) and b.v0 = ds/dt(0); a `position` or `velocity` in the file that contradicts
+/// them (beyond 1e-9 relative) is a located error. (Smoothness of a position: compile's breakpoint check.)
 void read_motion(FieldReader& f, Body& b);
 
 /// The elements a prescribed body cannot carry yet, each a located error: friction elements (contacts,

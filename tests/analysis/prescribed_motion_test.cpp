@@ -105,6 +105,53 @@ simulation: {t_end: 1 s, dt_out: 0.1 ms, rtol: 1e-10, atol: 1e-12}
   EXPECT_NEAR(W, e.source_work, 1e-4 * std::abs(e.source_work));
 }
 
+// Claim: a prescribed position x_d = A sin Ωt (A = 0.05 m, Ω = 3 rad/s) drives the mass m = 1 kg
+// through the spring c = 400 N/m (ω = 20 rad/s); the driver starts at x_d(0) = 0 with v_d(0) = A Ω.
+// The mass from rest: x'' + ω² x = ω² A sin Ωt; particular ω² A/(ω² − Ω²) sin Ωt, and x'(0) = 0 gives
+// the homogeneous part −ω A Ω/(ω² − Ω²) sin ωt:  x = A ω (ω sin Ωt − Ω sin ωt)/(ω² − Ω²).
+// The source's force on the driver (m_d = 2 kg, no other load): R = −m_d A Ω² sin Ωt + c (x_d − x).
+// Within 1e-8 m (1e-7 bdf), 1e-6 m/s and 1e-4 N at every 1 ms row.
+TEST_P(PrescribedMotion, PrescribedPositionDrivesASpringMassAsTheClosedForm) {
+  Model m = test::model_text(R"(
+bodies:
+  driver: {type: translational, mass: 2 kg, motion: {position: {type: sine, amplitude: 0.05 m, frequency: 3 rad/s}}}
+  mass: {type: translational, mass: 1 kg}
+links:
+  spring: {type: spring, between: [driver, mass], stiffness: 400 N/m}
+simulation: {t_end: 2 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)");
+  m.simulation.integrator = GetParam();
+  EXPECT_NEAR(m.bodies[0].v0, 0.15, 1e-15);
+  const SimulationResult r = simulate(m);
+  const double A = 0.05, W = 3.0, w = 20.0, c = 400.0, md = 2.0, den = w * w - W * W;
+  auto xd = [&](double t) { return A * std::sin(W * t); };
+  auto x = [&](double t) { return A * w * (w * std::sin(W * t) - W * std::sin(w * t)) / den; };
+  auto v = [&](double t) { return A * w * W * w * (std::cos(W * t) - std::cos(w * t)) / den; };
+  auto R = [&](double t) { return -md * A * W * W * std::sin(W * t) + c * (xd(t) - x(t)); };
+  const double tx = GetParam() == IntegratorChoice::bdf ? 1e-7 : 1e-8;
+  EXPECT_LT(max_error(r, "driver.position_m", xd), tx);
+  EXPECT_LT(max_error(r, "driver.velocity_m_s", [&](double t) { return A * W * std::cos(W * t); }), 1e-7);
+  EXPECT_LT(max_error(r, "mass.position_m", x), tx);
+  EXPECT_LT(max_error(r, "mass.velocity_m_s", v), 1e-6);
+  EXPECT_LT(max_error(r, "driver.motion_force_N", R), 1e-4);
+}
+
+// Claim: a rotational position given as an expression, φ = 0.2 t³ + 0.5 t rad, starts at ω(0) = 0.5
+// rad/s and turns as ω = 0.6 t² + 0.5; with I = 2 kg·m² and nothing else on it the source's torque
+// is I φ'' = 2 · 1.2 t (the expression's exact second derivative). Within 1e-9 at every row (the
+// torque; the motion 1e-9 on dopri5, 1e-7 on bdf, default tolerances).
+TEST_P(PrescribedMotion, PositionExpressionUsesItsExactSecondDerivative) {
+  Model m = test::model_text(
+      "bodies:\n  b: {inertia: 2, motion: {position: {type: expression, expression: '0.2*t^3 + 0.5*t'}}}\n"
+      "simulation: {t_end: 1 s}\n");
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  const double tol = GetParam() == IntegratorChoice::bdf ? 1e-7 : 1e-9;
+  EXPECT_LT(max_error(r, "b.position_rad", [](double t) { return 0.2 * t * t * t + 0.5 * t; }), tol);
+  EXPECT_LT(max_error(r, "b.velocity_rad_s", [](double t) { return 0.6 * t * t + 0.5; }), tol);
+  EXPECT_LT(max_error(r, "b.motion_torque_N_m", [](double t) { return 2.4 * t; }), 1e-9);
+}
+
 // Claim: a prescribed acceleration with jumps (a table: 0, then 2 m/s² on [0.2, 0.5) s, then −1 m/s²
 // on [0.5, 0.9) s, then 0; the speed is a ramp-like broken line) drives a mass through a spring-damper
 // (c = 900 N/m, d = 6 N·s/m, m = 1.5 kg). Reference: an RK4 (h = 1e-5 s, the jumps on its grid)
@@ -275,7 +322,12 @@ TEST(PrescribedMotionCompile, BadFieldsAreLocatedErrors) {
       {"bodies:\n  b: {type: translational, mass: 1, motion: 2 m/s}\n", "test.yaml:2:"},
       {"bodies:\n  b: {type: translational, mass: 1, motion: {speed: 1 m/s, acceleration: 1 m/s^2}}\n", "exactly one"},
       {"bodies:\n  b: {type: translational, mass: 1, motion: {}}\n", "exactly one"},
-      {"bodies:\n  b: {type: translational, mass: 1, motion: {position: 1 m}}\n", "position"},
+      {"bodies:\n  b: {type: translational, mass: 1, motion: {jerk: 1}}\n", "jerk"},
+      {"bodies:\n  b: {type: translational, mass: 1, position: 2 m, motion: {position: 1 m}}\n", "contradicts"},
+      {"bodies:\n  b: {type: translational, mass: 1, velocity: 2 m/s, motion: {position: 1 m}}\n", "contradicts"},
+      {"bodies:\n  b: {inertia: 1, motion: {position: 1 m}}\n", "test.yaml:2:"},
+      {"bodies:\n  b: {type: translational, mass: 1, motion: {position: {type: table, unit: m, points: [[0, 0], "
+       "[0.5, 1], [1, 1]]}}}\nsimulation: {t_end: 2 s}\n", "must be smooth"},
       {"bodies:\n  b: {type: translational, mass: 1, motion: {acceleration: 1 m/s}}\n", "test.yaml:2:"},
       {"bodies:\n  b: {inertia: 1, motion: {speed: 2 m/s}}\n", "test.yaml:2:"},
       {"bodies:\n  b: {type: translational, mass: 1, velocity: 3 m/s, motion: {speed: 2 m/s}}\n", "contradicts"},
@@ -299,6 +351,12 @@ TEST(PrescribedMotionCompile, BadFieldsAreLocatedErrors) {
   const Model m = test::model_text("bodies:\n  b: {inertia: 2, motion: {acceleration: 3 rad/s^2}}\n");
   EXPECT_EQ(m.bodies[0].motion, MotionKind::acceleration);
   EXPECT_EQ(m.bodies[0].motion_signal.value(0.7), 3.0);
+  // A position starts the body at s(0) and ds/dt(0); a constant speed given as a table that ends
+  // after t_end is smooth before it.
+  const Model p = test::model_text("bodies:\n  b: {type: translational, mass: 1, motion: {position: {type: table, "
+                                   "unit: m, points: [[0, 1], [10, 6]]}}}\nsimulation: {t_end: 2 s}\n");
+  EXPECT_EQ(p.bodies[0].q0, 1.0);
+  EXPECT_EQ(p.bodies[0].v0, 0.5);
 }
 
 // Claim: the command line refuses a bad `motion:` with exit code 2 and the error located, writing

@@ -4,6 +4,7 @@
 /// body's acceleration follows a signal instead of its equation of motion,
 ///   acceleration:  q'' = a(t)
 ///   speed:         q'' = dv/dt (t),  v(0) = v(t = 0)         (a signal's slope on the right of a kink)
+///   position:      q'' = d²s/dt² (t),  q(0) = s(0), v(0) = ds/dt(0)   (s without jumps or kinks)
 /// in rad/s² or m/s². Every link, load and drive on the body still acts; the force that keeps it on
 /// its motion (the motion source's force, N·m or N, positive along +q) closes its equation of motion:
 ///   R = I q'' − f,      f: the sum of all other forces on the body (links, loads, drives).
@@ -32,16 +33,14 @@ struct PrescribedMotionLaw {
 
   /// q''(t), rad/s² or m/s².
   [[nodiscard]] double acceleration(double t) const {
-    return kind == MotionKind::acceleration ? signal->value(t) : signal->slope(t);
+    return kind == MotionKind::acceleration ? signal->value(t)
+           : kind == MotionKind::speed      ? signal->slope(t)
+                                            : signal->curvature(t);
   }
   /// R = I q''(t) − f: the force of the motion source for the other forces f on the body.
   [[nodiscard]] double force(double t, double f) const { return inertia * acceleration(t) - f; }
   /// Adds the fixed support q̇_i = 0 of modes (a constraint row named after the body).
   void add_linear(const std::string& name, LinearModel& lin) const;
 };
-
-/// The initial velocity body b's motion implies: v(0) of a prescribed speed; NaN when its motion is
-/// free or an acceleration (the file's `velocity` stands).
-double prescribed_initial_velocity(const Body& b);
 
 }  // namespace machdyn

@@ -33,9 +33,11 @@ class Machine;  // model/machine.hpp: a body with position-dependent reduced ine
 enum class BodyKind { rotational, translational };
 
 /// How a body moves: by its equation of motion (`free`), or prescribed by a signal (`motion:`, Modelica's
-/// Translational/Rotational.Sources.Accelerate and Speed): its acceleration a(t) (`acceleration`) or its
-/// speed v(t) (`speed`, then a = dv/dt and v(0) = v(t = 0)). The law: elements/prescribed_motion.hpp.
-enum class MotionKind { free, acceleration, speed };
+/// Translational/Rotational.Sources.Accelerate, Speed and Position): its acceleration a(t)
+/// (`acceleration`), its speed v(t) (`speed`: a = dv/dt, v(0) = v(t = 0)) or its position s(t)
+/// (`position`: a = d²s/dt², q(0) = s(0), v(0) = ds/dt(0); s smooth before t_end). The law:
+/// elements/prescribed_motion.hpp.
+enum class MotionKind { free, acceleration, speed, position };
 
 struct Body {
   std::string name;
@@ -52,8 +54,8 @@ struct Body {
   /// Variable inertia I(q) (crank-slider, rolling wheel, table, expression; model/machine.hpp), or
   /// null for a constant one. When set, `inertia` holds I(q0) (used where the model is linearized).
   std::shared_ptr<const Machine> machine;
-  /// Prescribed motion (`motion:`): the signal is a(t) in rad/s² or m/s² (acceleration) or v(t) in
-  /// rad/s or m/s (speed); unused while `motion` is free.
+  /// Prescribed motion (`motion:`): the signal is a(t) in rad/s² or m/s² (acceleration), v(t) in
+  /// rad/s or m/s (speed) or s(t) in rad or m (position); unused while `motion` is free.
   MotionKind motion = MotionKind::free;
   Signal motion_signal;
 };
