@@ -101,6 +101,13 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     machine_.push_back(b.machine.get());
     if (b.machine) machine_bodies_.push_back(static_cast<int>(machine_.size()) - 1);
   }
+  // Prescribed motions: infinitely heavy (inverse inertia 0), their acceleration from the signal.
+  for (int i = 0; i < n_; ++i)
+    if (model.bodies[static_cast<size_t>(i)].motion != MotionKind::free) {
+      motions_.push_back(PrescribedMotionLaw::of(model, i));
+      inv_mass_[static_cast<size_t>(i)] = 0.0;
+    }
+  motion_f_.assign(motions_.size(), 0.0);
   im_ = inv_mass_;
   for (const auto& l : model.links) {
     links_.push_back(LinkLaw::of(model, l));
@@ -124,14 +131,14 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   gear_t_.assign(static_cast<size_t>(ng_), {});
   gear_fa_.assign(static_cast<size_t>(ng_), 0.0);
   gear_fb_.assign(static_cast<size_t>(ng_), 0.0);
-  general_ = has_machines_ || nd_ > 0;
+  general_ = has_machines_ || nd_ > 0 || !motions_.empty();
   drive_mode_.assign(static_cast<size_t>(nd_), LimitMode::linear);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
   for (const auto& ld : model.loads) {
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
     else varying_.push_back(&ld);
   }
-  affine_eligible_ = varying_.empty() && nd_ == 0 && ng_ == 0 && !has_machines_ && (nl_ + nc_ > 0);  // machines: nonlinear in y
+  affine_eligible_ = varying_.empty() && nd_ == 0 && ng_ == 0 && !has_machines_ && motions_.empty() && (nl_ + nc_ > 0);  // machines: nonlinear in y
   // A winding rope's c(q_a) and a shaped buffer's F_e(e) + F_v(δ̇) make their loads nonlinear in y:
   // the general path.
   for (const auto& l : links_) affine_eligible_ = affine_eligible_ && l.d == 0.0 && !l.winding && !l.shaped;
@@ -144,7 +151,9 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   // Jacobian terms (elements/link.hpp).
   bool gaps = false;
   for (const auto& l : links_) gaps = gaps || l.gap;
-  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && ng_ == 0 && n_ >= 1 && n_ <= 8) form_dense();
+  if (!energy_ && !has_machines_ && !gaps && nc_ == 0 && nd_ == 0 && ng_ == 0 && motions_.empty() && n_ >= 1 &&
+      n_ <= 8)
+    form_dense();
 }
 
 void DriveSystem::form_dense() {
@@ -449,9 +458,13 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
                                                                        double* src, double* fric, double* damp) {
   forces<kMach>(t, y, acc, fc, src, fric, damp);
   if (ng_ > 0) apply_gears(y, acc, fric);
+  if constexpr (kMach)
+    if (!motions_.empty()) motion_forces(t, y + n_, acc, src);
   const double* im = kMach ? im_.data() : inv_mass_.data();
   for (int i = 0; i < n_; ++i) acc[i] *= im[i];
   if (ng_ > 0) enforce_gears(acc);
+  if constexpr (kMach)
+    if (!motions_.empty()) enforce_motions(t, acc);
   if (stuck_.empty()) return;
   for (size_t j = 0; j < stuck_.size(); ++j)
     r_(static_cast<Eigen::Index>(j)) = contacts_[static_cast<size_t>(stuck_[j])].sliding_acceleration(t, acc);
@@ -467,8 +480,29 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
     if (c.b >= 0) acc[c.b] += im[c.b] * lam;
     else *src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
   }
+  if constexpr (kMach)  // a stuck contact's force on a prescribed body is carried by its source
+    for (size_t j = 0; j < motions_.size() && !stuck_.empty(); ++j)
+      for (size_t i = 0; i < stuck_.size(); ++i) {
+        const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[i])];
+        const int b = motions_[j].body;
+        const double dR = c.a == b ? lam_(static_cast<Eigen::Index>(i)) : c.b == b ? -lam_(static_cast<Eigen::Index>(i)) : 0.0;
+        motion_f_[j] += dR;
+        *src += dR * y[n_ + b];
+      }
   if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
   else enforce_stuck(t, acc);
+}
+
+void DriveSystem::motion_forces(double t, const double* v, const double* f, double* src) {
+  for (size_t j = 0; j < motions_.size(); ++j) {
+    const PrescribedMotionLaw& k = motions_[j];
+    motion_f_[j] = k.force(t, f[k.body]);
+    *src += motion_f_[j] * v[k.body];  // the motion source's work
+  }
+}
+
+void DriveSystem::enforce_motions(double t, double* acc) const {
+  for (const PrescribedMotionLaw& k : motions_) acc[k.body] = k.acceleration(t);
 }
 
 void DriveSystem::apply_gears(const double* y, double* f, double* p_fric) {

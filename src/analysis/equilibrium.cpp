@@ -22,6 +22,10 @@ void check_supported(const Model& m) {
   Diagnostics diag;
   const std::string pre = "simulation: 'initial: equilibrium'";
   for (const auto& b : m.bodies)
+    if (b.motion != MotionKind::free)
+      diag.error(m.where(b.name), fmt::format("{} cannot start body '{}' (its motion is prescribed by 'motion') in "
+                                              "equilibrium yet; use 'initial: given'", pre, b.name));
+  for (const auto& b : m.bodies)
     if (b.machine)
       diag.error(m.where(b.name), fmt::format("{} cannot start body '{}' (a machine with variable inertia) in "
                                               "equilibrium yet; use 'initial: given'", pre, b.name));

@@ -237,6 +237,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       const Body& bd = m_.bodies[static_cast<size_t>(b)];
       names.push_back(bd.name + (bd.kind == BodyKind::translational ? ".mass_kg" : ".inertia_kg_m2"));
     }
+    // Bodies with a prescribed motion (elements/prescribed_motion.hpp): the force of the motion source.
+    for (int j = 0; j < sys_.motion_count(); ++j) {
+      const Body& bd = m_.bodies[static_cast<size_t>(sys_.motion(j).body)];
+      names.push_back(bd.name + (bd.kind == BodyKind::translational ? ".motion_force_N" : ".motion_torque_N_m"));
+    }
     if (extra_.any()) extra_columns(names);
     // Rows of only t, states and link loads (and no machine, whose accelerations are kept per row).
     plain_rows_ = names.size() == 1 + 2 * m_.bodies.size() + m_.links.size() && !sys_.has_machines();
@@ -306,6 +311,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (double T : temperature_) put(T - kZeroCelsius);
     }
     for (int b : released_bodies_) put(sys_.inertia(b));
+    if (sys_.motion_count() > 0) {
+      sys_.evaluate(t, y, acc_.data(), fc_.data());
+      for (int j = 0; j < sys_.motion_count(); ++j) put(sys_.motion_force(j));
+    }
     if (extra_.any()) extra_output(t, y, row, c);
   }
 

@@ -20,6 +20,8 @@ Eigen::MatrixXd rigid_motions(const Model& m) {
   };
   std::vector<std::vector<Edge>> adj(static_cast<size_t>(n));
   std::vector<bool> grounded(static_cast<size_t>(n), false);
+  // A body with prescribed motion is a support (elements/prescribed_motion.hpp): no free motion.
+  for (int i = 0; i < n; ++i) grounded[static_cast<size_t>(i)] = m.bodies[static_cast<size_t>(i)].motion != MotionKind::free;
   for (const auto& l : m.links) {
     if (l.c <= 0.0) continue;
     if (l.a < 0 || l.b < 0) {
@@ -75,6 +77,7 @@ struct ParticularSolver::Impl {
   Eigen::LDLT<Eigen::MatrixXd> rigid;  // Rᵀ M R
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   std::vector<int> pins;  // pinned coordinates (q_p = 0), or empty: the bordered system
+  std::vector<int> fixed;  // bodies with prescribed motion: supports (q = 0), in both systems
   explicit Impl(const Model& model) : m(model) {}
 };
 
@@ -95,7 +98,9 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
   // so the largest entry of each column gives independent pins; if not (checked), the bordered
   // saddle-point system [K MR; (MR)ᵀ 0] below, whose dense border fills in (O(n²) for long chains).
   std::vector<int> pin(static_cast<size_t>(r), -1);
-  std::vector<char> pinned(static_cast<size_t>(n), 0);
+  std::vector<char> pinned(static_cast<size_t>(n), 0), fixed(static_cast<size_t>(n), 0);
+  for (int i = 0; i < n; ++i)
+    if (m.bodies[static_cast<size_t>(i)].motion != MotionKind::free) fixed[static_cast<size_t>(i)] = 1, s.fixed.push_back(i);
   bool pins_ok = r > 0;
   for (Eigen::Index k = 0; k < r && pins_ok; ++k) {
     Eigen::Index i = 0;
@@ -115,9 +120,11 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
     if (l.c <= 0.0) continue;
     LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int row, int col, double v) {
       if (col >= n || (pins_ok && (pinned[static_cast<size_t>(row)] || pinned[static_cast<size_t>(col)]))) return;
+      if (fixed[static_cast<size_t>(row)] || fixed[static_cast<size_t>(col)]) return;
       trip.emplace_back(row, col, -v);
     });
   }
+  for (int i : s.fixed) trip.emplace_back(i, i, 1.0);
   if (pins_ok) {
     for (int i : pin) trip.emplace_back(i, i, 1.0);
     s.pins = pin;
@@ -148,6 +155,7 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   rhs.head(n) = f;
   if (s.R.cols() > 0) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
   for (int p : s.pins) rhs(p) = 0.0;
+  for (int p : s.fixed) rhs(p) = 0.0;
   const Eigen::VectorXd sol = s.lu.solve(rhs);
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t k = 0; k < m.links.size(); ++k) {

@@ -7,6 +7,7 @@
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/linearize.hpp"
 #include "machdyn/elements/lossy_gear.hpp"
+#include "machdyn/elements/prescribed_motion.hpp"
 
 namespace machdyn {
 
@@ -65,6 +66,10 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
   for (const Drive& d : m.drives) DriveLaw::of(d).add_linear(LimitMode::linear, lin);
   // Lossy gears: for modes the ideal gear, v_a − i v_b = 0 (elements/lossy_gear.hpp).
   for (const LossyGear& g : m.lossy_gears) LossyGearLaw::of(g).add_linear(lin);
+  // Prescribed motions: fixed supports (elements/prescribed_motion.hpp).
+  for (int i = 0; i < n; ++i)
+    if (m.bodies[static_cast<size_t>(i)].motion != MotionKind::free)
+      PrescribedMotionLaw::of(m, i).add_linear(m.bodies[static_cast<size_t>(i)].name + ".motion", lin);
   return lin;
 }
 

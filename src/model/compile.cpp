@@ -17,6 +17,7 @@
 #include "model/compile_drive.hpp"
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
+#include "model/compile_motion.hpp"
 #include "model/compile_crane.hpp"
 #include "model/compile_lossy.hpp"
 #include "model/compile_release.hpp"
@@ -111,6 +112,7 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
       else if (up)
         b.vertical = *up == "up" ? 1 : -1;
     }
+    detail::read_motion(f, b);
     f.finish();
     m.bodies.push_back(b);
   }
@@ -446,6 +448,21 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
       diag.error(m.where(d.name), fmt::format("drive '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
                                               "lengthen the period or give a count", d.name, n, kMaxBreakpoints));
   }
+  for (const auto& b : m.bodies) {
+    const double n = b.motion != MotionKind::free ? b.motion_signal.breakpoint_count(0.0, m.simulation.t_end) : 0.0;
+    // q'' = d²s/dt² needs s without jumps or kinks (a kink would be a velocity jump, an impulse).
+    const double kinks = b.motion != MotionKind::position || n == 0.0 ? 0.0
+                         : n > kMaxBreakpoints ? n
+                                               : static_cast<double>(b.motion_signal.breakpoints(0.0, m.simulation.t_end).size());
+    if (kinks > 0.0)
+      diag.error(m.where(b.name), fmt::format("body '{}': its prescribed position has {:.3g} jumps or kinks before t_end; "
+                                              "a position must be smooth (a sine, an expression, a constant speed): "
+                                              "give 'speed' or 'acceleration' for a motion with kinks", b.name, kinks));
+    else if (n > kMaxBreakpoints)
+      diag.error(m.where(b.name), fmt::format("body '{}': its motion has {:.3g} jumps and kinks before t_end, more "
+                                              "than {:.0e}; lengthen the period or give a count", b.name, n,
+                                              kMaxBreakpoints));
+  }
 }
 
 void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
@@ -525,11 +542,13 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_buffers(top.node("buffers"), m, diag);
   detail::compile_crane(top.node("crane"), m, diag);
   detail::compile_drives(top.node("drives"), m, diag);
+  detail::check_motion_elements(m, gears, lossy, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
   if (diag.empty()) detail::resolve_rigid(m, gears, bodies, diag);
   if (diag.empty()) detail::resolve_lossy(m, lossy, diag);  // on the bodies the merge left
   // Releases refer to the bodies as merged (a slaved body's release acts on its master).
   detail::compile_releases(top.node("releases"), m, diag);
+  detail::check_motion_releases(m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);

@@ -159,6 +159,7 @@ std::size_t output_columns_bound(const Model& m) {
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature
+  for (const auto& b : m.bodies) n += b.motion != MotionKind::free ? 1 : 0;  // the motion source's force
   return n + released_bodies(m).size();
 }
 
@@ -303,6 +304,11 @@ std::vector<double> Model::breakpoints(double t_end) const {
     t.insert(t.end(), c.surface_times.begin(), c.surface_times.end());
   }
   for (const auto& r : releases) t.push_back(r.time);  // the mass matrix changes there
+  for (const auto& b : bodies)
+    if (b.motion != MotionKind::free) {
+      auto s = b.motion_signal.breakpoints(0.0, t_end);
+      t.insert(t.end(), s.begin(), s.end());
+    }
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
   std::erase_if(t, [&](double x) { return !(x > 0.0 && x < t_end); });

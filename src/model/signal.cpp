@@ -164,6 +164,24 @@ double Signal::slope(double t) const {
   return 0.0;
 }
 
+double Signal::curvature(double t) const {
+  switch (kind_) {
+    case Kind::sine: return t < t0_ ? 0.0 : -a_ * b_ * b_ * std::sin(b_ * (t - t0_) + c_);
+    case Kind::expression: return f_->eval(Jet::variable(t)).dd;
+    case Kind::sum: {
+      double s = 0.0;
+      for (const Signal& term : terms_) s += term.curvature(t);
+      return s;
+    }
+    case Kind::constant:
+    case Kind::step:
+    case Kind::ramp:
+    case Kind::table:
+    case Kind::pulse: return 0.0;  // piecewise linear
+  }
+  return 0.0;
+}
+
 std::vector<double> Signal::breakpoints(double t0, double t1) const {
   std::vector<double> out;
   auto add = [&](double t) {

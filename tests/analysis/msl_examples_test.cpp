@@ -857,6 +857,98 @@ TEST_P(MslExample, SignConventionFollowsTheClosedForm) {
   }
 }
 
+// Claim: examples/msl/accelerate.yaml (MSL Translational.Examples.Accelerate): the mass (1 kg) whose
+// acceleration is prescribed as a = 1 m/s² from rest moves as x = t²/2, v = t, and the source pushes
+// with m a = 1 N throughout (no other force acts): within 1e-10 m, 1e-10 m/s and 1e-12 N at every row.
+TEST_P(MslExample, AccelerateFollowsTheClosedForm) {
+  const SimulationResult r = simulate(example("accelerate.yaml", GetParam()));
+  EXPECT_LT(max_error(r, "mass.position_m", [](double t) { return 0.5 * t * t; }), 1e-10);
+  EXPECT_LT(max_error(r, "mass.velocity_m_s", [](double t) { return t; }), 1e-10);
+  EXPECT_LT(max_error(r, "mass.motion_force_N", [](double) { return 1.0; }), 1e-12);
+  EXPECT_NEAR(series(r, "mass.position_m").back(), 0.5, 1e-10);
+}
+
+// Claim: examples/msl/rolling-wheel.yaml (MSL Rotational.Examples.RollingWheel) follows the closed
+// form. The rolling wheel (R = 1 m) ties v = R ω, so in the mass's coordinate the wheel's inertia adds
+// J/R² and the torque acts as M/R: (J/R² + m) v' = M/R − k v|v| with J/R² + m = 2 kg, M = 10 N·m
+// from 0.1 s, k = 0.4 N·s²/m². For t ≥ 0.1 s, v ≥ 0: v' = 5 − 0.2 v² = 0.2 (25 − v²), whose solution
+// from rest is v = 5 tanh(t − 0.1) (d/dt: 5 sech² = 5 (1 − tanh²) ✓), x = 5 ln cosh(t − 0.1); at
+// rest before. ω = v/R, φ = x/R. Within 1e-8 m, 1e-8 m/s (1e-7 bdf) at every 1 ms row; v(5 s) =
+// 5 tanh 4.9 = 4.9978 m/s: MSL's equilibrium at 5 m/s.
+TEST_P(MslExample, RollingWheelFollowsTheClosedForm) {
+  const SimulationResult r = simulate(example("rolling-wheel.yaml", GetParam()));
+  auto v = [](double t) { return t < 0.1 ? 0.0 : 5.0 * std::tanh(t - 0.1); };
+  auto x = [](double t) { return t < 0.1 ? 0.0 : 5.0 * std::log(std::cosh(t - 0.1)); };
+  const double tol = GetParam() == IntegratorChoice::bdf ? 1e-7 : 1e-8;
+  EXPECT_LT(max_error(r, "mass.velocity_m_s", v), tol);
+  EXPECT_LT(max_error(r, "mass.position_m", x), tol);
+  EXPECT_LT(max_error(r, "inertia.velocity_rad_s", v), tol);
+  EXPECT_LT(max_error(r, "inertia.position_rad", x), tol);
+  EXPECT_NEAR(series(r, "mass.velocity_m_s").back(), 5.0 * std::tanh(4.9), tol);
+}
+
+// Claim: examples/msl/vehicle.yaml (MSL Translational.Examples.Vehicle) follows an independent RK4 of
+// MSL's Vehicle equations. Per vehicle (m = 100 kg, J = 0, R = 0.25 m), with the example's tables
+// y1(t) (torque factor) and y2(t) = tan α (grade), both piecewise constant with jumps at 5, 10.8, 20,
+// 25, 50, 55 s:
+//   m v' = τ(t)/R − (Cd A ρ/2) v|v| − Cr m g cos α sat(v/v_reg) − m g sin α,   s' = v,
+//   τ = k y1, k = (Cd A 1.18 vNom²/2 + Cr m g) R, vNom = 25/3.5 m/s (the gain of the example, with its
+//   ρ = 1.18), the vehicles' own ρ = 1.2, v_reg = 1e-3 m/s (Regularization.Linear), g = 9.80665.
+// vehicle1 with 2τ pulls the trailer rigidly: 2m v' = 2τ/R − 2 (resistances), the same equation, so
+// vehicle1 and the trailer move exactly as vehicle. The RK4 runs row by row (10 ms rows; the tables
+// taken at each row's midpoint, every jump is a row time), 1000 steps per row, 10⁵ in the rows where
+// v passes the regularization's kink at ±v_reg (after 5 s, and at the stop near 55.9 s). Within 1e-6 m and 1e-7 m/s (dopri5), 1e-5 m
+// and 1e-6 m/s (bdf) at every row.
+TEST_P(MslExample, VehicleFollowsAnRk4OfMslsEquations) {
+  const SimulationResult r = simulate(example("vehicle.yaml", GetParam()));
+  const double m = 100, g = 9.80665, R = 0.25, Cr = 0.01, vreg = 1e-3, kd = 0.5 * 1.0 * 1.2 / 2;
+  const double vNom = 25 / 3.5, k = (0.5 * 1.0 * 1.18 * vNom * vNom / 2 + Cr * m * g) * R;
+  auto y1 = [](double t) {
+    return t < 5 ? 0.0 : t < 10.8 ? 5.6 : t < 20 ? 1.0 : t < 25 ? 2.8 : t < 50 ? 1.0 : t < 55 ? -5.0 : 0.0;
+  };
+  auto y2 = [](double t) { return t >= 20 && t < 25 ? 0.05 : 0.0; };
+  const auto& ts = series(r, "t_s");
+  std::vector<double> sref(ts.size()), vref(ts.size());
+  double x = 0, v = 0;
+  for (size_t i = 1; i < ts.size(); ++i) {
+    const double tm = 0.5 * (ts[i - 1] + ts[i]), alpha = std::atan(y2(tm)), tau = k * y1(tm);
+    auto acc = [&](double w) {
+      const double sat = std::clamp(w / vreg, -1.0, 1.0);
+      return (tau / R - kd * w * std::abs(w) - Cr * m * g * std::cos(alpha) * sat - m * g * std::sin(alpha)) / m;
+    };
+    // Fine steps where v may pass the kink at ±v_reg: the row after 5 s (start) and rows starting
+    // at v_reg/2 < |v| < 0.01 m/s (the stop after 55 s).
+    const bool kink = std::abs(ts[i - 1] - 5.0) < 1e-9 || (std::abs(v) > 0.5 * vreg && std::abs(v) < 0.01);
+    const int nsub = kink ? 100000 : 1000;
+    const double h = (ts[i] - ts[i - 1]) / nsub;
+    for (int j = 0; j < nsub; ++j) {
+      const double k1x = v, k1v = acc(v);
+      const double k2x = v + 0.5 * h * k1v, k2v = acc(v + 0.5 * h * k1v);
+      const double k3x = v + 0.5 * h * k2v, k3v = acc(v + 0.5 * h * k2v);
+      const double k4x = v + h * k3v, k4v = acc(v + h * k3v);
+      x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+      v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    }
+    sref[i] = x, vref[i] = v;
+  }
+  const bool bdf = GetParam() == IntegratorChoice::bdf;
+  for (const char* b : {"vehicle", "vehicle1", "trailer"}) {
+    const auto& s = series(r, std::string(b) + ".position_m");
+    const auto& w = series(r, std::string(b) + ".velocity_m_s");
+    double es = 0, ev = 0;
+    for (size_t i = 0; i < ts.size(); ++i) es = std::max(es, std::abs(s[i] - sref[i])), ev = std::max(ev, std::abs(w[i] - vref[i]));
+    EXPECT_LT(es, bdf ? 1e-5 : 1e-6) << b << " " << sci(es);
+    EXPECT_LT(ev, bdf ? 1e-6 : 1e-7) << b << " " << sci(ev);
+  }
+  // The story of MSL's documentation: near vNom = 7.14 m/s by 20 s and still at 50 s, braked from 50 s,
+  // then stopped by the driving resistances before 60 s.
+  EXPECT_NEAR(test::at(r, "vehicle.velocity_m_s", 20.0), vNom, 0.3);
+  EXPECT_NEAR(test::at(r, "vehicle.velocity_m_s", 50.0), vNom, 0.3);
+  EXPECT_LT(std::abs(series(r, "vehicle.velocity_m_s").back()), 1e-6);
+  // The massless wheel turns as v/R.
+  EXPECT_NEAR(series(r, "vehicle_wheel.velocity_rad_s").back(), series(r, "vehicle.velocity_m_s").back() / R, 1e-9);
+}
+
 // Claim: examples/msl/initial-conditions.yaml (MSL Translational.Examples.InitialConditions) starts
 // where MSL's initial conditions put it and follows the closed forms:
 //   system 1 (m3, m4, every spring unstretched, at rest) stays exactly at rest;

@@ -129,6 +129,23 @@ TEST(Signal, SlopesAgreeWithFiniteDifference) {
     }
 }
 
+// Claim: curvature() is d²s/dt²: it agrees with a central finite difference of slope() away from
+// breakpoints (a sine's −A ω² sin, an expression's jet, a sum's terms), and is 0 for the piecewise
+// linear kinds.
+TEST(Signal, CurvaturesAgreeWithFiniteDifferenceOfTheSlope) {
+  const std::vector<Signal> signals{
+      Signal::ramp(1, 4, 0.5, 2.5), Signal::table({0, 1, 1, 3}, {0, 10, 4, -2}, true), Signal::sine(2, 7, 0.3, 1, 0.1),
+      Signal::expression(std::make_shared<const Expression>("exp(-t)*sin(3*t)", "t")),
+      Signal::sum({Signal::sine(2, 7, 0.3, 1, 0.1), Signal::ramp(1, 4, 0.5, 2.5)})};
+  const double h = 1e-6;
+  for (const Signal& s : signals)
+    for (double t : {-0.5, 0.3, 0.77, 1.6, 2.2, 4.0}) {
+      const double fd = (s.slope(t + h) - s.slope(t - h)) / (2 * h);
+      EXPECT_NEAR(s.curvature(t), fd, 1e-5 * std::max(1.0, std::abs(fd))) << s.describe("") << " at " << t;
+    }
+  EXPECT_NE(signals[2].curvature(0.77), 0.0);  // not trivially zero
+}
+
 // Claim: levels() lists the values of piecewise-constant signals (what a contactor or a direction
 // may be checked against) and is empty for signals that vary continuously.
 TEST(Signal, LevelsOfPiecewiseConstantSignals) {

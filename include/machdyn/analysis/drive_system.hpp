@@ -53,6 +53,7 @@
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/lossy_gear.hpp"
 #include "machdyn/elements/modes.hpp"
+#include "machdyn/elements/prescribed_motion.hpp"
 #include "machdyn/model/model.hpp"
 #include "machdyn/solve/ode_system.hpp"
 
@@ -142,6 +143,13 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] LossyGearLaw::Torques gear_torques(int g, double t, const double* y);
   /// Puts both bodies of gear g exactly at rest (its speed reached zero: decided at rest, as a contact).
   void stop_gear(int g, double* y) const;
+
+  // Prescribed motions (elements/prescribed_motion.hpp), in body order: such a body has inverse
+  // inertia 0 (infinitely heavy for stuck contacts and every mass-weighted split) and q'' = a(t).
+  [[nodiscard]] int motion_count() const { return static_cast<int>(motions_.size()); }
+  [[nodiscard]] const PrescribedMotionLaw& motion(int j) const { return motions_[static_cast<size_t>(j)]; }
+  /// The force R of motion j's source at the last evaluate() (or rhs), N·m or N.
+  [[nodiscard]] double motion_force(int j) const { return motion_f_[static_cast<size_t>(j)]; }
 
   [[nodiscard]] const LinkLaw& link(int l) const { return links_[static_cast<size_t>(l)]; }
   [[nodiscard]] const ContactLaw& contact(int k) const { return contacts_[static_cast<size_t>(k)]; }
@@ -259,6 +267,12 @@ class DriveSystem final : public OdeSystem {
   double drive_forces(double t, const double* y, double* f) const;
   /// The drives' state rates into dydt.
   void drive_rates(double t, const double* y, double* dydt) const;
+  /// Prescribed motions: from the forces f (before the inertias divide them) each source's force R
+  /// (motion_f_) and its work rate into *src; then acc = a(t) on their bodies (after the division).
+  void motion_forces(double t, const double* v, const double* f, double* src);
+  void enforce_motions(double t, double* acc) const;
+  std::vector<PrescribedMotionLaw> motions_;
+  std::vector<double> motion_f_;
 
   // Within one mode, with constant loads and friction levels, no brake ramp, no moving surface and no
   // dampers, the whole right-hand side (work and losses included) is affine in y: dy = J y + c. Each

@@ -32,6 +32,13 @@ class Machine;  // model/machine.hpp: a body with position-dependent reduced ine
 
 enum class BodyKind { rotational, translational };
 
+/// How a body moves: by its equation of motion (`free`), or prescribed by a signal (`motion:`, Modelica's
+/// Translational/Rotational.Sources.Accelerate, Speed and Position): its acceleration a(t)
+/// (`acceleration`), its speed v(t) (`speed`: a = dv/dt, v(0) = v(t = 0)) or its position s(t)
+/// (`position`: a = d²s/dt², q(0) = s(0), v(0) = ds/dt(0); s smooth before t_end). The law:
+/// elements/prescribed_motion.hpp.
+enum class MotionKind { free, acceleration, speed, position };
+
 struct Body {
   std::string name;
   BodyKind kind = BodyKind::rotational;
@@ -47,6 +54,10 @@ struct Body {
   /// Variable inertia I(q) (crank-slider, rolling wheel, table, expression; model/machine.hpp), or
   /// null for a constant one. When set, `inertia` holds I(q0) (used where the model is linearized).
   std::shared_ptr<const Machine> machine;
+  /// Prescribed motion (`motion:`): the signal is a(t) in rad/s² or m/s² (acceleration), v(t) in
+  /// rad/s or m/s (speed) or s(t) in rad or m (position); unused while `motion` is free.
+  MotionKind motion = MotionKind::free;
+  Signal motion_signal;
 };
 
 /// Standard gravity g_n (ISO 80000-3), m/s²: the default of `gravity:`.
@@ -416,8 +427,8 @@ struct Model {
   /// lossy gear.
   [[nodiscard]] bool is_hybrid() const;
   /// Times in (0, t_end), increasing without repeats, where a load, the application of a brake or
-  /// clutch (its normal force) or a surface velocity jumps or has a kink in t, or a body releases
-  /// part of its mass: the integrator stops there (solve/event_system.hpp).
+  /// clutch (its normal force), a surface velocity or a prescribed motion jumps or has a kink in t, or a
+  /// body releases part of its mass: the integrator stops there (solve/event_system.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
 
@@ -454,7 +465,7 @@ std::vector<int> released_bodies(const Model& m);
 /// Output columns a run of `m` holds in memory, at most: the chain columns, three per contact or
 /// brake, one per gap, up to eight per machine body (its parts' loads, output point, extras),
 /// three per drive (torque, and current or reference speed, and the limiter mode), one per released
-/// body, four per lossy gear (mode, the torques at its two bodies, loss power) and one per thermal model.
+/// body, one per body with prescribed motion (its driving force), four per lossy gear (mode, the torques at its two bodies, loss power) and one per thermal model.
 std::size_t output_columns_bound(const Model& m);
 /// Bytes the output grid of `m` needs in memory, at most: (t_end/dt_out + 2) rows × output_columns_bound
 /// × 8 bytes. The runs reserve all of it before the first step, so compile checks it against

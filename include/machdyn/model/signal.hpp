@@ -54,6 +54,9 @@ class Signal {
   [[nodiscard]] double value(double t) const;
   /// ds/dt, the slope on the right of t at a kink (0 across a jump).
   [[nodiscard]] double slope(double t) const;
+  /// d²s/dt², on the right of t at a breakpoint: 0 for constant, step, ramp, table and pulse (piecewise
+  /// linear), −A ω² sin(ω (t − t_s) + φ) for a sine from its start, exact for an expression (its jet).
+  [[nodiscard]] double curvature(double t) const;
   /// The breakpoints in the open interval (t0, t1), increasing, without repeats.
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
   /// The number of breakpoints in (t0, t1) without listing them (a bound for the memory check).
