@@ -37,11 +37,16 @@ class Decision {
   }
   double force(int k) const { return fc_[static_cast<size_t>(k)]; }
   double sliding_acceleration(int k) const { return sys_.contact(k).sliding_acceleration(t_, acc_.data()); }
-  /// The rounding of u̇ = a_a − a_b: 1e-12 (|a_a| + |a_b|). With μ_s = μ_k a breakaway starts with
+  /// The rounding of u̇ = a_a − a_b: 1e-12 (|a_a| + |a_b|) (a general row: 1e-12 Σ |w_j a_j|). With μ_s = μ_k a breakaway starts with
   /// u̇ = 0 exactly; formed by the sliding equations it may come out −1e-14 while the stuck load is
   /// 1e-14 beyond the limit (MSL's Friction example on BDF), and neither mode would be consistent.
   double rounding(int k) const {
     const ContactLaw& c = sys_.contact(k);
+    if (c.general) {  // Σ |w_j a_j| (and the surface's)
+      double s = c.grounded ? std::abs(c.surface_acceleration(t_)) : 0.0;
+      for (int j = 0; j < c.row.terms; ++j) s += std::abs(c.row.w[j] * acc_[static_cast<size_t>(c.row.body[j])]);
+      return 1e-12 * s;
+    }
     const double ab = c.b >= 0 ? acc_[static_cast<size_t>(c.b)] : c.surface_acceleration(t_);
     return 1e-12 * (std::abs(acc_[static_cast<size_t>(c.a)]) + std::abs(ab));
   }

@@ -11,7 +11,16 @@
 #include "machdyn/model/machine.hpp"
 
 namespace machdyn {
+
 namespace {
+/// The M-orthogonal (momentum-keeping) step that takes the residual e of a velocity row Σ w_j x_j to
+/// zero: Δx_j = −e (w_j/I_j) / Σ_i w_i²/I_i, for velocities or accelerations x.
+void step_onto_row(const VelocityRow& r, double e, double* x, const double* im) {
+  double s = 0.0;
+  for (int j = 0; j < r.terms; ++j) s += r.w[j] * r.w[j] * im[r.body[j]];
+  for (int j = 0; j < r.terms; ++j) x[r.body[j]] -= e * r.w[j] * im[r.body[j]] / s;
+}
+
 // y = A x for the few stuck contacts (1–3): a plain loop beats Eigen's dynamic GEMV set-up here.
 void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index n = A.rows(), m = A.cols();
@@ -230,6 +239,10 @@ void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
   std::vector<double> im(static_cast<size_t>(n_));
   inverse_inertias(y, im.data());
   const double u = sliding_velocity(k, t, y);
+  if (c.general) {  // the rounding of the step stays (no unit row to share exactly)
+    step_onto_row(c.row, u, y + n_, im.data());
+    return;
+  }
   const double ia = im[static_cast<size_t>(c.a)], ib = c.b >= 0 ? im[static_cast<size_t>(c.b)] : 0.0;
   y[n_ + c.a] -= u * ia / (ia + ib);
   if (c.b >= 0) y[n_ + c.b] += u * ib / (ia + ib);
@@ -259,8 +272,8 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
     for (Eigen::Index j = 0; j < std::min<Eigen::Index>(ns, 64); ++j)
       if (contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].lock != 0) one_sided_.push_back(j);
   for (int k : stuck_) {
-    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-    stuck_machine_ = stuck_machine_ || machine_[static_cast<size_t>(c.a)] || (c.b >= 0 && machine_[static_cast<size_t>(c.b)]);
+    const VelocityRow& r = contacts_[static_cast<size_t>(k)].row;
+    for (int j = 0; j < r.terms; ++j) stuck_machine_ = stuck_machine_ || machine_[static_cast<size_t>(r.body[j])];
   }
   if (ns == 0) return;
   if (stuck_machine_) {  // G M(q)⁻¹ Gᵀ depends on q: formed at every evaluation
@@ -286,18 +299,16 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
 }
 
 Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {
-  // A = G M⁻¹ Gᵀ; row j of G has +1 at body a and −1 at body b of stuck contact j.
+  // A = G M⁻¹ Gᵀ; row j of G is stuck contact j's velocity row (+1 at a, −1 at b for most).
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(ns, ns);
   for (Eigen::Index i = 0; i < ns; ++i) {
-    const auto& ci = m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(i)])];
+    const VelocityRow& ri = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].row;
     for (Eigen::Index j = 0; j < ns; ++j) {
-      const auto& cj = m_.contacts[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
-      const int ei[2] = {ci.a, ci.b}, ej[2] = {cj.a, cj.b};
-      const double si[2] = {1.0, -1.0};
-      for (int p = 0; p < 2; ++p)
-        for (int q = 0; q < 2; ++q)
-          if (ei[p] >= 0 && ei[p] == ej[q]) A(i, j) += si[p] * si[q] * im[ei[p]];
+      const VelocityRow& rj = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].row;
+      for (int p = 0; p < ri.terms; ++p)
+        for (int q = 0; q < rj.terms; ++q)
+          if (ri.body[p] == rj.body[q]) A(i, j) += ri.w[p] * rj.w[q] * im[ri.body[p]];
     }
   }
   return A;
@@ -415,12 +426,11 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
     const ContactMode md = mode_[static_cast<size_t>(k)];
     if (md == ContactMode::stuck) continue;
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-    const double w = c.b >= 0 ? v[c.b] : c.surface_velocity(t);
-    const double u = v[c.a] - w;
+    const double u = c.sliding_velocity(t, v);
     const double F = c.kinetic_force(md, t, u);
     fc[k] = F;
     c.apply(F, f);
-    if (c.b < 0) src -= F * w;
+    if (c.grounded) src -= F * c.surface_velocity(t);  // the moving surface's work
     fric += F * u;
   }
   if (p_src) *p_src = src, *p_fric = fric, *p_damp = damp;
@@ -476,9 +486,13 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));
     fc[stuck_[j]] = lam;
-    acc[c.a] -= im[c.a] * lam;
-    if (c.b >= 0) acc[c.b] += im[c.b] * lam;
-    else *src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
+    if (c.general) [[unlikely]] {
+      for (int i = 0; i < c.row.terms; ++i) acc[c.row.body[i]] -= im[c.row.body[i]] * c.row.w[i] * lam;
+    } else {
+      acc[c.a] -= im[c.a] * lam;
+      if (c.b >= 0) acc[c.b] += im[c.b] * lam;
+    }
+    if (c.grounded) *src -= lam * c.surface_velocity(t);  // work of the moving surface on the stuck body
   }
   if constexpr (kMach)  // a stuck contact's force on a prescribed body is carried by its source
     for (size_t j = 0; j < motions_.size() && !stuck_.empty(); ++j)
@@ -552,7 +566,9 @@ void DriveSystem::enforce_stuck(double t, double* acc) const {
   // mean; the ground's is the surface acceleration), so u stays exactly zero along a stuck mode.
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-    if (c.b < 0) {
+    if (c.general) {
+      step_onto_row(c.row, c.sliding_acceleration(t, acc), acc, inv_mass_.data());
+    } else if (c.b < 0) {
       acc[c.a] = c.surface_acceleration(t);
     } else {
       const double s = stuck_share_[static_cast<size_t>(k)];
@@ -565,7 +581,9 @@ void DriveSystem::enforce_stuck_weighted(double t, double* acc, const double* im
   // As enforce_stuck, with the shares of the current inertias I(q): s = I_a/(I_a + I_b).
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-    if (c.b < 0) {
+    if (c.general) {
+      step_onto_row(c.row, c.sliding_acceleration(t, acc), acc, im);
+    } else if (c.b < 0) {
       acc[c.a] = c.surface_acceleration(t);
     } else {
       const double s = im[c.b] / (im[c.a] + im[c.b]);
@@ -883,15 +901,16 @@ void DriveSystem::project_velocities(double t, double* y) const {
   const Eigen::VectorXd mu = *P * r;
   double* v = y + n_;
   for (size_t j = 0; j < stuck_.size(); ++j) {
-    const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
-    v[c.a] -= im[c.a] * mu(static_cast<Eigen::Index>(j));
-    if (c.b >= 0) v[c.b] += im[c.b] * mu(static_cast<Eigen::Index>(j));
+    const VelocityRow& row = contacts_[static_cast<size_t>(stuck_[j])].row;
+    for (int i = 0; i < row.terms; ++i) v[row.body[i]] -= im[row.body[i]] * row.w[i] * mu(static_cast<Eigen::Index>(j));
   }
   // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations); the common
   // velocity is the momentum mean (I_a v_a + I_b v_b)/(I_a + I_b).
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-    if (c.b < 0) {
+    if (c.general) {
+      step_onto_row(c.row, c.sliding_velocity(t, v), v, im);
+    } else if (c.b < 0) {
       v[c.a] = c.surface_velocity(t);
     } else {
       const double ia = im[c.a], ib = im[c.b];

@@ -33,6 +33,11 @@ void check_supported(const Model& m) {
     if (l.a_point || l.b_point)
       diag.error(m.where(l.name), fmt::format("{}: link '{}' ends at a machine's point, not supported yet", pre, l.name));
   for (const auto& c : m.contacts) {
+    if (c.joint) {
+      diag.error(m.where(c.name), fmt::format("{}: the gear joint '{}' (a planetary gear or a gear on a housing body) "
+                                              "is not supported there yet; start with 'initial: given'", pre, c.name));
+      continue;
+    }
     // Stops and brakes to the ground are decided below; a brake not yet applied is free.
     if (c.stop || (c.brake && (c.scale(0.0) == 0.0 || c.b == kGround))) continue;
     diag.error(m.where(c.name), fmt::format("{}: the force at rest of {} '{}' is not decided by its law (friction "

@@ -47,7 +47,8 @@ std::string names_of(const Model& m) {
   std::vector<std::string> n;
   for (const Link& l : m.links)
     if (l.has_gap) n.push_back(l.name);
-  for (const FrictionContact& c : m.contacts) n.push_back(c.name);
+  for (const FrictionContact& c : m.contacts)
+    if (!c.joint) n.push_back(c.name);
   return n.empty() ? "none: the model has no gap, contact or brake" : fmt::format("{}", fmt::join(n, ", "));
 }
 
@@ -88,6 +89,9 @@ void apply_topology_text(const Model& m, const std::string& text, const Location
                                       word, name));
         else
           topo.gaps[static_cast<size_t>(link - m.links.begin())] = g;
+      } else if (contact != m.contacts.end() && contact->joint) {
+        diag.error(at, fmt::format("'{}' is a gear joint, always locked: it has no mode (elements with modes: {})",
+                                   name, names_of(m)));
       } else if (contact != m.contacts.end()) {
         ContactMode c;
         bool engaged;
@@ -122,6 +126,7 @@ std::string topology_label(const Model& m, const Topology& topo) {
   for (size_t l = 0; l < m.links.size(); ++l)
     if (m.links[l].has_gap) parts.push_back(m.links[l].name + "=" + to_string(topo.gaps[l]));
   for (size_t k = 0; k < m.contacts.size(); ++k) {
+    if (m.contacts[k].joint) continue;  // always stuck
     const bool engaged = topo.engaged.empty() || topo.engaged[k];
     parts.push_back(m.contacts[k].name + "=" + (engaged ? to_string(topo.contacts[k]) : "released"));
   }
@@ -129,7 +134,8 @@ std::string topology_label(const Model& m, const Topology& topo) {
 }
 
 int switching_elements(const Model& m) {
-  int k = static_cast<int>(m.contacts.size());
+  int k = 0;
+  for (const FrictionContact& c : m.contacts) k += !c.joint;
   for (const Link& l : m.links) k += l.has_gap;
   return k;
 }
@@ -153,7 +159,9 @@ std::vector<Topology> all_topologies(const Model& m, int max_elements) {
     // Closed and stuck first (bit 0): the stiffest topology leads the list.
     for (int l : gap_links) t.gaps[static_cast<size_t>(l)] = (bits >> e++) & 1 ? GapMode::open : GapMode::closed_pos;
     for (size_t c = 0; c < m.contacts.size(); ++c)
-      t.contacts[c] = (bits >> e++) & 1 ? free_direction(m.contacts[c]) : ContactMode::stuck;
+      t.contacts[c] = m.contacts[c].joint ? ContactMode::stuck
+                      : (bits >> e++) & 1 ? free_direction(m.contacts[c])
+                                          : ContactMode::stuck;
     out.push_back(std::move(t));
   }
   return out;

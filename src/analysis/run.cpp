@@ -184,6 +184,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     names = chain_column_names(m_);
     for (const auto& c : m_.contacts) {
       const BodyKind k = m_.bodies[static_cast<size_t>(c.a)].kind;
+      if (c.joint) {  // a gear joint: the torque it puts on each member, −w_j λ (elements/contact.hpp)
+        for (int j = 0; j < c.row.terms; ++j)
+          names.push_back(c.name + ".torque_" + m_.bodies[static_cast<size_t>(c.row.body[j])].name + "_" +
+                          unit_suffix(load_unit(k)));
+        continue;
+      }
       names.push_back(c.name + ".force_" + unit_suffix(load_unit(k)));
       names.push_back(c.name + ".sliding_velocity_" + unit_suffix(velocity_unit(k)));
       names.push_back(c.name + ".mode");
@@ -278,6 +284,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     else if (nc_ > 0) sys_.contact_forces(t, y, fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
     for (int k = 0; k < nc_; ++k) {
+      if (const ContactLaw& law = sys_.contact(k); law.joint) {
+        for (int j = 0; j < law.row.terms; ++j) put(-law.row.w[j] * fc_[static_cast<size_t>(k)]);
+        continue;
+      }
       put(fc_[static_cast<size_t>(k)]);
       put(sys_.sliding_velocity(k, t, y));
       put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
@@ -302,9 +312,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(loads_[static_cast<size_t>(l)] / lk.falls);
       if (lk.EA > 0.0) put(sys_.link(l).free_length(sys_.link(l).drum(y)));
     }
-    for (const auto& sl : m_.slaves) {  // bodies slaved by ideal gears: q = ρ q_master, v = ρ v_master
-      put(sl.ratio * y[sl.master]);
-      put(sl.ratio * y[n_ + sl.master]);
+    for (const auto& sl : m_.slaves) {  // slaved bodies: q = ρ q_master (+ ρ₂ q_master2), likewise v
+      put(sl.ratio * y[sl.master] + (sl.master2 >= 0 ? sl.ratio2 * y[sl.master2] : 0.0));
+      put(sl.ratio * y[n_ + sl.master] + (sl.master2 >= 0 ? sl.ratio2 * y[n_ + sl.master2] : 0.0));
     }
     if (heat_.any_thermal()) {
       heat_.at(step_, t, y, nullptr, nullptr, temperature_.data());
@@ -635,6 +645,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int k = 0; k < nc_; ++k) {
       const double u = sys_.sliding_velocity(k, 0.0, y_.data());
       const ContactLaw& c = sys_.contact(k);
+      if (c.joint) continue;  // always stuck, never decided
       // An end stop off its stop, or leaving it, is free: it "slides" in its free direction −lock.
       const bool stop_free = c.stop && (c.stop_distance(y_[static_cast<size_t>(c.a)]) > 0.0 || -c.lock * u > 0.0);
       if (stop_free) modes[static_cast<size_t>(k)] = static_cast<ContactMode>(-c.lock);
@@ -688,7 +699,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
     for (int k = 0; k < nc_; ++k)
-      if (sys_.contact_mode(k) == ContactMode::stuck) Z.push_back(k);
+      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint) Z.push_back(k);
     std::sort(Z.begin(), Z.end());
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
     if (Z.empty()) return;
@@ -753,7 +764,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     std::vector<int> Z;
     for (int k = 0; k < nc_; ++k)
-      if (sys_.contact_mode(k) == ContactMode::stuck) Z.push_back(k);
+      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint) Z.push_back(k);
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
     apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);

@@ -34,11 +34,11 @@ Method choose_method(const Model& m, std::string* reason) {
   // A kinetic friction table rising with the sliding speed acts as a damper of its steepest rising
   // slope while the contact slides (dF_k/du: 7e9 N·s/m for 0.2 → 0.9 of 10 N over 1e-9 m/s).
   for (const auto& c : m.contacts) {
-    const double slope = ContactLaw::of(c).steepest_kinetic_slope();
-    const int idx[2] = {c.a, c.b};
-    for (int r = 0; r < 2; ++r)
-      for (int k = 0; k < 2; ++k)
-        if (idx[r] >= 0 && idx[k] >= 0) rowD[static_cast<size_t>(idx[r])] += slope;
+    const ContactLaw law = ContactLaw::of(c);
+    const double slope = law.steepest_kinetic_slope();
+    for (int r = 0; r < law.row.terms; ++r)
+      for (int k = 0; k < law.row.terms; ++k)
+        rowD[static_cast<size_t>(law.row.body[r])] += slope * std::abs(law.row.w[r] * law.row.w[k]);
   }
   double rho_D = 0.0, omega_K = 0.0;
   // A drive's linear terms (elements/drive.hpp: K_p, k²/R as dampers, K_p/T_i as a spring) and its

@@ -8,6 +8,16 @@ ContactLaw ContactLaw::of(const FrictionContact& c) {
   ContactLaw k;
   k.spec = &c;
   k.a = c.a, k.b = c.b;
+  k.joint = c.joint;
+  k.general = c.row.terms > 0;
+  k.grounded = c.b < 0 && !c.joint;
+  if (k.general) {
+    k.row = c.row;
+  } else {
+    k.row.terms = c.b >= 0 ? 2 : 1;
+    k.row.body[0] = c.a, k.row.w[0] = 1.0;
+    k.row.body[1] = c.b, k.row.w[1] = -1.0;
+  }
   k.kinetic_table = c.kinetic.size() > 1 || c.stribeck_speed > 0.0;
   k.applied = c.applied;
   k.moving_surface = c.surface_times.size() > 1;
@@ -38,17 +48,16 @@ double ContactLaw::steepest_kinetic_slope() const {
 }
 
 void ContactLaw::add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const {
-  if (!engaged) return;
+  if (joint) md = ContactMode::stuck;  // in every topology
+  else if (!engaged) return;
   if (md == ContactMode::stuck) {
-    std::vector<std::pair<int, double>> row{{a, 1.0}};
-    if (b >= 0) row.emplace_back(b, -1.0);
-    lin.G.push_back(std::move(row));
+    std::vector<std::pair<int, double>> g;
+    for (int j = 0; j < row.terms; ++j) g.emplace_back(row.body[j], row.w[j]);
+    lin.G.push_back(std::move(g));
     lin.constraint_names.push_back(spec->name);
     return;
   }
-  const int idx[2] = {a, b};
-  const double j[2] = {1.0, -1.0};
-  LinearModel::add_outer(lin.D, idx, j, b >= 0 ? 2 : 1, kinetic_slope(t, u));
+  LinearModel::add_outer(lin.D, row.body, row.w, row.terms, kinetic_slope(t, u));
 }
 
 }  // namespace machdyn

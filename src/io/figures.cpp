@@ -179,9 +179,10 @@ namespace {
 std::vector<std::size_t> slipping_contacts(const Model& m) {
   std::vector<std::size_t> ks;
   for (std::size_t k = 0; k < m.contacts.size(); ++k)
-    if (m.contacts[k].b != kGround && !m.contacts[k].brake) ks.push_back(k);
+    if (m.contacts[k].b != kGround && !m.contacts[k].brake && !m.contacts[k].joint) ks.push_back(k);
   if (ks.empty())
-    for (std::size_t k = 0; k < m.contacts.size(); ++k) ks.push_back(k);
+    for (std::size_t k = 0; k < m.contacts.size(); ++k)
+      if (!m.contacts[k].joint) ks.push_back(k);
   return ks;
 }
 
@@ -267,7 +268,7 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind
   const bool rot = kind == BodyKind::rotational;
   double largest = 0.0;
   for (const auto& c : m.contacts)
-    if (m.bodies[static_cast<std::size_t>(c.a)].kind == kind)
+    if (!c.joint && m.bodies[static_cast<std::size_t>(c.a)].kind == kind)
       for (double v : column(r, c.name + ".force_"))
         if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
   const auto [k_force, u_force] = engineering(largest, rot ? "N*m" : "N");
@@ -275,7 +276,7 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind
   f.y2 = rot ? plot::make_axis("sliding velocity u", "rad/s") : plot::make_axis("sliding velocity u", "m/s");
   const auto& t = column(r, "t_s");
   for (const auto& c : m.contacts) {
-    if (m.bodies[static_cast<std::size_t>(c.a)].kind != kind) continue;  // one kind of unit per figure
+    if (c.joint || m.bodies[static_cast<std::size_t>(c.a)].kind != kind) continue;  // one kind of unit per figure
     f.series.push_back(plot::make_series(c.name + ": force", t, scaled(column(r, c.name + ".force_"), k_force)));
     plot::Series u = plot::make_series(c.name + ": sliding velocity", t, column(r, c.name + ".sliding_velocity_"),
                                        plot::Style::line, 2);
@@ -290,15 +291,17 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind
 
 std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r, const FigureOptions& opt) {
   std::vector<plot::Figure> figs;
-  const bool hybrid = r.hybrid.active && !m.contacts.empty();
+  // Friction elements, not gear joints (their torques are columns, not stick–slip).
+  const auto friction = std::find_if(m.contacts.begin(), m.contacts.end(), [](const FrictionContact& c) { return !c.joint; });
+  const bool hybrid = r.hybrid.active && friction != m.contacts.end();
   if (hybrid && !m.links.empty()) figs.push_back(load_cyclogram_figure(m, r));
   if (!m.links.empty()) figs.push_back(link_loads_figure(m, r));
   figs.push_back(body_speeds_figure(m, r, opt));
   if (hybrid) {
-    const BodyKind first = m.bodies[static_cast<std::size_t>(m.contacts[0].a)].kind;
+    const BodyKind first = m.bodies[static_cast<std::size_t>(friction->a)].kind;
     figs.push_back(contacts_figure(m, r, first));
     const bool other = std::any_of(m.contacts.begin(), m.contacts.end(), [&](const FrictionContact& c) {
-      return m.bodies[static_cast<std::size_t>(c.a)].kind != first;
+      return !c.joint && m.bodies[static_cast<std::size_t>(c.a)].kind != first;
     });
     if (other)
       figs.push_back(contacts_figure(m, r, first == BodyKind::rotational ? BodyKind::translational : BodyKind::rotational));

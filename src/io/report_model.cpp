@@ -247,6 +247,7 @@ std::vector<Table> model_tables(const Model& m) {
   if (gaps) links.note += " Gap: the link carries load only on a flank; start: the position inside the gap at δ = 0.";
   Table contacts = table("Friction contacts and brakes", {"contact", "type", "between", "static limit F_s", "kinetic F_k", "details"});
   for (const auto& c : m.contacts) {
+    if (c.joint) continue;  // a gear joint is no friction element
     const std::string u = pretty_unit(load_unit(m.bodies[static_cast<std::size_t>(c.a)].kind));
     std::string kinetic = c.kinetic.size() == 1 ? num(c.kinetic[0]) + " " + u
                                                  : fmt::format("table of {} speeds, {} … {} {}", c.kinetic.size(),

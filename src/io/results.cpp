@@ -84,9 +84,10 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
   // contact's static limit.
   nlohmann::json contacts = nlohmann::json::object();
   const std::vector<ContactStatistics> stats = contact_statistics(m, r);
-  for (size_t k = 0; k < m.contacts.size(); ++k) {
+  for (size_t k = 0, next = 0; k < m.contacts.size(); ++k) {
     const FrictionContact& c = m.contacts[k];
-    const ContactStatistics& st = stats[k];
+    if (c.joint) continue;  // a gear joint: no limit, never slips (none in stats)
+    const ContactStatistics& st = stats[next++];
     nlohmann::json ratio = nlohmann::json::object();
     for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = number_or_null(st.link_max_over_static_limit[l]);
     contacts[c.name] = {{"kind", c.brake ? "brake" : c.clutch ? "clutch" : "contact"},

@@ -19,6 +19,7 @@
 #include "model/compile_machine.hpp"
 #include "model/compile_motion.hpp"
 #include "model/compile_crane.hpp"
+#include "model/compile_joint.hpp"
 #include "model/compile_lossy.hpp"
 #include "model/compile_release.hpp"
 #include "model/compile_rigid.hpp"
@@ -41,7 +42,7 @@ std::string_view section_of_type(std::string_view type) {
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
-      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"ideal-gear", "links"}, {"lossy-gear", "links"},
+      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"ideal-gear", "links"}, {"lossy-gear", "links"}, {"planetary-gear", "links"},
       {"speed-drive", "drives"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
@@ -119,7 +120,8 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
 }
 
 void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears,
-                   std::vector<detail::LossyGearSpec>& lossy, Diagnostics& diag) {
+                   std::vector<detail::LossyGearSpec>& lossy, std::vector<detail::JointSpec>& joints,
+                   Diagnostics& diag) {
   if (!section) return;
   if (!section->is_map()) {
     diag.error(section->loc, "'links' must be a map of NAME: {fields}");
@@ -127,18 +129,29 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
   }
   for (const auto& [name, spec] : section->fields) {
     if (wrong_section(spec, "links", fmt::format("link '{}'", name), diag)) continue;
-    if (const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr; t && t->is_scalar() && t->scalar == "ideal-gear") {
+    const SpecNode* type_node = spec.is_map() ? spec.find("type") : nullptr;
+    const std::string kind = type_node && type_node->is_scalar() ? type_node->scalar : "";
+    if (const SpecNode* h = spec.is_map() ? spec.find("housing") : nullptr;
+        kind == "ideal-gear" && h && !(h->is_scalar() && h->scalar == "ground")) {
+      detail::read_housed_gear(name, spec, m, joints, diag);  // a joint: model/compile_joint.cpp
+      continue;
+    }
+    if (kind == "ideal-gear") {
       detail::read_ideal_gear(name, spec, m, gears, diag);  // a rigid connection: model/compile_rigid.cpp
       continue;
     }
-    if (const SpecNode* t = spec.is_map() ? spec.find("type") : nullptr; t && t->is_scalar() && t->scalar == "lossy-gear") {
+    if (kind == "planetary-gear") {
+      detail::read_planetary_gear(name, spec, m, joints, diag);  // a joint: model/compile_joint.cpp
+      continue;
+    }
+    if (kind == "lossy-gear") {
       detail::read_lossy_gear(name, spec, m, lossy, diag);  // model/compile_lossy.cpp
       continue;
     }
     FieldReader f(spec, fmt::format("link '{}'", name), diag);
     Link l;
     l.name = name;
-    auto type = f.word("type", {"spring", "damper", "spring-damper", "rope", "ideal-gear"});
+    auto type = f.word("type", {"spring", "damper", "spring-damper", "rope", "ideal-gear", "lossy-gear", "planetary-gear"});
     const SpecNode* between = f.node("between");
     bool ends_ok = false;
     if (!between) {
@@ -532,7 +545,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
                "the model has no body with mass or inertia: add at least one under 'bodies'");
   std::vector<detail::IdealGear> gears;
   std::vector<detail::LossyGearSpec> lossy;
-  compile_links(top.node("links"), m, gears, lossy, diag);
+  std::vector<detail::JointSpec> joints;
+  compile_links(top.node("links"), m, gears, lossy, joints, diag);
   compile_loads(top.node("loads"), m, diag);
   compile_gravity(top, m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);
@@ -544,8 +558,9 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_drives(top.node("drives"), m, diag);
   detail::check_motion_elements(m, gears, lossy, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
-  if (diag.empty()) detail::resolve_rigid(m, gears, bodies, diag);
+  if (diag.empty()) detail::resolve_rigid(m, gears, bodies, detail::massless_members(m, joints), diag);
   if (diag.empty()) detail::resolve_lossy(m, lossy, diag);  // on the bodies the merge left
+  if (diag.empty()) detail::resolve_joints(m, joints, bodies, diag);  // after both: contacts rewritten last
   // Releases refer to the bodies as merged (a slaved body's release acts on its master).
   detail::compile_releases(top.node("releases"), m, diag);
   detail::check_motion_releases(m, diag);

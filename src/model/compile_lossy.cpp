@@ -5,6 +5,8 @@
 // converts them by |ρ_A| (elements/lossy_gear.hpp).
 #include "model/compile_lossy.hpp"
 
+#include "model/compile_rigid.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -74,8 +76,6 @@ void read_table(const SpecNode& n, const std::string& name, BodyKind k, LossyGea
     g.bearing_reverse.push_back(v[4]);
   }
 }
-
-bool agree(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-12; }
 
 }  // namespace
 
@@ -203,7 +203,7 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     // Initial velocities on v_a = i v_b: one side's value gives the other's.
     Body& A = m.bodies[static_cast<size_t>(g.a)];
     Body& B = m.bodies[static_cast<size_t>(g.b)];
-    if (A.v0 != 0.0 && B.v0 != 0.0 && !agree(A.v0, g.ratio * B.v0)) {
+    if (A.v0 != 0.0 && B.v0 != 0.0 && !initial_values_agree(A.v0, g.ratio * B.v0)) {
       diag.error(s.where, fmt::format("lossy gear '{}': the initial velocities contradict the gear: {} {:.12g} and "
                                       "{} {:.12g} with v_a = {:.12g} v_b; give the velocity on one side only",
                                       g.name, A.name, A.v0, B.name, B.v0, g.ratio));

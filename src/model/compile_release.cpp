@@ -26,7 +26,11 @@ void compile_releases(const SpecNode* section, Model& m, Diagnostics& diag) {
       for (size_t s = 0; s < m.slaves.size(); ++s)
         if (m.slaves[s].name == *body) slave = static_cast<int>(s);
       idx = slave >= 0 ? m.slaves[static_cast<size_t>(slave)].master : m.body_index(*body);
-      if (idx < 0) f.error_at("body", fmt::format("release '{}': unknown body '{}'", name, *body));
+      if (slave >= 0 && m.slaves[static_cast<size_t>(slave)].master2 >= 0) {  // a joint's member without inertia
+        f.error_at("body", fmt::format("release '{}': body '{}' has no inertia (a gear joint moves it), so it has no "
+                                       "mass to release", name, *body));
+        idx = -2;
+      } else if (idx < 0) f.error_at("body", fmt::format("release '{}': unknown body '{}'", name, *body));
       else if (m.bodies[static_cast<size_t>(idx)].machine)
         f.error_at("body", fmt::format("release '{}': body '{}' has a variable inertia I(q); a release on a machine body "
                                        "is not supported (give the released mass as a body of its own)", name, *body));

@@ -24,6 +24,7 @@ void read_ideal_gear(const std::string& name, const SpecNode& spec, const Model&
                      Diagnostics& diag) {
   FieldReader f(spec, fmt::format("ideal gear '{}'", name), diag);
   f.word("type", {"ideal-gear"});
+  f.text("housing", "ground");  // a body as housing: a joint (model/compile_joint.hpp)
   IdealGear g;
   g.name = name;
   g.where = Location(spec.key_loc);
@@ -78,19 +79,17 @@ void read_ideal_gear(const std::string& name, const SpecNode& spec, const Model&
   out.push_back(g);
 }
 
-namespace {
-
-/// The place of field `key` of body `name` in the `bodies:` section, if the file gives it.
 const SpecNode* body_field(const SpecNode* bodies, const std::string& name, const char* key) {
   const SpecNode* b = bodies && bodies->is_map() ? bodies->find(name) : nullptr;
   return b && b->is_map() ? b->find(key) : nullptr;
 }
 
-bool agree(double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-12; }
+bool initial_values_agree(double x, double y) {
+  return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-12;
+}
 
-}  // namespace
-
-void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies, Diagnostics& diag) {
+void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies,
+                   const std::unordered_set<std::string>& massless_ok, Diagnostics& diag) {
   const size_t n = m.bodies.size();
   std::vector<int> master(n, -1);
   std::vector<double> rho(n, 1.0);
@@ -149,7 +148,7 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
         if (master[u] != static_cast<int>(s)) continue;
         double& x = pos ? m.bodies[u].q0 : m.bodies[u].v0;
         const SpecNode* at = body_field(bodies, m.bodies[u].name, key);
-        if (at && !agree(x, rho[u] * x0))
+        if (at && !initial_values_agree(x, rho[u] * x0))
           diag.error(at->loc, fmt::format("body '{}': {} {:.12g} contradicts the ideal gears that tie it to '{}': "
                                           "{} {:.12g} there gives {:.12g} here (q = {:.12g} q_{}); give it on one body "
                                           "of the group only", m.bodies[u].name, key, x, m.bodies[from].name, key,
@@ -166,6 +165,7 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
   for (size_t s = 0; s < n; ++s) {
     const Body& b = m.bodies[s];
     if (b.machine || b.inertia > 0.0 || (master[s] >= 0 && master[s] != static_cast<int>(s))) continue;
+    if (master[s] < 0 && massless_ok.count(b.name)) continue;  // a joint eliminates it
     const SpecNode* at = body_field(bodies, b.name, b.kind == BodyKind::rotational ? "inertia" : "mass");
     diag.error(at ? Location(at->loc) : m.where(b.name),
                master[s] < 0

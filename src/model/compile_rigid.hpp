@@ -5,6 +5,7 @@
 /// every consumer downstream sees an ordinary model (model.hpp: RigidSlave, Load::ratio).
 
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "machdyn/common/diagnostics.hpp"
@@ -30,7 +31,16 @@ void read_ideal_gear(const std::string& name, const SpecNode& spec, const Model&
 /// Merges the bodies tied by `gears` into one body per rigid group (the master: the group's first
 /// body in the file), re-attaches loads and links of the slaved bodies, checks initial conditions,
 /// ratios around loops and massless bodies, and fills m.slaves. `bodies` is the file's `bodies:`
-/// section (for the places of positions and velocities). Call after every element is compiled.
-void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies, Diagnostics& diag);
+/// section (for the places of positions and velocities). `massless_ok`: bodies that may have zero
+/// inertia without an ideal gear (a joint eliminates them: model/compile_joint.hpp). Call after
+/// every element is compiled.
+void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies,
+                   const std::unordered_set<std::string>& massless_ok, Diagnostics& diag);
+
+/// The place of field `key` of body `name` in the `bodies:` section, if the file gives it.
+const SpecNode* body_field(const SpecNode* bodies, const std::string& name, const char* key);
+/// Whether an initial value x given in the file agrees with the value y a rigid connection implies:
+/// within 1e-9 relative, 1e-12 absolute.
+bool initial_values_agree(double x, double y);
 
 }  // namespace machdyn::detail

@@ -87,6 +87,7 @@ SummaryColumns hybrid_summary_columns() {
     if (!runs_event_driven(m)) return h;
     for (const auto& k : counted_event_kinds()) h.push_back("events_" + k);
     for (const auto& c : m.contacts) {
+      if (c.joint) continue;  // as contact_statistics
       h.push_back(c.name + ".slips");
       h.push_back(c.name + ".period_s");
       for (const auto& l : m.links) h.push_back(c.name + "." + l.name + "_max_over_static_limit");

@@ -33,7 +33,7 @@ struct ContactStatistics {
   std::vector<double> link_max_over_static_limit;
 };
 
-/// One entry per Model::contacts (friction contacts and brakes), in that order.
+/// One entry per friction contact or brake of Model::contacts (gear joints left out), in that order.
 std::vector<ContactStatistics> contact_statistics(const Model& m, const SimulationResult& r);
 
 }  // namespace machdyn

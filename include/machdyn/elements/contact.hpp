@@ -17,6 +17,11 @@
 /// A freewheel (lock = ±1) holds while lock·λ ≥ 0, has no upper limit, and slides only in its free
 /// direction −lock with its drag as kinetic level; its stuck event is lock·λ. An end stop is such a
 /// lock to the ground that engages by position: while free its event is the distance to the stop.
+/// A general row (model/model.hpp VelocityRow: a joint, or a contact on a planetary gear's member
+/// without inertia) has u = Σ_j w_j v_j (− w(t) to the ground) and puts −w_j F on body j: the
+/// same law with the unit row {a: +1, b: −1} as its special case. A joint (planetary gear, gear on
+/// a housing) is a contact that is always stuck with no limit: it holds every λ, never slides and
+/// has no events.
 
 #include <algorithm>
 #include <cmath>
@@ -30,6 +35,10 @@ namespace machdyn {
 struct ContactLaw {
   const FrictionContact* spec = nullptr;
   int a = 0, b = kGround;
+  bool general = false;  ///< u from `row` (a joint or a rewritten contact), not v_a − v_b
+  bool joint = false;    ///< always stuck, no limit (model/model.hpp FrictionContact::joint)
+  bool grounded = true;  ///< b is the ground: u subtracts the surface velocity w(t)
+  VelocityRow row;       ///< the row of u: `spec->row`, or {a: +1, b: −1}
   bool kinetic_table = false;  ///< F_k0 depends on |u| (a table or the Stribeck law)
   bool moving_surface = false, brake = false;
   bool applied = false;  ///< r(t) from a signal (brakes, clutches), else r ≡ 1
@@ -49,10 +58,18 @@ struct ContactLaw {
   }
   /// u = v_a − v_b.
   [[nodiscard]] double sliding_velocity(double t, const double* v) const {
+    if (general) [[unlikely]] return dot(v) - (grounded ? surface_velocity(t) : 0.0);
     return v[a] - (b >= 0 ? v[b] : surface_velocity(t));
+  }
+  /// Σ_j w_j x_j over the row's bodies.
+  [[nodiscard]] double dot(const double* x) const {
+    double s = 0.0;
+    for (int j = 0; j < row.terms; ++j) s += row.w[j] * x[row.body[j]];
+    return s;
   }
   /// The sliding acceleration u̇ from the accelerations.
   [[nodiscard]] double sliding_acceleration(double t, const double* acc) const {
+    if (general) [[unlikely]] return dot(acc) - (grounded ? surface_acceleration(t) : 0.0);
     return acc[a] - (b >= 0 ? acc[b] : surface_acceleration(t));
   }
   /// r(t): the application (1 for a contact with constant levels).
@@ -73,24 +90,30 @@ struct ContactLaw {
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
   /// A freewheel holds while lock·λ ≥ 0 (allowance 1e-9 N or N·m: an unloaded freewheel holds).
   [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
+    if (joint) return true;
     if (lock != 0) return strict ? lock * lambda >= 0.0 : lock * lambda >= -1e-9;
     const double Fs = static_limit(t), F = std::abs(lambda);
     return strict ? F <= Fs : F <= Fs + 1e-12 * spec->static_limit;
   }
   /// Whether sliding mode md can exist at all (a freewheel slides in its free direction only).
   [[nodiscard]] bool can_slide(ContactMode md) const {
+    if (joint) return false;
     return lock == 0 || static_cast<int>(md) == -lock;
   }
   /// How far the stuck load λ is beyond what holds, as a ratio (> 1: beyond; ∞ for a freewheel
   /// loaded against its lock): the mode decision releases the largest first.
   [[nodiscard]] double overload(double lambda, double t) const {
+    if (joint) return 0.0;
     if (lock != 0) return lock * lambda < 0.0 ? HUGE_VAL : 0.0;
     const double Fs = static_limit(t);
     return Fs > 0 ? std::abs(lambda) / Fs : HUGE_VAL;
   }
   /// The weight of this contact in the least-norm share of a redundantly locked load (√F_s0; 1 for
-  /// a freewheel, which has no limit to share by).
-  [[nodiscard]] double share_weight() const { return lock != 0 ? 1.0 : std::sqrt(spec->static_limit); }
+  /// a freewheel, which has no limit to share by; 1e3 for a joint, which carries any load: it takes
+  /// the larger share of a load it locks together with contacts).
+  [[nodiscard]] double share_weight() const {
+    return joint ? 1e3 : lock != 0 ? 1.0 : std::sqrt(spec->static_limit);
+  }
   /// An end stop's impact law: the velocity just after an impact at velocity v⁻, v⁺ = −e v⁻.
   [[nodiscard]] double rebound(double v_in) const { return -restitution * v_in; }
   /// Whether a body leaving an end stop with v⁺ comes to rest there instead: always for e = 0, and
@@ -104,7 +127,9 @@ struct ContactLaw {
   /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity, q
   /// the position of body a (read by end stops only).
   void events(ContactMode md, double t, double lambda, double u, double q, double* ev) const {
-    if (stop && md != ContactMode::stuck) {
+    if (joint) {
+      ev[0] = ev[1] = 1.0;
+    } else if (stop && md != ContactMode::stuck) {
       ev[0] = stop_distance(q);  // reaches the stop
       ev[1] = 1.0;
     } else if (md == ContactMode::stuck && lock != 0) {
@@ -122,13 +147,18 @@ struct ContactLaw {
   /// A brake or clutch whose application is 0 at t and does not rise just after is released (open):
   /// it acts with no force and has no slip phases.
   [[nodiscard]] bool released(double t) const { return applied && spec->released(t); }
-  /// Adds the generalized forces of load F to f: −F on a, +F on b.
+  /// Adds the generalized forces of load F to f: −F on a, +F on b (a general row: −w_j F on body j).
   void apply(double F, double* f) const {
+    if (general) [[unlikely]] {
+      for (int j = 0; j < row.terms; ++j) f[row.body[j]] -= row.w[j] * F;
+      return;
+    }
     f[a] -= F;
     if (b >= 0) f[b] += F;
   }
   /// Linear terms in mode md at sliding velocity u: a stuck contact is a constraint row of G
-  /// (u = 0), a sliding one adds its kinetic slope to D; `engaged` false adds nothing.
+  /// (u = 0), a sliding one adds its kinetic slope to D; `engaged` false adds nothing. A joint is a
+  /// constraint row in every mode.
   void add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const;
 };
 

@@ -166,8 +166,24 @@ struct ThermalMass {
   double initial = 293.15;     ///< T(0), K
 };
 
+/// The velocity row of a contact or joint, u = Σ_j w_j v_j over at most four bodies (the ground
+/// has no term; a contact to the ground subtracts its surface velocity w(t) from u). Empty (terms =
+/// 0): the unit row u = v_a − v_b of FrictionContact's a and b. Compile writes a general row for a
+/// joint (a planetary gear, a gear on a housing body) and for a contact on a planetary gear's member
+/// without inertia, which the gear eliminates (model/compile_planetary.hpp).
+struct VelocityRow {
+  static constexpr int kMaxTerms = 4;
+  int terms = 0;
+  int body[kMaxTerms] = {0, 0, 0, 0};   ///< body indices, distinct, never the ground
+  double w[kMaxTerms] = {0, 0, 0, 0};   ///< coefficients w_j, nonzero ([u]/[v_j])
+};
+
 struct FrictionContact {
   std::string name;
+  /// A joint: a rigid velocity constraint u ≡ 0 with no limit (an ideal planetary gear, a gear whose
+  /// housing is a body), always stuck; its force λ is the constraint's load (N·m or N per unit of u).
+  bool joint = false;
+  VelocityRow row;                   ///< u = Σ w_j v_j (terms > 0), else v_a − v_b
   bool brake = false;
   bool clutch = false;               ///< from `clutches:` (between two bodies, by its normal force)
   int lock = 0;                      ///< freewheel: +1 or −1 (see above); 0: a friction contact or brake
@@ -364,6 +380,10 @@ struct RigidSlave {
   int master = 0;        ///< index into Model::bodies
   double ratio = 1.0;    ///< ρ = q_slave / q_master, nonzero
   double inertia = 0.0;  ///< its own inertia (kg·m² or kg) as given, >= 0
+  /// A planetary gear's member without inertia moves with two bodies (model/compile_planetary.hpp):
+  /// q_slave = ρ q_master + ρ₂ q_master2 (master2 = -1: the one-master form above).
+  int master2 = -1;
+  double ratio2 = 0.0;
 };
 
 /// A lossy gear (`type: lossy-gear` under links; law, modes and derivation in elements/lossy_gear.hpp,
