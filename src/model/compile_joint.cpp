@@ -246,14 +246,20 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   m.slaves.push_back(s);
 }
 
+/// A joint named `name` of kind `kind` ("planetary gear", "ideal gear") at its key.
+JointSpec named_joint(const std::string& name, const char* kind, const SpecNode& spec) {
+  JointSpec j;
+  j.name = name;
+  j.what = fmt::format("{} '{}'", kind, name);
+  j.where = Location(spec.key_loc);
+  return j;
+}
+
 }  // namespace
 
 void read_planetary_gear(const std::string& name, const SpecNode& spec, const Model& m, std::vector<JointSpec>& out,
                          Diagnostics& diag) {
-  JointSpec j;
-  j.name = name;
-  j.what = fmt::format("planetary gear '{}'", name);
-  j.where = Location(spec.key_loc);
+  JointSpec j = named_joint(name, "planetary gear", spec);
   FieldReader f(spec, j.what, diag);
   f.word("type", {"planetary-gear"});
   bool ok = true;
@@ -284,10 +290,7 @@ void read_planetary_gear(const std::string& name, const SpecNode& spec, const Mo
 
 void read_housed_gear(const std::string& name, const SpecNode& spec, const Model& m, std::vector<JointSpec>& out,
                       Diagnostics& diag) {
-  JointSpec j;
-  j.name = name;
-  j.what = fmt::format("ideal gear '{}'", name);
-  j.where = Location(spec.key_loc);
+  JointSpec j = named_joint(name, "ideal gear", spec);
   FieldReader f(spec, j.what, diag);
   f.word("type", {"ideal-gear"});
   bool ok = true;

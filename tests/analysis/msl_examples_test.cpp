@@ -22,6 +22,7 @@
 namespace machdyn {
 namespace {
 
+using test::max_error;
 using test::series;
 
 class MslExample : public ::testing::TestWithParam<IntegratorChoice> {};
@@ -41,15 +42,6 @@ Model example(const std::string& name, IntegratorChoice integrator) {
   return m;
 }
 
-/// The largest |column − f(t)| over all output rows.
-template <class F>
-double max_error(const SimulationResult& r, const std::string& name, F f) {
-  const auto& ts = series(r, "t_s");
-  const auto& v = series(r, name);
-  double e = 0.0;
-  for (size_t i = 0; i < ts.size() && i < v.size(); ++i) e = std::max(e, std::abs(v[i] - f(ts[i])));
-  return ts.empty() ? INFINITY : e;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Claim: examples/msl/damper.yaml (MSL Translational.Examples.Damper) follows the closed forms.

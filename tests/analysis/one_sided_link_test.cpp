@@ -16,6 +16,7 @@
 namespace machdyn {
 namespace {
 
+using test::max_error;
 using test::series;
 
 Model model_of(const std::string& yaml) { return test::model_text(yaml, "test.yaml"); }
@@ -42,15 +43,6 @@ simulation: {t_end: 0.05 s, dt_out: 1e-4 s, rtol: 1e-11, atol: 1e-13}
   return simulate(m);
 }
 
-/// The largest |column − f(t)| over the rows.
-template <class F>
-double max_error(const SimulationResult& r, const std::string& name, F f) {
-  const auto& t = series(r, "t_s");
-  const auto& v = series(r, name);
-  double e = 0.0;
-  for (size_t i = 0; i < t.size() && i < v.size(); ++i) e = std::max(e, std::abs(v[i] - f(t[i])));
-  return t.empty() ? INFINITY : e;
-}
 
 /// Checks positions, velocities and the load of A and B against δ(t), δ̇(t) of the relative motion
 /// and the centre of mass X = V t (both start at x = 0): x_A = X + (m_B/M) δ, x_B = X − (m_A/M) δ.

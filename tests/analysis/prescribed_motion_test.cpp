@@ -19,23 +19,14 @@
 namespace machdyn {
 namespace {
 
+using test::max_error;
 using test::series;
 
 class PrescribedMotion : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, PrescribedMotion,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf), test::IntegratorName{});
 
-std::string integrator_name(IntegratorChoice i) { return i == IntegratorChoice::bdf ? "bdf" : "dopri5"; }
 
-/// The largest |column − f(t)| over all output rows.
-template <class F>
-double max_error(const SimulationResult& r, const std::string& name, F f) {
-  const auto& ts = series(r, "t_s");
-  const auto& v = series(r, name);
-  double e = 0.0;
-  for (size_t i = 0; i < ts.size() && i < v.size(); ++i) e = std::max(e, std::abs(v[i] - f(ts[i])));
-  return ts.empty() ? INFINITY : e;
-}
 
 // Claim: a driver (m_d = 2 kg) whose speed is prescribed as v_d = V sin Ωt (V = 0.5 m/s, Ω = 3 rad/s)
 // drives a mass m = 1 kg through a spring c = 400 N/m (ω² = c/m = 400 s⁻²); a constant force
@@ -215,7 +206,7 @@ simulation: {t_end: 1.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
     EXPECT_NEAR(series(r, "driver.velocity_m_s")[i], vd, 1e-8) << ts[i];
   }
   const bool bdf = GetParam() == IntegratorChoice::bdf;
-  EXPECT_LT(ex, bdf ? 1e-7 : 1e-8) << integrator_name(GetParam());
+  EXPECT_LT(ex, bdf ? 1e-7 : 1e-8) << (GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5");
   EXPECT_LT(ev, bdf ? 1e-5 : 1e-6);
   EXPECT_LT(eR, bdf ? 1e-3 : 1e-4);
   // The jump of the source's force at 0.2 s: m_d · 2 m/s² (the spring's load is continuous).

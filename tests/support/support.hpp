@@ -1,5 +1,7 @@
 #pragma once
 // Helpers shared by the tests: temporary model files and running the CLI as a user would.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -47,6 +49,16 @@ const std::vector<double>& series(const SimulationResult& r, const std::string& 
 /// The value of column `name` in the output row at time t (within `tol` s); a test failure and NaN
 /// if no row is there.
 double at(const SimulationResult& r, const std::string& name, double t, double tol = 1e-9);
+
+/// The largest |column `name` − f(t)| over all output rows (∞ without rows).
+template <class F>
+double max_error(const SimulationResult& r, const std::string& name, F f) {
+  const auto& ts = series(r, "t_s");
+  const auto& v = series(r, name);
+  double e = 0.0;
+  for (std::size_t i = 0; i < ts.size() && i < v.size(); ++i) e = std::max(e, std::abs(v[i] - f(ts[i])));
+  return ts.empty() ? INFINITY : e;
+}
 
 /// The model compiled from YAML text as if read from a file called `file` (errors name it).
 Model model_text(const std::string& yaml, const std::string& file = "test.yaml");
