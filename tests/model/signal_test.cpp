@@ -115,12 +115,17 @@ TEST(Signal, BreakpointsExact) {
   EXPECT_TRUE(Signal::constant(4).breakpoints(0, 1).empty());
 }
 
+/// Signals of every kind with derivatives (piecewise linear, sine, expression, sum), for the
+/// finite-difference checks of slope() and curvature().
+std::vector<Signal> derivative_probes() {
+  return {Signal::ramp(1, 4, 0.5, 2.5), Signal::table({0, 1, 1, 3}, {0, 10, 4, -2}, true),
+          Signal::sine(2, 7, 0.3, 1, 0.1), Signal::expression(std::make_shared<const Expression>("exp(-t)*sin(3*t)", "t")),
+          Signal::sum({Signal::sine(2, 7, 0.3, 1, 0.1), Signal::ramp(1, 4, 0.5, 2.5)})};
+}
+
 // Claim: slope() is ds/dt: it agrees with a central finite difference away from breakpoints.
 TEST(Signal, SlopesAgreeWithFiniteDifference) {
-  const std::vector<Signal> signals{
-      Signal::ramp(1, 4, 0.5, 2.5), Signal::table({0, 1, 1, 3}, {0, 10, 4, -2}, true), Signal::sine(2, 7, 0.3, 1, 0.1),
-      Signal::expression(std::make_shared<const Expression>("exp(-t)*sin(3*t)", "t")),
-      Signal::sum({Signal::sine(2, 7, 0.3, 1, 0.1), Signal::ramp(1, 4, 0.5, 2.5)})};
+  const std::vector<Signal> signals = derivative_probes();
   const double h = 1e-6;
   for (const Signal& s : signals)
     for (double t : {-0.5, 0.3, 0.77, 1.6, 2.2, 4.0}) {
@@ -133,10 +138,7 @@ TEST(Signal, SlopesAgreeWithFiniteDifference) {
 // breakpoints (a sine's −A ω² sin, an expression's jet, a sum's terms), and is 0 for the piecewise
 // linear kinds.
 TEST(Signal, CurvaturesAgreeWithFiniteDifferenceOfTheSlope) {
-  const std::vector<Signal> signals{
-      Signal::ramp(1, 4, 0.5, 2.5), Signal::table({0, 1, 1, 3}, {0, 10, 4, -2}, true), Signal::sine(2, 7, 0.3, 1, 0.1),
-      Signal::expression(std::make_shared<const Expression>("exp(-t)*sin(3*t)", "t")),
-      Signal::sum({Signal::sine(2, 7, 0.3, 1, 0.1), Signal::ramp(1, 4, 0.5, 2.5)})};
+  const std::vector<Signal> signals = derivative_probes();
   const double h = 1e-6;
   for (const Signal& s : signals)
     for (double t : {-0.5, 0.3, 0.77, 1.6, 2.2, 4.0}) {
