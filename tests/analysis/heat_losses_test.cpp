@@ -13,6 +13,7 @@
 
 #include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "machdyn/io/results.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -286,7 +287,8 @@ struct HeatLossesReference {
 // law releases when it opens at zero force off its flank while MSL's clamps its damping force at
 // −f_c and dissipates the same energy as the spring relaxes; the stop's heat is the reference's
 // impact loss (MSL's reinit: in no heat port), at the same instants (within 1e-8 s); the total
-// heat_J is the sum of the reference's heats and impact losses, and at t_end W − ΔT − ΔV of the books.
+// heat_J is the sum of the reference's heats and impact losses, and at t_end W − ΔT − ΔV of the books
+// and summary.json's `dissipated_J`.
 // Measured (dopri5 / bdf): positions 1.2e-10 / 1.4e-10 m, speeds 5.0e-9 / 6.2e-8 m/s, element heats
 // 1.8e-9 / 2.5e-8 J, total 2.3e-9 / 2.2e-8 J of 19.49 J.
 TEST_P(HeatLosses, TranslationalHeatLossesFollowAnIndependentSolution) {
@@ -370,6 +372,7 @@ TEST_P(HeatLosses, TranslationalHeatLossesFollowAnIndependentSolution) {
   EXPECT_NEAR(Y[R::work] - T - V, Q_ref, 1e-7);
   const EnergyBalance& E = r.hybrid.energy;
   EXPECT_NEAR(total.back(), E.source_work - (E.kinetic_end - E.kinetic_start) - (E.elastic_end - E.elastic_start), 1e-7);
+  EXPECT_NEAR(simulation_summary(m, r)["energy"]["dissipated_J"].get<double>(), total.back(), 1e-7);  // summary.json
   RecordProperty("total_heat_J", sci(total.back()));
 }
 
