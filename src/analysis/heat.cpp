@@ -37,8 +37,8 @@ Heat::Heat(const Model& m, DriveSystem& sys) : sys_(sys), n_(m.dof()) {
 void Heat::power(double t, const double* y, double* p) {
   int j = 0;
   if (!contacts_.empty()) sys_.evaluate(t, y, acc_.data(), fc_.data());
-  for (int k : contacts_)
-    p[j++] = sys_.contact_mode(k) == ContactMode::stuck ? 0.0 : fc_[static_cast<size_t>(k)] * sys_.sliding_velocity(k, t, y);
+  for (int k : contacts_)  // + 0.0: a free stop's 0 · u is −0 for u < 0
+    p[j++] = sys_.contact_mode(k) == ContactMode::stuck ? 0.0 : fc_[static_cast<size_t>(k)] * sys_.sliding_velocity(k, t, y) + 0.0;
   for (int l : links_) {
     const LinkLaw& k = sys_.link(l);
     const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);

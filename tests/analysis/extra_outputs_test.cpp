@@ -197,6 +197,9 @@ simulation: {t_end: 3 s, dt_out: 0.1 s}
   const std::string csv = test::slurp(test::temp_dir() / "xo_out" / "timeseries.csv");
   const std::string header = test::lines_of(csv).at(0);
   EXPECT_NE(header.find("B.heat_J"), std::string::npos) << header;
+  EXPECT_NE(header.find(",heat_power_W,heat_J"), std::string::npos) << header;  // the model's total
+  const std::string summary = test::slurp(test::temp_dir() / "xo_out" / "summary.json");
+  EXPECT_NE(summary.find("\"dissipated_J\""), std::string::npos);
   EXPECT_NE(header.find("w.acceleration_rad_s2"), std::string::npos) << header;
   const auto plain = test::run_cli("simulate " + path + " -q -o xo_plain");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
