@@ -19,7 +19,7 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
-#include "analysis/friction_heat.hpp"
+#include "analysis/heat.hpp"
 #include "analysis/machine_jumps.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
@@ -346,13 +346,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (const auto& l : m_.links)
         if (l.d > 0.0) names.push_back(l.name + ".damping_power_W");
     }
-    if (extra_.heat) {
-      for (const auto& k : m_.contacts) {
-        names.push_back(k.name + ".heat_power_W");
-        names.push_back(k.name + ".heat_J");
+    if (extra_.heat) {  // every dissipative element (analysis/heat.hpp), then the model's total
+      for (int j = 0; j < heat_.count(); ++j) {
+        names.push_back(heat_.name(j) + ".heat_power_W");
+        names.push_back(heat_.name(j) + ".heat_J");
       }
-      p_.assign(static_cast<size_t>(nc_), 0.0);
-      q_.assign(static_cast<size_t>(nc_), 0.0);
+      names.emplace_back("heat_power_W");
+      names.emplace_back("heat_J");
+      p_.assign(static_cast<size_t>(heat_.count()) + 1, 0.0);
+      q_.assign(static_cast<size_t>(heat_.count()) + 1, 0.0);
     }
   }
   /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
@@ -386,9 +388,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (extra_.heat) {
       heat_.at(step_, t, y, p_.data(), q_.data(), nullptr);
-      for (int k = 0; k < nc_; ++k) {
-        put(p_[static_cast<size_t>(k)]);
-        put(q_[static_cast<size_t>(k)]);
+      for (size_t j = 0; j < p_.size(); ++j) {
+        put(p_[j]);
+        put(q_[j]);
       }
     }
   }
@@ -626,7 +628,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
     const bool rest = c.rests(v_out, c.lock * acc_[ia], t);  // lock·a > 0: back towards the stop
     y_[static_cast<size_t>(n_) + ia] = rest ? 0.0 : v_out;
-    out_.hybrid.energy.impact_loss += T0 - sys_.kinetic_energy(y_.data());
+    const double loss = T0 - sys_.kinetic_energy(y_.data());
+    out_.hybrid.energy.impact_loss += loss;
+    heat_.add_impact(k, loss);  // the stop's heat
     if (!rest) record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));
     return rest;
   }
@@ -686,7 +690,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         const GapMode old = sys_.gap_mode(e);
         const GapMode now = LinkLaw::mode_after(old, slot % 2);
         if (now == old) continue;
+        const double V_old = link_elastic_energy(e);
         sys_.set_gap_mode(e, now);
+        heat_.add_release(e, V_old - link_elastic_energy(e));  // the flank's share of the release loss
         gap_changed = true;
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
       } else if (sys_.contact(e).stop && sys_.contact_mode(e) != ContactMode::stuck) {
@@ -712,6 +718,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const std::vector<ContactMode> now = decide_contacts(sys_, t, y_.data(), Z, strict_);
     strict_.clear();
     apply_contact_modes(t, old, now, false);
+  }
+
+  /// The elastic energy of link l at the run's state y_ in its current mode (elements/link.hpp), J.
+  double link_elastic_energy(int l) const {
+    const LinkLaw& k = sys_.link(l);
+    return k.elastic_energy(sys_.link_kinematics(l, y_.data()).delta, sys_.gap_mode(l), k.drum(y_.data()));
   }
 
   // ---- releases (model.hpp: Release): the masses are run state ----
@@ -778,7 +790,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   SimulationResult& out_;
   DriveSystem sys_;
   detail::MachineJumps jumps_;
-  detail::FrictionHeat heat_;
+  detail::Heat heat_;
   int n_, N_, nl_, nc_, nd_, ng_;
   bool has_events_ = false;
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
@@ -832,7 +844,7 @@ std::size_t extra_columns_bound(const Model& m, const OutputSelection& s) {
   if (s.deflection) n += 2 * m.links.size();
   if (s.acceleration) n += m.bodies.size();
   if (s.power) n += m.loads.size() + m.drives.size() + m.links.size();
-  if (s.heat) n += 2 * m.contacts.size();
+  if (s.heat) n += 2 * (m.contacts.size() + m.links.size() + m.lossy_gears.size() + 1);
   return n;
 }
 

@@ -107,6 +107,8 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
                  {"damping_loss_J", E.damping_loss},   {"gap_release_loss_J", E.release_loss},
                  {"impact_loss_J", E.impact_loss},     {"released_kinetic_J", E.released_kinetic},
                  {"residual_J", E.residual()}};
+  // The heat of all dissipative elements (the total heat_J of `--outputs heat` at t_end).
+  j["energy"]["dissipated_J"] = E.friction_loss + E.damping_loss + E.release_loss + E.impact_loss;
 }
 }  // namespace
 

@@ -172,11 +172,9 @@ TEST(ExtraOutputs, HeatAddsUpToTheFrictionLossOfTheBooks) {
                            "crank-slider-brake.yaml"}) {
     const Model m = load_model(test::example(name));
     const SimulationResult r = simulate(m, SimulateOptions{}, output_selection({"heat"}));
-    double Q = 0.0;
-    for (size_t c = 0; c < r.column_names.size(); ++c) {
-      const std::string& n = r.column_names[c];
-      if (n.size() > 7 && n.compare(n.size() - 7, 7, ".heat_J") == 0) Q += r.columns[c].back();
-    }
+    double Q = 0.0;  // the friction elements' columns (links with dampers have theirs too)
+    for (const auto& c : m.contacts)
+      if (!c.joint) Q += series(r, c.name + ".heat_J").back();
     const double E = r.hybrid.energy.friction_loss;
     ASSERT_GT(E, 0.0) << name;
     EXPECT_NEAR(Q, E, 1e-9 * E) << name;
@@ -199,6 +197,9 @@ simulation: {t_end: 3 s, dt_out: 0.1 s}
   const std::string csv = test::slurp(test::temp_dir() / "xo_out" / "timeseries.csv");
   const std::string header = test::lines_of(csv).at(0);
   EXPECT_NE(header.find("B.heat_J"), std::string::npos) << header;
+  EXPECT_NE(header.find(",heat_power_W,heat_J"), std::string::npos) << header;  // the model's total
+  const std::string summary = test::slurp(test::temp_dir() / "xo_out" / "summary.json");
+  EXPECT_NE(summary.find("\"dissipated_J\""), std::string::npos);
   EXPECT_NE(header.find("w.acceleration_rad_s2"), std::string::npos) << header;
   const auto plain = test::run_cli("simulate " + path + " -q -o xo_plain");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
@@ -210,8 +211,8 @@ simulation: {t_end: 3 s, dt_out: 0.1 s}
 
 // Claim: the extra columns count against the memory limit of the output grid. One body on a spring
 // with 5·10^7 output rows has 4 standard columns (t, q, v, load): 1.6 GB, under the 2 GiB limit, so
-// the model compiles; all groups add 4 more (δ, δ̇, acceleration, damping power of the spring-damper)
-// = 3.2 GB: an input error at `--outputs` before anything is allocated (the test would need 3 GB).
+// the model compiles; all groups add 8 more (δ, δ̇, acceleration, damping power, heat power and heat
+// of the spring-damper, the model's total heat power and heat) = 4.8 GB: an input error at `--outputs` before anything is allocated (the test would need 3 GB).
 TEST(ExtraOutputs, WiderGridIsCheckedAgainstTheMemoryLimit) {
   const Model m = model_of(R"(
 bodies: {w: {inertia: 2}}
@@ -219,7 +220,7 @@ links: {k: {type: spring-damper, between: [w, ground], stiffness: 100, damping: 
 simulation: {t_end: 50 s, dt_out: 1 us}
 )");
   ASSERT_LT(output_bytes_bound(m), kMaxOutputBytes);
-  EXPECT_EQ(extra_columns_bound(m, all_outputs()), 4u);
+  EXPECT_EQ(extra_columns_bound(m, all_outputs()), 8u);
   try {
     (void)simulate(m, SimulateOptions{}, all_outputs());
     ADD_FAILURE() << "no error";

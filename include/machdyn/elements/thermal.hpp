@@ -10,7 +10,7 @@
 /// Over a piece [t0, t1] of a run, with P given on it, the linear equation integrates exactly to
 ///   T(t1) = T_a + (T(t0) − T_a) e^{−(t1−t0)/τ} + (1/C) ∫_{t0}^{t1} e^{−(t1−s)/τ} P(s) ds,   τ = C/G
 /// (variation of constants; G = 0, adiabatic: T(t1) = T(t0) + (1/C) ∫ P ds). The run evaluates the
-/// integral by quadrature on the integrator's dense output (analysis/friction_heat.hpp).
+/// integral by quadrature on the integrator's dense output (analysis/heat.hpp).
 /// Valid for C > 0, G ≥ 0, T_a ≥ 0 (compile checks them). Nothing is thrown.
 
 #include <cmath>
