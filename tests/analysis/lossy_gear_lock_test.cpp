@@ -1,6 +1,7 @@
 // A lossy gear decided together with the friction elements to the ground on its bodies
 // (analysis/gear_lock.hpp): a brake holding a gear against a ramped load breaks away at the closed-form
-// instant and carries the closed-form share of the holding torque, on either side of the gear; MSL's
+// instant and carries the closed-form share of the holding torque, on either side of the gear; a brake
+// stopping a rolling gear at the closed-form instant; MSL's
 // LossyGearDemo2 against an independent piecewise closed form of MSL's equations written here; and
 // the located errors of the friction elements that remain unsupported on a lossy gear's bodies.
 #include <algorithm>
@@ -104,6 +105,52 @@ TEST_P(GearLockSim, BrakeHoldsTheGearUntilTheClosedFormBreakaway) {
       }
     }
   }
+}
+
+// A gear (i = 3, η_mf1 = 0.9) rolling forward at v_A0 = 10 rad/s with no loads, a brake of H = 20 N·m
+// on its output B. The brake slides against the motion (−H on B, F_b' = −H/i) and A's inertia drives B
+// (D = −I_A F_b' > 0), so (η_mf1 I_A + J_B) a = −H/i with J_B = I_B/i²: a constant deceleration, rest at
+//   t_s = v_A0 (η_mf1 I_A + J_B) i / H
+// and v_A = v_A0 − (H/i) t/(η_mf1 I_A + J_B) before. At rest there is no load: the pair sticks (the
+// brake's share 0). Energy: A delivers X = −I_A a into the gear, the mesh loses (1 − η_mf1) X v_A, so
+// the gear's heat is (1 − η_mf1) I_A v_A0²/2 and the brake's H ∫v_B = (η_mf1 I_A + J_B) v_A0²/2: the
+// friction losses are the kinetic energy ½ (I_A + J_B) v_A0².
+// Claim: the stop (gear and brake together) at t_s within 1e-8 s, the speed within 1e-8 rad/s (1e-6
+// on BDF) at every row, at rest afterwards with the brake's load 0, and the friction losses equal the
+// initial kinetic energy within 1e-9 relative.
+TEST_P(GearLockSim, BrakeOnTheOutputStopsARollingGearAtTheClosedFormInstant) {
+  const double IA = 0.4, IB = 2.5, i = 3.0, eta1 = 0.9, H = 20.0, v0 = 10.0;
+  const double Jb = IB / (i * i), ts = v0 * (eta1 * IA + Jb) * i / H;
+  const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2, velocity: {} rad/s}}
+  B: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: 0.5}}
+brakes:
+  br: {{body: B, holding: {} N*m}}
+simulation: {{t_end: 2, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, v0, IB, i, eta1, H, GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), brake = events_of(r, "br");
+  ASSERT_EQ(gear.size(), 1u);
+  ASSERT_EQ(brake.size(), 1u);
+  EXPECT_EQ(gear[0].from, "forward");
+  EXPECT_EQ(gear[0].to, "stuck");
+  EXPECT_EQ(brake[0].to, "stuck");
+  EXPECT_NEAR(gear[0].t, ts, 1e-8);
+  EXPECT_EQ(brake[0].t, gear[0].t);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& F = series(r, "br.force_N_m");
+  for (size_t k = 0; k < t.size(); ++k) {
+    EXPECT_NEAR(wa[k], std::max(0.0, v0 - (H / i) * t[k] / (eta1 * IA + Jb)), tol) << t[k];
+    if (t[k] > ts + 1e-9) {
+      EXPECT_EQ(wa[k], 0.0) << t[k];
+      EXPECT_EQ(F[k], 0.0) << t[k];
+    }
+  }
+  const double T0 = 0.5 * (IA + Jb) * v0 * v0;
+  EXPECT_NEAR(r.hybrid.energy.friction_loss, T0, 1e-9 * T0);
 }
 
 // MSL's LossyGearDemo2 (Modelica.Mechanics.Rotational.Examples): Demo1 (J1 = 1, J2 = 1.5, ratio r = 2,
