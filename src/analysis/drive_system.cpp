@@ -140,6 +140,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   gear_t_.assign(static_cast<size_t>(ng_), {});
   gear_fa_.assign(static_cast<size_t>(ng_), 0.0);
   gear_fb_.assign(static_cast<size_t>(ng_), 0.0);
+  locks_ = machdyn::gear_locks(gears_, contacts_);
   general_ = has_machines_ || nd_ > 0 || !motions_.empty();
   drive_mode_.assign(static_cast<size_t>(nd_), LimitMode::linear);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
@@ -505,6 +506,7 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
       }
   if constexpr (kMach) enforce_stuck_weighted(t, acc, im);
   else enforce_stuck(t, acc);
+  if (!locks_.empty()) share_locks(t, fc);
 }
 
 void DriveSystem::motion_forces(double t, const double* v, const double* f, double* src) {
@@ -850,6 +852,7 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
       k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
                1.0 / inv_mass_[static_cast<size_t>(k.b)], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
     }
+    if (!locks_.empty()) lock_event_functions(t, g);
   }
   for (int d = 0; d < nd_; ++d) {
     const DriveLaw& k = drives_[static_cast<size_t>(d)];

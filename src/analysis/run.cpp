@@ -16,6 +16,7 @@
 
 #include "machdyn/analysis/contact_decision.hpp"
 #include "machdyn/analysis/drive_system.hpp"
+#include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
@@ -501,13 +502,23 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
            : e < nl_ + nc_ + nd_ ? m_.drives[static_cast<size_t>(e - nl_ - nc_)].name
                                  : m_.lossy_gears[static_cast<size_t>(e - nl_ - nc_ - nd_)].name;
   }
-  /// Decides every lossy gear at (t, y_) with the other elements in their new modes (each gear's
-  /// bodies carry no contacts, so the gears decide independently); `fired`: gears whose event fired,
-  /// judged without the rounding allowance. Records the changes (`initial`: all).
+  /// Decides every lossy gear at (t, y_) with the other elements in their new modes (no two gears
+  /// share a body, so the gears decide independently); a gear at rest with friction elements to the
+  /// ground on its bodies is decided together with them (analysis/gear_lock.hpp), their changes
+  /// recorded as contact events. `fired`: gears whose event fired, judged without the rounding
+  /// allowance. Records the changes (`initial`: all).
   void decide_gears(double t, const std::vector<int>& fired, bool initial) {
     for (int g = 0; g < ng_; ++g) {
       const bool strict = std::find(fired.begin(), fired.end(), g) != fired.end();
-      const GearMode old = sys_.gear_mode(g), now = sys_.natural_gear_mode(g, t, y_.data(), strict);
+      const GearMode old = sys_.gear_mode(g);
+      GearMode now;
+      if (locked_at_rest(g)) {
+        const std::vector<ContactMode> before = sys_.contact_modes();
+        now = decide_gear_lock(sys_, g, t, y_.data(), strict);
+        if (!initial) apply_contact_modes(t, before, sys_.contact_modes(), false);
+      } else {
+        now = sys_.natural_gear_mode(g, t, y_.data(), strict);
+      }
       if (!initial && now == old) continue;
       sys_.set_gear_mode(g, now);
       const char* kind = initial ? "initial"
@@ -518,6 +529,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       record(t, kind, nl_ + nc_ + nd_ + g, initial ? "" : to_string(old), to_string(now));
     }
   }
+  /// Whether gear g has friction elements on its bodies (a gear lock) and stands still.
+  bool locked_at_rest(int g) const {
+    return sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0 &&
+           y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0;
+  }
+  /// Whether contact k belongs to a gear lock (decided with its gear, not by decide_contacts).
+  bool gear_owned(int k) const { return sys_.gear_locks().owner[static_cast<size_t>(k)] >= 0; }
   /// Sets drive d's limiter mode and records the switch.
   void set_drive_mode(int d, double t, LimitMode now, bool initial) {
     const LimitMode old = sys_.drive_mode(d);
@@ -653,11 +671,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       // An end stop off its stop, or leaving it, is free: it "slides" in its free direction −lock.
       const bool stop_free = c.stop && (c.stop_distance(y_[static_cast<size_t>(c.a)]) > 0.0 || -c.lock * u > 0.0);
       if (stop_free) modes[static_cast<size_t>(k)] = static_cast<ContactMode>(-c.lock);
-      else if (u == 0.0) Z.push_back(k);
-      else modes[static_cast<size_t>(k)] = u > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+      else if (u == 0.0 && !gear_owned(k)) Z.push_back(k);
+      else if (u != 0.0) modes[static_cast<size_t>(k)] = u > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
     }
     sys_.set_contact_modes(modes);
     if (!Z.empty()) modes = decide_contacts(sys_, 0.0, y_.data(), Z, strict_);
+    // A gear at rest and its friction elements: decided together before the contacts are recorded
+    // (decide_gears below repeats the same decision and records the gear).
+    for (int g = 0; g < ng_; ++g)
+      if (locked_at_rest(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
+    modes = sys_.contact_modes();
     apply_contact_modes(0.0, modes, modes, true);
     if (ng_ > 0) decide_gears(0.0, {}, true);
   }
@@ -705,7 +728,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
     for (int k = 0; k < nc_; ++k)
-      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint) Z.push_back(k);
+      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint && !gear_owned(k)) Z.push_back(k);
     std::sort(Z.begin(), Z.end());
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
     if (Z.empty()) return;
@@ -776,7 +799,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     std::vector<int> Z;
     for (int k = 0; k < nc_; ++k)
-      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint) Z.push_back(k);
+      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint && !gear_owned(k)) Z.push_back(k);
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
     apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);

@@ -75,8 +75,7 @@ LossyGearLaw::Torques LossyGearLaw::solve(GearMode md, double Fa, double Fb, dou
   return T;
 }
 
-double LossyGearLaw::start_margin(int s, double Fa, double Fb, double Ia, double Ib) const {
-  (void)Ia, (void)Ib;
+double LossyGearLaw::start_margin(int s, double Fa, double Fb) const {
   const Coefficients c = at(0.0);
   const double Fbp = Fb / i;
   if (s * (Fa - s * c.bf_a) > 0.0) return -s * (c.eta1 * Fa + Fbp - s * c.bf1);  // a would drive
@@ -84,17 +83,40 @@ double LossyGearLaw::start_margin(int s, double Fa, double Fb, double Ia, double
   return c.eta2 > 0.0 ? -s * N / c.eta2 : -s * N;
 }
 
-void LossyGearLaw::events(GearMode md, double Fa, double Fb, double Ia, double Ib, double va, const Torques& T,
+void LossyGearLaw::events(GearMode md, double Fa, double Fb, double /*Ia*/, double /*Ib*/, double va, const Torques& T,
                           double* ev) const {
   const int s = direction(md);
   if (s == 0) {
-    ev[0] = start_margin(+1, Fa, Fb, Ia, Ib);
-    ev[1] = start_margin(-1, Fa, Fb, Ia, Ib);
+    ev[0] = start_margin(+1, Fa, Fb);
+    ev[1] = start_margin(-1, Fa, Fb);
     return;
   }
   const Coefficients c = at(va);
   ev[0] = s * va;  // comes to rest
   ev[1] = b_drives(md) ? -s * (T.Y + s * c.bf_b) : s * (T.X - s * c.bf_a);  // the driving side changes
+}
+
+double LossyGearLaw::margin_root(int s, double Fa, double Fb, double dFa, double dFb, double th0, double th1) const {
+  // The kink: s (F_a + θ dF_a − s τ_bf,a) = 0 (start_margin's choice of the driving side).
+  const double bf_a = at(0.0).bf_a;
+  auto m = [&](double th) { return start_margin(s, Fa + th * dFa, Fb + th * dFb); };
+  if (dFa != 0.0) {
+    const double kink = (s * bf_a - Fa) / dFa;
+    if (kink > th0 && kink < th1) {
+      const double mk = m(kink);
+      if (mk == 0.0) return kink;
+      if ((mk > 0.0) == (m(th0) > 0.0)) th0 = kink;
+      else th1 = kink;
+    }
+  }
+  const double m0 = m(th0), m1 = m(th1);
+  if (m0 == m1) return th0;
+  return std::clamp(th0 - m0 * (th1 - th0) / (m1 - m0), std::min(th0, th1), std::max(th0, th1));
+}
+
+GearMode LossyGearLaw::rolling(int s, double Fa, double Fb, double Ia, double Ib, double va) const {
+  const bool bd = b_side_drives(s, at(va), Fa, Fb, Ia, Ib);
+  return s > 0 ? (bd ? GearMode::forward_b : GearMode::forward) : (bd ? GearMode::backward_b : GearMode::backward);
 }
 
 double LossyGearLaw::allowance(double Fa, double Fb) const {
@@ -105,12 +127,11 @@ double LossyGearLaw::allowance(double Fa, double Fb) const {
 GearMode LossyGearLaw::decide(double Fa, double Fb, double Ia, double Ib, double va, double tol) const {
   int s = va > 0.0 ? 1 : va < 0.0 ? -1 : 0;
   if (s == 0) {
-    if (start_margin(+1, Fa, Fb, Ia, Ib) < -tol) s = 1;
-    else if (start_margin(-1, Fa, Fb, Ia, Ib) < -tol) s = -1;
+    if (start_margin(+1, Fa, Fb) < -tol) s = 1;
+    else if (start_margin(-1, Fa, Fb) < -tol) s = -1;
     else return GearMode::stuck;
   }
-  const bool bd = b_side_drives(s, at(va), Fa, Fb, Ia, Ib);
-  return s > 0 ? (bd ? GearMode::forward_b : GearMode::forward) : (bd ? GearMode::backward_b : GearMode::backward);
+  return rolling(s, Fa, Fb, Ia, Ib, va);
 }
 
 void LossyGearLaw::add_linear(LinearModel& lin) const {

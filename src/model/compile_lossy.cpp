@@ -191,14 +191,22 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
         ok = false;
       }
       u = static_cast<int>(k);
-      for (const FrictionContact& c : m.contacts)
-        if (c.a == e || c.b == e) {
-          diag.error(s.where, fmt::format("lossy gear '{}': body '{}' has the friction element '{}'; contacts, brakes, "
-                                          "clutches, freewheels and stops on a lossy gear's bodies are not supported "
-                                          "yet (the gear and the contact would lock together)", g.name,
-                                          m.bodies[static_cast<size_t>(e)].name, c.name));
-          ok = false;
-        }
+      // Friction to the fixed ground on a gear's body is decided with the gear (analysis/gear_lock.hpp).
+      for (const FrictionContact& c : m.contacts) {
+        if (c.a != e && c.b != e) continue;
+        const char* why = c.lock != 0 ? "freewheels and end stops on a lossy gear's bodies are not supported yet"
+                          : c.b >= 0 ? "a clutch or contact between two bodies on a lossy gear's body is not supported "
+                                       "yet (friction to the ground is: brakes, ground contacts, bearing friction)"
+                          : c.surface_times.size() > 1 ||
+                                    (!c.surface_velocities.empty() && c.surface_velocities[0] != 0.0)
+                              ? "a ground contact with a moving surface on a lossy gear's body is not supported yet "
+                                "(it would drive the gear while stuck to it)"
+                              : nullptr;
+        if (!why) continue;
+        diag.error(s.where, fmt::format("lossy gear '{}': body '{}' has the friction element '{}'; {}", g.name,
+                                        m.bodies[static_cast<size_t>(e)].name, c.name, why));
+        ok = false;
+      }
     }
     // Initial velocities on v_a = i v_b: one side's value gives the other's.
     Body& A = m.bodies[static_cast<size_t>(g.a)];

@@ -464,8 +464,8 @@ TEST(LossyGearCompile, BadInputIsALocatedError) {
   check("between: [A, B], loss_table: [[0.5, 0.9, 0.9, 0, 0]]", "gear.yaml:5:", "increase from 0");
   check("between: [A, B], loss_table: [[0, 0.9, 0.9]]", "gear.yaml:5:", "5 entries");
   check("between: [A, B], efficiency: 0.9, loss_table: [[0, 0.9, 0.9, 0, 0]]", "gear.yaml:5:", "exclude each other");
-  check("between: [A, B], efficiency: 0.9", "gear.yaml:5:", "friction element 'br'",
-        "brakes:\n  br: {body: B, holding: 5 N*m}\n");
+  check("between: [A, B], efficiency: 0.9", "gear.yaml:5:", "friction element 'f'",
+        "freewheels:\n  f: {between: [ground, B]}\n");
   check("between: [A, B], efficiency: 0.9", "gear.yaml:5:", "move rigidly together",
         "  I: {type: ideal-gear, between: [A, B], ratio: 3}\n");
   const std::string two = errors_of(

@@ -12,7 +12,8 @@
 ///   speed drive  its torque limiter linear or limited± (elements/speed_drive.hpp)
 ///   lossy gear   stuck, or rolling forward/backward with side a or b driving (elements/lossy_gear.hpp):
 ///                its torques X, Y are solved from the forces on its two bodies after every other
-///                force (its bodies carry no contacts, compile checks), then a_b = a_a / i exactly
+///                force, then a_b = a_a / i exactly; friction elements to the ground on its bodies
+///                slide while it rolls and are decided with it at rest (analysis/gear_lock.hpp)
 /// In a mode:  M(q) v' = f(t, q, v) − Jᵀ F_links − Gᵀ λ − Σ_sliding ĝ_k F_k,
 /// where row k of G is the sliding velocity u_k = v_a − v_b of stuck contact k and λ solves
 ///   (G M⁻¹ Gᵀ) λ = G M⁻¹ f̃ − ẇ     (f̃: all forces but λ; ẇ: the prescribed surface acceleration).
@@ -48,6 +49,7 @@
 
 #include <Eigen/Core>
 
+#include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/elements/contact.hpp"
 #include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
@@ -143,6 +145,13 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] LossyGearLaw::Torques gear_torques(int g, double t, const double* y);
   /// Puts both bodies of gear g exactly at rest (its speed reached zero: decided at rest, as a contact).
   void stop_gear(int g, double* y) const;
+  /// The friction elements to the ground on the gears' bodies (analysis/gear_lock.hpp). While a gear
+  /// is stuck with them, evaluate() reports the split of the holding torque and event_functions() the
+  /// joint margins in the gear's slots (its contacts' slots read 1: the gear's events are theirs).
+  [[nodiscard]] const GearLocks& gear_locks() const { return locks_; }
+  /// F_a, F_b: the forces on gear g's bodies from everything but the gear and the stuck loads of its
+  /// contacts, at (t, y) in the current modes.
+  void gear_loads(int g, double t, const double* y, double* Fa, double* Fb);
 
   // Prescribed motions (elements/prescribed_motion.hpp), in body order: such a body has inverse
   // inertia 0 (infinitely heavy for stuck contacts and every mass-weighted split) and q'' = a(t).
@@ -262,6 +271,12 @@ class DriveSystem final : public OdeSystem {
   void apply_gears(const double* y, double* f, double* p_fric);
   /// a_b = a_a / i exactly (0 when stuck), after the inertias divided the forces.
   void enforce_gears(double* acc) const;
+  /// The split of each stuck gear's holding torque with its stuck contacts (gear_lock.hpp): their
+  /// loads into fc, the gear's X, Y (analysis/drive_system_locks.cpp).
+  void share_locks(double t, double* fc);
+  /// The joint event functions of the stuck gears with contacts into g (event_slots layout).
+  void lock_event_functions(double t, double* g) const;
+  GearLocks locks_;
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
   /// Adds the drives' torques to f; returns their power Σ M v (source work rate).
   double drive_forces(double t, const double* y, double* f) const;

@@ -118,9 +118,18 @@ struct LossyGearLaw {
   /// Linear terms: for modes a lossy gear is the ideal gear, the constraint row v_a − i v_b = 0.
   void add_linear(LinearModel& lin) const;
 
+  /// The start margin m_s of direction s at rest (header), ≥ 0 while the gear holds against a start
+  /// in s. Piecewise linear in (F_a, F_b/i) with one kink, where the driving side changes (s F̃_a = 0);
+  /// m_{+1} never increases and m_{−1} never decreases as F_a or F_b/i grows (slopes −η_mf1 or
+  /// −1/η_mf2 (−1 when η_mf2 = 0) in F_a, −1 in F_b/i; the opposite signs for s = −1).
+  [[nodiscard]] double start_margin(int s, double Fa, double Fb) const;
+  /// The θ in [θ0, θ1] where m_s(F_a + θ dF_a, F_b + θ dF_b) = 0, for a margin that changes sign on
+  /// [θ0, θ1] and is monotone along it: solved linearly on the side of the kink that holds the root.
+  [[nodiscard]] double margin_root(int s, double Fa, double Fb, double dFa, double dFb, double th0, double th1) const;
+  /// The rolling mode in direction s = ±1 with its consistent driving side (sign of D, header) at v_a.
+  [[nodiscard]] GearMode rolling(int s, double Fa, double Fb, double Ia, double Ib, double va) const;
+
  private:
-  /// The start margin m_s of direction s at rest (header).
-  [[nodiscard]] double start_margin(int s, double Fa, double Fb, double Ia, double Ib) const;
   /// The driving side while rolling in s: true when b drives (sign of D, header).
   [[nodiscard]] bool b_side_drives(int s, const Coefficients& c, double Fa, double Fb, double Ia, double Ib) const;
 };
