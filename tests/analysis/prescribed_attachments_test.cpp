@@ -4,12 +4,15 @@
 // on both integrators; the combinations still refused are located errors.
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/extra_outputs.hpp"
+#include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/elements/linearize.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -173,6 +176,49 @@ simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   EXPECT_NEAR(R(0.501) - R(0.499), -8.0, 0.2);  // the closed form's jump is m_released · a
   EXPECT_NEAR(r.hybrid.energy.released_kinetic, 2.0, 1e-9);
   EXPECT_LT(max_error(r, "m2.position_m", x2), GetParam() == IntegratorChoice::bdf ? 1e-6 : 1e-8);
+}
+
+// Claim: a clutch between two prescribed bodies (a: 2 kg at v_a = 1 m/s; b: 3 kg, v_b = t m/s, so
+// u = 1 − t) slides with F = sign(u) F_k, F_k = 4 N: +4 before t = 1 s, −4 after (a reversal at
+// u̇ = −1, located at 1 s). The clutch puts −F on a and +F on b, so the sources deliver
+// R_a = m_a · 0 + F and R_b = m_b · 1 − F: (4, −1) before 1 s and (−4, 7) after. Its heat is
+// F_k ∫|u| dt = 4 (½ + ½) = 4 J at 2 s.
+TEST_P(PrescribedAttachments, AClutchBetweenTwoPrescribedBodiesSlidesAtTheirRelativeSpeed) {
+  const Model m = test::model_text(R"(
+bodies:
+  a: {type: translational, mass: 2 kg, motion: {speed: 1 m/s}}
+  b: {type: translational, mass: 3 kg, motion: {acceleration: 1 m/s^2}}
+contacts:
+  k: {between: [a, b], static: 6 N, kinetic: 4 N}
+simulation: {t_end: 2 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run_with_heat(m, GetParam());
+  for (const auto& [t, Ra, Rb] : std::vector<std::tuple<double, double, double>>{{0.5, 4, -1}, {1.5, -4, 7}}) {
+    EXPECT_NEAR(test::at(r, "a.motion_force_N", t), Ra, 1e-9) << t;
+    EXPECT_NEAR(test::at(r, "b.motion_force_N", t), Rb, 1e-9) << t;
+  }
+  EXPECT_NEAR(event_time(r, "k", "reversal", 0.0), 1.0, 1e-9);
+  EXPECT_NEAR(series(r, "k.heat_J").back(), 4.0, 1e-6);
+}
+
+// Claim: in modes a brake stuck to the ground on a prescribed body adds no constraint of its own
+// (the body is already a fixed support): driver – spring c = 400 N/m – mass 1 kg keeps its one
+// frequency √(c/m) = 20 rad/s with the one constraint of the prescribed motion.
+TEST(PrescribedAttachmentsModes, AStuckBrakeOnAPrescribedBodyAddsNoConstraint) {
+  const Model m = test::model_text(R"(
+bodies:
+  driver: {type: translational, mass: 2 kg, motion: {speed: 0 m/s}}
+  mass: {type: translational, mass: 1 kg}
+links:
+  spring: {type: spring, between: [driver, mass], stiffness: 400 N/m}
+contacts:
+  brake: {between: [driver, ground], static: 30 N, kinetic: 20 N}
+)");
+  const TopologyModes tm = analyse_topology(m, initial_topology(m));
+  ASSERT_EQ(tm.modes.omega.size(), 1);
+  EXPECT_NEAR(tm.modes.omega(0), 20.0, 1e-9);
+  EXPECT_EQ(tm.modes.constraints, 1);
+  EXPECT_EQ(tm.modes.rigid_body_modes, 0);
 }
 
 // Claim: the combinations still refused are located errors naming the elements: a freewheel or end
