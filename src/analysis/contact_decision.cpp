@@ -66,6 +66,22 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
   Decision d(sys, t, y, strict);
   const Model& m = sys.model();
   std::vector<ContactMode> modes = sys.contact_modes();
+  // Kinematic contacts (between prescribed motions, elements/contact.hpp) change no acceleration:
+  // their modes follow the motions, decided first and apart from the others.
+  std::vector<int> kin;
+  for (int k : Z)
+    if (sys.contact(k).kinematic) kin.push_back(k);
+  if (!kin.empty()) {
+    d.evaluate(modes);
+    for (int k : kin)
+      modes[static_cast<size_t>(k)] = ContactLaw::kinematic_mode(sys.sliding_velocity(k, t, y), d.sliding_acceleration(k),
+                                                                 d.rounding(k));
+    std::vector<int> rest;
+    for (int k : Z)
+      if (!sys.contact(k).kinematic) rest.push_back(k);
+    sys.set_contact_modes(modes);
+    return rest.empty() ? modes : decide_contacts(sys, t, y, rest, strict);
+  }
   for (int k : Z) modes[static_cast<size_t>(k)] = ContactMode::stuck;
   // Release the most overloaded stuck contact until the stuck set holds.
   for (size_t round = 0; round <= Z.size(); ++round) {

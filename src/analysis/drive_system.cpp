@@ -124,7 +124,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   }
   has_machines_ = has_machines_ || !machine_bodies_.empty();
   for (const auto& c : model.contacts) {
-    contacts_.push_back(ContactLaw::of(c));
+    contacts_.push_back(ContactLaw::of(c, model));  // kinematic: between prescribed motions
     const double ma = model.bodies[static_cast<size_t>(c.a)].inertia;
     stuck_share_.push_back(c.b >= 0 ? ma / (ma + model.bodies[static_cast<size_t>(c.b)].inertia) : 1.0);
   }
@@ -185,7 +185,10 @@ double DriveSystem::apply_release(const Release& r, const double* v) {
   const auto i = static_cast<size_t>(r.body);
   const double released = 0.5 * r.amount * v[r.body] * v[r.body];
   inertia_[i] -= r.amount;
-  inv_mass_[i] = im_[i] = 1.0 / inertia_[i];
+  const bool prescribed = m_.bodies[i].motion != MotionKind::free;  // stays infinitely heavy; R sees the new I
+  inv_mass_[i] = im_[i] = prescribed ? 0.0 : 1.0 / inertia_[i];
+  for (PrescribedMotionLaw& k : motions_)
+    if (k.body == r.body) k.inertia = inertia_[i];
   f_const_[i] += r.weight_change;  // the released part's weight leaves with it (model.hpp: Release)
   // Everything formed from the masses, formed again: the momentum shares of stuck contacts, the
   // dense chain, the affine map of each mode, the projectors of each stuck set.
@@ -240,6 +243,10 @@ void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
   std::vector<double> im(static_cast<size_t>(n_));
   inverse_inertias(y, im.data());
   const double u = sliding_velocity(k, t, y);
+  if (c.kinematic) {  // no inertia to share by: its first body takes the rounding of the motions
+    y[n_ + c.row.body[0]] -= u / c.row.w[0];
+    return;
+  }
   if (c.general) {  // the rounding of the step stays (no unit row to share exactly)
     step_onto_row(c.row, u, y + n_, im.data());
     return;
@@ -262,7 +269,9 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   mode_changed();
   stuck_.clear();
   for (int k = 0; k < nc_; ++k)
-    if (mode_[static_cast<size_t>(k)] == ContactMode::stuck) stuck_.push_back(k);
+    // A kinematic contact is no constraint: its bodies' motions are given (elements/contact.hpp).
+    if (mode_[static_cast<size_t>(k)] == ContactMode::stuck && !contacts_[static_cast<size_t>(k)].kinematic)
+      stuck_.push_back(k);
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   r_.resize(ns);
   lam_.resize(ns);
@@ -425,8 +434,11 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
   }
   for (int k = 0; k < nc_; ++k) {
     const ContactMode md = mode_[static_cast<size_t>(k)];
-    if (md == ContactMode::stuck) continue;
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+    if (md == ContactMode::stuck) {
+      if (c.kinematic) [[unlikely]] fc[k] = 0.0;  // carries no load (elements/contact.hpp)
+      continue;
+    }
     const double u = c.sliding_velocity(t, v);
     const double F = c.kinetic_force(md, t, u);
     fc[k] = F;
@@ -837,7 +849,7 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
   for (int k = 0; k < nc_; ++k) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     const ContactMode md = mode_[static_cast<size_t>(k)];
-    c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck ? 0.0 : c.sliding_velocity(t, y + n_),
+    c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck && !c.kinematic ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
   }
   // A speed drive on its limit reads the body's acceleration (elements/speed_drive.hpp).

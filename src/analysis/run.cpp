@@ -138,6 +138,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
     std::copy(y, y + N_, y_.begin());
     apply_releases(t);  // at its breakpoint, or at an event located on it
+    // Prescribed speeds exactly on their signals (the integrated slope's error off): a kinematic
+    // contact at a prescribed rest is then at u = 0 exactly (elements/prescribed_motion.hpp).
+    for (int j = 0; j < sys_.motion_count(); ++j) {
+      const PrescribedMotionLaw& k = sys_.motion(j);
+      y_[static_cast<size_t>(n_ + k.body)] = k.snapped_velocity(t, y_[static_cast<size_t>(n_ + k.body)]);
+    }
     std::vector<int> own;
     int jump = -1;
     for (int f : fired) {
@@ -534,6 +540,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0 &&
            y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0;
   }
+  /// Whether contact k is decided again at any event: a stuck one (not a joint or a gear's), and a
+  /// kinematic one exactly at u = 0 (a prescribed speed that reached its rest at a kink).
+  bool decided_at_event(int k, double t) const {
+    const ContactLaw& c = sys_.contact(k);
+    if (c.kinematic && sys_.sliding_velocity(k, t, y_.data()) == 0.0) return true;
+    return sys_.contact_mode(k) == ContactMode::stuck && !c.joint && !gear_owned(k);
+  }
   /// Whether contact k belongs to a gear lock (decided with its gear, not by decide_contacts).
   bool gear_owned(int k) const { return sys_.gear_locks().owner[static_cast<size_t>(k)] >= 0; }
   /// Sets drive d's limiter mode and records the switch.
@@ -728,7 +741,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
     for (int k = 0; k < nc_; ++k)
-      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint && !gear_owned(k)) Z.push_back(k);
+      if (decided_at_event(k, t)) Z.push_back(k);
     std::sort(Z.begin(), Z.end());
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
     if (Z.empty()) return;
@@ -799,7 +812,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     std::vector<int> Z;
     for (int k = 0; k < nc_; ++k)
-      if (sys_.contact_mode(k) == ContactMode::stuck && !sys_.contact(k).joint && !gear_owned(k)) Z.push_back(k);
+      if (decided_at_event(k, t)) Z.push_back(k);
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
     apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);

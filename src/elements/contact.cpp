@@ -31,6 +31,15 @@ ContactLaw ContactLaw::of(const FrictionContact& c) {
   return k;
 }
 
+ContactLaw ContactLaw::of(const FrictionContact& c, const Model& m) {
+  ContactLaw k = of(c);
+  k.kinematic = !c.joint;
+  for (int j = 0; j < k.row.terms; ++j)
+    k.kinematic = k.kinematic && k.row.body[j] >= 0 &&
+                  m.bodies[static_cast<size_t>(k.row.body[j])].motion != MotionKind::free;
+  return k;
+}
+
 double ContactLaw::kinetic_slope(double t, double u) const {
   if (!kinetic_table) return 0.0;
   // F = ±r F_k0(|u|): dF/du = r F_k0′(|u|) in either direction.
@@ -49,7 +58,7 @@ double ContactLaw::steepest_kinetic_slope() const {
 
 void ContactLaw::add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const {
   if (joint) md = ContactMode::stuck;  // in every topology
-  else if (!engaged) return;
+  else if (!engaged || kinematic) return;
   if (md == ContactMode::stuck) {
     std::vector<std::pair<int, double>> g;
     for (int j = 0; j < row.terms; ++j) g.emplace_back(row.body[j], row.w[j]);

@@ -57,7 +57,7 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
   }
   for (size_t l = 0; l < m.links.size(); ++l) LinkLaw::of(m, m.links[l]).add_linear(q, topo.gaps[l], lin);
   for (size_t k = 0; k < m.contacts.size(); ++k) {
-    const ContactLaw c = ContactLaw::of(m.contacts[k]);
+    const ContactLaw c = ContactLaw::of(m.contacts[k], m);  // a kinematic one: no row (its bodies are supports)
     const bool engaged = topo.engaged.empty() || topo.engaged[k];
     c.add_linear(topo.contacts[k], engaged, t, c.sliding_velocity(t, v), lin);
   }

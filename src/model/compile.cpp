@@ -556,14 +556,14 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_buffers(top.node("buffers"), m, diag);
   detail::compile_crane(top.node("crane"), m, diag);
   detail::compile_drives(top.node("drives"), m, diag);
-  detail::check_motion_elements(m, gears, lossy, diag);
+  detail::check_motion_elements(m, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
   if (diag.empty()) detail::resolve_rigid(m, gears, bodies, detail::massless_members(m, joints), diag);
   if (diag.empty()) detail::resolve_lossy(m, lossy, diag);  // on the bodies the merge left
+  if (diag.empty()) detail::check_motion_lossy(m, diag);
   if (diag.empty()) detail::resolve_joints(m, joints, bodies, diag);  // after both: contacts rewritten last
   // Releases refer to the bodies as merged (a slaved body's release acts on its master).
   detail::compile_releases(top.node("releases"), m, diag);
-  detail::check_motion_releases(m, diag);
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);

@@ -7,10 +7,9 @@
 //   motion: {position: SIGNAL}       q = s(t), rad or m (smooth before t_end); starts at s(0), ds/dt(0)
 #include <vector>
 
+#include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/spec.hpp"
 #include "machdyn/model/model.hpp"
-#include "model/compile_lossy.hpp"
-#include "model/compile_rigid.hpp"
 
 namespace machdyn::detail {
 
@@ -19,12 +18,11 @@ namespace machdyn::detail {
 /// them (beyond 1e-9 relative) is a located error. (Smoothness of a position: compile's breakpoint check.)
 void read_motion(FieldReader& f, Body& b);
 
-/// The elements a prescribed body cannot carry yet, each a located error: friction elements (contacts,
-/// brakes, clutches, freewheels, stops), ideal and lossy gears (with the file's body indices, before
-/// the merge).
-void check_motion_elements(const Model& m, const std::vector<IdealGear>& gears, const std::vector<LossyGearSpec>& lossy,
-                           Diagnostics& diag);
-/// Releases on a prescribed body (after compile_releases), a located error.
-void check_motion_releases(const Model& m, Diagnostics& diag);
+/// The friction elements a prescribed body cannot carry, each a located error: a freewheel or end stop
+/// between it and the ground or another prescribed body (a lock against a given motion).
+void check_motion_elements(const Model& m, Diagnostics& diag);
+/// Lossy gears on a prescribed body (after the ideal-gear merge, which may make a group prescribed),
+/// a located error.
+void check_motion_lossy(const Model& m, Diagnostics& diag);
 
 }  // namespace machdyn::detail

@@ -9,6 +9,10 @@
 //   (I_M + Σ_s ρ_s² I_s) a_M = Σ_s ρ_s F_s(t, ρ_s q_M, ρ_s v_M)
 // (Lagrange's equation of the constrained system): the reduced inertia, and each slave's load
 // reduced by its ratio and evaluated at the slave's own position and speed (Load::ratio).
+// A group with a prescribed member P (elements/prescribed_motion.hpp) is prescribed: P is its master
+// (ρ re-based, ρ_u / ρ_P), so the merged body follows P's signal and q_s = ρ_s q_P; its motion
+// source's force is the one at P's coordinate, R = (I_P + Σ ρ_s² I_s) a_P − Σ ρ_s F_s. Two
+// prescribed members would over-determine the group: a located error (even when their signals agree).
 // A link whose first end a is a slave, δ = q_a/i − q_b = ρ_a q_M/i − q_b, is the same link on M
 // with the ratio i/ρ_a: its law and load are unchanged.
 #include "model/compile_rigid.hpp"
@@ -127,6 +131,24 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
           }
         }
       }
+      // A prescribed member is the group's master (its signal is the group's motion).
+      int given = -1;
+      for (size_t u = s; u < n; ++u) {
+        if (master[u] != static_cast<int>(s) || m.bodies[u].motion == MotionKind::free) continue;
+        if (given < 0) {
+          given = static_cast<int>(u);
+          continue;
+        }
+        diag.error(m.where(m.bodies[u].name),
+                   fmt::format("body '{}' has a prescribed motion ('motion') and ideal gears tie it to '{}', which has "
+                               "one too; a rigid group can follow one motion only: prescribe one of them", m.bodies[u].name,
+                               m.bodies[static_cast<size_t>(given)].name));
+      }
+      if (given > static_cast<int>(s)) {
+        const double r = rho[static_cast<size_t>(given)];
+        for (size_t u = s; u < n; ++u)
+          if (master[u] == static_cast<int>(s)) master[u] = given, rho[u] /= r;
+      }
     }
   }
   // Initial positions and velocities along the gears: the master's, or a slave's when only it gives one.
@@ -134,17 +156,20 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
     if (master[s] != static_cast<int>(s)) continue;
     for (const char* key : {"position", "velocity"}) {
       const bool pos = key[0] == 'p';
-      // The group's value in the master's coordinate: from the first body that gives one.
+      // The group's value in the master's coordinate: a prescribed master's own (its speed or position
+      // signal sets it, read_motion), else from the first body that gives one.
       std::optional<double> base;
       size_t from = s;
-      for (size_t u = s; u < n; ++u) {
+      const MotionKind mk = m.bodies[s].motion;
+      if (mk == MotionKind::position || (mk == MotionKind::speed && !pos)) base = pos ? m.bodies[s].q0 : m.bodies[s].v0;
+      for (size_t u = 0; u < n && !base; ++u) {
         if (master[u] != static_cast<int>(s) || !body_field(bodies, m.bodies[u].name, key)) continue;
         base = (pos ? m.bodies[u].q0 : m.bodies[u].v0) / rho[u];
         from = u;
         break;
       }
       const double x0 = base.value_or(0.0);
-      for (size_t u = s; u < n; ++u) {
+      for (size_t u = 0; u < n; ++u) {
         if (master[u] != static_cast<int>(s)) continue;
         double& x = pos ? m.bodies[u].q0 : m.bodies[u].v0;
         const SpecNode* at = body_field(bodies, m.bodies[u].name, key);

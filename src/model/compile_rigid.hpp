@@ -28,8 +28,8 @@ struct IdealGear {
 void read_ideal_gear(const std::string& name, const SpecNode& spec, const Model& m, std::vector<IdealGear>& out,
                      Diagnostics& diag);
 
-/// Merges the bodies tied by `gears` into one body per rigid group (the master: the group's first
-/// body in the file), re-attaches loads and links of the slaved bodies, checks initial conditions,
+/// Merges the bodies tied by `gears` into one body per rigid group (the master: the group's body with
+/// a prescribed motion, else its first body in the file; two prescribed members are an error), re-attaches loads and links of the slaved bodies, checks initial conditions,
 /// ratios around loops and massless bodies, and fills m.slaves. `bodies` is the file's `bodies:`
 /// section (for the places of positions and velocities). `massless_ok`: bodies that may have zero
 /// inertia without an ideal gear (a joint eliminates them: model/compile_joint.hpp). Call after

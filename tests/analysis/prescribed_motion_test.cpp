@@ -322,16 +322,10 @@ TEST(PrescribedMotionCompile, BadFieldsAreLocatedErrors) {
       {"bodies:\n  b: {type: translational, mass: 1, motion: {acceleration: 1 m/s}}\n", "test.yaml:2:"},
       {"bodies:\n  b: {inertia: 1, motion: {speed: 2 m/s}}\n", "test.yaml:2:"},
       {"bodies:\n  b: {type: translational, mass: 1, velocity: 3 m/s, motion: {speed: 2 m/s}}\n", "contradicts"},
-      {"bodies:\n  b: {type: translational, mass: 1, motion: {speed: 2 m/s}}\n"
-       "contacts:\n  c: {between: [b, ground], static: 1 N, kinetic: 1 N}\n", "friction element between it and the ground"},
-      {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1}\n"
-       "links:\n  g: {type: ideal-gear, between: [a, b], ratio: 2}\n", "ideal gear 'g'"},
-      {"bodies:\n  b: {type: translational, mass: 2, motion: {speed: 2 m/s}}\n"
-       "releases:\n  r: {body: b, mass: 1 kg, time: 0.1 s}\n", "release 'r'"},
       {"bodies:\n  b: {type: translational, mass: 1, motion: {acceleration: {type: pulse, high: 1 m/s^2, period: 1 ns, "
        "width: 0.5 ns}}}\nsimulation: {t_end: 1 s}\n", "more than 1e+07"},
       {"bodies:\n  a: {type: translational, mass: 1, motion: {speed: 1 m/s}}\n  b: {type: translational, mass: 1, "
-       "motion: {speed: 2 m/s}}\ncontacts:\n  c: {between: [a, b], static: 1 N, kinetic: 1 N}\n", "another prescribed body"},
+       "motion: {speed: 2 m/s}}\nstops:\n  s: {body: a, max: 12 m}\n", "end stop"},
   };
   for (const Case& c : cases) {
     const std::string e = test::compile_errors(c.yaml);

@@ -9,7 +9,9 @@
 /// of Z holds and every sliding one accelerates in its own direction (s u̇ ≥ 0 within the rounding
 /// of u̇ = a_a − a_b, 1e-12 (|a_a| + |a_b|): with μ_s = μ_k a breakaway starts at u̇ = 0); if the release
 /// sequence does not end consistent, every combination is tried, fewest sliding contacts first, then
-/// in index order. Deterministic; no smoothing, no velocity threshold.
+/// in index order. Kinematic contacts in Z (between prescribed motions, elements/contact.hpp) change
+/// no acceleration: they are decided first, apart, by ContactLaw::kinematic_mode. Deterministic; no
+/// smoothing, no velocity threshold.
 
 #include <vector>
 

@@ -22,6 +22,15 @@
 /// same law with the unit row {a: +1, b: −1} as its special case. A joint (planetary gear, gear on
 /// a housing) is a contact that is always stuck with no limit: it holds every λ, never slides and
 /// has no events.
+/// A kinematic contact (every body of its row has a prescribed motion, elements/prescribed_motion.hpp,
+/// or is the ground) has u(t) given by the motions: it changes no acceleration. Sliding, its kinetic
+/// force acts as above and the motion sources carry it (their force columns, the heat F u). At u = 0
+/// its mode follows the motions (kinematic_mode): stuck while they keep u at 0 (u̇ = 0 within the
+/// rounding), else sliding in the direction of u̇ (of u where u̇ vanishes). Stuck, its load is λ = 0:
+/// the sources already hold every body of its row, so the contact carries no load of its own (the
+/// least-norm share with a constraint of infinite weight, as the weighted split of the drive system
+/// gives a joint the larger share). Its stuck events are u and −u: the motions leave rest (u stays
+/// exactly 0 while they rest: its bodies' accelerations are the signals' exact 0).
 
 #include <algorithm>
 #include <cmath>
@@ -47,7 +56,19 @@ struct ContactLaw {
   double stop_position = 0.0, restitution = 0.0;
   double kinetic0 = 0.0, surface0 = 0.0;  ///< the constant kinetic level and ground velocity
 
+  bool kinematic = false;  ///< every body of its row prescribed (or the ground): see the header
+
   static ContactLaw of(const FrictionContact& c);
+  /// With `kinematic` from the motions of m's bodies.
+  static ContactLaw of(const FrictionContact& c, const Model& m);
+  /// The mode of a kinematic contact at a decision, from its sliding velocity u and acceleration u̇
+  /// (`rounding`: the rounding of u̇): sliding in the direction of u̇ if |u̇| > rounding, else of u if
+  /// u ≠ 0, else stuck.
+  [[nodiscard]] static ContactMode kinematic_mode(double u, double du, double rounding) {
+    if (std::abs(du) > rounding) return du > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+    if (u != 0.0) return u > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+    return ContactMode::stuck;
+  }
 
   /// w(t): the velocity of b's side when b is the ground.
   [[nodiscard]] double surface_velocity(double t) const {
@@ -124,7 +145,8 @@ struct ContactLaw {
   }
   /// The distance of an end stop's body from the stop, ≥ 0 while off it (q: the body's position).
   [[nodiscard]] double stop_distance(double q) const { return -lock * (q - stop_position); }
-  /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity, q
+  /// The two event functions of mode md; λ is the stuck contact's load, u the sliding velocity (read
+  /// while stuck by a kinematic contact only), q
   /// the position of body a (read by end stops only).
   void events(ContactMode md, double t, double lambda, double u, double q, double* ev) const {
     if (joint) {
@@ -132,6 +154,9 @@ struct ContactLaw {
     } else if (stop && md != ContactMode::stuck) {
       ev[0] = stop_distance(q);  // reaches the stop
       ev[1] = 1.0;
+    } else if (md == ContactMode::stuck && kinematic) {
+      ev[0] = u;  // the motions leave rest (u: the sliding velocity, also while stuck)
+      ev[1] = -u;
     } else if (md == ContactMode::stuck && lock != 0) {
       ev[0] = lock * lambda;  // the load turns against the lock: it overruns
       ev[1] = 1.0;
@@ -158,7 +183,7 @@ struct ContactLaw {
   }
   /// Linear terms in mode md at sliding velocity u: a stuck contact is a constraint row of G
   /// (u = 0), a sliding one adds its kinetic slope to D; `engaged` false adds nothing. A joint is a
-  /// constraint row in every mode.
+  /// constraint row in every mode. A kinematic contact adds nothing (its bodies are fixed supports).
   void add_linear(ContactMode md, bool engaged, double t, double u, LinearModel& lin) const;
 };
 
