@@ -1,12 +1,15 @@
 // The transmitted torque of an ideal gear merged at compile time (model.hpp: MergedGear, the column
-// NAME.torque_N_m) against the closed form of a motor–gear–drum group driving a load through a
-// spring, with the group's master on either side of the gear, on both integrators.
+// NAME.torque_N_m or NAME.force_N) against closed forms: a motor–gear–drum group driving a load
+// through a spring, with the group's master on either side of the gear, and MSL's RollingWheel; on
+// both integrators.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -51,6 +54,28 @@ simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
     std::printf("merged gear torque (%s, master %s): largest error %.2e N*m of %.4f\n",
                 GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", m.bodies[0].name.c_str(), err, tau(0.0));
   }
+}
+
+// Claim: in examples/msl/rolling-wheel.yaml the wheel's force on the mass (a translational B:
+// the column NAME.force_N) is what the mass and its drag need, F = m a + k v², with MSL's closed form
+// v = 5 tanh(t − 0.1 s) m/s (2 kg reduced mass, 10 N from 0.1 s, k = 0.4 N·s²/m²), a = 5 sech²(t − 0.1):
+// F = 5 sech² + 10 tanh² N after the step, 0 before (the row at the step itself is left out).
+TEST_P(MergedGearTorque, RollingWheelForceMatchesTheClosedForm) {
+  Model m = load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/msl/rolling-wheel.yaml");
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  const auto& t = test::series(r, "t_s");
+  const auto& F = test::series(r, "idealRollingWheel.force_N");
+  ASSERT_EQ(t.size(), F.size());
+  double err = 0.0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (std::abs(t[k] - 0.1) < 1e-9) continue;
+    const double x = t[k] - 0.1, th = std::tanh(x), want = x < 0 ? 0.0 : 5.0 * (1.0 - th * th) + 10.0 * th * th;
+    err = std::max(err, std::abs(F[k] - want));
+  }
+  EXPECT_LT(err, GetParam() == IntegratorChoice::bdf ? 1e-5 : 1e-7) << "largest error " << err << " N";
+  std::printf("rolling wheel force (%s): largest error %.2e N\n", GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5",
+              err);
 }
 
 // Claim: a gear inside a loop of ideal gears (ratios agreeing) has no side to sum, so no column;
