@@ -273,6 +273,16 @@ TEST(MasslessMemberErrors, AreLocated) {
       "bearing.yaml");
   EXPECT_NE(rope.find("bearing.yaml:8:3: error: link 'k'"), std::string::npos) << rope;
   EXPECT_NE(rope.find("a rope wound on a drum on it is not supported"), std::string::npos) << rope;
+  // A machine's output point at the link's other end.
+  const std::string point = test::compile_errors(
+      std::string("bodies:\n") + test::kCrankSliderBody +
+          "  s: {inertia: 1 kg*m^2}\n  x: {inertia: 0 kg*m^2}\n  h: {inertia: 1 kg*m^2}\n"
+          "links:\n  g: {type: ideal-gear, between: [s, x], ratio: 3, housing: h}\n"
+          "  k: {type: spring, between: [crank.piston, x], ratio: 0.1 m/rad, stiffness: 1e3 N*m/rad}\n",
+      "bearing.yaml");
+  EXPECT_NE(point.find("bearing.yaml:"), std::string::npos) << point;
+  EXPECT_NE(point.find("error: link 'k'"), std::string::npos) << point;
+  EXPECT_NE(point.find("a machine's output point on it is not supported"), std::string::npos) << point;
 }
 
 }  // namespace
