@@ -86,7 +86,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
   std::vector<GapMode> mode(nl, GapMode::open);
   for (size_t k = 0; k < nl; ++k) {
     if (!laws[k].gap) continue;
-    const double delta = laws[k].linear(q.data());
+    const double delta = laws[k].weighted(q.data());
     mode[k] = delta >= laws[k].hi ? GapMode::closed_pos : delta <= laws[k].lo ? GapMode::closed_neg : GapMode::open;
   }
   std::vector<char> held(m.contacts.size(), 0);
@@ -114,6 +114,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
       if (!law.winding) law.apply(F, kin, s.g.data());
       if (law.a >= 0) s.scale(law.a) += std::abs(F * kin.ja);
       if (law.b >= 0) s.scale(law.b) += std::abs(F * kin.jb);
+      if (law.third >= 0) s.scale(law.third) += std::abs(F * law.w3);
       law.jacobian(n, mode[k], false, x.data(), [&](int r, int c, double val) {
         if (c < n) s.J(r, c) += val;
       });
@@ -159,7 +160,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
       for (size_t l = 0; l < nl; ++l) {
         const LinkLaw& law = laws[l];
         if (!law.gap || mode[l] != GapMode::open) continue;
-        const double rate = law.linear(u.data()), delta = law.linear(q.data());
+        const double rate = law.weighted(u.data()), delta = law.weighted(q.data());
         const double d = rate > 0.0 ? (law.hi - delta) / rate : rate < 0.0 ? (law.lo - delta) / rate : HUGE_VAL;
         if (std::isfinite(d) && d < best) best = d, link = static_cast<int>(l), stop = -1,
                                           closes = rate > 0.0 ? GapMode::closed_pos : GapMode::closed_neg;
@@ -211,7 +212,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
     for (size_t k = 0; k < nl; ++k) {
       const LinkLaw& law = laws[k];
       if (!law.gap) continue;
-      const double delta = law.linear(q.data());
+      const double delta = law.weighted(q.data());
       const double F = law.load(delta, 0.0, mode[k], law.drum(q.data())), tol = 1e-12 * law.c * q_scale;
       GapMode next = mode[k];
       if (mode[k] == GapMode::closed_pos && F < -tol) next = GapMode::open;

@@ -31,6 +31,7 @@ Eigen::MatrixXd deflection_matrix(const Model& m) {
     const auto r = static_cast<Eigen::Index>(l);
     if (k.a >= 0) B(r, k.a) += s.ja;
     if (k.b >= 0) B(r, k.b) -= s.jb;
+    if (k.third >= 0) B(r, k.third) += k.w3;  // a massless member's end (elements/link.hpp)
   }
   return B;
 }

@@ -239,6 +239,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       names.push_back(sl.name + ".position_" + unit_suffix(position_unit(sl.kind)));
       names.push_back(sl.name + ".velocity_" + unit_suffix(velocity_unit(sl.kind)));
     }
+    // Ideal gears merged at compile (model.hpp: MergedGear): the torque each passes to its B side.
+    for (const auto& g : m_.merged_gears)
+      names.push_back(g.name + (g.kind_b == BodyKind::translational ? ".force_" : ".torque_") + unit_suffix(load_unit(g.kind_b)));
     // Friction elements with a thermal model (elements/thermal.hpp): the temperature, in °C.
     for (const auto& c : m_.contacts)
       if (c.thermal) names.push_back(c.name + ".temperature_degC");
@@ -323,6 +326,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(sl.ratio * y[sl.master] + (sl.master2 >= 0 ? sl.ratio2 * y[sl.master2] : 0.0));
       put(sl.ratio * y[n_ + sl.master] + (sl.master2 >= 0 ? sl.ratio2 * y[n_ + sl.master2] : 0.0));
     }
+    if (!m_.merged_gears.empty()) {
+      if (!sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
+      for (const auto& g : m_.merged_gears) put(merged_gear_torque(g, t, y));
+    }
     if (heat_.any_thermal()) {
       heat_.at(step_, t, y, nullptr, nullptr, temperature_.data());
       for (double T : temperature_) put(T - kZeroCelsius);
@@ -363,6 +370,21 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       p_.assign(static_cast<size_t>(heat_.count()) + 1, 0.0);
       q_.assign(static_cast<size_t>(heat_.count()) + 1, 0.0);
     }
+  }
+  /// τ_B of merged ideal gear g (model.hpp: MergedGear) from its side S's equation of motion:
+  /// ρ_E τ_E = I_S q̈_M − f_S, f_S the loads on S and the first ends of S's links (−F j_a and a winding
+  /// rope's −W, as the drive system applies them), in the master's coordinate; acc_ holds q̈.
+  double merged_gear_torque(const MergedGear& g, double t, const double* y) const {
+    const int M = g.body;
+    double f = 0.0;
+    for (const int k : g.loads) f += now().loads[static_cast<size_t>(k)].evaluate(t, y[M], y[n_ + M]);
+    for (const int l : g.links) {
+      const LinkLaw& law = sys_.link(l);
+      const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
+      f -= loads_[static_cast<size_t>(l)] * s.ja + law.winding_force(s.delta, law.drum(y), sys_.gap_mode(l));
+    }
+    const double tau_e = (g.inertia * acc_[static_cast<size_t>(M)] - f) / g.rho;
+    return g.side_b ? tau_e : -g.ratio * tau_e;
   }
   /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
   std::string link_deflection_unit(const Link& l) const {

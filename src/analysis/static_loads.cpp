@@ -1,8 +1,10 @@
 #include "machdyn/analysis/static_loads.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -11,8 +13,45 @@
 
 namespace machdyn {
 
+namespace {
+/// ker K when a link ends on a massless member (elements/link.hpp: δ over three bodies, or a weight
+/// on b), which the walk over two-body links below cannot follow: the null space of the springs'
+/// K = Σ c j jᵀ, scaled to a unit diagonal (bodies without a spring keep 1) so that rotational and
+/// translational coordinates weigh alike; a body with prescribed motion is held (a support).
+Eigen::MatrixXd rigid_motions_by_null_space(const Model& m) {
+  const int n = m.dof();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& l : m.links) {
+    if (l.c <= 0.0) continue;
+    LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int r, int c, double v) {
+      if (c < n) K(r, c) -= v;
+    });
+  }
+  Eigen::VectorXd s(n);
+  for (int i = 0; i < n; ++i) s(i) = K(i, i) > 0.0 ? 1.0 / std::sqrt(K(i, i)) : 1.0;
+  Eigen::MatrixXd S = s.asDiagonal() * K * s.asDiagonal();
+  for (int i = 0; i < n; ++i)
+    if (m.bodies[static_cast<size_t>(i)].motion != MotionKind::free) S(i, i) += 1.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
+  const double tol = 1e-10 * std::max(1.0, eig.eigenvalues().cwiseAbs().maxCoeff());
+  std::vector<Eigen::Index> null;
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (std::abs(eig.eigenvalues()(k)) <= tol) null.push_back(k);
+  Eigen::MatrixXd R(n, static_cast<Eigen::Index>(null.size()));
+  for (size_t k = 0; k < null.size(); ++k) {
+    Eigen::VectorXd col = s.asDiagonal() * eig.eigenvectors().col(null[k]);
+    Eigen::Index big = 0;
+    col.cwiseAbs().maxCoeff(&big);
+    R.col(static_cast<Eigen::Index>(k)) = col / col(big);  // its largest coordinate 1, as the walk's root
+  }
+  return R;
+}
+}  // namespace
+
 Eigen::MatrixXd rigid_motions(const Model& m) {
   const int n = m.dof();
+  for (const auto& l : m.links)
+    if (l.c > 0.0 && (l.third >= 0 || l.b_weight != 1.0)) return rigid_motions_by_null_space(m);
   // Spring graph: adjacency with the factor that carries q across a link (q_b = q_a / i).
   struct Edge {
     int to;
@@ -160,7 +199,7 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t k = 0; k < m.links.size(); ++k) {
     const LinkLaw law = LinkLaw::of(m, m.links[k]);
-    F(static_cast<Eigen::Index>(k)) = law.spring_load(law.linear(sol.data()));
+    F(static_cast<Eigen::Index>(k)) = law.spring_load(law.weighted(sol.data()));
   }
   return F;
 }

@@ -16,7 +16,10 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   k.hi = l.gap - l.gap_start;
   if (l.a_point && l.a >= 0) k.pa = m.bodies[static_cast<size_t>(l.a)].machine.get();
   if (l.b_point && l.b >= 0) k.pb = m.bodies[static_cast<size_t>(l.b)].machine.get();
-  k.point = k.pa || k.pb;
+  k.wb = l.b_weight;
+  k.third = l.third;
+  k.w3 = l.third_weight;
+  k.point = k.pa || k.pb || k.wb != 1.0 || k.third >= 0;
   k.falls = l.falls;
   k.winding = l.EA > 0.0 && l.a >= 0 && l.length > 0.0;
   k.K = l.falls * l.EA;
@@ -86,8 +89,13 @@ double LinkLaw::general_load_rate(const double* q, const double* v, const double
     if (capped && on_cap(linear(q), rate, g, qa)) return 2.0 * Fc_rate;
     return Fc_rate + d * linear(acc);
   }
-  // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i).
+  // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i); a massless member's end: the linear form.
   double delta = 0, rate = 0, dd = 0, p, dp, ddp;
+  if (!pa && !pb) {
+    delta = weighted(q), rate = weighted(v), dd = weighted(acc);
+    if (on_cap(delta, rate, g)) return 2.0 * c * rate;
+    return c * rate + d * dd;
+  }
   if (a >= 0) {
     if (pa) pa->point(q[a], &p, &dp, &ddp);
     else p = q[a], dp = 1.0, ddp = 0.0;
@@ -126,8 +134,8 @@ void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
   }
   // δ ≈ δ0 + jᵀ Δq: the spring adds c j jᵀ, the damper d j jᵀ. A machine's output point also adds
   // the geometric stiffness of V = ½ c (δ(q) − flank)²: ∂²V/∂q² ∋ c (δ0 − flank) ∂²δ/∂q².
-  int idx[2];
-  double j[2], curv[2];
+  int idx[3];
+  double j[3], curv[3];
   int cnt = 0;
   double delta0 = 0.0;
   auto end = [&](int body, const Machine* p_m, double sign, double scale) {
@@ -139,7 +147,8 @@ void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
     ++cnt;
   };
   end(a, pa, 1.0, inv_ratio);
-  end(b, pb, -1.0, 1.0);
+  end(b, pb, -1.0, wb);
+  end(third, nullptr, 1.0, w3);
   LinearModel::add_outer(lin.K, idx, j, cnt, c);
   LinearModel::add_outer(lin.D, idx, j, cnt, d);
   for (int k = 0; k < cnt; ++k)
@@ -169,7 +178,8 @@ void LinkLaw::add_load_gradient(const double* q, const double* v, GapMode g, dou
     dFdv[body] += sign * d * dp;
   };
   end(a, pa, inv_ratio);
-  end(b, pb, -1.0);
+  end(b, pb, -wb);
+  end(third, nullptr, w3);
 }
 
 }  // namespace machdyn

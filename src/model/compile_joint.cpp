@@ -126,7 +126,7 @@ void remove_body(Model& m, int x) {
     if (i > x) --i;
   };
   for (Load& ld : m.loads) shift(ld.body);
-  for (Link& l : m.links) shift(l.a), shift(l.b);
+  for (Link& l : m.links) shift(l.a), shift(l.b), shift(l.third);
   for (FrictionContact& c : m.contacts) {
     shift(c.a), shift(c.b);
     for (int j = 0; j < c.row.terms; ++j) shift(c.row.body[j]);
@@ -134,9 +134,69 @@ void remove_body(Model& m, int x) {
   for (Drive& d : m.drives) shift(d.body);
   for (LossyGear& g : m.lossy_gears) shift(g.a), shift(g.b);
   for (RigidSlave& s : m.slaves) shift(s.master), shift(s.master2);
+  for (MergedGear& g : m.merged_gears) shift(g.body);
   shift(m.crane.load);
   m.bodies.erase(m.bodies.begin() + x);
   m.index_bodies();
+}
+
+/// Rewrites link k if an end is on x (q_x = Σ sub.w q_sub.body): δ = Σ w q over its terms with x's
+/// term replaced, its own other ends kept in their places (units, display), the rest in the free
+/// places of a, b, e (model.hpp: Link). False after an error.
+bool rewrite_link(Model& m, int k, int x, const VelocityRow& sub, const std::string& why, Diagnostics& diag) {
+  Link& l = m.links[static_cast<size_t>(k)];
+  if (l.a != x && l.b != x && l.third != x) return true;
+  const std::string at = fmt::format("link '{}': {}", l.name, why);
+  if (l.a_point || l.b_point || l.EA > 0.0 || l.buffer || m.crane.rope == k) {
+    const char* what = l.a_point || l.b_point ? "a machine's output point" : l.EA > 0.0 ? "a rope wound on a drum"
+                       : l.buffer ? "a buffer" : "the crane's hoist rope";
+    diag.error(m.where(l.name), fmt::format("{}; {} on it is not supported: give it an inertia", at, what));
+    return false;
+  }
+  // δ = Σ w q over the link's terms (model.hpp: q_a/i − w_b q_b + w_e q_e), x's term substituted.
+  VelocityRow t;
+  double wx = 0.0;
+  const int end[3] = {l.a, l.b, l.third};
+  const double w[3] = {1.0 / l.ratio, -l.b_weight, l.third_weight};
+  for (int j = 0; j < 3; ++j) {
+    if (end[j] < 0) continue;
+    if (end[j] == x) wx += w[j];
+    else add_term(t, end[j], w[j]);
+  }
+  for (int j = 0; j < sub.terms; ++j) add_term(t, sub.body[j], wx * sub.w[j]);
+  drop_zeros(t);
+  if (t.terms == 0) {
+    diag.error(m.where(l.name), fmt::format("{}; its deflection is then always 0 (its ends move together): remove it",
+                                            at));
+    return false;
+  }
+  if (t.terms > 3) {
+    diag.error(m.where(l.name), fmt::format("{}; the link would join {} bodies, at most 3 are supported: give one of "
+                                            "its ends an inertia", at, t.terms));
+    return false;
+  }
+  // Places: a keeps its body if it stays (weight 1/i), b likewise (weight −w_b); the rest fill a, b, e.
+  int slot_body[3] = {kGround, kGround, kGround};
+  double slot_w[3] = {0.0, 0.0, 0.0};
+  std::vector<char> used(static_cast<size_t>(t.terms), 0);
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < t.terms; ++j)
+      if (end[s] >= 0 && end[s] != x && t.body[j] == end[s]) slot_body[s] = t.body[j], slot_w[s] = t.w[j], used[static_cast<size_t>(j)] = 1;
+  for (int j = 0; j < t.terms; ++j) {
+    if (used[static_cast<size_t>(j)]) continue;
+    int s = 0;
+    while (slot_body[s] != kGround) ++s;
+    slot_body[s] = t.body[j], slot_w[s] = t.w[j];
+  }
+  l.a = slot_body[0];
+  l.ratio = l.a >= 0 ? 1.0 / slot_w[0] : 1.0;
+  l.b = slot_body[1];
+  l.b_weight = l.b >= 0 ? -slot_w[1] : 1.0;
+  l.third = slot_body[2];
+  l.third_weight = l.third >= 0 ? slot_w[2] : 0.0;
+  // A merged ideal gear that summed this link's first end no longer knows its share: no torque output.
+  std::erase_if(m.merged_gears, [k](const MergedGear& g) { return std::find(g.links.begin(), g.links.end(), k) != g.links.end(); });
+  return true;
 }
 
 /// Eliminates member x of joint `j` (row `r`, x in it, zero inertia): contacts on x get x's terms
@@ -146,12 +206,6 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   const std::string why = fmt::format("'{}' has no inertia, so {} eliminates it (its motion follows the other "
                                       "members)", X.name, j.what);
   bool ok = true;
-  for (const Link& l : m.links)
-    if (l.a == x || l.b == x) {
-      diag.error(m.where(l.name), fmt::format("link '{}': {}; a link on it is not supported yet: give '{}' an inertia",
-                                              l.name, why, X.name));
-      ok = false;
-    }
   for (const Load& ld : m.loads)
     if (ld.body == x) {
       diag.error(m.where(ld.name), fmt::format("load '{}': {}; a load on it is not supported yet: give '{}' an "
@@ -185,6 +239,7 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
     if (r.body[k] == x) wx = r.w[k];
   for (int k = 0; k < r.terms; ++k)
     if (r.body[k] != x) add_term(sub, r.body[k], -r.w[k] / wx);
+  for (size_t k = 0; k < m.links.size(); ++k) ok = rewrite_link(m, static_cast<int>(k), x, sub, why, diag) && ok;
   for (FrictionContact& c : m.contacts) {
     VelocityRow row = c.row;
     if (row.terms == 0) {

@@ -11,7 +11,11 @@
 /// own and the joint eliminates it, q_X = Σ_j c_j q_j (c_j = −w_j / w_X) over the other members,
 /// so the joint adds no constraint at all; a contact on X (a brake, a clutch) gets X's terms
 /// rewritten (a general row), and X's position and velocity are still written (RigidSlave with two
-/// masters). A link, load, drive or lossy gear on X is an error (X would need an equation of motion).
+/// masters). A link on X (a spring, damper or gap on a gear's massless output flange, as in Modelica's
+/// ElasticBearing) gets X's term rewritten likewise: its deflection becomes a linear form over up to
+/// three bodies (model.hpp: Link::b_weight, e; law in elements/link.hpp). A load, drive or lossy gear
+/// on X, and a machine's output point, winding rope, buffer or crane rope on it, are errors (X would
+/// need an equation of motion, or the element's law has no such form).
 
 #include <string>
 #include <unordered_set>

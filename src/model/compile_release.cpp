@@ -36,6 +36,9 @@ void compile_releases(const SpecNode* section, Model& m, Diagnostics& diag) {
                                        "is not supported (give the released mass as a body of its own)", name, *body));
     }
     const bool ok = idx >= 0 && !m.bodies[static_cast<size_t>(idx)].machine;
+    // A merged gear's torque sums the inertias of its side at t = 0: none for a side that releases mass.
+    if (body)
+      std::erase_if(m.merged_gears, [&](const MergedGear& g) { return std::find(g.side.begin(), g.side.end(), *body) != g.side.end(); });
     const BodyKind kind = slave >= 0 ? m.slaves[static_cast<size_t>(slave)].kind
                           : ok       ? m.bodies[static_cast<size_t>(idx)].kind
                                      : BodyKind::translational;

@@ -92,6 +92,62 @@ bool initial_values_agree(double x, double y) {
   return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)) + 1e-12;
 }
 
+namespace {
+/// Fills m.merged_gears (model.hpp: MergedGear) from the groups (master, ρ per body in the file's
+/// indices; idx: the indices after the merge), before loads and links are re-attached: for each gear
+/// the side S without the master, found by a walk over the other gears from the gear's end on S.
+void merged_gear_outputs(Model& m, const std::vector<IdealGear>& gears, const std::vector<int>& master,
+                         const std::vector<double>& rho, const std::vector<int>& idx) {
+  const size_t n = m.bodies.size();
+  std::vector<std::vector<size_t>> adj(n);
+  for (size_t k = 0; k < gears.size(); ++k) {
+    adj[static_cast<size_t>(gears[k].a)].push_back(k);
+    adj[static_cast<size_t>(gears[k].b)].push_back(k);
+  }
+  // The bodies reachable from `from` without gear `skip`.
+  auto side = [&](size_t from, size_t skip) {
+    std::vector<char> in(n, 0);
+    std::vector<size_t> todo{from};
+    in[from] = 1;
+    while (!todo.empty()) {
+      const size_t u = todo.back();
+      todo.pop_back();
+      for (size_t k : adj[u]) {
+        if (k == skip) continue;
+        const auto w = static_cast<size_t>(gears[k].a == static_cast<int>(u) ? gears[k].b : gears[k].a);
+        if (!in[w]) in[w] = 1, todo.push_back(w);
+      }
+    }
+    return in;
+  };
+  for (size_t k = 0; k < gears.size(); ++k) {
+    const IdealGear& g = gears[k];
+    const auto a = static_cast<size_t>(g.a), b = static_cast<size_t>(g.b);
+    const auto M = static_cast<size_t>(master[a]);
+    std::vector<char> S = side(b, k);
+    if (S[a]) continue;  // a loop of gears: no side to sum
+    MergedGear out{g.name, idx[M], !S[M], m.bodies[b].kind, g.ratio, rho[b], 0.0, {}, {}, {}};
+    if (S[M]) {
+      S = side(a, k);
+      out.rho = rho[a];
+    }
+    bool plain = true;
+    for (size_t s = 0; s < n; ++s) {
+      if (!S[s]) continue;
+      plain = plain && !m.bodies[s].machine;
+      out.inertia += rho[s] * rho[s] * m.bodies[s].inertia;
+      out.side.push_back(m.bodies[s].name);
+    }
+    if (!plain) continue;
+    for (size_t l = 0; l < m.loads.size(); ++l)
+      if (S[static_cast<size_t>(m.loads[l].body)]) out.loads.push_back(static_cast<int>(l));
+    for (size_t l = 0; l < m.links.size(); ++l)
+      if (m.links[l].a >= 0 && S[static_cast<size_t>(m.links[l].a)]) out.links.push_back(static_cast<int>(l));
+    m.merged_gears.push_back(std::move(out));
+  }
+}
+}  // namespace
+
 void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode* bodies,
                    const std::unordered_set<std::string>& massless_ok, Diagnostics& diag) {
   const size_t n = m.bodies.size();
@@ -215,6 +271,7 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
                        m.bodies[static_cast<size_t>(master[u])].name, m.bodies[u].name, rho[u],
                        m.bodies[static_cast<size_t>(master[u])].name);
   };
+  merged_gear_outputs(m, gears, master, rho, idx);
   for (Load& ld : m.loads) {
     if (!is_slave(ld.body)) {
       ld.body = to(ld.body);

@@ -155,7 +155,7 @@ std::vector<std::string> chain_column_names(const Model& m) {
 
 std::size_t output_columns_bound(const Model& m) {
   std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size() + 3 * m.drives.size() +
-                  2 * m.slaves.size() + 4 * m.lossy_gears.size();
+                  2 * m.slaves.size() + 4 * m.lossy_gears.size() + m.merged_gears.size();
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature

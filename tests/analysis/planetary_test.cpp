@@ -333,11 +333,11 @@ TEST(PlanetaryErrors, AreLocated) {
   EXPECT_NE(errors("  pg: {type: planetary-gear, sun: x, ring: y, carrier: c, ratio: 2}\n", massless)
                 .find("2 of its members"), std::string::npos);
   const std::string on_x = errors("  pg: {type: planetary-gear, sun: s, ring: x, carrier: c, ratio: 2}\n"
-                                  "  k: {type: spring, between: [x, ground], stiffness: 1 N*m/rad}\n"
+                                  "  k: {type: rope, between: [x, t], ratio: 2 rad/m, EA: 1e7 N, length: 10 m}\n"
                                   "  pg2: {type: planetary-gear, sun: s, ring: y, carrier: r, ratio: 2}\n",
                                   massless);
   EXPECT_NE(on_x.find("gear.yaml:10:3: error: link 'k'"), std::string::npos) << on_x;
-  EXPECT_NE(on_x.find("a link on it is not supported"), std::string::npos) << on_x;
+  EXPECT_NE(on_x.find("a rope wound on a drum on it is not supported"), std::string::npos) << on_x;
   EXPECT_NE(errors("  g: {type: ideal-gear, between: [s, c], ratio: 3, housing: nobody}\n").find("unknown body 'nobody'"),
             std::string::npos);
   // Initial velocities that contradict the gear.

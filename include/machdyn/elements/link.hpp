@@ -7,6 +7,12 @@
 /// Kinematics (model/model.hpp): deflection δ = p_a(q_a)/i − p_b(q_b), rad or m in b's coordinate,
 /// p(q) = q for a plain end or a machine's output point (model/machine.hpp); δ̇ = j_a v_a − j_b v_b
 /// with j_a = p_a′/i, j_b = p_b′. The load F acts on b with +F and on a with −F j_a (a: −F/i).
+/// An end on a joint's member without inertia X (a massless flange, q_X = Σ c_j q_j over the other
+/// members, model/compile_joint.hpp) makes δ a linear form over up to three bodies:
+///   δ = q_a/i − w_b q_b + w_e q_e,   δ̇ likewise,   j_a = 1/i, j_b = w_b, j_e = w_e,
+/// and by virtual work (F δ(δq) = Σ Q_j δq_j with the signs above) the load acts on a with −F/i, on
+/// b with +F w_b and on e with −F w_e. Every law below holds with this δ unchanged: the stiffness and
+/// damping terms become c j jᵀ and d j jᵀ over the three bodies (j = (1/i, −w_b, w_e)).
 ///
 /// Law (N·m or N; positive = tension, as the paper's M12 = c1 (φ1 − φ2)):
 ///   no gap:        F = c δ + d δ̇
@@ -76,7 +82,12 @@ struct LinkLaw {
   double inv_ratio = 1.0, c = 0.0, d = 0.0;
   bool gap = false;
   bool capped = false;          ///< flank law elasto-backlash (see above)
-  bool point = false;           ///< an end is a machine's output point (nonlinear kinematics)
+  /// The general path: an end is a machine's output point (nonlinear kinematics) or on a massless
+  /// member (w_b ≠ 1 or a third body e; compile never combines the two).
+  bool point = false;
+  double wb = 1.0;              ///< w_b (1 except on a massless member)
+  int third = kGround;          ///< the third body e, or kGround
+  double w3 = 0.0;              ///< w_e
   double lo = 0.0, hi = 0.0;    ///< flanks δ₋, δ₊
   const Machine* pa = nullptr;  ///< a's output point, or null (q_a itself)
   const Machine* pb = nullptr;
@@ -143,17 +154,27 @@ struct LinkLaw {
   /// General kinematics (machine output points included) from positions q and velocities v.
   [[nodiscard]] Kinematics kinematics(const double* q, const double* v) const {
     if (point) [[unlikely]] {
+      if (!pa && !pb) return {weighted(q), weighted(v), inv_ratio, wb};  // a massless member's end
       const LinkDeflection s = link_deflection(a, b, inv_ratio, pa, pb, a >= 0 ? q[a] : 0.0, b >= 0 ? q[b] : 0.0,
                                                a >= 0 ? v[a] : 0.0, b >= 0 ? v[b] : 0.0);
       return {s.delta, s.rate, s.ja, s.jb};
     }
     return {linear(q), linear(v), inv_ratio, 1.0};
   }
-  /// δ = q_a/i − q_b of a plain link (also δ̇ from the velocities, δ̈ from the accelerations).
+  /// δ = q_a/i − q_b of a plain link (also δ̇ from the velocities, δ̈ from the accelerations); not
+  /// for a `point` link (the hot path of every other link stays two terms).
   [[nodiscard]] double linear(const double* x) const {
     double s = 0.0;
     if (a >= 0) s += x[a] * inv_ratio;
     if (b >= 0) s -= x[b];
+    return s;
+  }
+  /// δ = q_a/i − w_b q_b + w_e q_e of any link without a machine's output point (likewise δ̇, δ̈).
+  [[nodiscard]] double weighted(const double* x) const {
+    double s = 0.0;
+    if (a >= 0) s += x[a] * inv_ratio;
+    if (b >= 0) s -= x[b] * wb;
+    if (third >= 0) s += x[third] * w3;
     return s;
   }
 
@@ -233,10 +254,11 @@ struct LinkLaw {
     return GapMode::open;
   }
 
-  /// Adds the generalized forces of load F to f (n): −F j_a on a, +F j_b on b.
+  /// Adds the generalized forces of load F to f (n): −F j_a on a, +F j_b on b, −F w_e on e.
   void apply(double F, const Kinematics& k, double* f) const {
     if (a >= 0) f[a] -= F * k.ja;
     if (b >= 0) f[b] += F * k.jb;
+    if (third >= 0) f[third] -= F * w3;
   }
   /// Adds all generalized forces of the link at positions q (velocities v) in mode g to f (n):
   /// the load F (returned) and a winding rope's W. Plain links (no machine point).
@@ -247,11 +269,12 @@ struct LinkLaw {
     return F;
   }
   /// The load's weights over y = [q; v] (2n states) for a plain link in a transmitting mode:
-  /// F = Σ w_k y_k − c·flank. Calls add(index, weight) at most four times.
+  /// F = Σ w_k y_k − c·flank. Calls add(index, weight) at most six times.
   template <class Add>
   void load_weights(int n, Add&& add) const {
     if (a >= 0) add(a, c * inv_ratio), add(n + a, d * inv_ratio);
-    if (b >= 0) add(b, -c), add(n + b, -d);
+    if (b >= 0) add(b, -c * wb), add(n + b, -d * wb);
+    if (third >= 0) add(third, c * w3), add(n + third, d * w3);
   }
   /// The rate dF/dt from the state (q, v) and its derivative (v, acc), mode g (on the cap: 2 c δ̇).
   [[nodiscard]] double load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
@@ -305,14 +328,14 @@ struct LinkLaw {
     if (!transmits(g)) return;
     jacobian_cd(n, cap ? 2.0 * c : c, cap ? 0.0 : d, add);
   }
-  /// The Jacobian terms of a load with ∂F/∂δ = cs and ∂F/∂δ̇ = ds.
+  /// The Jacobian terms of a load with ∂F/∂δ = cs and ∂F/∂δ̇ = ds (over j = (1/i, −w_b, w_e)).
   template <class Add>
   void jacobian_cd(int n, double cs, double ds, Add&& add) const {
-    const int idx[2] = {a, b};
-    const double w[2] = {inv_ratio, -1.0};
-    for (int r = 0; r < 2; ++r) {
+    const int idx[3] = {a, b, third};
+    const double w[3] = {inv_ratio, -wb, w3};
+    for (int r = 0; r < 3; ++r) {
       if (idx[r] < 0) continue;
-      for (int s = 0; s < 2; ++s) {
+      for (int s = 0; s < 3; ++s) {
         if (idx[s] < 0) continue;
         add(idx[r], idx[s], -cs * w[r] * w[s]);
         add(idx[r], n + idx[s], -ds * w[r] * w[s]);

@@ -99,6 +99,14 @@ struct Link {
   bool damping_capped = false;
   double gap = 0.0;        ///< total gap Δ, rad or m (in b's coordinate), >= 0
   double gap_start = 0.0;  ///< position inside the gap at δ = 0, from the negative flank, in [0, Δ]
+  /// An end on a member without inertia that a joint eliminated (a gear's massless output flange,
+  /// model/compile_joint.hpp): q_X = Σ c_j q_j over the other members turns the deflection into
+  ///   δ = q_a / i − w_b q_b + w_e q_e      (w_b = 1 and e = kGround for every other link),
+  /// and the load acts on a with −F/i, on b with +F w_b, on e with −F w_e (virtual work); the law is
+  /// stated in elements/link.hpp. Never together with a machine's output point, a winding rope or a buffer.
+  double b_weight = 1.0;   ///< w_b, nonzero
+  int third = kGround;         ///< e: a third body, or kGround
+  double third_weight = 0.0;   ///< w_e ([δ]/[q_e]), nonzero when e is a body
   /// The end is the machine's output point p(q) (e.g. `crank.piston`) instead of q itself:
   /// δ = p_a(q_a)/i − p_b(q_b); the load acts on a with −F p_a′/i and on b with +F p_b′.
   bool a_point = false, b_point = false;
@@ -386,6 +394,28 @@ struct RigidSlave {
   double ratio2 = 0.0;
 };
 
+/// The torque an ideal gear merged by compile passes (model/compile_rigid.cpp): the gear between A
+/// and B (q_A = i q_B) splits its rigid group into two sides; the side S without the group's master
+/// holds only slaved bodies, whose elements are loads and links' first ends. Summing the equations
+/// of motion of S (virtual work in the master's coordinate, q_s = ρ_s q_M):
+///   Σ_{s∈S} ρ_s (I_s ρ_s q̈_M − f_s) = ρ_E τ_E      (E: the gear's body on side S)
+/// gives the torque τ_E the gear exerts on E. The output is τ_B, the torque on B in B's coordinate
+/// (MSL's −flange_b.tau): τ_B = τ_E on B's side, else τ_B = −i τ_A (the gear does no work,
+/// τ_A ω_A + τ_B ω_B = 0). No entry for a gear in a loop of gears or with a machine or a released
+/// body on S.
+struct MergedGear {
+  std::string name;
+  int body = 0;               ///< the group's master (index into Model::bodies)
+  bool side_b = true;         ///< S is B's side (else A's: the master is on B's side)
+  BodyKind kind_b = BodyKind::rotational;  ///< B's kind: the output's unit (N·m or N)
+  double ratio = 1.0;         ///< i of the gear, q_A = i q_B
+  double rho = 1.0;           ///< ρ_E of the gear's body E on side S (q_E = ρ_E q_M)
+  double inertia = 0.0;       ///< Σ_{s∈S} ρ_s² I_s, reduced to the master
+  std::vector<int> loads;     ///< loads on S (indices into Model::loads; their forces act on `body`)
+  std::vector<int> links;     ///< links whose first end a is on S (their −F/i acts on `body`)
+  std::vector<std::string> side;  ///< names of S's bodies (for compile's checks after the merge)
+};
+
 /// A lossy gear (`type: lossy-gear` under links; law, modes and derivation in elements/lossy_gear.hpp,
 /// Modelica's Rotational.Components.LossyGear): the rigid kinematics of an ideal gear between two
 /// degrees of freedom, v_a = i v_b, plus the mesh loss (efficiency η_mf1 while power flows from a to
@@ -426,6 +456,7 @@ struct Model {
   /// Bodies removed by ideal gears (RigidSlave), in the file's order; empty without ideal gears.
   std::vector<RigidSlave> slaves;
   std::vector<std::string> ideal_gears;   ///< names of the ideal gears compile resolved
+  std::vector<MergedGear> merged_gears;   ///< the merged ideal gears with a torque output (MergedGear)
   /// Bodies losing part of their mass during the run (Release), in the order of their times (file
   /// order at equal times); empty without `releases:`.
   std::vector<Release> releases;
@@ -485,7 +516,7 @@ std::vector<int> released_bodies(const Model& m);
 /// Output columns a run of `m` holds in memory, at most: the chain columns, three per contact or
 /// brake, one per gap, up to eight per machine body (its parts' loads, output point, extras),
 /// three per drive (torque, and current or reference speed, and the limiter mode), one per released
-/// body, one per body with prescribed motion (its driving force), four per lossy gear (mode, the torques at its two bodies, loss power) and one per thermal model.
+/// body, one per body with prescribed motion (its driving force), four per lossy gear (mode, the torques at its two bodies, loss power), one per merged ideal gear (its torque) and one per thermal model.
 std::size_t output_columns_bound(const Model& m);
 /// Bytes the output grid of `m` needs in memory, at most: (t_end/dt_out + 2) rows × output_columns_bound
 /// × 8 bytes. The runs reserve all of it before the first step, so compile checks it against
