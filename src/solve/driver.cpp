@@ -31,9 +31,10 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   long k_out = 1;
   // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
   auto segment = [&](double ta, double tb) {
+    const double ts = st.t();  // the step's end (the stepper's own state: exact there)
     for (; opt.outputs && k_out <= n_out && out_time(k_out) <= tb; ++k_out) {
       const double tk = out_time(k_out);
-      if (tk == st.t()) {
+      if (tk == ts) {
         obs.on_output(tk, st.y());
       } else {
         st.interpolate(tk, ytmp.data());
@@ -64,8 +65,9 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     if (ne) {
       sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
                           g_new.data());
+      const double *gp = g_prev.data(), *gn = g_new.data();
       for (size_t k = 0; k < ne; ++k) {
-        if (!(g_prev[k] >= 0.0 && g_new[k] < 0.0)) continue;
+        if (!(gp[k] >= 0.0 && gn[k] < 0.0)) continue;
         const Bracket br = illinois(
             [&](double tm) {
               st.interpolate(tm, ytmp.data());
