@@ -254,6 +254,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (extra_.any()) extra_columns(names);
     // Rows of only t, states and link loads (and no machine, whose accelerations are kept per row).
     plain_rows_ = names.size() == 1 + 2 * m_.bodies.size() + m_.links.size() && !sys_.has_machines();
+    tail_groups_ = nd_ > 0 || ng_ > 0 || !rope_links_.empty() || !m_.slaves.empty() || heat_.any_thermal() ||
+                   !released_bodies_.empty() || sys_.motion_count() > 0 || extra_.any();
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     // Sized once (compile bounded the bytes); rows are written in place and the columns cut to
@@ -311,6 +313,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
     }
     for (const int l : gap_links_) put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+    if (!tail_groups_) return;  // no drive, gear, rope, slave, thermal, release, motion or extra columns
     for (int d = 0; d < nd_; ++d) {
       const Drive& dr = m_.drives[static_cast<size_t>(d)];
       put(sys_.drive_torque(d, t, y));
@@ -812,6 +815,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   int n_, N_, nl_, nc_, nd_, ng_;
   bool has_events_ = false;
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
+  bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
