@@ -63,6 +63,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out_.hybrid.active = sys_.energy_books();
     out_.hybrid.breakpoints = m_.breakpoints(s.t_end);
     const Method method = choose_method(m_, &out_.method_reason);
+    if (method == Method::dopri5) peaks_.set_dense_degree(4);  // its dense output (solve/stepper.hpp)
     sys_.initial_state(y_.data());
     jumps_.start(0.0, y_.data());
     apply_releases(0.0);  // a release at t = 0 acts at 0⁺: the start state is the full bodies'
