@@ -85,6 +85,21 @@ void chain_rows(const int*, int, const double* A, const double* b, const double*
 }
 constexpr RowsKernel kChain[] = {chain_rows<1>, chain_rows<2>, chain_rows<3>, chain_rows<4>,
                                  chain_rows<5>, chain_rows<6>, chain_rows<7>, chain_rows<8>};
+// A chain without dampers: Av = 0 (entries ±0), so Av v is a zero for every finite v, and
+// (Aq q + Av v) + b = Aq q + b to the bit: x + (±0) = x for x ≠ 0; for x = ±0 both sides are b
+// when b ≠ 0, and +0 when b = +0 (b = f_const/I is never −0: f_const sums from +0).
+template <int N>
+void chain_rows_undamped(const int*, int, const double* A, const double* b, const double* y, double* dydt) {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  using Mat = Eigen::Matrix<double, N, N>;
+  Eigen::Map<const Vec> q(y), v(y + N), bb(b);
+  Eigen::Map<Vec> qd(dydt), acc(dydt + N);
+  qd = v;
+  acc.noalias() = Eigen::Map<const Mat>(A) * q + bb;
+}
+constexpr RowsKernel kChainUndamped[] = {chain_rows_undamped<1>, chain_rows_undamped<2>, chain_rows_undamped<3>,
+                                         chain_rows_undamped<4>, chain_rows_undamped<5>, chain_rows_undamped<6>,
+                                         chain_rows_undamped<7>, chain_rows_undamped<8>};
 
 constexpr auto kRows = kernels(0, std::make_integer_sequence<int, 16>{});
 constexpr auto kRowsCopy = kernels(1, std::make_integer_sequence<int, 16>{});
@@ -211,7 +226,8 @@ void DriveSystem::form_dense() {
   chain_.c.clear();
   for (int i = 0; i < n_; ++i) chain_.c.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
   chain_.rows = chain_.copy = n_;
-  chain_.kernel = kChain[n_ - 1];
+  const bool undamped = std::all_of(A.begin() + n_ * n_, A.end(), [](double a) { return a == 0.0; });
+  chain_.kernel = undamped ? kChainUndamped[n_ - 1] : kChain[n_ - 1];
   dense_ = true;
   mode_changed();
 }
