@@ -68,8 +68,11 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     if (ne) {
       sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
                           g_new.data());
+      // Most steps cross nothing: a tight scan first (the loop below keeps k in memory for its lambda).
       const double *gp = g_prev.data(), *gn = g_new.data();
-      for (size_t k = 0; k < ne; ++k) {
+      bool crossed = false;
+      for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= 0.0 && gn[k] < 0.0);
+      for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
         if (!(gp[k] >= 0.0 && gn[k] < 0.0)) continue;
         const Bracket br = illinois(
             [&](double tm) {
