@@ -47,6 +47,21 @@ void affine_rows(const int* cols, int ncols, const double* A, const double* c, c
   }
   for (int r = 0; r < R; ++r) out[C + r] = s[r];
 }
+// The same sums for a fixed column count K as well (ncols == K): unrolled, the sums stay in
+// registers and no loop control is left (a small mode's map: K ≤ 8 columns, R ≤ 8 rows).
+template <int R, int C, int K>
+void affine_rows_k(const int* cols, int, const double* A, const double* c, const double* y, double* out) {
+  for (int i = 0; i < C; ++i) out[i] = y[C + i];
+  double s[R];
+  for (int r = 0; r < R; ++r) s[r] = c[r];
+#pragma GCC unroll 8
+  for (int k = 0; k < K; ++k) {
+    const double x = y[cols[k]];
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) s[r] += A[k * R + r] * x;
+  }
+  for (int r = 0; r < R; ++r) out[C + r] = s[r];
+}
 
 using RowsKernel = void (*)(const int*, int, const double*, const double*, const double*, double*);
 // The kernels by row count R = 1…16: without a copy (contact forces), with C = R (a chain's
@@ -70,11 +85,42 @@ void chain_rows(const int*, int, const double* A, const double* b, const double*
 }
 constexpr RowsKernel kChain[] = {chain_rows<1>, chain_rows<2>, chain_rows<3>, chain_rows<4>,
                                  chain_rows<5>, chain_rows<6>, chain_rows<7>, chain_rows<8>};
+// A chain without dampers: Av = 0 (entries ±0), so Av v is a zero for every finite v, and
+// (Aq q + Av v) + b = Aq q + b to the bit: x + (±0) = x for x ≠ 0; for x = ±0 both sides are b
+// when b ≠ 0, and +0 when b = +0 (b = f_const/I is never −0: f_const sums from +0).
+template <int N>
+void chain_rows_undamped(const int*, int, const double* A, const double* b, const double* y, double* dydt) {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  using Mat = Eigen::Matrix<double, N, N>;
+  Eigen::Map<const Vec> q(y), v(y + N), bb(b);
+  Eigen::Map<Vec> qd(dydt), acc(dydt + N);
+  qd = v;
+  acc.noalias() = Eigen::Map<const Mat>(A) * q + bb;
+}
+constexpr RowsKernel kChainUndamped[] = {chain_rows_undamped<1>, chain_rows_undamped<2>, chain_rows_undamped<3>,
+                                         chain_rows_undamped<4>, chain_rows_undamped<5>, chain_rows_undamped<6>,
+                                         chain_rows_undamped<7>, chain_rows_undamped<8>};
 
 constexpr auto kRows = kernels(0, std::make_integer_sequence<int, 16>{});
 constexpr auto kRowsCopy = kernels(1, std::make_integer_sequence<int, 16>{});
 constexpr auto kRowsEnergy = kernels(2, std::make_integer_sequence<int, 16>{});
 constexpr int kMaxRowsCols = 32;  // beyond: the compressed rows (dense zeros would cost more)
+
+// The unrolled kernels by R = 1…8 and K = 1…8, for the three copy counts as above.
+constexpr int kUnrolled = 8;
+template <int R, int... Ks>
+constexpr std::array<RowsKernel, sizeof...(Ks)> unrolled_row(int shift, std::integer_sequence<int, Ks...>) {
+  if (shift == 0) return {affine_rows_k<R, 0, Ks + 1>...};
+  if (shift == 1) return {affine_rows_k<R, R, Ks + 1>...};
+  return {(R > 3 ? affine_rows_k<R, (R > 3 ? R - 3 : 0), Ks + 1> : nullptr)...};
+}
+template <int... Rs>
+constexpr std::array<std::array<RowsKernel, kUnrolled>, sizeof...(Rs)> unrolled(int shift, std::integer_sequence<int, Rs...>) {
+  return {unrolled_row<Rs + 1>(shift, std::make_integer_sequence<int, kUnrolled>{})...};
+}
+constexpr auto kUnrolledRows = unrolled(0, std::make_integer_sequence<int, kUnrolled>{});
+constexpr auto kUnrolledCopy = unrolled(1, std::make_integer_sequence<int, kUnrolled>{});
+constexpr auto kUnrolledEnergy = unrolled(2, std::make_integer_sequence<int, kUnrolled>{});
 }  // namespace
 
 void DriveSystem::AffineRows::build(const Eigen::MatrixXd& M, const Eigen::VectorXd& c0, int r0, int r1, int m) {
@@ -98,6 +144,11 @@ void DriveSystem::AffineRows::build(const Eigen::MatrixXd& M, const Eigen::Vecto
     for (int r = r0; r < r1; ++r) A.push_back(M(r, j));
   for (int r = r0; r < r1; ++r) c.push_back(c0(r));
   kernel = k;
+  const int K = static_cast<int>(cols.size());
+  if (rows <= kUnrolled && K >= 1 && K <= kUnrolled) {
+    const auto rk = static_cast<size_t>(rows - 1), kk = static_cast<size_t>(K - 1);
+    kernel = m == 0 ? kUnrolledRows[rk][kk] : m == rows ? kUnrolledCopy[rk][kk] : kUnrolledEnergy[rk][kk];
+  }
 }
 
 DriveSystem::DriveSystem(const Model& model, bool energy_books)
@@ -176,7 +227,8 @@ void DriveSystem::form_dense() {
   chain_.c.clear();
   for (int i = 0; i < n_; ++i) chain_.c.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
   chain_.rows = chain_.copy = n_;
-  chain_.kernel = kChain[n_ - 1];
+  const bool undamped = std::all_of(A.begin() + n_ * n_, A.end(), [](double a) { return a == 0.0; });
+  chain_.kernel = undamped ? kChainUndamped[n_ - 1] : kChain[n_ - 1];
   dense_ = true;
   mode_changed();
 }
@@ -794,21 +846,21 @@ namespace {
 /// Calling the one law under this test lets the compiler drop the law's other branches: the
 /// same arithmetic, a fraction of the instructions.
 bool plain(const LinkLaw& k) { return !(k.gap | k.capped | k.shaped | k.winding | k.point); }
+
 }  // namespace
 
 void DriveSystem::link_loads(const double* y, double* F) const {
-  for (int l = 0; l < nl_; ++l) {
-    const LinkLaw& k = links_[static_cast<size_t>(l)];
-    F[l] = plain(k) ? k.load(k.linear(y), k.linear(y + n_), GapMode::open, 0.0) : link_load(l, y);
-  }
+  const LinkLaw* k = links_.data();  // walked by pointer, the bounds in registers
+  for (int l = 0, nl = nl_; l < nl; ++l, ++k)
+    F[l] = plain(*k) ? k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0) : link_load(l, y);
 }
 
 void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double* F, double* rate) const {
-  for (int l = 0; l < nl_; ++l) {
-    const LinkLaw& k = links_[static_cast<size_t>(l)];
-    if (plain(k)) {
-      F[l] = k.load(k.linear(y), k.linear(y + n_), GapMode::open, 0.0);
-      rate[l] = k.load_rate(y, dy, dy + n_, GapMode::open);
+  const LinkLaw* k = links_.data();
+  for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
+    if (plain(*k)) {
+      F[l] = k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0);
+      rate[l] = k->load_rate(y, dy, dy + n_, GapMode::open);
     } else {
       F[l] = link_load(l, y);
       rate[l] = link_load_rate(l, y, dy);

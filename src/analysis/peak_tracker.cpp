@@ -1,6 +1,7 @@
 #include "machdyn/analysis/peak_tracker.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <Eigen/LU>
 
@@ -10,24 +11,32 @@ namespace machdyn {
 namespace {
 
 constexpr int kDegree = 6;  // bounds the dense output's degree (solve/stepper.hpp)
-using Samples = Eigen::Matrix<double, kDegree + 1, 1>;
-using SampleMap = Eigen::Matrix<double, kDegree + 1, kDegree + 1>;
 
-/// The map from a polynomial's values at u_k = k/6 (k = 0…6) to its Bernstein coefficients on
-/// [0, 1]: the inverse of B_kl = C(6, l) u_k^l (1 − u_k)^(6−l).
-const SampleMap& bernstein_from_samples() {
+/// The map from a polynomial's values at u_k = k/D (k = 0…D) to its Bernstein coefficients on
+/// [0, 1]: the inverse of B_kl = C(D, l) u_k^l (1 − u_k)^(D−l).
+template <int D>
+const Eigen::Matrix<double, D + 1, D + 1>& bernstein_from_samples() {
+  using SampleMap = Eigen::Matrix<double, D + 1, D + 1>;
   static const SampleMap T = [] {
     SampleMap B;
-    for (int k = 0; k <= kDegree; ++k)
-      for (int l = 0; l <= kDegree; ++l) {
-        const double u = static_cast<double>(k) / kDegree;
+    for (int k = 0; k <= D; ++k)
+      for (int l = 0; l <= D; ++l) {
+        const double u = static_cast<double>(k) / D;
         double binom = 1;
-        for (int i = 1; i <= l; ++i) binom = binom * (kDegree - l + i) / i;
-        B(k, l) = binom * std::pow(u, l) * std::pow(1.0 - u, kDegree - l);
+        for (int i = 1; i <= l; ++i) binom = binom * (D - l + i) / i;
+        B(k, l) = binom * std::pow(u, l) * std::pow(1.0 - u, D - l);
       }
     return SampleMap(B.inverse());
   }();
   return T;
+}
+
+/// The bounds [lo, hi] of the degree-D polynomial with values v(k) at u_k = k/D and the largest
+/// |v(k)| (the scale of the margin).
+template <int D>
+void bernstein_bounds(const Eigen::Matrix<double, D + 1, 1>& v, double& lo, double& hi, double& scale) {
+  const Eigen::Matrix<double, D + 1, 1> b = bernstein_from_samples<D>() * v;
+  lo = b.minCoeff(), hi = b.maxCoeff(), scale = v.cwiseAbs().maxCoeff();
 }
 
 }  // namespace
@@ -69,20 +78,34 @@ double PeakTracker::locate_extremum(const Stepper& s, int j, double t0, double r
   return 0.5 * (br.lo + br.hi);
 }
 
+void PeakTracker::set_dense_degree(int degree) {
+  if (degree != 4 && degree != kDegree) throw std::invalid_argument("PeakTracker: dense-output degree 4 or 6");
+  degree_ = degree;
+  sampled_ = false;
+}
+
 bool PeakTracker::inside_extremes(const Stepper& s, int j, double ta, double tb, double v0, double v1) {
   const Extremes& g = sig_[static_cast<size_t>(j)];
   if (!started_ || signals_.rate_reads_state(j)) return false;  // not affine in the state: no bound
   const size_t n = y_.size();
+  const int D = degree_;
   if (!sampled_) {  // one set of samples serves every signal of the piece
-    for (int k = 1; k < kDegree; ++k)
-      s.interpolate(ta + (tb - ta) * k / kDegree, samples_.data() + static_cast<size_t>(k - 1) * n);
+    for (int k = 1; k < D; ++k)
+      s.interpolate(ta + (tb - ta) * k / D, samples_.data() + static_cast<size_t>(k - 1) * n);
     sampled_ = true;
   }
-  Samples v;
-  v(0) = v0, v(kDegree) = v1;
-  for (int k = 1; k < kDegree; ++k) v(k) = signals_.value(j, samples_.data() + static_cast<size_t>(k - 1) * n);
-  const Samples b = bernstein_from_samples() * v;
-  const double lo = b.minCoeff(), hi = b.maxCoeff(), scale = v.cwiseAbs().maxCoeff();
+  double lo, hi, scale;
+  if (D == 4) {
+    Eigen::Matrix<double, 5, 1> v;
+    v(0) = v0, v(4) = v1;
+    for (int k = 1; k < 4; ++k) v(k) = signals_.value(j, samples_.data() + static_cast<size_t>(k - 1) * n);
+    bernstein_bounds<4>(v, lo, hi, scale);
+  } else {
+    Eigen::Matrix<double, kDegree + 1, 1> v;
+    v(0) = v0, v(kDegree) = v1;
+    for (int k = 1; k < kDegree; ++k) v(k) = signals_.value(j, samples_.data() + static_cast<size_t>(k - 1) * n);
+    bernstein_bounds<kDegree>(v, lo, hi, scale);
+  }
   // The margin covers the rounding of the samples, of the coefficients and of a located value.
   const double margin = 1e-6 * scale;
   return hi + margin <= g.max && lo - margin >= g.min;

@@ -64,6 +64,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out_.hybrid.active = sys_.energy_books();
     out_.hybrid.breakpoints = m_.breakpoints(s.t_end);
     const Method method = choose_method(m_, &out_.method_reason);
+    if (method == Method::dopri5) peaks_.set_dense_degree(4);  // its dense output (solve/stepper.hpp)
     sys_.initial_state(y_.data());
     jumps_.start(0.0, y_.data());
     apply_releases(0.0);  // a release at t = 0 acts at 0⁺: the start state is the full bodies'
@@ -181,7 +182,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
                         phases_open_ > 0 ? on_candidate_ : no_candidate_);
     jumps_.on_segment(st, ta, tb);
   }
-  void on_output(double t, const double* y) override { output(t, y); }
+  void on_output(double t, const double* y) override {
+    if (plain_rows_) plain_output(t, y);
+    else output(t, y);
+  }
   void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
 
  private:
@@ -261,6 +265,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (extra_.any()) extra_columns(names);
     // Rows of only t, states and link loads (and no machine, whose accelerations are kept per row).
     plain_rows_ = names.size() == 1 + 2 * m_.bodies.size() + m_.links.size() && !sys_.has_machines();
+    // Every column group output() writes after the gap modes (a new one must be added here).
+    tail_groups_ = nd_ > 0 || ng_ > 0 || !rope_links_.empty() || !m_.slaves.empty() || heat_.any_thermal() ||
+                   !released_bodies_.empty() || sys_.motion_count() > 0 || extra_.any();
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     // Sized once (compile bounded the bytes); rows are written in place and the columns cut to
@@ -275,6 +282,21 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (auto& col : out_.columns) col.resize(row_cap_);
     }
     return row_++;
+  }
+
+  /// A plain chain's row (t, the states, the link loads: what output() writes for it) by a small
+  /// function of its own: the hoist's rows without output()'s frame and group checks.
+  __attribute__((noinline)) void plain_output(double t, const double* y) {
+    const size_t row = next_row();
+    std::vector<double>* col = out_.columns.data();
+    (col++)->data()[row] = t;
+    for (int i = 0; i < n_; ++i, col += 2) {
+      col[0].data()[row] = y[i];
+      col[1].data()[row] = y[n_ + i];
+    }
+    double* F = loads_.data();
+    sys_.link_loads(y, F);
+    for (int l = 0; l < nl_; ++l) col[l].data()[row] = F[l];
   }
 
   void output(double t, const double* y) {
@@ -303,6 +325,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
     }
     for (const int l : gap_links_) put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+    if (!tail_groups_) return;  // no drive, gear, rope, slave, thermal, release, motion or extra columns
     for (int d = 0; d < nd_; ++d) {
       const Drive& dr = m_.drives[static_cast<size_t>(d)];
       put(sys_.drive_torque(d, t, y));
@@ -852,6 +875,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   int n_, N_, nl_, nc_, nd_, ng_;
   bool has_events_ = false;
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
+  bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;

@@ -27,13 +27,17 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   std::vector<double> g_prev(ne), g_new(ne), g_tmp(ne);
   const std::vector<double> bps = sys.breakpoints(t0, t_end);
   const long n_out = std::max(1L, std::lround(std::ceil((t_end - t0) / opt.dt_out - 1e-9)));
-  auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * opt.dt_out; };
+  // Local copies: no call in the loop below can change them, so they stay in registers.
+  const double dt_out = opt.dt_out;
+  const bool outputs = opt.outputs;
+  auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * dt_out; };
   long k_out = 1;
   // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
   auto segment = [&](double ta, double tb) {
-    for (; opt.outputs && k_out <= n_out && out_time(k_out) <= tb; ++k_out) {
+    const double ts = st.t();  // the step's end (the stepper's own state: exact there)
+    for (; outputs && k_out <= n_out && out_time(k_out) <= tb; ++k_out) {
       const double tk = out_time(k_out);
-      if (tk == st.t()) {
+      if (tk == ts) {
         obs.on_output(tk, st.y());
       } else {
         st.interpolate(tk, ytmp.data());
@@ -64,8 +68,12 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     if (ne) {
       sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
                           g_new.data());
-      for (size_t k = 0; k < ne; ++k) {
-        if (!(g_prev[k] >= 0.0 && g_new[k] < 0.0)) continue;
+      // Most steps cross nothing: a tight scan first (the loop below keeps k in memory for its lambda).
+      const double *gp = g_prev.data(), *gn = g_new.data();
+      bool crossed = false;
+      for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= 0.0 && gn[k] < 0.0);
+      for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
+        if (!(gp[k] >= 0.0 && gn[k] < 0.0)) continue;
         const Bracket br = illinois(
             [&](double tm) {
               st.interpolate(tm, ytmp.data());

@@ -3,6 +3,7 @@
 // into must give the same extremes.
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 #include <gtest/gtest.h>
 
@@ -103,27 +104,40 @@ struct FeedTwo final : StepObserver {
 // Claim: not locating the extrema that the dense output's Bernstein bound keeps inside the extremes
 // so far changes no reported value or time — the same bits as locating every one — on a decaying
 // oscillation (where it skips) and a growing one (where every extremum is a
-// new extreme), 20 periods each.
+// new extreme), 20 periods each; with the default degree 6 and, for dopri5, with its own degree 4
+// (five samples instead of seven: what a run uses).
 TEST_P(Peaks, BoundedExtremaChangeNothing) {
-  for (const double zeta : {0.02, -0.02}) {
-    Damped sys(3.0, zeta);
-    StepperOptions o;
-    o.rtol = 1e-9;
-    o.atol = 1e-12;
-    auto st = make_stepper(GetParam(), sys, o);
-    FeedTwo feed;
-    DriveOptions d;
-    d.dt_out = 1.0;
-    const double y0[2] = {1.0, 0.0};
-    integrate(*st, sys, 0.0, y0, 40.0, d, feed);
-    EXPECT_EQ(feed.bounded.max(0), feed.located.max(0)) << zeta;
-    EXPECT_EQ(feed.bounded.t_max(0), feed.located.t_max(0)) << zeta;
-    EXPECT_EQ(feed.bounded.min(0), feed.located.min(0)) << zeta;
-    EXPECT_EQ(feed.bounded.t_min(0), feed.located.t_min(0)) << zeta;
-    // Locating one takes at least one rate evaluation: ≥ 30 of the ~40 extrema were not located.
-    if (zeta > 0) EXPECT_GE(feed.sl.rates - feed.sb.rates, 30);
-    else EXPECT_GT(feed.bounded.max(0), 10.0);                  // the growth: e^(ζω·40) ≈ 11
-  }
+  std::vector<int> degrees{6};
+  if (GetParam() == Method::dopri5) degrees.push_back(4);
+  for (const int degree : degrees)
+    for (const double zeta : {0.02, -0.02}) {
+      Damped sys(3.0, zeta);
+      StepperOptions o;
+      o.rtol = 1e-9;
+      o.atol = 1e-12;
+      auto st = make_stepper(GetParam(), sys, o);
+      FeedTwo feed;
+      feed.bounded.set_dense_degree(degree);
+      DriveOptions d;
+      d.dt_out = 1.0;
+      const double y0[2] = {1.0, 0.0};
+      integrate(*st, sys, 0.0, y0, 40.0, d, feed);
+      EXPECT_EQ(feed.bounded.max(0), feed.located.max(0)) << zeta << " degree " << degree;
+      EXPECT_EQ(feed.bounded.t_max(0), feed.located.t_max(0)) << zeta << " degree " << degree;
+      EXPECT_EQ(feed.bounded.min(0), feed.located.min(0)) << zeta << " degree " << degree;
+      EXPECT_EQ(feed.bounded.t_min(0), feed.located.t_min(0)) << zeta << " degree " << degree;
+      // Locating one takes at least one rate evaluation: ≥ 30 of the ~40 extrema were not located.
+      if (zeta > 0) EXPECT_GE(feed.sl.rates - feed.sb.rates, 30) << degree;
+      else EXPECT_GT(feed.bounded.max(0), 10.0) << degree;  // the growth: e^(ζω·40) ≈ 11
+    }
+}
+
+// Claim: a dense-output degree the tracker has no bound for is refused.
+TEST(PeakTracker, RefusesAnUnknownDenseDegree) {
+  const LinearSignals signal({SparseWeights{{0}, {1.0}}});
+  PeakTracker peaks(1, signal);
+  EXPECT_THROW(peaks.set_dense_degree(5), std::invalid_argument);
+  EXPECT_NO_THROW(peaks.set_dense_degree(4));
 }
 
 }  // namespace

@@ -9,7 +9,8 @@
 /// the derivative is affine in the state, so on a step it is a polynomial of degree ≤ 6 in t (the
 /// dense output, solve/stepper.hpp), and the Bernstein coefficients of that polynomial on the piece
 /// (from seven samples) bound it. Inside the extremes so far by a margin, nothing the tracker
-/// reports could change, and the located value would be thrown away.
+/// reports could change, and the located value would be thrown away. A stepper whose dense output
+/// has a lower degree d (dopri5: 4) is bounded from d + 1 samples (set_dense_degree).
 
 #include <functional>
 #include <vector>
@@ -76,6 +77,9 @@ class PeakTracker {
   void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max, const Candidate& on_candidate = {});
   /// After an event or a restart: the next piece starts afresh (the state or the rate may jump).
   void restart() { last_end_ = -1.0; }
+  /// The degree of the stepper's dense output in t, 4 (dopri5) or 6 (the default: any stepper of
+  /// solve/stepper.hpp); other values throw std::invalid_argument.
+  void set_dense_degree(int degree);
 
   [[nodiscard]] double max(int j) const { return sig_[static_cast<size_t>(j)].max; }
   [[nodiscard]] double min(int j) const { return sig_[static_cast<size_t>(j)].min; }
@@ -107,6 +111,7 @@ class PeakTracker {
   bool started_ = false;
   double last_end_ = -1.0;  // end of the last piece when it ended its step, else −1
   std::vector<double> y_, dy_, yb_, db_, ym_;
+  int degree_ = 6;                // of the dense output: degree_ + 1 samples bound a signal on a piece
   std::vector<double> samples_;  // the state at the piece's interior sample times (inside_extremes)
   bool sampled_ = false;         // samples_ holds the current piece's
   std::vector<double> vals_, rates_;  // the signals' values and rates at the end of a piece
