@@ -266,8 +266,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // Rows of only t, states and link loads (and no machine, whose accelerations are kept per row).
     plain_rows_ = names.size() == 1 + 2 * m_.bodies.size() + m_.links.size() && !sys_.has_machines();
     // Every column group output() writes after the gap modes (a new one must be added here).
-    tail_groups_ = nd_ > 0 || ng_ > 0 || !rope_links_.empty() || !m_.slaves.empty() || heat_.any_thermal() ||
-                   !released_bodies_.empty() || sys_.motion_count() > 0 || extra_.any();
+    tail_groups_ = nd_ > 0 || ng_ > 0 || !rope_links_.empty() || !m_.slaves.empty() || !m_.merged_gears.empty() ||
+                   heat_.any_thermal() || !released_bodies_.empty() || sys_.motion_count() > 0 || extra_.any();
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     // Sized once (compile bounded the bytes); rows are written in place and the columns cut to
