@@ -91,7 +91,7 @@ TEST(DriveCompile, BadFieldsAreLocatedAndListedTogether) {
         "bad.yaml:10:32: error: drive 'f': unknown body 'nobody'",
         "bad.yaml:11:6: error: drive 'g': missing field 'voltage'",
         "bad.yaml:12:114: error: drive 'h': field 'initial_torque' (20) exceeds the torque limit 10",
-        "bad.yaml:13:13: error: drive 'i': field 'type' is 'stepper'; expected one of: dc-motor, speed-drive"})
+        "bad.yaml:13:13: error: drive 'i': field 'type' is 'stepper'; expected one of: dc-motor, speed-drive, thermal-eddy-current-brake"})
     EXPECT_NE(all.find(want), std::string::npos) << want << "\n--- got:\n" << all;
   EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 11) << all;  // twelve problems, one line each
 }
