@@ -17,6 +17,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 
+#include "machdyn/model/element.hpp"
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
@@ -137,7 +138,7 @@ py::list drives(const Model& m) {
   py::list out;
   for (const auto& d : m.drives) {
     py::dict e;
-    e["name"] = d.name, e["type"] = d.kind == DriveKind::dc_motor ? "dc-motor" : "speed-drive";
+    e["name"] = d.name, e["type"] = d.law->type();
     e["body"] = body_name(m, d.body), e["states"] = d.states();
     out.append(e);
   }

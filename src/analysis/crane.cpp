@@ -12,6 +12,7 @@
 #include "machdyn/analysis/static_loads.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/elements/link.hpp"
+#include "machdyn/model/element.hpp"
 
 namespace machdyn {
 namespace {
@@ -284,7 +285,8 @@ Model phi2_case_model(const Model& m, double vh) {
   // A speed-controlled drive of the hoist runs at that steady speed: its reference holds it (its
   // own ramp would start from rest and brake the drive that the case starts at vh).
   for (auto& d : out.drives)
-    if (d.kind == DriveKind::speed_drive && R(d.body) != 0.0) d.reference = Signal::constant(R(d.body) * beta);
+    if (R(d.body) != 0.0)
+      if (auto held = d.law->at_steady_speed(R(d.body) * beta)) d.law = std::move(held);
   return out;
 }
 

@@ -180,9 +180,10 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     stuck_share_.push_back(c.b >= 0 ? ma / (ma + model.bodies[static_cast<size_t>(c.b)].inertia) : 1.0);
   }
   for (const auto& dr : model.drives) {
-    drives_.push_back(DriveLaw::of(dr));
+    drives_.push_back(dr.law.get());
+    drive_body_.push_back(dr.body);
     drive_off_.push_back(2 * n_ + nx_);
-    nx_ += drives_.back().states;
+    nx_ += dr.law->states();
   }
   nd_ = static_cast<int>(drives_.size());
   for (const auto& g : model.lossy_gears) gears_.push_back(LossyGearLaw::of(g));
@@ -193,7 +194,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   gear_fb_.assign(static_cast<size_t>(ng_), 0.0);
   locks_ = machdyn::gear_locks(gears_, contacts_);
   general_ = has_machines_ || nd_ > 0 || !motions_.empty();
-  drive_mode_.assign(static_cast<size_t>(nd_), LimitMode::linear);
+  drive_mode_.assign(static_cast<size_t>(nd_), 0);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
   for (const auto& ld : model.loads) {
     if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
@@ -262,9 +263,7 @@ void DriveSystem::initial_state(double* y) const {
     y[i] = m_.bodies[static_cast<size_t>(i)].q0;
     y[n_ + i] = m_.bodies[static_cast<size_t>(i)].v0;
   }
-  for (int d = 0; d < nd_; ++d)
-    for (int j = 0; j < drives_[static_cast<size_t>(d)].states; ++j)
-      y[drive_offset(d) + j] = drives_[static_cast<size_t>(d)].x0[j];
+  for (int d = 0; d < nd_; ++d) drive(d).initial_states(y + drive_offset(d));
   if (energy_) y[energy_index()] = y[energy_index() + 1] = y[energy_index() + 2] = 0.0;
 }
 
@@ -449,7 +448,7 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
   }
   const double* q = y;
   if constexpr (kMach) {
-    if (nd_ > 0) src += drive_forces(t, y, f);
+    if (nd_ > 0) src += drive_forces(t, y, f, &damp);
     q = machine_positions(y);
     // I q'' + ½ I′ q'² = Q + ...: the velocity term joins the forces (it does no work on its own:
     // d/dt ½ I v² = v (I v' + ½ I′ v²)); the machine's force Q(q) is a source.
@@ -502,22 +501,26 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
 }
 
 // Out of line: the plain chain's loops stay as they were for models without drives.
-__attribute__((noinline)) double DriveSystem::drive_forces(double t, const double* y, double* f) const {
+__attribute__((noinline)) double DriveSystem::drive_forces(double t, const double* y, double* f, double* loss) const {
   double src = 0.0;
-  for (int d = 0; d < nd_; ++d) {  // drives: their torque from their own states (elements/drive.hpp)
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    const double M = k.torque(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)]);
-    f[k.body] += M;
-    src += M * y[n_ + k.body];
+  for (int d = 0; d < nd_; ++d) {  // their torque from their own states (model/element.hpp)
+    const Element& k = drive(d);
+    const int b = drive_body(d);
+    const double* x = y + drive_offset(d);
+    const double M = k.torque(t, y[n_ + b], x, drive_mode(d));
+    f[b] += M;
+    // Its heat is a loss, not work taken out: the source work is M v + heat (0 for a brake).
+    const double heat = k.heat_power(t, y[n_ + b], x, drive_mode(d));
+    src += M * y[n_ + b] + heat;
+    *loss += heat;
   }
   return src;
 }
 
 __attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* y, double* dydt) const {
   for (int d = 0; d < nd_; ++d) {
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    const int o = drive_off_[static_cast<size_t>(d)];
-    k.rates(t, y[n_ + k.body], y + o, drive_mode_[static_cast<size_t>(d)], dydt + o, dydt[n_ + k.body]);
+    const int o = drive_offset(d), b = drive_body(d);
+    drive(d).rates(t, y[n_ + b], y + o, drive_mode(d), dydt + o, dydt[n_ + b]);
   }
 }
 
@@ -796,16 +799,17 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
       trip.emplace_back(n_ + r, c, v * im(r));
     });
   }
-  // Drives (elements/drive.hpp): M(ω, x) on the body's acceleration, the state rates x'(ω, x).
+  // Elements with states (model/element.hpp): M(ω, x) on the body's acceleration, the state
+  // rates x'(ω, x).
   for (int d = 0; d < nd_; ++d) {
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    const int o = drive_off_[static_cast<size_t>(d)], vb = n_ + k.body;
-    const DriveJacobian jd = k.jacobian(drive_mode_[static_cast<size_t>(d)]);
-    trip.emplace_back(vb, vb, jd.dM_domega * im(k.body));
-    for (int j = 0; j < k.states; ++j) {
-      trip.emplace_back(vb, o + j, jd.dM_dx[j] * im(k.body));
+    const Element& k = drive(d);
+    const int o = drive_offset(d), b = drive_body(d), vb = n_ + b, nx = k.states();
+    const ElementJacobian jd = k.jacobian(t, y[vb], y + o, drive_mode(d));
+    trip.emplace_back(vb, vb, jd.dM_domega * im(b));
+    for (int j = 0; j < nx; ++j) {
+      trip.emplace_back(vb, o + j, jd.dM_dx[j] * im(b));
       trip.emplace_back(o + j, vb, jd.dx_domega[j]);
-      for (int c = 0; c < k.states; ++c) trip.emplace_back(o + j, o + c, jd.dx_dx[j][c]);
+      for (int c = 0; c < nx; ++c) trip.emplace_back(o + j, o + c, jd.dx_dx[j][c]);
     }
   }
   J.resize(2 * n_ + nx_, 2 * n_ + nx_);
@@ -816,7 +820,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
 void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
   for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[ld.body], y[n_ + ld.body]);
-  for (int d = 0; d < nd_; ++d) f[drives_[static_cast<size_t>(d)].body] += drive_torque(d, t, y);
+  for (int d = 0; d < nd_; ++d) f[drive_body(d)] += drive_torque(d, t, y);
   const double* q = machine_positions(y);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);
   for (int k = 0; k < nc_; ++k) contacts_[static_cast<size_t>(k)].apply(fc[k], f);
@@ -904,9 +908,9 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck && !c.kinematic ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
   }
-  // A speed drive on its limit reads the body's acceleration (elements/speed_drive.hpp).
+  // An element may read its body's acceleration in its mode (a speed drive on its limit).
   bool accelerations = false;
-  for (int d = 0; d < nd_; ++d) accelerations = accelerations || on_limit(drive_mode_[static_cast<size_t>(d)]);
+  for (int d = 0; d < nd_; ++d) accelerations = accelerations || drive(d).reads_acceleration(drive_mode(d));
   if (accelerations) evaluate(t, y, f_.data(), fc_.data());
   if (ng_ > 0) {  // lossy gears: from the forces on their bodies in the current modes
     if (!accelerations) evaluate(t, y, f_.data(), fc_.data());
@@ -919,30 +923,29 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     if (!locks_.empty()) lock_event_functions(t, g);
   }
   for (int d = 0; d < nd_; ++d) {
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    k.events(t, y[n_ + k.body], y + drive_off_[static_cast<size_t>(d)], drive_mode_[static_cast<size_t>(d)],
-             g + 2 * (nl_ + nc_ + d), accelerations ? f_[static_cast<size_t>(k.body)] : 0.0);
+    const int b = drive_body(d);
+    drive(d).events(t, y[n_ + b], y + drive_offset(d), drive_mode(d), accelerations ? f_[static_cast<size_t>(b)] : 0.0,
+                    g + 2 * (nl_ + nc_ + d));
   }
 }
 
-LimitMode DriveSystem::natural_drive_mode(int d, double t, const double* y) {
-  const DriveLaw& k = drives_[static_cast<size_t>(d)];
-  const LimitMode cur = drive_mode(d);
-  if (!on_limit(cur)) return k.natural_mode(t, y[n_ + k.body], y + drive_offset(d), cur);
-  // On the limit a jump of ω_ref' (a ramp's end) may end the on-limit motion: its event functions.
-  evaluate(t, y, f_.data(), fc_.data());
-  double g[2];
-  k.events(t, y[n_ + k.body], y + drive_offset(d), cur, g, f_[static_cast<size_t>(k.body)]);
-  return g[0] < 0.0 ? LimitMode::linear : g[1] < 0.0 ? SpeedDriveLaw::mode_after(cur, 1) : cur;
+int DriveSystem::natural_drive_mode(int d, double t, const double* y) {
+  const Element& k = drive(d);
+  const int cur = drive_mode(d), b = drive_body(d);
+  double acc = 0.0;
+  if (k.reads_acceleration(cur)) {
+    evaluate(t, y, f_.data(), fc_.data());
+    acc = f_[static_cast<size_t>(b)];
+  }
+  return k.natural_mode(t, y[n_ + b], y + drive_offset(d), cur, acc);
 }
 
-LimitMode DriveSystem::settle_drive_mode(int d, double t, const double* y, LimitMode now) {
-  const DriveLaw& k = drives_[static_cast<size_t>(d)];
-  const LimitMode old = drive_mode(d);
-  if (on_limit(old) || on_limit(now) || !k.has_events()) return now;
-  // At the limit ω' is the same in both modes (the torque is ±M_max either way, or a lagged state).
+int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
+  const Element& k = drive(d);
+  const int old = drive_mode(d);
+  if (!k.settles(old, now)) return now;
   evaluate(t, y, f_.data(), fc_.data());
-  return k.settle(t, y[n_ + k.body], old, now, f_[static_cast<size_t>(k.body)]);
+  return k.settle(t, y[n_ + drive_body(d)], old, now, f_[static_cast<size_t>(drive_body(d))]);
 }
 
 void DriveSystem::project_velocities(double t, double* y) const {
@@ -992,7 +995,7 @@ std::string DriveSystem::state_name(int i) const {
     int d = nd_ - 1;
     while (d > 0 && drive_off_[static_cast<size_t>(d)] > i) --d;
     return fmt::format("drive '{}' ({})", m_.drives[static_cast<size_t>(d)].name,
-                       drives_[static_cast<size_t>(d)].state_name(i - drive_off_[static_cast<size_t>(d)]));
+                       drive(d).state_name(i - drive_offset(d)));
   }
   const bool vel = i >= n_;
   const auto& b = m_.bodies[static_cast<size_t>(vel ? i - n_ : i)];

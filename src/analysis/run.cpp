@@ -211,14 +211,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         gap_links_.push_back(l);
       }
     loads_.assign(static_cast<size_t>(nl_), 0.0);
-    // Drives: the torque on the body, the DC motor's current or the speed drive's reference speed,
-    // and the limiter mode (0 linear, ±1 limited±; always 0 for a DC motor).
+    // Elements with states of their own: the torque on the body, then the element's own columns
+    // (Element::output_names: a DC motor's current, a speed drive's reference speed, a mode).
     for (const auto& d : m_.drives) {
       const BodyKind k = m_.bodies[static_cast<size_t>(d.body)].kind;
       names.push_back(d.name + ".torque_" + unit_suffix(load_unit(k)));
-      names.push_back(d.kind == DriveKind::dc_motor ? d.name + ".current_A"
-                                                    : d.name + ".reference_" + unit_suffix(velocity_unit(k)));
-      names.push_back(d.name + ".mode");
+      const std::vector<std::string> own = d.law->output_names(k);
+      for (const auto& o : own) names.push_back(d.name + "." + o);
+      drive_cols_.push_back(own.size());
+      drive_vals_.resize(std::max(drive_vals_.size(), own.size()));
     }
     // Lossy gears (elements/lossy_gear.hpp): the direction −1, 0, +1 (MSL's gear.mode), the torques
     // at its two bodies (MSL's flange_a.tau, flange_b.tau) and the heat (X − Y) v_a.
@@ -327,10 +328,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (const int l : gap_links_) put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
     if (!tail_groups_) return;  // no drive, gear, rope, slave, thermal, release, motion or extra columns
     for (int d = 0; d < nd_; ++d) {
-      const Drive& dr = m_.drives[static_cast<size_t>(d)];
       put(sys_.drive_torque(d, t, y));
-      put(dr.kind == DriveKind::dc_motor ? y[sys_.drive_offset(d)] : dr.reference.value(t));
-      put(static_cast<double>(static_cast<int>(sys_.drive_mode(d))));
+      sys_.drive_outputs(d, t, y, drive_vals_.data());
+      for (size_t j = 0; j < drive_cols_[static_cast<size_t>(d)]; ++j) put(drive_vals_[j]);
     }
     for (int g = 0; g < ng_; ++g) {
       const LossyGearLaw& k = sys_.lossy_gear(g);
@@ -431,7 +431,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (const Load& ld : now().loads)  // the weights as the releases so far left them
         put(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
       for (int d = 0; d < nd_; ++d)
-        put(sys_.drive_torque(d, t, y) * y[n_ + m_.drives[static_cast<size_t>(d)].body]);
+        put(sys_.drive_torque(d, t, y) * y[n_ + sys_.drive_body(d)]);
       for (int l = 0; l < nl_; ++l)
         if (m_.links[static_cast<size_t>(l)].d > 0.0) {
           const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
@@ -491,7 +491,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;
-    for (int d = 0; d < nd_; ++d) f(m_.drives[static_cast<size_t>(d)].body) += v < vals.size() ? vals[v++] : 0.0;
+    for (int d = 0; d < nd_; ++d) f(sys_.drive_body(d)) += v < vals.size() ? vals[v++] : 0.0;
     for (int c = 0; c < nc_; ++c) sys_.contact(c).apply(v < vals.size() ? vals[v++] : 0.0, f.data());
     return f;
   }
@@ -594,13 +594,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   /// Whether contact k belongs to a gear lock (decided with its gear, not by decide_contacts).
   bool gear_owned(int k) const { return sys_.gear_locks().owner[static_cast<size_t>(k)] >= 0; }
-  /// Sets drive d's limiter mode and records the switch.
-  void set_drive_mode(int d, double t, LimitMode now, bool initial) {
-    const LimitMode old = sys_.drive_mode(d);
+  /// Sets the mode of element d (with states of its own) and records the switch in its words.
+  void set_drive_mode(int d, double t, int now, bool initial) {
+    const int old = sys_.drive_mode(d);
     if (!initial && now == old) return;
     sys_.set_drive_mode(d, now);
-    record(t, initial ? "initial" : now == LimitMode::linear ? "unlimited" : on_limit(now) ? "on limit" : "limited", nl_ + nc_ + d,
-           initial ? "" : to_string(old), to_string(now));
+    const Element& e = sys_.drive(d);
+    record(t, initial ? "initial" : e.switch_kind(now), nl_ + nc_ + d, initial ? "" : e.mode_name(old),
+           e.mode_name(now));
   }
 
   void record(double t, const char* kind, int element, const char* from, const char* to) {
@@ -764,8 +765,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int slot : fired) {
       const int e = sys_.slot_element(slot);
       if (sys_.slot_is_gear(slot)) continue;
-      if (sys_.slot_is_drive(slot)) {  // a speed drive reaches or leaves its torque limit
-        const LimitMode now = SpeedDriveLaw::mode_after(sys_.drive_mode(e), slot % 2);
+      if (sys_.slot_is_drive(slot)) {  // an element's own event (a speed drive at its torque limit)
+        const int now = sys_.drive(e).mode_after(sys_.drive_mode(e), slot % 2);
         set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false);
       } else if (sys_.slot_is_link(slot)) {
         const GapMode old = sys_.gap_mode(e);
@@ -887,6 +888,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> y_, acc_, fc_;
   std::vector<double> loads_;                // the link loads of an output row
   std::vector<int> gap_links_, rope_links_;  // links with a gap-mode column, ropes with fall columns
+  std::vector<size_t> drive_cols_;           // per element with states: its own output columns
+  std::vector<double> drive_vals_;           // their values at an output row
   std::vector<int> open_phase_;
   std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
   int phases_open_ = 0;

@@ -7,8 +7,9 @@
 #include <fmt/format.h>
 
 #include "machdyn/elements/contact.hpp"
-#include "machdyn/elements/drive.hpp"
+#include "machdyn/elements/linear_model.hpp"
 #include "machdyn/elements/link.hpp"
+#include "machdyn/model/element.hpp"
 
 
 namespace machdyn {
@@ -41,15 +42,15 @@ Method choose_method(const Model& m, std::string* reason) {
         rowD[static_cast<size_t>(law.row.body[r])] += slope * std::abs(law.row.w[r] * law.row.w[k]);
   }
   double rho_D = 0.0, omega_K = 0.0;
-  // A drive's linear terms (elements/drive.hpp: K_p, k²/R as dampers, K_p/T_i as a spring) and its
-  // own rates (R/L of the armature, 1/T_m of the torque lag).
+  // An element's linear terms in its mode 0 (model/element.hpp: a speed drive's K_p and a DC
+  // motor's k²/R as dampers, K_p/T_i as a spring) and its own rates (R/L of the armature, 1/T_m of
+  // the torque lag).
   for (const auto& d : m.drives) {
-    const DriveLaw k = DriveLaw::of(d);
     LinearModel lin(n);
-    k.add_linear(LimitMode::linear, lin);
+    d.law->add_linear(d.body, 0, lin);
     for (const auto& e : lin.D) rowD[static_cast<size_t>(e.row())] += std::abs(e.value());
     for (const auto& e : lin.K) rowK[static_cast<size_t>(e.row())] += std::abs(e.value());
-    rho_D = std::max(rho_D, k.rate_bound());
+    rho_D = std::max(rho_D, d.law->rate_bound());
   }
   // The smallest masses of the run (after every release) give the largest rates.
   std::vector<double> released(static_cast<size_t>(n), 0.0);

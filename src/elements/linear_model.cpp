@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "machdyn/elements/contact.hpp"
-#include "machdyn/elements/drive.hpp"
+#include "machdyn/model/element.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/linearize.hpp"
 #include "machdyn/elements/lossy_gear.hpp"
@@ -61,9 +61,10 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
     const bool engaged = topo.engaged.empty() || topo.engaged[k];
     c.add_linear(topo.contacts[k], engaged, t, c.sliding_velocity(t, v), lin);
   }
-  // Drives in their linear mode (a limited speed drive is a constant torque and adds nothing): a DC
-  // motor its quasi-static slope k²/R, a speed drive its PI law as damper K_p and spring K_p/T_i.
-  for (const Drive& d : m.drives) DriveLaw::of(d).add_linear(LimitMode::linear, lin);
+  // Elements with states of their own in their mode 0 (model/element.hpp; a limited speed drive
+  // is a constant torque and adds nothing): a DC motor its quasi-static slope k²/R, a speed drive its
+  // PI law as damper K_p and spring K_p/T_i.
+  for (const Drive& d : m.drives) d.law->add_linear(d.body, 0, lin);
   // Lossy gears: for modes the ideal gear, v_a − i v_b = 0 (elements/lossy_gear.hpp).
   for (const LossyGear& g : m.lossy_gears) LossyGearLaw::of(g).add_linear(lin);
   // Prescribed motions: fixed supports (elements/prescribed_motion.hpp).

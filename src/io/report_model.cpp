@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "machdyn/model/element.hpp"
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/crane_results.hpp"
@@ -271,19 +272,12 @@ std::vector<Table> model_tables(const Model& m) {
     loads.rows.push_back({L.name, L.kind == LoadKind::signal ? Signal::kind_name(L.signal.kind()) : load_kind(L.kind),
                           body_name(m, L.body), load_description(m, L)});
   Table drives = table("Drives", {"drive", "type", "body", "definition"});
-  for (const auto& d : m.drives) {
-    const char* lu = load_unit(m.bodies[static_cast<size_t>(d.body)].kind);
-    const std::string def =
-        d.kind == DriveKind::dc_motor
-            ? "R = " + num(d.R) + " ohm, L = " + num(d.L) + " H, k = " + num(d.k) + ", u(t): " + d.voltage.describe("V")
-            : "K_p = " + num(d.Kp) + ", T_i = " + num(d.Ti) + " s" +
-                  (std::isfinite(d.M_max) ? ", M_max = " + num(d.M_max) + " " + lu : std::string()) +
-                  (d.T_m > 0.0 ? ", T_m = " + num(d.T_m) + " s" : std::string()) + ", reference: " +
-                  d.reference.describe(velocity_unit(m.bodies[static_cast<size_t>(d.body)].kind));
-    drives.rows.push_back({d.name, d.kind == DriveKind::dc_motor ? "dc-motor" : "speed-drive", body_name(m, d.body), def});
-  }
-  drives.note = "Drives with states of their own: L di/dt = u − R i − k ω, M = k i (DC motor); PI speed control "
-                "M = K_p e + (K_p/T_i) ∫e dt, |M| ≤ M_max, integral held while limited (speed drive).";
+  for (const auto& d : m.drives)
+    drives.rows.push_back({d.name, d.law->type(), body_name(m, d.body),
+                           d.law->describe(m.bodies[static_cast<std::size_t>(d.body)].kind)});
+  drives.note = "Elements with states of their own: L di/dt = u − R i − k ω, M = k i (DC motor); PI speed control "
+                "M = K_p e + (K_p/T_i) ∫e dt, |M| ≤ M_max, integral held while limited (speed drive); the laws of "
+                "the others in docs/model-files.md#drives.";
   Table releases = table("Releases", {"release", "body", "released", "time", "weight change"});
   for (const auto& r : m.releases) {
     const bool tr = m.bodies[static_cast<size_t>(r.body)].kind == BodyKind::translational;

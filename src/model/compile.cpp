@@ -23,6 +23,7 @@
 #include "model/compile_lossy.hpp"
 #include "model/compile_release.hpp"
 #include "model/compile_rigid.hpp"
+#include "model/element_types.hpp"
 
 namespace machdyn {
 namespace {
@@ -42,10 +43,10 @@ std::string_view section_of_type(std::string_view type) {
       {"motor-table", "loads"},
       {"contact", "contacts"},  {"friction", "contacts"},    {"clutch", "clutches"},    {"gap", "links"}, {"rope", "links"},
       {"freewheel", "freewheels"}, {"one-way-clutch", "freewheels"}, {"stop", "stops"}, {"end-stop", "stops"},
-      {"buffer", "buffers"}, {"dc-motor", "drives"}, {"ideal-gear", "links"}, {"lossy-gear", "links"}, {"planetary-gear", "links"},
-      {"speed-drive", "drives"}};
+      {"buffer", "buffers"}, {"ideal-gear", "links"}, {"lossy-gear", "links"}, {"planetary-gear", "links"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
+  if (detail::find_element_type(type)) return "drives";  // model/element_types.hpp
   return {};
 }
 
@@ -455,8 +456,7 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
                                               kMaxBreakpoints));
   }
   for (const auto& d : m.drives) {
-    const Signal& s = d.kind == DriveKind::dc_motor ? d.voltage : d.reference;
-    const double n = s.breakpoint_count(0.0, m.simulation.t_end);
+    const double n = d.law->breakpoint_count(0.0, m.simulation.t_end);
     if (n > kMaxBreakpoints)
       diag.error(m.where(d.name), fmt::format("drive '{}': {:.3g} jumps and kinks before t_end, more than {:.0e}; "
                                               "lengthen the period or give a count", d.name, n, kMaxBreakpoints));

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "machdyn/common/expression.hpp"
+#include "machdyn/model/element.hpp"
 
 namespace machdyn {
 
@@ -53,12 +54,7 @@ double load_law(const Load& l, double t, double q, double v, double* dMdq, doubl
     case LoadKind::drag:  // M = −k v|v|, dM/dv = −2k|v|
       if constexpr (kD) *dMdv = -2.0 * l.value * std::abs(v);
       return -l.value * v * std::abs(v);
-    case LoadKind::eddy_current: {
-      // M = −2 M_k x/(1 + x²), x = v/ω_k; dM/dv = −2 M_k (1 − x²)/(1 + x²)² / ω_k
-      const double x = v / l.omega0, den = 1.0 + x * x;
-      if constexpr (kD) *dMdv = -2.0 * l.value * (1.0 - x * x) / (den * den) / l.omega0;
-      return -2.0 * l.value * x / den;
-    }
+    case LoadKind::eddy_current: return eddy_current_law(v, l.value, l.omega0, kD ? dMdv : nullptr);
     case LoadKind::motor_linear:
     case LoadKind::motor_kloss:
     case LoadKind::motor_table: {
@@ -106,9 +102,9 @@ std::vector<double> Load::breakpoints(double t0, double t1) const {
   return b;
 }
 
-std::vector<double> Drive::breakpoints(double t0, double t1) const {
-  return (kind == DriveKind::dc_motor ? voltage : reference).breakpoints(t0, t1);
-}
+int Drive::states() const { return law->states(); }
+
+std::vector<double> Drive::breakpoints(double t0, double t1) const { return law->breakpoints(t0, t1); }
 
 Location Model::where(const std::string& element) const {
   auto it = element_where.find(element);
@@ -154,12 +150,14 @@ std::vector<std::string> chain_column_names(const Model& m) {
 }
 
 std::size_t output_columns_bound(const Model& m) {
-  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size() + 3 * m.drives.size() +
+  std::size_t n = 1 + 2 * m.bodies.size() + m.links.size() + 3 * m.contacts.size() + m.drives.size() +
                   2 * m.slaves.size() + 4 * m.lossy_gears.size() + m.merged_gears.size();
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature
   for (const auto& b : m.bodies) n += b.motion != MotionKind::free ? 1 : 0;  // the motion source's force
+  for (const auto& d : m.drives)  // its torque and its own columns
+    n += d.law->output_names(m.bodies[static_cast<size_t>(d.body)].kind).size();
   return n + released_bodies(m).size();
 }
 

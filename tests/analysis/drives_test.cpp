@@ -13,6 +13,7 @@
 #include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/elements/linearize.hpp"
+#include "machdyn/elements/speed_drive.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/solve/stepper.hpp"
@@ -274,8 +275,8 @@ simulation: {t_end: 1 s}
   for (int i = 0; i < sys.size(); ++i) y[static_cast<size_t>(i)] = 3.0 * std::sin(1.7 * i + 0.4) + 0.5 * i;
   for (LimitMode md : {LimitMode::linear, LimitMode::limited_pos, LimitMode::limited_neg}) {
     SCOPED_TRACE(to_string(md));
-    sys.set_drive_mode(1, md);
-    sys.set_drive_mode(2, md);
+    sys.set_drive_mode(1, static_cast<int>(md));
+    sys.set_drive_mode(2, static_cast<int>(md));
     expect_jacobian_matches_differences(sys, 0.37, y);
   }
 }

@@ -6,6 +6,8 @@
 #include <string>
 #include <gtest/gtest.h>
 
+#include "machdyn/elements/dc_motor.hpp"
+#include "machdyn/elements/speed_drive.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "support/support.hpp"
 
@@ -35,29 +37,30 @@ TEST(DriveCompile, FieldsInSi) {
   P: {type: speed-drive, body: X, reference: 1 m/s, gain: 5 kN*s/m, integral_time: 1 s}
 )");
   ASSERT_EQ(m.drives.size(), 4u);
-  const Drive& M = m.drives[0];
-  EXPECT_EQ(M.kind, DriveKind::dc_motor);
+  const auto& M = dynamic_cast<const DcMotor&>(*m.drives[0].law);
+  EXPECT_STREQ(M.type(), "dc-motor");
   EXPECT_DOUBLE_EQ(M.R, 0.25);
   EXPECT_DOUBLE_EQ(M.L, 0.012);
   EXPECT_DOUBLE_EQ(M.k, 2.0);
-  EXPECT_DOUBLE_EQ(M.voltage.value(0.0), 400.0);
+  EXPECT_DOUBLE_EQ(M.u.value(0.0), 400.0);
   EXPECT_DOUBLE_EQ(M.i0, 3.0);
-  EXPECT_EQ(M.states(), 1);
-  EXPECT_DOUBLE_EQ(m.drives[1].k, 30.0);
-  EXPECT_DOUBLE_EQ(m.drives[1].voltage.value(2.0), 48.0);
-  const Drive& S = m.drives[2];
-  EXPECT_EQ(S.kind, DriveKind::speed_drive);
-  EXPECT_NEAR(S.reference.value(3.0), 1500 * 2 * M_PI / 60, 1e-12);
+  EXPECT_EQ(m.drives[0].states(), 1);
+  const auto& lin = dynamic_cast<const DcMotor&>(*m.drives[1].law);
+  EXPECT_DOUBLE_EQ(lin.k, 30.0);
+  EXPECT_DOUBLE_EQ(lin.u.value(2.0), 48.0);
+  const auto& S = dynamic_cast<const SpeedDrive&>(*m.drives[2].law);
+  EXPECT_STREQ(S.type(), "speed-drive");
+  EXPECT_NEAR(S.ref.value(3.0), 1500 * 2 * M_PI / 60, 1e-12);
   EXPECT_DOUBLE_EQ(S.Kp, 20.0);
   EXPECT_DOUBLE_EQ(S.Ti, 0.08);
   EXPECT_DOUBLE_EQ(S.M_max, 2000.0);
   EXPECT_DOUBLE_EQ(S.T_m, 0.005);
   EXPECT_DOUBLE_EQ(S.M0, 300.0);
-  EXPECT_EQ(S.states(), 2);
-  const Drive& P = m.drives[3];
+  EXPECT_EQ(m.drives[2].states(), 2);
+  const auto& P = dynamic_cast<const SpeedDrive&>(*m.drives[3].law);
   EXPECT_DOUBLE_EQ(P.Kp, 5000.0);
   EXPECT_FALSE(std::isfinite(P.M_max));
-  EXPECT_EQ(P.states(), 1);
+  EXPECT_EQ(m.drives[3].states(), 1);
   // The reference's and the voltage's breakpoints are the run's.
   const auto b = m.breakpoints(10.0);
   EXPECT_NE(std::find(b.begin(), b.end(), 1.0), b.end());
@@ -88,7 +91,7 @@ TEST(DriveCompile, BadFieldsAreLocatedAndListedTogether) {
         "bad.yaml:10:32: error: drive 'f': unknown body 'nobody'",
         "bad.yaml:11:6: error: drive 'g': missing field 'voltage'",
         "bad.yaml:12:114: error: drive 'h': field 'initial_torque' (20) exceeds the torque limit 10",
-        "bad.yaml:13:13: error: drive 'i': field 'type' is 'stepper'; expected one of: dc-motor, speed-drive"})
+        "bad.yaml:13:13: error: drive 'i': field 'type' is 'stepper'; expected one of: dc-motor, speed-drive, thermal-eddy-current-brake"})
     EXPECT_NE(all.find(want), std::string::npos) << want << "\n--- got:\n" << all;
   EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 11) << all;  // twelve problems, one line each
 }

@@ -3,13 +3,14 @@
 /// The one system of equations every model runs through: bodies, links (elements/link.hpp),
 /// friction contacts and brakes (elements/contact.hpp), loads and machines, flattened once.
 ///
-/// State y = [q; v; x] (n positions, n velocities, then the states x of the drives, e.g. a DC motor's
-/// current: elements/drive.hpp, in the order of Model::drives), plus three energy quadratures [W_src;
+/// State y = [q; v; x] (n positions, n velocities, then the states x of the elements with states of
+/// their own, e.g. a DC motor's current: model/element.hpp, in the order of Model::drives), plus three energy quadratures [W_src;
 /// E_fric; E_damp] when the energy books are kept (DriveSystem(m, true): every event-driven run).
 /// Every switching element is in a definite mode and the equations of a mode hold until an event:
 ///   gap link     open (F = 0), closed+ on the positive flank, closed- on the negative one
 ///   contact      stuck (u ≡ 0, a bilateral velocity constraint) or sliding in direction ±1
-///   speed drive  its torque limiter linear or limited± (elements/speed_drive.hpp)
+///   element      an element with states of its own in the mode its interface defines (a speed
+///                drive's torque limiter linear or limited±: elements/speed_drive.hpp)
 ///   lossy gear   stuck, or rolling forward/backward with side a or b driving (elements/lossy_gear.hpp):
 ///                its torques X, Y are solved from the forces on its two bodies after every other
 ///                force, then a_b = a_a / i exactly; friction elements to the ground on its bodies
@@ -51,11 +52,11 @@
 
 #include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/elements/contact.hpp"
-#include "machdyn/elements/drive.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/lossy_gear.hpp"
 #include "machdyn/elements/modes.hpp"
 #include "machdyn/elements/prescribed_motion.hpp"
+#include "machdyn/model/element.hpp"
 #include "machdyn/model/model.hpp"
 #include "machdyn/solve/ode_system.hpp"
 
@@ -115,22 +116,26 @@ class DriveSystem final : public OdeSystem {
   /// The gap mode a state implies on its own (initial state): closed on a flank it presses.
   [[nodiscard]] GapMode natural_gap_mode(int l, const double* y) const;
 
-  // Drives (elements/drive.hpp): their states x_d start at y[drive_offset(d)].
+  // Elements with states of their own (`drives:`, model/element.hpp), called through their
+  // interface only: their states x_d start at y[drive_offset(d)], their modes are ints.
   [[nodiscard]] int drive_count() const { return nd_; }
-  [[nodiscard]] const DriveLaw& drive(int d) const { return drives_[static_cast<size_t>(d)]; }
+  [[nodiscard]] const Element& drive(int d) const { return *drives_[static_cast<size_t>(d)]; }
+  [[nodiscard]] int drive_body(int d) const { return drive_body_[static_cast<size_t>(d)]; }
   [[nodiscard]] int drive_offset(int d) const { return drive_off_[static_cast<size_t>(d)]; }
-  [[nodiscard]] LimitMode drive_mode(int d) const { return drive_mode_[static_cast<size_t>(d)]; }
-  void set_drive_mode(int d, LimitMode md) { drive_mode_[static_cast<size_t>(d)] = md; }
-  /// The mode drive d's state implies on its own (initial state, time events; on its limit: whether
-  /// the on-limit motion goes on after a jump of the reference's slope).
-  [[nodiscard]] LimitMode natural_drive_mode(int d, double t, const double* y);
-  /// The mode of drive d after its event switches it to `now` at its limit: `now`, or on-limit±
-  /// when neither the held nor the integrating law would stay there (SpeedDriveLaw::settle).
-  [[nodiscard]] LimitMode settle_drive_mode(int d, double t, const double* y, LimitMode now);
-  /// The torque (or force) of drive d on its body, N·m or N.
+  [[nodiscard]] int drive_mode(int d) const { return drive_mode_[static_cast<size_t>(d)]; }
+  void set_drive_mode(int d, int md) { drive_mode_[static_cast<size_t>(d)] = md; }
+  /// The mode element d's state implies on its own (initial state, time events; Element::natural_mode,
+  /// with the body's acceleration where the element reads it).
+  [[nodiscard]] int natural_drive_mode(int d, double t, const double* y);
+  /// The mode of element d after its event switches it to `now` (Element::settle where it settles).
+  [[nodiscard]] int settle_drive_mode(int d, double t, const double* y, int now);
+  /// The torque (or force) of element d on its body, N·m or N.
   [[nodiscard]] double drive_torque(int d, double t, const double* y) const {
-    const DriveLaw& k = drives_[static_cast<size_t>(d)];
-    return k.torque(t, y[n_ + k.body], y + drive_offset(d), drive_mode(d));
+    return drive(d).torque(t, y[n_ + drive_body(d)], y + drive_offset(d), drive_mode(d));
+  }
+  /// Element d's own output columns at (t, y) (Element::outputs) into out.
+  void drive_outputs(int d, double t, const double* y, double* out) const {
+    drive(d).outputs(t, y[n_ + drive_body(d)], y + drive_offset(d), drive_mode(d), out);
   }
 
   // Lossy gears (elements/lossy_gear.hpp), in the order of Model::lossy_gears.
@@ -278,8 +283,9 @@ class DriveSystem final : public OdeSystem {
   void lock_event_functions(double t, double* g) const;
   GearLocks locks_;
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
-  /// Adds the drives' torques to f; returns their power Σ M v (source work rate).
-  double drive_forces(double t, const double* y, double* f) const;
+  /// Adds the elements' torques to f; returns the source work rate Σ (M v + heat) and adds their heat
+  /// power (Element::heat_power) to *loss.
+  double drive_forces(double t, const double* y, double* f, double* loss) const;
   /// The drives' state rates into dydt.
   void drive_rates(double t, const double* y, double* dydt) const;
   /// Prescribed motions: from the forces f (before the inertias divide them) each source's force R
@@ -346,10 +352,11 @@ class DriveSystem final : public OdeSystem {
   const Model& m_;
   int n_, nl_, nc_;
   std::vector<double> inertia_;          // current inertias (releases applied)
-  int nd_ = 0, nx_ = 0;                  // drives and their states in y
-  std::vector<DriveLaw> drives_;
-  std::vector<int> drive_off_;           // index of each drive's first state in y
-  std::vector<LimitMode> drive_mode_;
+  int nd_ = 0, nx_ = 0;                  // elements with states of their own, and those states in y
+  std::vector<const Element*> drives_;   // Model::drives' laws (the model owns them)
+  std::vector<int> drive_body_;          // the body each acts on
+  std::vector<int> drive_off_;           // index of each one's first state in y
+  std::vector<int> drive_mode_;
   bool energy_;
   std::vector<double> inv_mass_;
   std::vector<const Machine*> machine_;  // per body, null for constant inertia

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// The law of a DC motor with its armature circuit (`type: dc-motor` under `drives:`), stated once
-/// and used by every consumer: the drive system's right-hand side and Jacobian, outputs, quasi-static
-/// loads and the linear model.
+/// as an Element (model/element.hpp), through which every consumer reads it: the drive system's
+/// right-hand side and Jacobian, outputs, quasi-static loads and the linear model.
 ///
 ///   armature:  L di/dt = u(t) − R i − k ω        (V; i in A, ω the body's velocity in rad/s)
 ///   torque:    M = k i                            (N·m, acts on the body along +q)
@@ -14,31 +14,51 @@
 /// speed u/k, slope −k²/R. Valid for R > 0, L > 0, k > 0 (compile checks); nothing is thrown.
 
 #include "machdyn/elements/linear_model.hpp"
-#include "machdyn/model/model.hpp"
+#include "machdyn/model/element.hpp"
 
 namespace machdyn {
 
-struct DcMotorLaw {
-  double R = 0.0, L = 0.0, k = 0.0;
-  const Signal* u = nullptr;  ///< armature voltage u(t), V
-
-  static DcMotorLaw of(const Drive& d) { return {d.R, d.L, d.k, &d.voltage}; }
+class DcMotor final : public Element {
+ public:
+  double R = 0.0;   ///< armature resistance, Ω, > 0
+  double L = 0.0;   ///< armature inductance, H, > 0
+  double k = 0.0;   ///< motor constant k = k_t = k_e, N·m/A = V·s/rad (N/A on a translational body), > 0
+  double i0 = 0.0;  ///< initial current, A
+  Signal u = Signal::constant(0.0);  ///< armature voltage u(t), V
 
   /// M = k i.
-  [[nodiscard]] double torque(double i) const { return k * i; }
+  [[nodiscard]] double torque_of(double i) const { return k * i; }
   /// di/dt = (u(t) − R i − k ω)/L.
   [[nodiscard]] double current_rate(double t, double omega, double i) const {
-    return (u->value(t) - R * i - k * omega) / L;
+    return (u.value(t) - R * i - k * omega) / L;
   }
-  /// Jacobian terms: ∂M/∂i = k, ∂(di/dt)/∂ω = −k/L, ∂(di/dt)/∂i = −R/L.
-  [[nodiscard]] double dtorque_di() const { return k; }
-  [[nodiscard]] double drate_domega() const { return -k / L; }
-  [[nodiscard]] double drate_di() const { return -R / L; }
-  /// The electrical rate R/L, 1/s (the fastest own motion, for the integrator choice).
-  [[nodiscard]] double rate_bound() const { return R / L; }
+
+  [[nodiscard]] const char* type() const override { return "dc-motor"; }
+  [[nodiscard]] int states() const override { return 1; }
+  void initial_states(double* x) const override { x[0] = i0; }
+  [[nodiscard]] double torque(double, double, const double* x, int) const override { return torque_of(x[0]); }
+  void rates(double t, double omega, const double* x, int, double* dx, double) const override {
+    dx[0] = current_rate(t, omega, x[0]);
+  }
+  /// ∂M/∂i = k, ∂(di/dt)/∂ω = −k/L, ∂(di/dt)/∂i = −R/L.
+  [[nodiscard]] ElementJacobian jacobian(double, double, const double*, int) const override;
   /// Linear model: the quasi-static slope (L → 0) dM/dω = −k²/R as a damper to the ground on
   /// `body`. Exact when the electrical time constant L/R is short against the mechanical periods.
-  void add_linear(int body, LinearModel& lin) const { lin.D.emplace_back(body, body, k * k / R); }
+  void add_linear(int body, int, LinearModel& lin) const override { lin.D.emplace_back(body, body, k * k / R); }
+  /// The electrical rate R/L, 1/s (the fastest own motion, for the integrator choice).
+  [[nodiscard]] double rate_bound() const override { return R / L; }
+
+  [[nodiscard]] const char* state_name(int) const override { return "current"; }
+  [[nodiscard]] std::string state_unit(int, BodyKind) const override { return "A"; }
+  /// The current and the mode (always 0: a DC motor has no modes).
+  [[nodiscard]] std::vector<std::string> output_names(BodyKind) const override { return {"current_A", "mode"}; }
+  void outputs(double, double, const double* x, int mode, double* out) const override {
+    out[0] = x[0];
+    out[1] = static_cast<double>(mode);
+  }
+  [[nodiscard]] std::string describe(BodyKind) const override;
+  [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const override { return u.breakpoints(t0, t1); }
+  [[nodiscard]] double breakpoint_count(double t0, double t1) const override { return u.breakpoint_count(t0, t1); }
 };
 
 }  // namespace machdyn

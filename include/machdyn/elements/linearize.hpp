@@ -2,7 +2,7 @@
 /// @file
 /// The linear model of a drive in one topology, element by element (elements/linear_model.hpp):
 /// bodies add M = diag(I(q)), links their K and D (elements/link.hpp), contacts their constraint
-/// rows or kinetic slopes (elements/contact.hpp), drives their linear terms (elements/drive.hpp:
+/// rows or kinetic slopes (elements/contact.hpp), drives their linear terms (model/element.hpp:
 /// a DC motor's quasi-static slope, a speed drive's PI law in its linear mode as damper and spring).
 
 #include "machdyn/elements/linear_model.hpp"

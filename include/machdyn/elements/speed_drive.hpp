@@ -2,8 +2,9 @@
 /// @file
 /// The law of a speed-controlled drive (`type: speed-drive` under `drives:`): an inverter with a PI
 /// speed controller, a torque limit and an optional torque rise time, its torque acting on the motor
-/// body. Stated once and used by every consumer: the drive system's right-hand side, Jacobian and
-/// event functions, the run's mode decisions, outputs, quasi-static loads and the linear model.
+/// body. Stated once as an Element (model/element.hpp), through which every consumer reads it: the
+/// drive system's right-hand side, Jacobian and event functions, the run's mode decisions, outputs,
+/// quasi-static loads and the linear model.
 ///
 ///   speed error     e = ω_ref(t) − ω                         (rad/s; ω the body's velocity)
 ///   PI controller   M_c = K_p e + x_I                         (N·m; x_I the integral part, a state)
@@ -35,68 +36,37 @@
 #include <cmath>
 
 #include "machdyn/elements/linear_model.hpp"
-#include "machdyn/model/model.hpp"
+#include "machdyn/model/element.hpp"
 
 namespace machdyn {
 
-/// The mode of a speed drive's torque limiter.
+/// The mode of a speed drive's torque limiter (its Element mode is the int of this).
 enum class LimitMode : int { on_limit_neg = -2, limited_neg = -1, linear = 0, limited_pos = 1, on_limit_pos = 2 };
 /// +1 for limited+ and on-limit+, −1 for the lower ones, 0 for linear.
 inline int limit_side(LimitMode m) { return static_cast<int>(m) > 0 ? 1 : static_cast<int>(m) < 0 ? -1 : 0; }
 inline bool on_limit(LimitMode m) { return m == LimitMode::on_limit_pos || m == LimitMode::on_limit_neg; }
 const char* to_string(LimitMode m);
 
-/// The Jacobian terms of a drive with up to two states x: its torque M and the state rates x'
-/// against the body's velocity ω and the states.
-struct DriveJacobian {
-  double dM_domega = 0.0, dM_dx[2] = {0.0, 0.0}, dx_domega[2] = {0.0, 0.0}, dx_dx[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
-};
-
-struct SpeedDriveLaw {
-  double Kp = 0.0, Ti = 0.0, M_max = HUGE_VAL, T_m = 0.0;
-  const Signal* ref = nullptr;  ///< ω_ref(t)
-
-  static SpeedDriveLaw of(const Drive& d) { return {d.Kp, d.Ti, d.M_max, d.T_m, &d.reference}; }
+class SpeedDrive final : public Element {
+ public:
+  double Kp = 0.0;        ///< proportional gain K_p, N·m·s/rad or N·s/m, > 0
+  double Ti = 0.0;        ///< integral time T_i, s, > 0
+  double M_max = HUGE_VAL;  ///< torque limit, N·m or N, > 0 (infinite: no limit)
+  double T_m = 0.0;       ///< torque rise time, s, ≥ 0 (0: no lag)
+  double M0 = 0.0;        ///< initial torque (integral state and lagged torque at t = 0), N·m or N
+  Signal ref = Signal::constant(0.0);  ///< ω_ref(t), rad/s or m/s
 
   [[nodiscard]] bool lagged() const { return T_m > 0.0; }
   [[nodiscard]] bool limited() const { return std::isfinite(M_max); }
   /// The controller output M_c = K_p (ω_ref(t) − ω) + x_I.
-  [[nodiscard]] double command(double t, double omega, double xI) const { return Kp * (ref->value(t) - omega) + xI; }
+  [[nodiscard]] double command(double t, double omega, double xI) const { return Kp * (ref.value(t) - omega) + xI; }
   /// M_s: the command through the limiter in mode md.
   [[nodiscard]] double limited_command(double Mc, LimitMode md) const {
     return md == LimitMode::linear ? Mc : limit_side(md) * M_max;
   }
-  /// The torque on the body: M_s, or the lagged torque x[1].
-  [[nodiscard]] double torque(double t, double omega, const double* x, LimitMode md) const {
-    return lagged() ? x[1] : limited_command(command(t, omega, x[0]), md);
-  }
-  /// The state rates: x_I' and (lagged) M'. omega_dot: the body's acceleration ω' (read on the limit).
-  void rates(double t, double omega, const double* x, LimitMode md, double* dx, double omega_dot) const {
-    const double e = ref->value(t) - omega;
-    dx[0] = md == LimitMode::linear ? Kp / Ti * e : on_limit(md) ? -Kp * (ref->slope(t) - omega_dot) : 0.0;
-    if (lagged()) dx[1] = (limited_command(Kp * e + x[0], md) - x[1]) / T_m;
-  }
-  /// Jacobian terms in mode md (the limited and on-limit modes hold M_s constant; on the limit the
-  /// coupling of x_I' to the acceleration ω' is left out: the Newton iteration of an implicit method
-  /// converges with it missing, the solution does not depend on it):
-  ///   T_m = 0:  ∂M/∂ω = −K_p, ∂M/∂x_I = 1 (linear; 0 limited);  ∂x_I'/∂ω = −K_p/T_i (linear)
-  ///   T_m > 0:  ∂M/∂x₁ = 1;  ∂x₁'/∂ω = −K_p/T_m, ∂x₁'/∂x_I = 1/T_m (linear), ∂x₁'/∂x₁ = −1/T_m
-  [[nodiscard]] DriveJacobian jacobian(LimitMode md) const {
-    DriveJacobian j;
-    const bool lin = md == LimitMode::linear;
-    if (lin) j.dx_domega[0] = -Kp / Ti;
-    if (!lagged()) {
-      if (lin) j.dM_domega = -Kp, j.dM_dx[0] = 1.0;
-      return j;
-    }
-    j.dM_dx[1] = 1.0;
-    if (lin) j.dx_domega[1] = -Kp / T_m, j.dx_dx[1][0] = 1.0 / T_m;
-    j.dx_dx[1][1] = -1.0 / T_m;
-    return j;
-  }
   /// The two event functions of mode md (see above), from the command M_c, the error e and its
   /// rate ė = ω_ref'(t) − ω' (read on the limit only).
-  void events(double Mc, double e, double e_dot, LimitMode md, double* g) const {
+  void limit_events(double Mc, double e, double e_dot, LimitMode md, double* g) const {
     if (!limited()) {
       g[0] = g[1] = 1.0;
       return;
@@ -111,7 +81,7 @@ struct SpeedDriveLaw {
     g[1] = md == LimitMode::linear ? M_max + Mc : md == LimitMode::limited_neg ? -M_max - Mc : 1.0;
   }
   /// The mode after event function `slot` (0 or 1) of mode md crossed zero.
-  static LimitMode mode_after(LimitMode md, int slot) {
+  static LimitMode limit_mode_after(LimitMode md, int slot) {
     if (on_limit(md)) return slot == 0 ? LimitMode::linear : limit_side(md) > 0 ? LimitMode::limited_pos : LimitMode::limited_neg;
     if (md != LimitMode::linear) return LimitMode::linear;
     return slot == 0 ? LimitMode::limited_pos : LimitMode::limited_neg;
@@ -119,7 +89,7 @@ struct SpeedDriveLaw {
   /// A switch old → now between linear and limited± happens with the command on the limit: it
   /// stays there (on-limit±) when held points inside (s K_p ė < 0) and integrating points outside
   /// (s (K_p ė + (K_p/T_i) e) > 0); otherwise `now` holds.
-  [[nodiscard]] LimitMode settle(LimitMode old, LimitMode now, double e, double e_dot) const {
+  [[nodiscard]] LimitMode settle_limit(LimitMode old, LimitMode now, double e, double e_dot) const {
     if (on_limit(old) || on_limit(now)) return now;
     const int s = limit_side(old) != 0 ? limit_side(old) : limit_side(now);
     if (s == 0) return now;
@@ -129,23 +99,85 @@ struct SpeedDriveLaw {
   }
   /// The mode a command implies on its own (the initial state, a jump of ω_ref at a breakpoint):
   /// limited beyond the limit, else linear; exactly at the limit the current mode holds.
-  [[nodiscard]] LimitMode natural_mode(double Mc, LimitMode current) const {
+  [[nodiscard]] LimitMode command_mode(double Mc, LimitMode current) const {
     if (Mc > M_max) return LimitMode::limited_pos;
     if (Mc < -M_max) return LimitMode::limited_neg;
     if (std::abs(Mc) == M_max) return current;
     return LimitMode::linear;
   }
-  /// The fastest own rate, 1/s: 1/T_m (the PI loop's own speed depends on the inertia; the links and
-  /// the inertia bound it in the integrator choice through K_p).
-  [[nodiscard]] double rate_bound() const { return lagged() ? 1.0 / T_m : 0.0; }
+
+  // ---- Element ----
+  [[nodiscard]] const char* type() const override { return "speed-drive"; }
+  /// x_I, and the lagged torque M when T_m > 0.
+  [[nodiscard]] int states() const override { return lagged() ? 2 : 1; }
+  /// The integral holds the initial torque; the lag starts there too.
+  void initial_states(double* x) const override {
+    x[0] = M0;
+    if (lagged()) x[1] = M0;
+  }
+  /// The torque on the body: M_s, or the lagged torque x[1].
+  [[nodiscard]] double torque(double t, double omega, const double* x, int mode) const override {
+    return lagged() ? x[1] : limited_command(command(t, omega, x[0]), LimitMode(mode));
+  }
+  /// The state rates: x_I' and (lagged) M'. omega_dot: the body's acceleration ω' (read on the limit).
+  void rates(double t, double omega, const double* x, int mode, double* dx, double omega_dot) const override {
+    const LimitMode md = LimitMode(mode);
+    const double e = ref.value(t) - omega;
+    dx[0] = md == LimitMode::linear ? Kp / Ti * e : on_limit(md) ? -Kp * (ref.slope(t) - omega_dot) : 0.0;
+    if (lagged()) dx[1] = (limited_command(Kp * e + x[0], md) - x[1]) / T_m;
+  }
+  /// Jacobian terms in mode md (the limited and on-limit modes hold M_s constant; on the limit the
+  /// coupling of x_I' to the acceleration ω' is left out: the Newton iteration of an implicit method
+  /// converges with it missing, the solution does not depend on it):
+  ///   T_m = 0:  ∂M/∂ω = −K_p, ∂M/∂x_I = 1 (linear; 0 limited);  ∂x_I'/∂ω = −K_p/T_i (linear)
+  ///   T_m > 0:  ∂M/∂x₁ = 1;  ∂x₁'/∂ω = −K_p/T_m, ∂x₁'/∂x_I = 1/T_m (linear), ∂x₁'/∂x₁ = −1/T_m
+  [[nodiscard]] ElementJacobian jacobian(double t, double omega, const double* x, int mode) const override;
+  [[nodiscard]] bool has_events() const override { return limited(); }
+  void events(double t, double omega, const double* x, int mode, double omega_dot, double* g) const override {
+    limit_events(command(t, omega, x[0]), ref.value(t) - omega, ref.slope(t) - omega_dot, LimitMode(mode), g);
+  }
+  [[nodiscard]] bool reads_acceleration(int mode) const override { return on_limit(LimitMode(mode)); }
+  [[nodiscard]] int mode_after(int mode, int slot) const override {
+    return static_cast<int>(limit_mode_after(LimitMode(mode), slot));
+  }
+  /// At the limit ω' is the same in both modes (the torque is ±M_max either way, or a lagged state).
+  [[nodiscard]] bool settles(int old, int now) const override {
+    return limited() && !on_limit(LimitMode(old)) && !on_limit(LimitMode(now));
+  }
+  [[nodiscard]] int settle(double t, double omega, int old, int now, double omega_dot) const override {
+    return static_cast<int>(settle_limit(LimitMode(old), LimitMode(now), ref.value(t) - omega, ref.slope(t) - omega_dot));
+  }
+  /// Off the limit: the command's mode; on it, a jump of ω_ref' (a ramp's end) may end the on-limit
+  /// motion: its event functions decide.
+  [[nodiscard]] int natural_mode(double t, double omega, const double* x, int current, double omega_dot) const override;
+  [[nodiscard]] const char* mode_name(int mode) const override { return to_string(LimitMode(mode)); }
+  [[nodiscard]] const char* switch_kind(int now) const override {
+    return now == 0 ? "unlimited" : on_limit(LimitMode(now)) ? "on limit" : "limited";
+  }
   /// Linear model in the linear mode: about the reference motion the PI law is
   /// M = −K_p δω − (K_p/T_i) δq, a damper K_p and a spring K_p/T_i from the body to the ground
   /// (exact for T_m = 0; with a lag, its phase is neglected). Limited: a constant torque, nothing.
-  void add_linear(int body, LimitMode md, LinearModel& lin) const {
-    if (md != LimitMode::linear) return;
+  void add_linear(int body, int mode, LinearModel& lin) const override {
+    if (LimitMode(mode) != LimitMode::linear) return;
     lin.D.emplace_back(body, body, Kp);
     lin.K.emplace_back(body, body, Kp / Ti);
   }
+  /// The fastest own rate, 1/s: 1/T_m (the PI loop's own speed depends on the inertia; the links and
+  /// the inertia bound it in the integrator choice through K_p).
+  [[nodiscard]] double rate_bound() const override { return lagged() ? 1.0 / T_m : 0.0; }
+  [[nodiscard]] const char* state_name(int j) const override { return j == 0 ? "integral torque" : "torque"; }
+  [[nodiscard]] std::string state_unit(int, BodyKind body_kind) const override { return load_unit(body_kind); }
+  /// The reference speed and the limiter mode (0 linear, ±1 limited±, ±2 on the limit).
+  [[nodiscard]] std::vector<std::string> output_names(BodyKind body_kind) const override;
+  void outputs(double t, double, const double*, int mode, double* out) const override {
+    out[0] = ref.value(t);
+    out[1] = static_cast<double>(mode);
+  }
+  [[nodiscard]] std::string describe(BodyKind body_kind) const override;
+  [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const override { return ref.breakpoints(t0, t1); }
+  [[nodiscard]] double breakpoint_count(double t0, double t1) const override { return ref.breakpoint_count(t0, t1); }
+  /// The drive holds the steady speed v as its reference (instead of its own ramp from rest).
+  [[nodiscard]] std::shared_ptr<const Element> at_steady_speed(double v) const override;
 };
 
 }  // namespace machdyn

@@ -29,6 +29,7 @@ namespace machdyn {
 
 class Expression;  // common/expression.hpp
 class Machine;  // model/machine.hpp: a body with position-dependent reduced inertia
+class Element;  // model/element.hpp: an element with states of its own on one body
 
 enum class BodyKind { rotational, translational };
 
@@ -230,6 +231,17 @@ enum class LoadKind {
   constant, signal, expression, speed_table, position_table, drag, eddy_current, motor_linear, motor_kloss, motor_table
 };
 
+/// The eddy-current brake's law (Kloss form), stated once: the load `eddy-current-brake` and every
+/// element that brakes by eddy currents call it:
+///   M = −2 M_k x / (1 + x²),  x = v/ω_k        dM/dv = −2 M_k (1 − x²) / (1 + x²)² / ω_k
+/// M_k its largest torque (N·m or N), reached at the speed ω_k > 0 (rad/s or m/s); against the motion.
+/// Writes dM/dv to *dMdv when given.
+inline double eddy_current_law(double v, double M_k, double omega_k, double* dMdv) {
+  const double x = v / omega_k, den = 1.0 + x * x;
+  if (dMdv) *dMdv = -2.0 * M_k * (1.0 - x * x) / (den * den) / omega_k;
+  return -2.0 * M_k * x / den;
+}
+
 /// A torque (rotational body) or force (translational body) on one body, the load law
 ///   M = M(t, q, v)      (q, v: the body's position and velocity; positive M acts along +q)
 ///   constant:        M = value
@@ -280,37 +292,20 @@ struct Load {
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
 };
 
-enum class DriveKind { dc_motor, speed_drive };
-
-/// A drive: a torque source on one body (`body`) with continuous states of its own (section
-/// `drives:`). The laws, each stated once, are in elements/dc_motor.hpp and elements/speed_drive.hpp;
-/// the states follow [q; v] in the drive system's state (analysis/drive_system.hpp).
-///   dc_motor:    L di/dt = u(t) − R i − k ω,  M = k i        (one state: the armature current i, A)
-///   speed_drive: e = ω_ref(t) − ω,  M_c = K_p e + x_I,  x_I' = (K_p/T_i) e while not limited,
-///                |M| ≤ M_max (clamping anti-windup: x_I held while limited), optional torque lag
-///                T_m M' = M_s − M      (states: x_I in N·m, and M in N·m when T_m > 0)
-/// On a translational body the same laws hold with force and velocity (k in N/A, K_p in N·s/m).
+/// A drive or another element with continuous states of its own acting on one body (`body`), from
+/// the section `drives:`: a DC motor, a speed-controlled drive, an eddy-current brake with its
+/// temperature. Each type states its law and holds its compiled SI parameters in its own file under
+/// elements/ (an Element, model/element.hpp) and registers its `type:` and compile function there;
+/// this struct only places it. Its states follow [q; v] in the drive system's state
+/// (analysis/drive_system.hpp), in the order of Model::drives.
 struct Drive {
   std::string name;
-  DriveKind kind = DriveKind::dc_motor;
   int body = 0;
-  // dc_motor
-  double R = 0.0;      ///< armature resistance, Ω, > 0
-  double L = 0.0;      ///< armature inductance, H, > 0
-  double k = 0.0;      ///< motor constant k = k_t = k_e, N·m/A = V·s/rad (N/A on a translational body), > 0
-  double i0 = 0.0;     ///< initial current, A
-  Signal voltage = Signal::constant(0.0);  ///< u(t), V
-  // speed_drive
-  Signal reference = Signal::constant(0.0);  ///< ω_ref(t), rad/s or m/s
-  double Kp = 0.0;     ///< proportional gain K_p, N·m·s/rad or N·s/m, > 0
-  double Ti = 0.0;     ///< integral time T_i, s, > 0 (infinite: P control only)
-  double M_max = 0.0;  ///< torque limit, N·m or N, > 0 (infinite: no limit)
-  double T_m = 0.0;    ///< torque rise time, s, >= 0 (0: no lag)
-  double M0 = 0.0;     ///< initial torque (integral state and lagged torque at t = 0), N·m or N
+  std::shared_ptr<const Element> law;  ///< never null in a compiled model; shared, immutable
 
-  /// Number of continuous states: 1 for a DC motor, 1 or 2 (with a torque lag) for a speed drive.
-  [[nodiscard]] int states() const { return kind == DriveKind::dc_motor ? 1 : (T_m > 0.0 ? 2 : 1); }
-  /// Times in (t0, t1) where u(t) or ω_ref(t) jumps or has a kink.
+  /// Number of continuous states (Element::states).
+  [[nodiscard]] int states() const;
+  /// Times in (t0, t1) where a signal of the element jumps or has a kink (Element::breakpoints).
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
 };
 
@@ -446,7 +441,7 @@ struct Model {
   std::vector<Link> links;
   std::vector<Load> loads;
   std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (law: elements/contact.hpp)
-  std::vector<Drive> drives;              ///< drives with states of their own (DC motor, speed drive)
+  std::vector<Drive> drives;              ///< elements with states of their own (`drives:`)
   std::string load_case;                  ///< the case applied from the file's `cases:`, or empty
   /// g in m/s² (`gravity:`), the acceleration of gravity that gives every body with `vertical` its
   /// weight; 0 when no body is vertical.
