@@ -19,6 +19,7 @@
 namespace machdyn {
 namespace {
 
+using test::first_positive;
 using test::series;
 
 std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element) {
@@ -209,21 +210,6 @@ struct Demo2Reference {
   static double quadrant(int s, double t, double wt) {
     const double sign_ta = tau1(t) - friction(s, wt) - J1 * r / J2 * tau2(t);
     return s > 0 ? (sign_ta >= 0 ? eta1 : 1 / eta2) : (sign_ta >= 0 ? 1 / eta2 : eta1);
-  }
-  static double first_positive(const std::function<double(double)>& f, double a, double b) {
-    const double h = 1e-4;
-    for (double x0 = a; x0 < b; x0 += h) {
-      const double x1 = std::min(b, x0 + h);
-      if (f(x1) > 0) {
-        double lo = x0, hi = x1;
-        while (hi - lo > 1e-15) {
-          const double mid = 0.5 * (lo + hi);
-          (f(mid) > 0 ? hi : lo) = mid;
-        }
-        return hi;
-      }
-    }
-    return b;
   }
 
   explicit Demo2Reference(double t_end) {

@@ -20,6 +20,7 @@
 namespace machdyn {
 namespace {
 
+using test::first_positive;
 using test::series;
 
 Model compile_text(const std::string& text) { return test::model_text(text, "gear.yaml"); }
@@ -298,22 +299,6 @@ struct Demo1Reference {
     const double ta = tau1(t) - J1 * acc(t, eta1);
     const bool a_drives = s > 0 ? ta >= 0 : ta < 0;
     return a_drives ? eta1 : 1 / eta2;
-  }
-  /// The first t in (a, b] where f > 0 (f(a) ≤ 0), by scanning and bisection; b if none.
-  static double first_positive(const std::function<double(double)>& f, double a, double b) {
-    const double h = 1e-4;
-    for (double x0 = a; x0 < b; x0 += h) {
-      const double x1 = std::min(b, x0 + h);
-      if (f(x1) > 0) {
-        double lo = x0, hi = x1;
-        while (hi - lo > 1e-15) {
-          const double mid = 0.5 * (lo + hi);
-          (f(mid) > 0 ? hi : lo) = mid;
-        }
-        return hi;
-      }
-    }
-    return b;
   }
 
   explicit Demo1Reference(double t_end) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,10 @@ double max_error(const SimulationResult& r, const std::string& name, F f) {
   for (std::size_t i = 0; i < ts.size() && i < v.size(); ++i) e = std::max(e, std::abs(v[i] - f(ts[i])));
   return ts.empty() ? INFINITY : e;
 }
+
+/// The first t in (a, b] where f(t) > 0, given f(a) ≤ 0: a scan in steps of 1e-4 and a bisection to
+/// 1e-15 of the bracket it finds (for reference solutions' switching instants); b if f stays ≤ 0.
+double first_positive(const std::function<double(double)>& f, double a, double b);
 
 /// The model compiled from YAML text as if read from a file called `file` (errors name it).
 Model model_text(const std::string& yaml, const std::string& file = "test.yaml");

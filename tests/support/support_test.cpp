@@ -129,4 +129,20 @@ double at(const SimulationResult& r, const std::string& name, double t, double t
   return std::nan("");
 }
 
+double first_positive(const std::function<double(double)>& f, double a, double b) {
+  const double h = 1e-4;
+  for (double x0 = a; x0 < b; x0 += h) {
+    const double x1 = std::min(b, x0 + h);
+    if (f(x1) > 0) {
+      double lo = x0, hi = x1;
+      while (hi - lo > 1e-15) {
+        const double mid = 0.5 * (lo + hi);
+        (f(mid) > 0 ? hi : lo) = mid;
+      }
+      return hi;
+    }
+  }
+  return b;
+}
+
 }  // namespace machdyn::test
