@@ -429,7 +429,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         if (!m_.bodies[static_cast<size_t>(i)].machine) put(acc_[static_cast<size_t>(i)]);
     if (extra_.power) {
       for (const Load& ld : now().loads)  // the weights as the releases so far left them
-        put(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
+        put(ld.at(t, y, y + n_) * ld.own(y + n_));  // M v_X (model.hpp: Load)
       for (int d = 0; d < nd_; ++d)
         put(sys_.drive_torque(d, t, y) * y[n_ + sys_.drive_body(d)]);
       for (int l = 0; l < nl_; ++l)
@@ -463,7 +463,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out.stage = released_;
     for (size_t k : varying_) {
       const Load& ld = m_.loads[k];
-      out.vals.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
+      out.vals.push_back(ld.at(t, y, y + n_));  // M at the load's point, spread in forces()
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
@@ -487,7 +487,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (size_t j = 0; j < mm.loads.size(); ++j) {
       const Load& ld = mm.loads[j];
       const bool varies = k < varying_.size() && varying_[k] == j;
-      f(ld.body) += varies ? (v < vals.size() ? vals[v] : 0.0) : ld.evaluate(0.0, 0.0, 0.0);
+      ld.spread(varies ? (v < vals.size() ? vals[v] : 0.0) : ld.value, f.data());
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;

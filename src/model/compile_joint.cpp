@@ -125,7 +125,7 @@ void remove_body(Model& m, int x) {
   auto shift = [x](int& i) {
     if (i > x) --i;
   };
-  for (Load& ld : m.loads) shift(ld.body);
+  for (Load& ld : m.loads) shift(ld.body), shift(ld.body2);
   for (Link& l : m.links) shift(l.a), shift(l.b), shift(l.third);
   for (FrictionContact& c : m.contacts) {
     shift(c.a), shift(c.b);
@@ -206,12 +206,6 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   const std::string why = fmt::format("'{}' has no inertia, so {} eliminates it (its motion follows the other "
                                       "members)", X.name, j.what);
   bool ok = true;
-  for (const Load& ld : m.loads)
-    if (ld.body == x) {
-      diag.error(m.where(ld.name), fmt::format("load '{}': {}; a load on it is not supported yet: give '{}' an "
-                                               "inertia", ld.name, why, X.name));
-      ok = false;
-    }
   for (const Drive& d : m.drives)
     if (d.body == x) {
       diag.error(m.where(d.name), fmt::format("drive '{}': {}; give '{}' an inertia", d.name, why, X.name));
@@ -293,6 +287,22 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
       diag.error(at->loc, fmt::format("body '{}': {} {:.12g} contradicts {}, which gives it {:.12g} from the other "
                                       "members; leave it out", X.name, key, given, j.what, x0));
   }
+  // A load on X acts on the others by virtual work, M δq_X = Σ c_k M δq_k (model.hpp: Load). A load
+  // given on a body slaved to X (q_s = ρ q_X) keeps its ρ: weights ρ c_k.
+  for (Load& ld : m.loads) {
+    if (ld.body != x) continue;
+    if (sub.terms == 1 && ld.kind == LoadKind::constant) {  // one body: reduced once, as compile_rigid does
+      ld.value *= sub.w[0];
+      ld.signal = Signal::constant(ld.value);
+      ld.body = sub.body[0];
+      continue;
+    }
+    const double rho = ld.ratio;
+    ld.body = sub.body[0], ld.ratio = rho * sub.w[0];
+    if (sub.terms > 1) ld.body2 = sub.body[1], ld.ratio2 = rho * sub.w[1];
+  }
+  // Its torque output would need X's equation of motion, which is gone.
+  std::erase_if(m.merged_gears, [x](const MergedGear& g) { return g.body == x; });
   RigidSlave s{X.name, X.kind, sub.body[0], sub.w[0], 0.0, sub.terms > 1 ? sub.body[1] : -1,
                sub.terms > 1 ? sub.w[1] : 0.0};
   remove_body(m, x);

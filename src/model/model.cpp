@@ -89,6 +89,26 @@ double Load::position_slope(double t, double q, double v) const {
   return ratio * ratio * dq;
 }
 
+double Load::own(const double* x) const { return ratio * x[body] + (body2 >= 0 ? ratio2 * x[body2] : 0.0); }
+
+double Load::at(double t, const double* q, const double* v) const {
+  return load_law<false>(*this, t, own(q), own(v), nullptr, nullptr);
+}
+
+void Load::slopes_at(double t, const double* q, const double* v, double* dMdq, double* dMdv) const {
+  (void)load_law<true>(*this, t, own(q), own(v), dMdq, dMdv);
+}
+
+void Load::spread(double M, double* f) const {
+  f[body] += ratio * M;
+  if (body2 >= 0) f[body2] += ratio2 * M;
+}
+
+int Load::terms(int* b, double* w) const {
+  b[0] = body, w[0] = ratio, b[1] = body2, w[1] = ratio2;
+  return body2 >= 0 ? 2 : 1;
+}
+
 std::vector<double> Load::breakpoints(double t0, double t1) const {
   std::vector<double> b;
   if (kind == LoadKind::signal) b = signal.breakpoints(t0, t1);

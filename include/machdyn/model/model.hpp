@@ -278,6 +278,13 @@ struct Load {
   /// evaluate(), slope() and position_slope() apply it (slopes ρ² ∂M). A constant load is reduced
   /// by compile into `value` instead (ρ stays 1).
   double ratio = 1.0;
+  /// A load on a joint member X without inertia (model/compile_joint.cpp, RigidSlave with two masters)
+  /// acts on two bodies. X moves with q_X = ρ q[body] + ρ₂ q[body2]; the law sees X's own q_X and v_X;
+  /// by virtual work M δq_X = ρ M δq_body + ρ₂ M δq_body2 the bodies get
+  ///   f_body += ρ M,   f_body2 += ρ₂ M,   power M v_X = Σ f_i v_i.
+  /// body2 = -1: one body, the form above. Every consumer goes through own(), at() and spread().
+  int body2 = -1;
+  double ratio2 = 0.0;
   Signal on = Signal::constant(1.0);         ///< motors: contactor, 0 or 1
   Signal direction = Signal::constant(1.0);  ///< motors: +1 or −1
   bool switched = false;                     ///< motors: `on` or `direction` is not the constant 1
@@ -290,6 +297,17 @@ struct Load {
   [[nodiscard]] double position_slope(double t, double q, double v) const;
   /// Times in (t0, t1) where M jumps or has a kink in t (model/signal.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
+
+  /// The load's own coordinate from the bodies' x (positions or velocities): ρ x[body] + ρ₂ x[body2].
+  [[nodiscard]] double own(const double* x) const;
+  /// M(t, q_X, v_X), the law at the load's own point, from the bodies' positions q and velocities v.
+  [[nodiscard]] double at(double t, const double* q, const double* v) const;
+  /// ∂M/∂q_X and ∂M/∂v_X at the load's own point (the Jacobian adds ρ_i ρ_j ∂M to entry (i, j)).
+  void slopes_at(double t, const double* q, const double* v, double* dMdq, double* dMdv) const;
+  /// Adds the generalized forces of a load M on its point to f (over the bodies): ρ M, ρ₂ M.
+  void spread(double M, double* f) const;
+  /// Its bodies and weights into b[2], w[2] ({body, ρ}, {body2, ρ₂}); returns how many (1 or 2).
+  int terms(int* b, double* w) const;
 };
 
 /// A drive or another element with continuous states of its own acting on one body (`body`), from
