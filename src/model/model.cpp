@@ -175,6 +175,7 @@ std::size_t output_columns_bound(const Model& m) {
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature
+  for (const auto& e : m.eliminated_joints) n += e.members.size();  // its torque on each member
   for (const auto& b : m.bodies) n += b.motion != MotionKind::free ? 1 : 0;  // the motion source's force
   for (const auto& d : m.drives)  // its torque and its own columns
     n += d.law->output_names(m.bodies[static_cast<size_t>(d.body)].kind).size();

@@ -15,6 +15,7 @@
 #include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "support/jacobian.hpp"
 #include "support/support.hpp"
 
@@ -73,6 +74,13 @@ TEST_P(MasslessLoad, ConstantTorqueOnRingGivesClosedFormAccelerations) {
   EXPECT_LT(e_q, tol(1e-8, 1e-6)) << "angles " << e_q;
   EXPECT_LT(e_w, tol(1e-8, 1e-6)) << "speeds " << e_w;
   EXPECT_LT(e_p, tol(1e-6, 1e-4)) << "ring power " << e_p;
+  // The joint's torques on its members (model.hpp: EliminatedJoint) from each member's equation of
+  // motion: on the sun J_s α_s − M_s, on the carrier J_c α_c, on the massless ring −M_r.
+  for (double t : {0.0, 1.0, 2.0}) {
+    EXPECT_NEAR(at(r, "pg.torque_sun_N_m", t), kJs * as - Ms, 1e-9 * Mr);
+    EXPECT_NEAR(at(r, "pg.torque_carrier_N_m", t), kJc * ac, 1e-9 * Mr);
+    EXPECT_NEAR(at(r, "pg.torque_ring_N_m", t), -Mr, 1e-9 * Mr);
+  }
   const double T = 2.0, work = Ms * (ws0 * T + as * T * T / 2) + Mr * (wr0 * T + ar * T * T / 2);
   EXPECT_NEAR(r.hybrid.energy.source_work, work, 1e-6 * std::abs(work));
   EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-7 * std::abs(work));
@@ -153,6 +161,49 @@ TEST(MasslessLoadJacobian, MatchesCentralDifferences) {
       EXPECT_NEAR(J(2 + i, j), cw[i] * cw[j] * 3.0 * std::cos(qr) / I[i], 1e-12 * scale);
       EXPECT_NEAR(J(2 + i, 2 + j), cw[i] * cw[j] * -1.4 * std::abs(wr) / I[i], 1e-12 * scale);
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Claim: the torque columns of MSL's ElasticBearing's IdealGear (support on the housing, ratio 3,
+// massless flange X): the spring's load F = c (φ_X − φ_l) acts on X as −F, so the gear puts +F on
+// X and, by MSL's IdealGear (τ_a = −τ_b/3, support −τ_a − τ_b), −F/3 on the shaft and −2F/3 on the
+// housing. F from the reduced-coordinate RK4 of elastic_bearing_test.cpp's equations (h = 5e-5 s,
+// the ramp's kink on the grid) over the first 2 s; and the three torques do no work together.
+TEST(MasslessJointTorques, ElasticBearingGearFollowsTheSpring) {
+  Model m = load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/msl/elastic-bearing.yaml");
+  m.simulation.t_end = 2.0;
+  const SimulationResult r = simulate(m);
+  constexpr double Js = 1.0, Jh = 5.0, Jl = 50.0, c = 1e3, ch = 1e5, dh = 5.0;
+  using V6 = Eigen::Matrix<double, 6, 1>;  // (φ_s, φ_h, φ_l, ω_s, ω_h, ω_l)
+  auto flange = [](const V6& y) { return y(0) / 3.0 + 2.0 * y(1) / 3.0; };
+  auto rhs = [&](double t, const V6& y) {
+    const double F = c * (flange(y) - y(2));
+    V6 d;
+    d << y(3), y(4), y(5), (100.0 * std::min(t / 5.0, 1.0) - F / 3.0) / Js, (-2.0 * F / 3.0 - ch * y(1) - dh * y(4)) / Jh,
+        F / Jl;
+    return d;
+  };
+  V6 y = V6::Zero();
+  const double h = 5e-5;
+  double e = 0.0, peak = 0.0, work = 0.0;
+  for (int k = 0; k < 40000; ++k) {
+    const double t = k * h;
+    const V6 k1 = rhs(t, y), k2 = rhs(t + h / 2, y + h / 2 * k1), k3 = rhs(t + h / 2, y + h / 2 * k2), k4 = rhs(t + h, y + h * k3);
+    y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    if ((k + 1) % 200 != 0) continue;
+    const double tn = (k + 1) * h, F = c * (flange(y) - y(2));
+    const double ts = at(r, "idealGear.torque_shaft_N_m", tn), tx = at(r, "idealGear.torque_flange_N_m", tn),
+                 th = at(r, "idealGear.torque_housing_N_m", tn);
+    e = std::max({e, std::abs(ts + F / 3.0), std::abs(tx - F), std::abs(th + 2.0 * F / 3.0)});
+    peak = std::max(peak, std::abs(F));
+    const double wx = at(r, "flange.velocity_rad_s", tn);
+    work = std::max(work, std::abs(ts * at(r, "shaft.velocity_rad_s", tn) + tx * wx + th * at(r, "housing.velocity_rad_s", tn)));
+  }
+  EXPECT_GT(peak, 1.0);
+  EXPECT_LT(e, 1e-5 * peak) << "torques " << e << " N*m, peak spring load " << peak;
+  EXPECT_LT(work, 1e-9 * peak) << "power of the gear's torques " << work;
+  std::printf("MasslessJointTorques ElasticBearing: torque error %.2e N*m (spring peak %.6g N*m), gear power %.2e W\n", e,
+              peak, work);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -407,6 +407,27 @@ struct RigidSlave {
   double ratio2 = 0.0;
 };
 
+/// The torques of a gear joint whose member X has no inertia (model/compile_joint.cpp eliminates X,
+/// so the joint has no load λ of its own). X's torque balance is τ_X + f_X = 0, f_X what the other
+/// elements put on X in X's coordinate; the joint's row (weights w_k over its members) puts
+/// τ_k = −w_k λ on member k, so
+///   λ = f_X / w_X,   τ_k = −w_k f_X / w_X   (τ_X = −f_X; Σ τ_k ω_k = −λ Σ w_k ω_k = 0),
+///   f_X = Σ ρ_l M_l (loads) − Σ F_l ∂δ_l/∂q_X (links) − Σ w_c f_c (contacts and joints on X).
+/// The outputs NAME.torque_MEMBER_N_m, as for a joint with inertia on every member.
+struct EliminatedJoint {
+  std::string name;                  ///< the joint
+  std::vector<std::string> members;  ///< its members, in the order of its row
+  std::vector<double> w;             ///< the row's weights w_k (members' own coordinates)
+  double wx = 1.0;                   ///< X's weight in the row over the bodies (w_X ρ, q_member = ρ q_X)
+  BodyKind kind = BodyKind::rotational;
+  std::vector<int> loads;            ///< loads on X (indices into Model::loads): f_X += weight · Load::at()
+  std::vector<double> load_weight;
+  std::vector<int> links;            ///< links with an end on X: f_X −= F · ∂δ/∂q_X (the weight)
+  std::vector<double> link_weight;
+  std::vector<int> contacts;         ///< contacts and joints on X: f_X −= w_c f_c (the weight w_c)
+  std::vector<double> contact_weight;
+};
+
 /// The torque an ideal gear merged by compile passes (model/compile_rigid.cpp): the gear between A
 /// and B (q_A = i q_B) splits its rigid group into two sides; the side S without the group's master
 /// holds only slaved bodies, whose elements are loads and links' first ends. Summing the equations
@@ -470,6 +491,7 @@ struct Model {
   std::vector<RigidSlave> slaves;
   std::vector<std::string> ideal_gears;   ///< names of the ideal gears compile resolved
   std::vector<MergedGear> merged_gears;   ///< the merged ideal gears with a torque output (MergedGear)
+  std::vector<EliminatedJoint> eliminated_joints;  ///< gear joints with a member without inertia
   /// Bodies losing part of their mass during the run (Release), in the order of their times (file
   /// order at equal times); empty without `releases:`.
   std::vector<Release> releases;
