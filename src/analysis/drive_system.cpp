@@ -197,7 +197,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   drive_mode_.assign(static_cast<size_t>(nd_), 0);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
   for (const auto& ld : model.loads) {
-    if (ld.kind == LoadKind::constant) f_const_[static_cast<size_t>(ld.body)] += ld.value;
+    if (ld.kind == LoadKind::constant) ld.spread(ld.value, f_const_.data());
     else varying_.push_back(&ld);
   }
   affine_eligible_ = varying_.empty() && nd_ == 0 && ng_ == 0 && !has_machines_ && motions_.empty() && (nl_ + nc_ > 0);  // machines: nonlinear in y
@@ -442,9 +442,9 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
     src += f[i] * v[i];
   }
   for (const Load* ld : varying_) {
-    const double val = ld->evaluate(t, y[ld->body], v[ld->body]);
-    f[ld->body] += val;
-    src += val * v[ld->body];
+    const double val = ld->at(t, y, v);
+    ld->spread(val, f);
+    src += val * ld->own(v);
   }
   const double* q = y;
   if constexpr (kMach) {
@@ -706,8 +706,11 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
 void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
   if (dense_) {
     chain_.apply(y, dydt);
-    for (const Load* ld : varying_)
-      dydt[n_ + ld->body] += ld->evaluate(t, y[ld->body], y[n_ + ld->body]) * inv_mass_[static_cast<size_t>(ld->body)];
+    for (const Load* ld : varying_) {
+      const double Mx = ld->at(t, y, y + n_);
+      dydt[n_ + ld->body] += ld->ratio * Mx * inv_mass_[static_cast<size_t>(ld->body)];
+      if (ld->body2 >= 0) dydt[n_ + ld->body2] += ld->ratio2 * Mx * inv_mass_[static_cast<size_t>(ld->body2)];
+    }
     return;
   }
   if (!affine_eligible_) {
@@ -788,9 +791,17 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   // a missing diagonal makes it rebuild the whole matrix at every setup.
   for (int i = 0; i < 2 * n_; ++i) trip.emplace_back(i, i, 0.0);
   auto im = [&](int i) { return inv_mass_[static_cast<size_t>(i)]; };
-  for (const auto& ld : m_.loads) {
-    trip.emplace_back(n_ + ld.body, n_ + ld.body, ld.slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
-    trip.emplace_back(n_ + ld.body, ld.body, ld.position_slope(t, y[ld.body], y[n_ + ld.body]) * im(ld.body));
+  for (const auto& ld : m_.loads) {  // f_i = ρ_i M(q_X, v_X): ∂f_i/∂x_j = ρ_i ρ_j ∂M/∂x_X (model.hpp: Load)
+    double dq = 0.0, dv = 0.0;
+    ld.slopes_at(t, y, y + n_, &dq, &dv);
+    int b[2];
+    double w[2];
+    const int nt = ld.terms(b, w);
+    for (int i = 0; i < nt; ++i)
+      for (int j = 0; j < nt; ++j) {
+        trip.emplace_back(n_ + b[i], n_ + b[j], w[i] * w[j] * dv * im(b[i]));
+        trip.emplace_back(n_ + b[i], b[j], w[i] * w[j] * dq * im(b[i]));
+      }
   }
   for (int l = 0; l < nl_; ++l) {
     const LinkLaw& k = links_[static_cast<size_t>(l)];
@@ -819,7 +830,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
 
 void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
-  for (const auto& ld : m_.loads) f[ld.body] += ld.evaluate(t, y[ld.body], y[n_ + ld.body]);
+  for (const auto& ld : m_.loads) ld.spread(ld.at(t, y, y + n_), f);
   for (int d = 0; d < nd_; ++d) f[drive_body(d)] += drive_torque(d, t, y);
   const double* q = machine_positions(y);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);

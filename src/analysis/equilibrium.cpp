@@ -99,11 +99,18 @@ EquilibriumStart static_equilibrium(const Model& m) {
   // g(q) and ∂g/∂q from the loads at t = 0 and the links' law in their modes.
   auto evaluate = [&](const Eigen::VectorXd& x) {
     State s{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::MatrixXd::Zero(n, n)};
-    for (const auto& ld : m.loads) {
-      const double F = ld.evaluate(0.0, x(ld.body), v_given(ld.body));
-      s.g(ld.body) += F;
-      s.scale(ld.body) += std::abs(F);
-      s.J(ld.body, ld.body) += ld.position_slope(0.0, x(ld.body), v_given(ld.body));
+    for (const auto& ld : m.loads) {  // f_i = ρ_i M(q_X), ∂f_i/∂q_j = ρ_i ρ_j ∂M/∂q_X (model.hpp: Load)
+      const double Mx = ld.at(0.0, x.data(), v_given.data());
+      double dq = 0.0, dv = 0.0;
+      ld.slopes_at(0.0, x.data(), v_given.data(), &dq, &dv);
+      int b[2];
+      double w[2];
+      const int nt = ld.terms(b, w);
+      for (int i = 0; i < nt; ++i) {
+        s.g(b[i]) += w[i] * Mx;
+        s.scale(b[i]) += std::abs(w[i] * Mx);
+        for (int j = 0; j < nt; ++j) s.J(b[i], b[j]) += w[i] * w[j] * dq;
+      }
     }
     for (size_t k = 0; k < nl; ++k) {
       const LinkLaw& law = laws[k];

@@ -18,8 +18,9 @@ LinearSignal linear_input(const Model& m, const std::string& name, const Locatio
   s.q = Eigen::VectorXd::Zero(m.dof());
   s.v = Eigen::VectorXd::Zero(m.dof());
   int body = -2;
+  const Load* load = nullptr;
   for (const Load& l : m.loads)
-    if (l.name == name) body = l.body;
+    if (l.name == name) body = l.body, load = &l;
   if (body < 0) body = m.body_index(name);
   if (body < 0) {
     std::string known;
@@ -28,6 +29,10 @@ LinearSignal linear_input(const Model& m, const std::string& name, const Locatio
     throw InputError(where, fmt::format("no load or body '{}' to excite (expected one of: {})", name, known));
   }
   s.q(body) = 1.0;  // the generalized force's weight on its body
+  if (load && load->body2 >= 0) {  // a load on a member without inertia: ρ, ρ₂ (model.hpp: Load)
+    s.q(body) = load->ratio;
+    s.q(load->body2) = load->ratio2;
+  }
   s.unit = load_unit(m.bodies[static_cast<size_t>(body)].kind);
   return s;
 }

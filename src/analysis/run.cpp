@@ -205,6 +205,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       names.push_back(c.name + ".sliding_velocity_" + unit_suffix(velocity_unit(k)));
       names.push_back(c.name + ".mode");
     }
+    // Gear joints with a member without inertia (model.hpp: EliminatedJoint): the torque on each member.
+    for (const auto& e : m_.eliminated_joints)
+      for (const auto& nm : e.members) names.push_back(e.name + ".torque_" + nm + "_" + unit_suffix(load_unit(e.kind)));
     for (int l = 0; l < nl_; ++l)
       if (m_.links[static_cast<size_t>(l)].has_gap) {
         names.push_back(m_.links[static_cast<size_t>(l)].name + ".gap_mode");
@@ -325,6 +328,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       put(sys_.sliding_velocity(k, t, y));
       put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
     }
+    for (const auto& e : m_.eliminated_joints) {
+      const double lambda = eliminated_joint_load(e, t, y);
+      for (const double w : e.w) put(-w * lambda);
+    }
     for (const int l : gap_links_) put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
     if (!tail_groups_) return;  // no drive, gear, rope, slave, thermal, release, motion or extra columns
     for (int d = 0; d < nd_; ++d) {
@@ -409,6 +416,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const double tau_e = (g.inertia * acc_[static_cast<size_t>(M)] - f) / g.rho;
     return g.side_b ? tau_e : -g.ratio * tau_e;
   }
+  /// λ of a gear joint whose member X has no inertia, from X's torque balance (model.hpp:
+  /// EliminatedJoint): λ = f_X / w_X; loads_ and fc_ hold the link loads and contact forces at t.
+  double eliminated_joint_load(const EliminatedJoint& e, double t, const double* y) const {
+    double f = 0.0;
+    for (size_t k = 0; k < e.loads.size(); ++k)
+      f += e.load_weight[k] * now().loads[static_cast<size_t>(e.loads[k])].at(t, y, y + n_);
+    for (size_t k = 0; k < e.links.size(); ++k) f -= e.link_weight[k] * loads_[static_cast<size_t>(e.links[k])];
+    for (size_t k = 0; k < e.contacts.size(); ++k) f -= e.contact_weight[k] * fc_[static_cast<size_t>(e.contacts[k])];
+    return f / e.wx;
+  }
   /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
   std::string link_deflection_unit(const Link& l) const {
     return std::string(link_load_unit(m_, l)) == "N*m" ? "rad" : "m";
@@ -429,7 +446,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         if (!m_.bodies[static_cast<size_t>(i)].machine) put(acc_[static_cast<size_t>(i)]);
     if (extra_.power) {
       for (const Load& ld : now().loads)  // the weights as the releases so far left them
-        put(ld.evaluate(t, y[ld.body], y[n_ + ld.body]) * y[n_ + ld.body]);
+        put(ld.at(t, y, y + n_) * ld.own(y + n_));  // M v_X (model.hpp: Load)
       for (int d = 0; d < nd_; ++d)
         put(sys_.drive_torque(d, t, y) * y[n_ + sys_.drive_body(d)]);
       for (int l = 0; l < nl_; ++l)
@@ -463,7 +480,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out.stage = released_;
     for (size_t k : varying_) {
       const Load& ld = m_.loads[k];
-      out.vals.push_back(ld.evaluate(t, y[ld.body], y[n_ + ld.body]));
+      out.vals.push_back(ld.at(t, y, y + n_));  // M at the load's point, spread in forces()
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
@@ -487,7 +504,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (size_t j = 0; j < mm.loads.size(); ++j) {
       const Load& ld = mm.loads[j];
       const bool varies = k < varying_.size() && varying_[k] == j;
-      f(ld.body) += varies ? (v < vals.size() ? vals[v] : 0.0) : ld.evaluate(0.0, 0.0, 0.0);
+      ld.spread(varies ? (v < vals.size() ? vals[v] : 0.0) : ld.value, f.data());
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;

@@ -125,7 +125,7 @@ void remove_body(Model& m, int x) {
   auto shift = [x](int& i) {
     if (i > x) --i;
   };
-  for (Load& ld : m.loads) shift(ld.body);
+  for (Load& ld : m.loads) shift(ld.body), shift(ld.body2);
   for (Link& l : m.links) shift(l.a), shift(l.b), shift(l.third);
   for (FrictionContact& c : m.contacts) {
     shift(c.a), shift(c.b);
@@ -143,7 +143,8 @@ void remove_body(Model& m, int x) {
 /// Rewrites link k if an end is on x (q_x = Σ sub.w q_sub.body): δ = Σ w q over its terms with x's
 /// term replaced, its own other ends kept in their places (units, display), the rest in the free
 /// places of a, b, e (model.hpp: Link). False after an error.
-bool rewrite_link(Model& m, int k, int x, const VelocityRow& sub, const std::string& why, Diagnostics& diag) {
+bool rewrite_link(Model& m, int k, int x, const VelocityRow& sub, const std::string& why, Diagnostics& diag,
+                  EliminatedJoint& out) {
   Link& l = m.links[static_cast<size_t>(k)];
   if (l.a != x && l.b != x && l.third != x) return true;
   const std::string at = fmt::format("link '{}': {}", l.name, why);
@@ -165,6 +166,7 @@ bool rewrite_link(Model& m, int k, int x, const VelocityRow& sub, const std::str
   }
   for (int j = 0; j < sub.terms; ++j) add_term(t, sub.body[j], wx * sub.w[j]);
   drop_zeros(t);
+  out.links.push_back(k), out.link_weight.push_back(wx);  // X's torque balance: −F ∂δ/∂q_X
   if (t.terms == 0) {
     diag.error(m.where(l.name), fmt::format("{}; its deflection is then always 0 (its ends move together): remove it",
                                             at));
@@ -206,12 +208,6 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   const std::string why = fmt::format("'{}' has no inertia, so {} eliminates it (its motion follows the other "
                                       "members)", X.name, j.what);
   bool ok = true;
-  for (const Load& ld : m.loads)
-    if (ld.body == x) {
-      diag.error(m.where(ld.name), fmt::format("load '{}': {}; a load on it is not supported yet: give '{}' an "
-                                               "inertia", ld.name, why, X.name));
-      ok = false;
-    }
   for (const Drive& d : m.drives)
     if (d.body == x) {
       diag.error(m.where(d.name), fmt::format("drive '{}': {}; give '{}' an inertia", d.name, why, X.name));
@@ -239,7 +235,9 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
     if (r.body[k] == x) wx = r.w[k];
   for (int k = 0; k < r.terms; ++k)
     if (r.body[k] != x) add_term(sub, r.body[k], -r.w[k] / wx);
-  for (size_t k = 0; k < m.links.size(); ++k) ok = rewrite_link(m, static_cast<int>(k), x, sub, why, diag) && ok;
+  // The joint's torques follow from X's torque balance (model.hpp: EliminatedJoint): what acts on X.
+  EliminatedJoint ej{j.name, j.member, j.w, wx, X.kind, {}, {}, {}, {}, {}, {}};
+  for (size_t k = 0; k < m.links.size(); ++k) ok = rewrite_link(m, static_cast<int>(k), x, sub, why, diag, ej) && ok;
   for (FrictionContact& c : m.contacts) {
     VelocityRow row = c.row;
     if (row.terms == 0) {
@@ -251,6 +249,7 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
     for (int k = 0; k < row.terms; ++k)
       if (row.body[k] == x) wc = row.w[k];
     if (wc == 0.0) continue;
+    ej.contacts.push_back(static_cast<int>(&c - m.contacts.data())), ej.contact_weight.push_back(wc);
     if (c.stop) {
       diag.error(m.where(c.name), fmt::format("stop '{}': {}; an end stop on it is not supported", c.name, why));
       ok = false;
@@ -293,12 +292,32 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
       diag.error(at->loc, fmt::format("body '{}': {} {:.12g} contradicts {}, which gives it {:.12g} from the other "
                                       "members; leave it out", X.name, key, given, j.what, x0));
   }
+  // A load on X acts on the others by virtual work, M δq_X = Σ c_k M δq_k (model.hpp: Load). A load
+  // given on a body slaved to X (q_s = ρ q_X) keeps its ρ: weights ρ c_k.
+  for (Load& ld : m.loads) {
+    if (ld.body != x) continue;
+    // On X: ρ M with Load::at() = M (a constant reduced below: at() = c M, so ρ/c).
+    const bool reduce = sub.terms == 1 && ld.kind == LoadKind::constant;
+    ej.loads.push_back(static_cast<int>(&ld - m.loads.data())), ej.load_weight.push_back(ld.ratio / (reduce ? sub.w[0] : 1.0));
+    if (reduce) {  // one body: reduced once, as compile_rigid does
+      ld.value *= sub.w[0];
+      ld.signal = Signal::constant(ld.value);
+      ld.body = sub.body[0];
+      continue;
+    }
+    const double rho = ld.ratio;
+    ld.body = sub.body[0], ld.ratio = rho * sub.w[0];
+    if (sub.terms > 1) ld.body2 = sub.body[1], ld.ratio2 = rho * sub.w[1];
+  }
+  // Its torque output would need X's equation of motion, which is gone.
+  std::erase_if(m.merged_gears, [x](const MergedGear& g) { return g.body == x; });
   RigidSlave s{X.name, X.kind, sub.body[0], sub.w[0], 0.0, sub.terms > 1 ? sub.body[1] : -1,
                sub.terms > 1 ? sub.w[1] : 0.0};
   remove_body(m, x);
   if (s.master > x) --s.master;
   if (s.master2 > x) --s.master2;
   m.slaves.push_back(s);
+  m.eliminated_joints.push_back(std::move(ej));
 }
 
 /// A joint named `name` of kind `kind` ("planetary gear", "ideal gear") at its key.

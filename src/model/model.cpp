@@ -89,6 +89,26 @@ double Load::position_slope(double t, double q, double v) const {
   return ratio * ratio * dq;
 }
 
+double Load::own(const double* x) const { return ratio * x[body] + (body2 >= 0 ? ratio2 * x[body2] : 0.0); }
+
+double Load::at(double t, const double* q, const double* v) const {
+  return load_law<false>(*this, t, own(q), own(v), nullptr, nullptr);
+}
+
+void Load::slopes_at(double t, const double* q, const double* v, double* dMdq, double* dMdv) const {
+  (void)load_law<true>(*this, t, own(q), own(v), dMdq, dMdv);
+}
+
+void Load::spread(double M, double* f) const {
+  f[body] += ratio * M;
+  if (body2 >= 0) f[body2] += ratio2 * M;
+}
+
+int Load::terms(int* b, double* w) const {
+  b[0] = body, w[0] = ratio, b[1] = body2, w[1] = ratio2;
+  return body2 >= 0 ? 2 : 1;
+}
+
 std::vector<double> Load::breakpoints(double t0, double t1) const {
   std::vector<double> b;
   if (kind == LoadKind::signal) b = signal.breakpoints(t0, t1);
@@ -155,6 +175,7 @@ std::size_t output_columns_bound(const Model& m) {
   for (const auto& l : m.links) n += (l.has_gap ? 1 : 0) + (is_rope_with_falls(l) ? 2 : 0);
   for (const auto& b : m.bodies) n += b.machine ? 8 : 0;
   for (const auto& c : m.contacts) n += c.thermal ? 1 : 0;  // its temperature
+  for (const auto& e : m.eliminated_joints) n += e.members.size();  // its torque on each member
   for (const auto& b : m.bodies) n += b.motion != MotionKind::free ? 1 : 0;  // the motion source's force
   for (const auto& d : m.drives)  // its torque and its own columns
     n += d.law->output_names(m.bodies[static_cast<size_t>(d.body)].kind).size();

@@ -241,14 +241,16 @@ TEST(MasslessMemberErrors, AreLocated) {
       "bodies:\n  s: {inertia: 1 kg*m^2}\n  x: {inertia: 0 kg*m^2}\n  h: {inertia: 1 kg*m^2}\n"
       "  u: {inertia: 1 kg*m^2}\n  y: {inertia: 0 kg*m^2}\n  r: {inertia: 1 kg*m^2}\n"
       "links:\n  g: {type: ideal-gear, between: [s, x], ratio: 3, housing: h}\n";
-  // A load on the flange.
-  const std::string load = test::compile_errors(
+  // A drive (an element with states of its own) on the flange; loads are supported
+  // (massless_load_test.cpp).
+  const std::string drive = test::compile_errors(
       "bodies:\n  s: {inertia: 1 kg*m^2}\n  x: {inertia: 0 kg*m^2}\n  h: {inertia: 1 kg*m^2}\n"
       "links:\n  g: {type: ideal-gear, between: [s, x], ratio: 3, housing: h}\n"
-      "loads:\n  M: {type: constant, body: x, value: 1 N*m}\n",
+      "drives:\n  d: {type: dc-motor, body: x, resistance: 2 ohm, inductance: 1 H, motor_constant: 2 V*s/rad, "
+      "voltage: 100 V}\n",
       "bearing.yaml");
-  EXPECT_NE(load.find("bearing.yaml:8:3: error: load 'M'"), std::string::npos) << load;
-  EXPECT_NE(load.find("a load on it is not supported"), std::string::npos) << load;
+  EXPECT_NE(drive.find("bearing.yaml:8:3: error: drive 'd'"), std::string::npos) << drive;
+  EXPECT_NE(drive.find("give 'x' an inertia"), std::string::npos) << drive;
   // A link between two flanges of two gears: four bodies.
   const std::string four = test::compile_errors(
       head + "  g2: {type: ideal-gear, between: [u, y], ratio: 2, housing: r}\n"

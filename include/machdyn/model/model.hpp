@@ -278,6 +278,13 @@ struct Load {
   /// evaluate(), slope() and position_slope() apply it (slopes ρ² ∂M). A constant load is reduced
   /// by compile into `value` instead (ρ stays 1).
   double ratio = 1.0;
+  /// A load on a joint member X without inertia (model/compile_joint.cpp, RigidSlave with two masters)
+  /// acts on two bodies. X moves with q_X = ρ q[body] + ρ₂ q[body2]; the law sees X's own q_X and v_X;
+  /// by virtual work M δq_X = ρ M δq_body + ρ₂ M δq_body2 the bodies get
+  ///   f_body += ρ M,   f_body2 += ρ₂ M,   power M v_X = Σ f_i v_i.
+  /// body2 = -1: one body, the form above. Every consumer goes through own(), at() and spread().
+  int body2 = -1;
+  double ratio2 = 0.0;
   Signal on = Signal::constant(1.0);         ///< motors: contactor, 0 or 1
   Signal direction = Signal::constant(1.0);  ///< motors: +1 or −1
   bool switched = false;                     ///< motors: `on` or `direction` is not the constant 1
@@ -290,6 +297,17 @@ struct Load {
   [[nodiscard]] double position_slope(double t, double q, double v) const;
   /// Times in (t0, t1) where M jumps or has a kink in t (model/signal.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
+
+  /// The load's own coordinate from the bodies' x (positions or velocities): ρ x[body] + ρ₂ x[body2].
+  [[nodiscard]] double own(const double* x) const;
+  /// M(t, q_X, v_X), the law at the load's own point, from the bodies' positions q and velocities v.
+  [[nodiscard]] double at(double t, const double* q, const double* v) const;
+  /// ∂M/∂q_X and ∂M/∂v_X at the load's own point (the Jacobian adds ρ_i ρ_j ∂M to entry (i, j)).
+  void slopes_at(double t, const double* q, const double* v, double* dMdq, double* dMdv) const;
+  /// Adds the generalized forces of a load M on its point to f (over the bodies): ρ M, ρ₂ M.
+  void spread(double M, double* f) const;
+  /// Its bodies and weights into b[2], w[2] ({body, ρ}, {body2, ρ₂}); returns how many (1 or 2).
+  int terms(int* b, double* w) const;
 };
 
 /// A drive or another element with continuous states of its own acting on one body (`body`), from
@@ -389,6 +407,27 @@ struct RigidSlave {
   double ratio2 = 0.0;
 };
 
+/// The torques of a gear joint whose member X has no inertia (model/compile_joint.cpp eliminates X,
+/// so the joint has no load λ of its own). X's torque balance is τ_X + f_X = 0, f_X what the other
+/// elements put on X in X's coordinate; the joint's row (weights w_k over its members) puts
+/// τ_k = −w_k λ on member k, so
+///   λ = f_X / w_X,   τ_k = −w_k f_X / w_X   (τ_X = −f_X; Σ τ_k ω_k = −λ Σ w_k ω_k = 0),
+///   f_X = Σ ρ_l M_l (loads) − Σ F_l ∂δ_l/∂q_X (links) − Σ w_c f_c (contacts and joints on X).
+/// The outputs NAME.torque_MEMBER_N_m, as for a joint with inertia on every member.
+struct EliminatedJoint {
+  std::string name;                  ///< the joint
+  std::vector<std::string> members;  ///< its members, in the order of its row
+  std::vector<double> w;             ///< the row's weights w_k (members' own coordinates)
+  double wx = 1.0;                   ///< X's weight in the row over the bodies (w_X ρ, q_member = ρ q_X)
+  BodyKind kind = BodyKind::rotational;
+  std::vector<int> loads;            ///< loads on X (indices into Model::loads): f_X += weight · Load::at()
+  std::vector<double> load_weight;
+  std::vector<int> links;            ///< links with an end on X: f_X −= F · ∂δ/∂q_X (the weight)
+  std::vector<double> link_weight;
+  std::vector<int> contacts;         ///< contacts and joints on X: f_X −= w_c f_c (the weight w_c)
+  std::vector<double> contact_weight;
+};
+
 /// The torque an ideal gear merged by compile passes (model/compile_rigid.cpp): the gear between A
 /// and B (q_A = i q_B) splits its rigid group into two sides; the side S without the group's master
 /// holds only slaved bodies, whose elements are loads and links' first ends. Summing the equations
@@ -452,6 +491,7 @@ struct Model {
   std::vector<RigidSlave> slaves;
   std::vector<std::string> ideal_gears;   ///< names of the ideal gears compile resolved
   std::vector<MergedGear> merged_gears;   ///< the merged ideal gears with a torque output (MergedGear)
+  std::vector<EliminatedJoint> eliminated_joints;  ///< gear joints with a member without inertia
   /// Bodies losing part of their mass during the run (Release), in the order of their times (file
   /// order at equal times); empty without `releases:`.
   std::vector<Release> releases;
