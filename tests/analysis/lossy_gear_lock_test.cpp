@@ -6,7 +6,6 @@
 // the located errors of the friction elements that remain unsupported on a lossy gear's bodies.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <string>
 #include <vector>
 #include <fmt/format.h>
@@ -14,12 +13,12 @@
 
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "support/gear_phases.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace {
 
-using test::first_positive;
 using test::series;
 
 std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element) {
@@ -174,15 +173,9 @@ simulation: {{t_end: 2, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
 // starts forward exactly when the gear starts with f = 0.5 (the friction at its limit against the start),
 // backward when it starts with f = −0.5. A start is a slide of the friction too (F(0) = 0.5 = its limit).
 // Switches: scan (1e-4 s) and bisection to 1e-15 s on these closed forms.
-struct Demo2Reference {
+struct Demo2Reference : test::GearPhases {
   static constexpr double J1 = 1.0, J2 = 1.5, r = 2.0, eta1 = 0.5, eta2 = 0.5, Fs = 0.5, kPi = 3.14159265358979323846;
-  struct Segment {
-    double t0 = 0.0, w0 = 0.0;
-    int s = 0;       // direction, 0 stuck
-    double k = 1.0;  // η_mf1 or 1/η_mf2
-  };
-  std::vector<Segment> segs;
-  std::vector<double> switches;  // every change of direction or quadrant
+  using Segment = test::GearPhase;
 
   static double tau1(double t) { return 10.0 * std::sin(2 * kPi * t); }
   static double tau2(double t) { return -10.0 + 2.5 * t; }
@@ -212,48 +205,7 @@ struct Demo2Reference {
     return s > 0 ? (sign_ta >= 0 ? eta1 : 1 / eta2) : (sign_ta >= 0 ? 1 / eta2 : eta1);
   }
 
-  explicit Demo2Reference(double t_end) {
-    Segment g;
-    double t = 0.0;
-    while (t < t_end) {
-      if (g.s == 0) {
-        const double tf = start_fwd(t) > 0 ? t : first_positive(start_fwd, t, t_end);
-        const double tb = start_bwd(t) > 0 ? t : first_positive(start_bwd, t, t_end);
-        t = std::min(tf, tb);
-        if (t >= t_end) break;
-        if (t > 0) switches.push_back(t);
-        g = {t, 0.0, tf <= tb ? 1 : -1, 0.0};
-        g.k = quadrant(g.s, t, 0.0);
-        segs.push_back(g);
-        continue;
-      }
-      const Segment cur = g;
-      const auto stops = [&](double x) { return -cur.s * w(cur, x); };
-      const auto flips = [&](double x) { return quadrant(cur.s, x, w(cur, x)) != cur.k ? 1.0 : -1.0; };
-      const double t_stop = first_positive(stops, t, t_end), t_flip = first_positive(flips, t, t_end);
-      t = std::min(t_stop, t_flip);
-      if (t >= t_end) break;
-      switches.push_back(t);
-      if (t_flip < t_stop) {
-        g = {t, w(cur, t), cur.s, quadrant(cur.s, t, w(cur, t))};
-      } else {  // at rest: stuck, or an immediate start in either direction (one switch)
-        g = {t, 0.0, start_fwd(t) > 0 ? 1 : start_bwd(t) > 0 ? -1 : 0, 1.0};
-        if (g.s != 0) g.k = quadrant(g.s, t, 0.0);
-      }
-      segs.push_back(g);
-    }
-    if (segs.empty() || segs.front().t0 > 0) segs.insert(segs.begin(), Segment{});
-  }
-  [[nodiscard]] const Segment& at(double t) const {
-    const Segment* g = &segs.front();
-    for (const auto& s : segs)
-      if (s.t0 <= t) g = &s;
-    return *g;
-  }
-  [[nodiscard]] double speed(double t) const {
-    const Segment& g = at(t);
-    return g.s == 0 ? 0.0 : w(g, t);
-  }
+  explicit Demo2Reference(double t_end) : GearPhases(t_end, start_fwd, start_bwd, quadrant, w) {}
   /// The split of the documented rule while both stick: the friction torque f of least |f| with which
   /// the gear holds alone (MSL's start tests ≤ 0 at τ_a = τ1 − f), by bisection on [0, ±0.5].
   [[nodiscard]] static double stuck_friction(double t) {

@@ -5,7 +5,6 @@
 // and the located errors of bad input.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <string>
 #include <vector>
 #include <fmt/format.h>
@@ -15,12 +14,12 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "support/gear_phases.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace {
 
-using test::first_positive;
 using test::series;
 
 Model compile_text(const std::string& text) { return test::model_text(text, "gear.yaml"); }
@@ -268,15 +267,9 @@ TEST_P(LossyGearSim, StopsAtTheClosedFormInstantAndLocks) {
 // tauLossMax_p = (1 − η_mf1) τ1 (τ1 > 0) or (1 − 1/η_mf2) τ1, backward when sa < tauLossMin_m =
 // (1 − 1/η_mf2) τ1 (τ1 > 0) or (1 − η_mf1) τ1. The switches are located by scanning (1e-4 s) and
 // bisection to 1e-15 s on these closed forms.
-struct Demo1Reference {
+struct Demo1Reference : test::GearPhases {
   static constexpr double J1 = 1.0, J2 = 1.5, r = 2.0, eta1 = 0.5, eta2 = 0.5, kPi = 3.14159265358979323846;
-  struct Segment {
-    double t0 = 0.0, w0 = 0.0;
-    int s = 0;       // direction, 0 stuck
-    double k = 1.0;  // η_mf1 or 1/η_mf2
-  };
-  std::vector<Segment> segs;
-  std::vector<double> switches;  // every change of direction or quadrant
+  using Segment = test::GearPhase;
 
   static double tau1(double t) { return 10.0 * std::sin(2 * kPi * t); }
   static double tau2(double t) { return -10.0 + 2.5 * t; }
@@ -301,44 +294,7 @@ struct Demo1Reference {
     return a_drives ? eta1 : 1 / eta2;
   }
 
-  explicit Demo1Reference(double t_end) {
-    Segment g;
-    double t = 0.0;
-    while (t < t_end) {
-      if (g.s == 0) {
-        const double tf = start_fwd(t) > 0 ? t : first_positive(start_fwd, t, t_end);
-        const double tb = start_bwd(t) > 0 ? t : first_positive(start_bwd, t, t_end);
-        t = std::min(tf, tb);
-        if (t >= t_end) break;
-        if (t > 0) switches.push_back(t);
-        g = {t, 0.0, tf <= tb ? 1 : -1, 0.0};
-        g.k = quadrant(g.s, t);
-        segs.push_back(g);
-        continue;
-      }
-      const Segment cur = g;
-      const auto stops = [&](double x) { return -cur.s * w(cur, x); };
-      const auto flips = [&](double x) { return quadrant(cur.s, x) != cur.k ? 1.0 : -1.0; };
-      const double t_stop = first_positive(stops, t, t_end), t_flip = first_positive(flips, t, t_end);
-      t = std::min(t_stop, t_flip);
-      if (t >= t_end) break;
-      switches.push_back(t);
-      if (t_flip < t_stop) {
-        g = {t, w(cur, t), cur.s, quadrant(cur.s, t)};
-      } else {  // at rest: stuck, or an immediate start in either direction (one switch)
-        g = {t, 0.0, start_fwd(t) > 0 ? 1 : start_bwd(t) > 0 ? -1 : 0, 1.0};
-        if (g.s != 0) g.k = quadrant(g.s, t);
-      }
-      segs.push_back(g);
-    }
-    if (segs.empty() || segs.front().t0 > 0) segs.insert(segs.begin(), Segment{});
-  }
-  [[nodiscard]] double speed(double t) const {
-    const Segment* g = &segs.front();
-    for (const auto& s : segs)
-      if (s.t0 <= t) g = &s;
-    return g->s == 0 ? 0.0 : w(*g, t);
-  }
+  explicit Demo1Reference(double t_end) : GearPhases(t_end, start_fwd, start_bwd, [](int s, double t, double) { return quadrant(s, t); }, w) {}
 };
 
 class LossyGearMsl : public ::testing::TestWithParam<IntegratorChoice> {};
