@@ -25,13 +25,8 @@ namespace machdyn {
 namespace {
 
 using test::at;
+using test::sci;
 using test::series;
-
-std::string sci(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.2e", x);
-  return b;
-}
 
 Model elastic_bearing() { return load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/msl/elastic-bearing.yaml"); }
 

@@ -19,17 +19,12 @@
 namespace machdyn {
 namespace {
 
+using test::sci;
 using test::series;
 
 class HeatLosses : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, HeatLosses, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          test::IntegratorName{});
-
-std::string sci(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.2e", x);
-  return b;
-}
 
 SimulationResult run_heat(Model m, IntegratorChoice integrator) {
   m.simulation.integrator = integrator;

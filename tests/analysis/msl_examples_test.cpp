@@ -23,18 +23,12 @@ namespace machdyn {
 namespace {
 
 using test::max_error;
+using test::sci;
 using test::series;
 
 class MslExample : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, MslExample, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          test::IntegratorName{});
-
-/// x in a short scientific notation (the measured errors recorded with the tests' results).
-std::string sci(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.2e", x);
-  return b;
-}
 
 Model example(const std::string& name, IntegratorChoice integrator) {
   Model m = load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/msl/" + name);

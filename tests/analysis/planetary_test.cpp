@@ -24,14 +24,8 @@ namespace machdyn {
 namespace {
 
 using test::at;
+using test::sci;
 using test::series;
-
-/// x in a short scientific notation (the measured errors recorded with the tests' results).
-std::string sci(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.2e", x);
-  return b;
-}
 
 class Planetary : public ::testing::TestWithParam<IntegratorChoice> {
  protected:

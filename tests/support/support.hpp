@@ -65,6 +65,9 @@ double max_error(const SimulationResult& r, const std::string& name, F f) {
 /// 1e-15 of the bracket it finds (for reference solutions' switching instants); b if f stays ≤ 0.
 double first_positive(const std::function<double(double)>& f, double a, double b);
 
+/// x in a short scientific notation ("1.23e-09"), for the measured errors tests record.
+std::string sci(double x);
+
 /// The model compiled from YAML text as if read from a file called `file` (errors name it).
 Model model_text(const std::string& yaml, const std::string& file = "test.yaml");
 

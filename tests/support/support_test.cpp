@@ -129,6 +129,12 @@ double at(const SimulationResult& r, const std::string& name, double t, double t
   return std::nan("");
 }
 
+std::string sci(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2e", x);
+  return b;
+}
+
 double first_positive(const std::function<double(double)>& f, double a, double b) {
   const double h = 1e-4;
   for (double x0 = a; x0 < b; x0 += h) {
