@@ -706,10 +706,12 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
 void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
   if (dense_) {
     chain_.apply(y, dydt);
-    for (const Load* ld : varying_) {
+    for (const Load* ld : varying_) {  // ρ_i M on body i (model.hpp: Load::terms)
       const double Mx = ld->at(t, y, y + n_);
-      dydt[n_ + ld->body] += ld->ratio * Mx * inv_mass_[static_cast<size_t>(ld->body)];
-      if (ld->body2 >= 0) dydt[n_ + ld->body2] += ld->ratio2 * Mx * inv_mass_[static_cast<size_t>(ld->body2)];
+      int b[2];
+      double w[2];
+      for (int i = 0, nt = ld->terms(b, w); i < nt; ++i)
+        dydt[n_ + b[i]] += w[i] * Mx * inv_mass_[static_cast<size_t>(b[i])];
     }
     return;
   }

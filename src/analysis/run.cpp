@@ -183,8 +183,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     jumps_.on_segment(st, ta, tb);
   }
   void on_output(double t, const double* y) override {
-    if (plain_rows_) plain_output(t, y);
-    else output(t, y);
+    const size_t row = next_row();
+    output_head(row, t, y);
+    if (!plain_rows_) output(row, t, y);
   }
   void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
 
@@ -288,10 +289,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return row_++;
   }
 
-  /// A plain chain's row (t, the states, the link loads: what output() writes for it) by a small
-  /// function of its own: the hoist's rows without output()'s frame and group checks.
-  __attribute__((noinline)) void plain_output(double t, const double* y) {
-    const size_t row = next_row();
+  /// The first columns of every row, and all of a plain chain's: t, the states, the link loads, by a
+  /// small function of its own (the hoist's rows without output()'s frame and group checks).
+  __attribute__((noinline)) void output_head(size_t row, double t, const double* y) {
     std::vector<double>* col = out_.columns.data();
     (col++)->data()[row] = t;
     for (int i = 0; i < n_; ++i, col += 2) {
@@ -303,19 +303,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int l = 0; l < nl_; ++l) col[l].data()[row] = F[l];
   }
 
-  void output(double t, const double* y) {
-    size_t c = 0;
+  /// The rest of row `row` after output_head()'s columns (loads_ holds the link loads at t).
+  void output(size_t row, double t, const double* y) {
+    size_t c = 1 + 2 * static_cast<size_t>(n_) + static_cast<size_t>(nl_);
     auto& cols = out_.columns;
-    const size_t row = next_row();
     auto put = [&](double v) { cols[c++][row] = v; };
-    put(t);
-    for (int i = 0; i < n_; ++i) {
-      put(y[i]);
-      put(y[n_ + i]);
-    }
-    sys_.link_loads(y, loads_.data());
-    for (int l = 0; l < nl_; ++l) put(loads_[static_cast<size_t>(l)]);
-    if (plain_rows_) return;  // a plain chain: states and link loads only
     if (sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
     else if (nc_ > 0) sys_.contact_forces(t, y, fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
@@ -407,7 +399,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   double merged_gear_torque(const MergedGear& g, double t, const double* y) const {
     const int M = g.body;
     double f = 0.0;
-    for (const int k : g.loads) f += now().loads[static_cast<size_t>(k)].evaluate(t, y[M], y[n_ + M]);
+    for (const int k : g.loads) {  // the load's share on M (model.hpp: Load::terms)
+      const Load& ld = now().loads[static_cast<size_t>(k)];
+      int b[2];
+      double w[2];
+      const double Mx = ld.at(t, y, y + n_);
+      for (int i = 0, nt = ld.terms(b, w); i < nt; ++i)
+        if (b[i] == M) f += w[i] * Mx;
+    }
     for (const int l : g.links) {
       const LinkLaw& law = sys_.link(l);
       const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
