@@ -203,6 +203,8 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     for (int p = 0; p < c.row.terms && !c.grounded && !c.joint; ++p)
       if (const int g = gear_of_body_[static_cast<size_t>(c.row.body[p])]; g >= 0) gear_clutch_[static_cast<size_t>(g)] = 1;
   for (char c : gear_clutch_) coupled_ = coupled_ || c != 0;
+  for (const LossyGearLaw& k : gears_)  // a massless side: 1/I is infinite, C is not
+    coupled_ = coupled_ || inertia_[static_cast<size_t>(k.a)] == 0.0 || inertia_[static_cast<size_t>(k.b)] == 0.0;
   general_ = has_machines_ || nd_ > 0 || !motions_.empty();
   drive_mode_.assign(static_cast<size_t>(nd_), 0);
   f_const_.assign(static_cast<size_t>(n_), 0.0);

@@ -578,7 +578,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void decide_gears(double t, const std::vector<int>& fired, bool initial, const std::vector<int>& broke = {}) {
     for (int g = 0; g < ng_; ++g) {
       const bool strict = std::find(fired.begin(), fired.end(), g) != fired.end();
-      const GearMode old = sys_.gear_mode(g);
+      // The contact decision may have settled a coupled gear's driving side already: its mode before.
+      const GearMode old = gear_before_.empty() ? sys_.gear_mode(g) : gear_before_[static_cast<size_t>(g)];
       GearMode now;
       if (sys_.coupled_gear(g)) {  // with the clutches on its bodies (analysis/gear_clutch.hpp)
         const double va = y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)];
@@ -605,7 +606,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
                                                             : "driving_side";
       record(t, kind, nl_ + nc_ + nd_ + g, initial ? "" : to_string(old), to_string(now));
     }
+    gear_before_.clear();
   }
+  /// The gears' modes before an event's contact decision (which settles coupled gears' sides).
+  void remember_gears() {
+    if (!sys_.has_coupled_gears()) return;
+    gear_before_.resize(static_cast<size_t>(ng_));
+    for (int g = 0; g < ng_; ++g) gear_before_[static_cast<size_t>(g)] = sys_.gear_mode(g);
+  }
+  std::vector<GearMode> gear_before_;
   /// Whether gear g has friction elements on its bodies (a gear lock) and stands still.
   bool locked_at_rest(int g) const {
     return sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0 &&
@@ -781,6 +790,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (!sys_.slot_is_link(slot) && !sys_.slot_is_drive(slot) && !sys_.slot_is_gear(slot) &&
           sys_.contact_mode(sys_.slot_element(slot)) == ContactMode::stuck)
         broke.push_back(sys_.slot_element(slot));
+    remember_gears();
     for (int slot : fired) {
       if (!sys_.slot_is_gear(slot)) continue;
       const int g = sys_.slot_element(slot);
@@ -864,6 +874,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   const Model& now() const { return stage(released_); }
 
   void time_event(double t) {
+    remember_gears();
     contact_time_event(t);
     if (ng_ > 0) decide_gears(t, {}, false);  // a load's jump may start or stop a gear
   }

@@ -212,6 +212,20 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     // Initial velocities on v_a = i v_b: one side's value gives the other's.
     Body& A = m.bodies[static_cast<size_t>(g.a)];
     Body& B = m.bodies[static_cast<size_t>(g.b)];
+    // One side may be massless (MSL's flange between a gear and a clutch): the gear's law then moves
+    // it, which needs inertia on the other side (analysis/gear_clutch.hpp).
+    if (A.inertia == 0.0 && B.inertia == 0.0) {
+      diag.error(s.where, fmt::format("lossy gear '{}': both '{}' and '{}' have zero inertia; the gear's law needs "
+                                      "inertia on at least one side: give one of them an inertia", g.name, A.name,
+                                      B.name));
+      ok = false;
+    }
+    for (const Body* x : {&A, &B})
+      if (x->inertia == 0.0 && x->motion != MotionKind::free) {
+        diag.error(s.where, fmt::format("lossy gear '{}': '{}' has zero inertia and a prescribed motion; give it an "
+                                        "inertia", g.name, x->name));
+        ok = false;
+      }
     if (A.v0 != 0.0 && B.v0 != 0.0 && !initial_values_agree(A.v0, g.ratio * B.v0)) {
       diag.error(s.where, fmt::format("lossy gear '{}': the initial velocities contradict the gear: {} {:.12g} and "
                                       "{} {:.12g} with v_a = {:.12g} v_b; give the velocity on one side only",

@@ -41,19 +41,21 @@ INSTANTIATE_TEST_SUITE_P(BothIntegrators, GearClutchSim, ::testing::Values("dopr
 // Stuck, C joins B's side: E₂ a_A = η_mf1 M with E₂ = η_mf1 I_A + (I_B + I_C)/i² (A still drives), and
 // the clutch holds C's torque λ = I_C a_A / i (+λ on C), which stays below k t* for these numbers.
 struct LockingClutch {
-  static constexpr double IA = 1.0, IB = 0.5, IC = 2.0, i = 2.0, eta = 0.9, M = 10.0, k = 20.0;
-  static constexpr double E = eta * IA + IB / (i * i), E2 = eta * IA + (IB + IC) / (i * i);
-  [[nodiscard]] static double t_star() { return (eta * M / (i * E)) / (k / (2.0 * IC) + k / (2.0 * i * i * E)); }
-  [[nodiscard]] static double speed_a(double t) {
+  static constexpr double IA = 1.0, IC = 2.0, i = 2.0, eta = 0.9, M = 10.0, k = 20.0;
+  double IB = 0.5;  ///< 0: B is a massless flange (MSL's LossyGear – Clutch), J_B = 0 below
+  [[nodiscard]] double E() const { return eta * IA + IB / (i * i); }
+  [[nodiscard]] double E2() const { return eta * IA + (IB + IC) / (i * i); }
+  [[nodiscard]] double t_star() const { return (eta * M / (i * E())) / (k / (2.0 * IC) + k / (2.0 * i * i * E())); }
+  [[nodiscard]] double speed_a(double t) const {
     const double ts = t_star();
-    if (t <= ts) return (eta * M * t - k * t * t / (2.0 * i)) / E;
-    return speed_a(ts) + eta * M / E2 * (t - ts);
+    if (t <= ts) return (eta * M * t - k * t * t / (2.0 * i)) / E();
+    return speed_a(ts) + eta * M / E2() * (t - ts);
   }
-  [[nodiscard]] static double speed_c(double t) {
+  [[nodiscard]] double speed_c(double t) const {
     const double ts = t_star();
     return t <= ts ? k * t * t / (2.0 * IC) : speed_a(t) / i;
   }
-  [[nodiscard]] static std::string yaml(const char* integrator) {
+  [[nodiscard]] std::string yaml(const char* integrator) const {
     return fmt::format(R"(bodies:
   A: {{inertia: {} kg*m^2}}
   B: {{inertia: {} kg*m^2}}
@@ -69,32 +71,35 @@ simulation: {{t_end: 1, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
   }
 };
 
-// Claim: the clutch sticks once, at t* within 1e-8 s, and stays stuck while the gear rolls forward with
-// A driving throughout (no gear event); A's and C's speeds follow the closed form at every row within
+// Claim, with I_B = 0.5 and with B massless (I_B = 0): the clutch sticks once, at t* within 1e-8 s, and
+// stays stuck while the gear rolls forward with A driving throughout (no gear event); A's and C's speeds follow the closed form at every row within
 // 1e-8 rad/s (1e-6 on BDF), B's is A's / i within rounding, and the stuck clutch's torque equals
 // I_C a_A / i within 1e-8 N·m.
 TEST_P(GearClutchSim, SlidingClutchLocksOntoTheRollingGearAtTheClosedFormInstant) {
-  using R = LockingClutch;
-  const SimulationResult r = simulate(test::model_text(R::yaml(GetParam()), "gear.yaml"));
-  const auto clutch = events_of(r, "K");
-  ASSERT_EQ(clutch.size(), 1u);
-  EXPECT_EQ(clutch[0].to, "stuck");
-  EXPECT_NEAR(clutch[0].t, R::t_star(), 1e-8);
-  EXPECT_TRUE(events_of(r, "G").empty());
-  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
-  const auto& t = series(r, "t_s");
-  const auto& wa = series(r, "A.velocity_rad_s");
-  const auto& wb = series(r, "B.velocity_rad_s");
-  const auto& wc = series(r, "C.velocity_rad_s");
-  const auto& F = series(r, "K.force_N_m");
-  const auto& mode = series(r, "G.mode");
-  for (size_t j = 0; j < t.size(); ++j) {
-    EXPECT_NEAR(wa[j], R::speed_a(t[j]), tol) << t[j];
-    EXPECT_NEAR(wc[j], R::speed_c(t[j]), tol) << t[j];
-    EXPECT_NEAR(wb[j], wa[j] / R::i, 1e-12 * (1.0 + std::abs(wa[j])));
-    EXPECT_EQ(mode[j], 1.0) << t[j];
-    if (t[j] > R::t_star() + 1e-9) {
-      EXPECT_NEAR(F[j], R::IC * (R::eta * R::M / R::E2) / R::i, 1e-8) << t[j];
+  for (double IB : {0.5, 0.0}) {  // 0: B massless (the gear's block of C needs no 1/I_B)
+    LockingClutch R;
+    R.IB = IB;
+    const SimulationResult r = simulate(test::model_text(R.yaml(GetParam()), "gear.yaml"));
+    const auto clutch = events_of(r, "K");
+    ASSERT_EQ(clutch.size(), 1u) << IB;
+    EXPECT_EQ(clutch[0].to, "stuck");
+    EXPECT_NEAR(clutch[0].t, R.t_star(), 1e-8) << IB;
+    EXPECT_TRUE(events_of(r, "G").empty()) << IB;
+    const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+    const auto& t = series(r, "t_s");
+    const auto& wa = series(r, "A.velocity_rad_s");
+    const auto& wb = series(r, "B.velocity_rad_s");
+    const auto& wc = series(r, "C.velocity_rad_s");
+    const auto& F = series(r, "K.force_N_m");
+    const auto& mode = series(r, "G.mode");
+    for (size_t j = 0; j < t.size(); ++j) {
+      EXPECT_NEAR(wa[j], R.speed_a(t[j]), tol) << IB << " " << t[j];
+      EXPECT_NEAR(wc[j], R.speed_c(t[j]), tol) << IB << " " << t[j];
+      EXPECT_NEAR(wb[j], wa[j] / R.i, 1e-12 * (1.0 + std::abs(wa[j])));
+      EXPECT_EQ(mode[j], 1.0) << t[j];
+      if (t[j] > R.t_star() + 1e-9) {
+        EXPECT_NEAR(F[j], R.IC * (R.eta * R.M / R.E2()) / R.i, 1e-8) << IB << " " << t[j];
+      }
     }
   }
 }
