@@ -314,11 +314,22 @@ void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
     step_onto_row(c.row, u, y + n_, im.data());
     return;
   }
-  if (coupled_ && c.b >= 0) {  // a clutch on a gear's body: the other body takes u (the gear holds v_a = i v_b)
+  if (coupled_ && c.b >= 0) {  // a clutch on a gear's body: the other side takes u (the gear holds v_a = i v_b)
     const bool ga = gear_of_body_[static_cast<size_t>(c.a)] >= 0, gb = gear_of_body_[static_cast<size_t>(c.b)] >= 0;
     if (ga != gb) {
-      if (ga) y[n_ + c.b] = y[n_ + c.a];
-      else y[n_ + c.a] = y[n_ + c.b];
+      const int from = ga ? c.b : c.a;
+      const double dv = y[n_ + (ga ? c.a : c.b)] - y[n_ + from];
+      // Every body at exactly the same speed through contacts beside it (a freewheel and its clutch)
+      // moves along, so their u stays exactly 0.
+      std::vector<int> group{from};
+      for (size_t j = 0; j < group.size(); ++j)
+        for (const ContactLaw& d : contacts_) {
+          if (d.general || d.b < 0 || (d.a != group[j] && d.b != group[j])) continue;
+          const int other = d.a == group[j] ? d.b : d.a;
+          if (gear_of_body_[static_cast<size_t>(other)] >= 0 || y[n_ + other] != y[n_ + group[j]]) continue;
+          if (std::find(group.begin(), group.end(), other) == group.end()) group.push_back(other);
+        }
+      for (int x : group) y[n_ + x] += dv;
       return;
     }
   }
@@ -944,6 +955,10 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     const ContactMode md = mode_[static_cast<size_t>(k)];
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck && !c.kinematic ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
+    // Coupled models: a stuck freewheel's event agrees with its hold rule (lock·λ ≥ −1e-9,
+    // elements/contact.hpp), so one held unloaded beside a clutch that just broke away (λ = −1e-15)
+    // starts armed and overruns as its load turns, not at the next event of another element.
+    if (coupled_ && md == ContactMode::stuck && c.lock != 0 && !c.stop) g[2 * nl_ + 2 * k] += 1e-9;
   }
   // An element may read its body's acceleration in its mode (a speed drive on its limit).
   bool accelerations = false;
