@@ -172,5 +172,36 @@ TEST_P(GearClutchSim, GearStartsWithItsClutchHoldingAndTheClutchSlipsAtTheClosed
   }
 }
 
+// Claim: the combinations that remain unsupported are located errors at the gear's key, each
+// saying why: both sides massless, a massless side with a prescribed motion, a clutch between the
+// bodies of two lossy gears; a massless side beside a body with inertia compiles.
+TEST(GearClutchCompile, UnsupportedCombinationsAreLocatedErrors) {
+  auto check = [](const std::string& text, const std::string& why) {
+    const std::string e = test::compile_errors(text, "gear.yaml");
+    EXPECT_NE(e.find("gear.yaml:6:"), std::string::npos) << text << "\n" << e;
+    EXPECT_NE(e.find(why), std::string::npos) << text << "\n" << e;
+  };
+  const std::string massless = "bodies:\n  A: {inertia: 0}\n  B: {inertia: 0}\n  C: {inertia: 3}\nlinks:\n"
+                               "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n";
+  check(massless, "both 'A' and 'B' have zero inertia");
+  const std::string moved = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 0, motion: {speed: 1 rad/s}}\n  C: {inertia: 3}\n"
+                            "links:\n  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n";
+  check(moved, "'B' has zero inertia and a prescribed motion");
+  const std::string two = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3}\n  D: {inertia: 1}\nlinks:\n"
+                          "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n"
+                          "  H: {type: lossy-gear, between: [C, D], efficiency: 0.9}\nclutches:\n"
+                          "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n";
+  const std::string e = test::compile_errors(two, "gear.yaml");  // reported at each gear's key
+  EXPECT_NE(e.find("gear.yaml:7:"), std::string::npos) << e;
+  EXPECT_NE(e.find("gear.yaml:8:"), std::string::npos) << e;
+  EXPECT_NE(e.find("joins it to lossy gear 'G'; a clutch between two lossy gears is not supported yet"), std::string::npos) << e;
+  const Model ok = test::model_text("bodies:\n  A: {inertia: 1}\n  B: {inertia: 0}\n  C: {inertia: 3}\nlinks:\n"
+                                    "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\nclutches:\n"
+                                    "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n",
+                                    "gear.yaml");
+  ASSERT_EQ(ok.lossy_gears.size(), 1u);
+  EXPECT_EQ(ok.bodies[static_cast<size_t>(ok.lossy_gears[0].b)].inertia, 0.0);
+}
+
 }  // namespace
 }  // namespace machdyn
