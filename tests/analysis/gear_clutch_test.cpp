@@ -1,7 +1,8 @@
 // A lossy gear decided together with a clutch on one of its bodies (analysis/gear_clutch.hpp), against
 // closed forms derived here from the gear's law (elements/lossy_gear.hpp) and the clutch's: a sliding
 // clutch locks onto a rolling gear's output at the closed-form instant; a gear starts from rest with
-// its clutch holding and the clutch slips at the closed-form instant; a massless output side; and the
+// its clutch holding and the clutch slips at the closed-form instant; a flywheel beyond a stuck clutch
+// drives the gear from its output side; a massless output side; and the
 // located errors of the combinations that remain unsupported.
 #include <cmath>
 #include <string>
@@ -168,6 +169,57 @@ TEST_P(GearClutchSim, GearStartsWithItsClutchHoldingAndTheClutchSlipsAtTheClosed
       EXPECT_NEAR(F[j], R::IC * aA / R::i, 1e-8) << t[j];
     } else if (t[j] > R::t2 + 1e-9) {
       EXPECT_NEAR(F[j], R::T0, 1e-12) << t[j];
+    }
+  }
+}
+
+// A (I_A = 1) braked by M = 5 N·m, the gear (i = 2, η_mf1 = 0.9, η_mf2 = 0.7, no bearing friction) to B
+// (I_B = 0.5, or massless), a clutch (10 N·m) held stuck to C (I_C = 2); everything turning forward,
+// v_A0 = 10 rad/s. The stuck clutch joins C to B's side, J = (I_B + I_C)/i². A is braked and C's
+// inertia keeps the train turning: D = −M J < 0 in forward rolling, so B drives and
+//   (I_A + η_mf2 J) a = −M  ⇒  v_A = v_A0 − M t / (I_A + η_mf2 J),  rest at t_s = v_A0 (I_A + η_mf2 J)/M;
+// then M turns A backward with A driving (no bearing friction: it cannot hold),
+//   (η_mf1 I_A + J) a = −η_mf1 M  ⇒  v_A = −η_mf1 M (t − t_s)/(η_mf1 I_A + J),
+// and the clutch carries C's torque I_C a / i throughout (|·| < 10 N·m: it stays stuck).
+// Claim, with I_B = 0.5 and 0: the gear starts on B's side (initial mode forward_b_drives), reverses once
+// at t_s within 1e-8 s to `backward` (A driving); A's speed and the clutch's torque follow the closed
+// form at every row within 1e-8 (1e-6 rad/s on BDF); the clutch never switches.
+TEST_P(GearClutchSim, FlywheelBeyondAStuckClutchDrivesTheGearFromItsOutputSide) {
+  for (double IB : {0.5, 0.0}) {
+    const double IA = 1.0, IC = 2.0, i = 2.0, e1 = 0.9, e2 = 0.7, M = 5.0, v0 = 10.0;
+    const double J = (IB + IC) / (i * i), ts = v0 * (IA + e2 * J) / M;
+    const double a1 = -M / (IA + e2 * J), a2 = -e1 * M / (e1 * IA + J);
+    const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2, velocity: {} rad/s}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2, velocity: {} rad/s}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+clutches:
+  K: {{between: [B, C], normal_force: 20 N, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  M: {{type: constant, body: A, value: {} N*m}}
+simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, v0, IB, IC, v0 / i, i, e1, e2, -M, GetParam()), "gear.yaml"));
+    std::string initial;
+    for (const auto& e : r.hybrid.events)
+      if (e.element == "G" && e.kind == "initial") initial = e.to;
+    EXPECT_EQ(initial, "forward_b_drives") << IB;
+    const auto gear = events_of(r, "G");
+    ASSERT_EQ(gear.size(), 1u) << IB;
+    EXPECT_EQ(gear[0].to, "backward");
+    EXPECT_NEAR(gear[0].t, ts, 1e-8) << IB;
+    EXPECT_TRUE(events_of(r, "K").empty()) << IB;
+    const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+    const auto& t = series(r, "t_s");
+    const auto& wa = series(r, "A.velocity_rad_s");
+    const auto& F = series(r, "K.force_N_m");
+    for (size_t j = 0; j < t.size(); ++j) {
+      const bool before = t[j] < ts;
+      EXPECT_NEAR(wa[j], before ? v0 + a1 * t[j] : a2 * (t[j] - ts), tol) << IB << " " << t[j];
+      if (std::abs(t[j] - ts) > 1e-9) {
+        EXPECT_NEAR(F[j], IC * (before ? a1 : a2) / i, 1e-8) << IB << " " << t[j];
+      }
     }
   }
 }
