@@ -274,6 +274,18 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
                                          "supported yet: put an inertia between them", where_c,
                                          m.lossy_gears[static_cast<size_t>(gear_of(other))].name));
     }
+    // Prescribed motions: a stuck clutch chain could tie one to a stuck gear (two kinematic ends);
+    // the coupled solve does not take them yet.
+    const bool massless = m.bodies[static_cast<size_t>(g.a)].inertia == 0.0 || m.bodies[static_cast<size_t>(g.b)].inertia == 0.0;
+    if (clutch || massless)
+      for (const Body& b : m.bodies)
+        if (b.motion != MotionKind::free) {
+          diag.error(where[k], fmt::format("lossy gear '{}': {} in a model with a prescribed motion ('{}') is not "
+                                           "supported yet", g.name,
+                                           clutch ? fmt::format("a clutch on its body ('{}')", clutch->name)
+                                                  : std::string("a massless side"), b.name));
+          break;
+        }
     if (clutch && grounded)
       diag.error(where[k], fmt::format("lossy gear '{}': its bodies have both a clutch ('{}') and friction to the "
                                        "ground ('{}'); deciding all three together is not supported yet", g.name,

@@ -226,7 +226,8 @@ simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
 
 // Claim: the combinations that remain unsupported are located errors at the gear's key, each
 // saying why: both sides massless, a massless side with a prescribed motion, a clutch between the
-// bodies of two lossy gears; a massless side beside a body with inertia compiles.
+// bodies of two lossy gears, a clutch on a gear in a model with a prescribed motion; a massless side
+// beside a body with inertia compiles.
 TEST(GearClutchCompile, UnsupportedCombinationsAreLocatedErrors) {
   auto check = [](const std::string& text, const std::string& why) {
     const std::string e = test::compile_errors(text, "gear.yaml");
@@ -247,6 +248,10 @@ TEST(GearClutchCompile, UnsupportedCombinationsAreLocatedErrors) {
   EXPECT_NE(e.find("gear.yaml:7:"), std::string::npos) << e;
   EXPECT_NE(e.find("gear.yaml:8:"), std::string::npos) << e;
   EXPECT_NE(e.find("joins it to lossy gear 'G'; a clutch between two lossy gears is not supported yet"), std::string::npos) << e;
+  check("bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3, motion: {speed: 1 rad/s}}\nlinks:\n"
+        "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\nclutches:\n"
+        "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n",
+        "a clutch on its body ('K') in a model with a prescribed motion ('C') is not supported yet");
   const Model ok = test::model_text("bodies:\n  A: {inertia: 1}\n  B: {inertia: 0}\n  C: {inertia: 3}\nlinks:\n"
                                     "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\nclutches:\n"
                                     "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n",
