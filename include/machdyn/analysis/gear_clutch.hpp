@@ -42,7 +42,8 @@
 /// each from the joint solution above.
 /// Supported (compile checks): a two-body friction contact (not a freewheel or end stop) with one
 /// body on the gear and the other on no lossy gear; not on a gear that also has friction to the ground
-/// (analysis/gear_lock.hpp); no prescribed motion or variable inertia among the gear's bodies.
+/// (analysis/gear_lock.hpp); no variable inertia among the gear's bodies; no prescribed motion in the
+/// model (a stuck chain could tie it to a stuck gear: two kinematic ends, which this solve does not take).
 
 #include <vector>
 
