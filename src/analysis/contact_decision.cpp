@@ -23,6 +23,8 @@ class Decision {
   }
   void evaluate(const std::vector<ContactMode>& modes) {
     sys_.set_contact_modes(modes);
+    // A rolling gear with clutches takes the driving side these modes imply (analysis/gear_clutch.hpp).
+    if (sys_.has_coupled_gears()) sys_.settle_gear_sides(t_, y_);
     sys_.evaluate(t_, y_, acc_.data(), fc_.data());
   }
   bool consistent(const std::vector<ContactMode>& modes, const std::vector<int>& Z) {

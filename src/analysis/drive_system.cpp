@@ -193,6 +193,18 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   gear_fa_.assign(static_cast<size_t>(ng_), 0.0);
   gear_fb_.assign(static_cast<size_t>(ng_), 0.0);
   locks_ = machdyn::gear_locks(gears_, contacts_);
+  // Clutches on a gear's body (analysis/gear_clutch.hpp): the stuck contacts then see the gears' law.
+  gear_of_body_.assign(static_cast<size_t>(n_), -1);
+  gear_clutch_.assign(static_cast<size_t>(ng_), 0);
+  for (int g = 0; g < ng_; ++g)
+    gear_of_body_[static_cast<size_t>(gears_[static_cast<size_t>(g)].a)] =
+        gear_of_body_[static_cast<size_t>(gears_[static_cast<size_t>(g)].b)] = g;
+  for (const ContactLaw& c : contacts_)
+    for (int p = 0; p < c.row.terms && !c.grounded && !c.joint; ++p)
+      if (const int g = gear_of_body_[static_cast<size_t>(c.row.body[p])]; g >= 0) gear_clutch_[static_cast<size_t>(g)] = 1;
+  for (char c : gear_clutch_) coupled_ = coupled_ || c != 0;
+  for (const LossyGearLaw& k : gears_)  // a massless side: 1/I is infinite, C is not
+    coupled_ = coupled_ || inertia_[static_cast<size_t>(k.a)] == 0.0 || inertia_[static_cast<size_t>(k.b)] == 0.0;
   general_ = has_machines_ || nd_ > 0 || !motions_.empty();
   drive_mode_.assign(static_cast<size_t>(nd_), 0);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
@@ -302,6 +314,25 @@ void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
     step_onto_row(c.row, u, y + n_, im.data());
     return;
   }
+  if (coupled_ && c.b >= 0) {  // a clutch on a gear's body: the other side takes u (the gear holds v_a = i v_b)
+    const bool ga = gear_of_body_[static_cast<size_t>(c.a)] >= 0, gb = gear_of_body_[static_cast<size_t>(c.b)] >= 0;
+    if (ga != gb) {
+      const int from = ga ? c.b : c.a;
+      const double dv = y[n_ + (ga ? c.a : c.b)] - y[n_ + from];
+      // Every body at exactly the same speed through contacts beside it (a freewheel and its clutch)
+      // moves along, so their u stays exactly 0.
+      std::vector<int> group{from};
+      for (size_t j = 0; j < group.size(); ++j)
+        for (const ContactLaw& d : contacts_) {
+          if (d.general || d.b < 0 || (d.a != group[j] && d.b != group[j])) continue;
+          const int other = d.a == group[j] ? d.b : d.a;
+          if (gear_of_body_[static_cast<size_t>(other)] >= 0 || y[n_ + other] != y[n_ + group[j]]) continue;
+          if (std::find(group.begin(), group.end(), other) == group.end()) group.push_back(other);
+        }
+      for (int x : group) y[n_ + x] += dv;
+      return;
+    }
+  }
   const double ia = im[static_cast<size_t>(c.a)], ib = c.b >= 0 ? im[static_cast<size_t>(c.b)] : 0.0;
   y[n_ + c.a] -= u * ia / (ia + ib);
   if (c.b >= 0) y[n_ + c.b] += u * ib / (ia + ib);
@@ -336,7 +367,7 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
     const VelocityRow& r = contacts_[static_cast<size_t>(k)].row;
     for (int j = 0; j < r.terms; ++j) stuck_machine_ = stuck_machine_ || machine_[static_cast<size_t>(r.body[j])];
   }
-  if (ns == 0) return;
+  if (ns == 0 || coupled_) return;  // coupled: solved at every evaluation (solve_coupled)
   if (stuck_machine_) {  // G M(q)⁻¹ Gᵀ depends on q: formed at every evaluation
     P_.resize(ns, ns);
     return;
@@ -544,6 +575,10 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
   if constexpr (kMach)
     if (!motions_.empty()) enforce_motions(t, acc);
   if (stuck_.empty()) return;
+  if (coupled_) [[unlikely]] {  // stuck contacts with the gears' law inside (analysis/gear_clutch.hpp)
+    solve_coupled(t, y, acc, fc, im, src, fric);
+    return;
+  }
   for (size_t j = 0; j < stuck_.size(); ++j)
     r_(static_cast<Eigen::Index>(j)) = contacts_[static_cast<size_t>(stuck_[j])].sliding_acceleration(t, acc);
   if constexpr (kMach)
@@ -920,6 +955,10 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     const ContactMode md = mode_[static_cast<size_t>(k)];
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck && !c.kinematic ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
+    // Coupled models: a stuck freewheel's event agrees with its hold rule (lock·λ ≥ −1e-9,
+    // elements/contact.hpp), so one held unloaded beside a clutch that just broke away (λ = −1e-15)
+    // starts armed and overruns as its load turns, not at the next event of another element.
+    if (coupled_ && md == ContactMode::stuck && c.lock != 0 && !c.stop) g[2 * nl_ + 2 * k] += 1e-9;
   }
   // An element may read its body's acceleration in its mode (a speed drive on its limit).
   bool accelerations = false;
@@ -963,6 +1002,10 @@ int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
 
 void DriveSystem::project_velocities(double t, double* y) const {
   if (stuck_.empty()) return;
+  if (coupled_) {  // u ≡ 0 exactly from the gears' bodies outwards (no projector: C is not M⁻¹)
+    enforce_coupled(t, y + n_, inv_mass_.data(), true);
+    return;
+  }
   // Minimal M-norm velocity change that makes every stuck contact's sliding velocity zero:
   // Δv = −M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁺ G v. With machines M = diag(I_i(q_i)) at the current positions.
   const double* im = inv_mass_.data();

@@ -16,6 +16,7 @@
 
 #include "machdyn/analysis/contact_decision.hpp"
 #include "machdyn/analysis/drive_system.hpp"
+#include "machdyn/analysis/gear_clutch.hpp"
 #include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
@@ -574,12 +575,22 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// ground on its bodies is decided together with them (analysis/gear_lock.hpp), their changes
   /// recorded as contact events. `fired`: gears whose event fired, judged without the rounding
   /// allowance. Records the changes (`initial`: all).
-  void decide_gears(double t, const std::vector<int>& fired, bool initial) {
+  void decide_gears(double t, const std::vector<int>& fired, bool initial, const std::vector<int>& broke = {}) {
     for (int g = 0; g < ng_; ++g) {
       const bool strict = std::find(fired.begin(), fired.end(), g) != fired.end();
-      const GearMode old = sys_.gear_mode(g);
+      // The contact decision may have settled a coupled gear's driving side already: its mode before.
+      const GearMode old = gear_before_.empty() ? sys_.gear_mode(g) : gear_before_[static_cast<size_t>(g)];
       GearMode now;
-      if (locked_at_rest(g)) {
+      if (sys_.coupled_gear(g)) {  // with the clutches on its bodies (analysis/gear_clutch.hpp)
+        const double va = y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)];
+        if (va != 0.0) {
+          now = settle_rolling_side(sys_, g, va > 0.0 ? 1 : -1, t, y_.data());
+        } else {
+          const std::vector<ContactMode> before = sys_.contact_modes();
+          now = decide_gear_clutch(sys_, g, t, y_.data(), strict, broke);
+          if (!initial) apply_contact_modes(t, before, sys_.contact_modes(), false);
+        }
+      } else if (locked_at_rest(g)) {
         const std::vector<ContactMode> before = sys_.contact_modes();
         now = decide_gear_lock(sys_, g, t, y_.data(), strict);
         if (!initial) apply_contact_modes(t, before, sys_.contact_modes(), false);
@@ -595,7 +606,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
                                                             : "driving_side";
       record(t, kind, nl_ + nc_ + nd_ + g, initial ? "" : to_string(old), to_string(now));
     }
+    gear_before_.clear();
   }
+  /// The gears' modes before an event's contact decision (which settles coupled gears' sides).
+  void remember_gears() {
+    if (!sys_.has_coupled_gears()) return;
+    gear_before_.resize(static_cast<size_t>(ng_));
+    for (int g = 0; g < ng_; ++g) gear_before_[static_cast<size_t>(g)] = sys_.gear_mode(g);
+  }
+  std::vector<GearMode> gear_before_;
   /// Whether gear g has friction elements on its bodies (a gear lock) and stands still.
   bool locked_at_rest(int g) const {
     return sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0 &&
@@ -755,6 +774,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // (decide_gears below repeats the same decision and records the gear).
     for (int g = 0; g < ng_; ++g)
       if (locked_at_rest(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
+    // A gear with clutches at rest: decided with them (analysis/gear_clutch.hpp).
+    for (int g = 0; g < ng_; ++g)
+      if (sys_.coupled_gear(g) && y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0)
+        (void)decide_gear_clutch(sys_, g, 0.0, y_.data(), false, {});
     modes = sys_.contact_modes();
     apply_contact_modes(0.0, modes, modes, true);
     if (ng_ > 0) decide_gears(0.0, {}, true);
@@ -762,6 +785,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   void handle_event(double t, const std::vector<int>& fired) {
     std::vector<int> gears;  // lossy gears whose event fired: decided after the others
+    std::vector<int> broke;  // stuck contacts whose breakaway fired (a coupled gear's decision is strict on them)
+    for (int slot : fired)
+      if (!sys_.slot_is_link(slot) && !sys_.slot_is_drive(slot) && !sys_.slot_is_gear(slot) &&
+          sys_.contact_mode(sys_.slot_element(slot)) == ContactMode::stuck)
+        broke.push_back(sys_.slot_element(slot));
+    remember_gears();
     for (int slot : fired) {
       if (!sys_.slot_is_gear(slot)) continue;
       const int g = sys_.slot_element(slot);
@@ -770,7 +799,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (slot % 2 == 0 && sys_.gear_mode(g) != GearMode::stuck) sys_.stop_gear(g, y_.data());
     }
     handle_contact_event(t, fired);
-    if (ng_ > 0) decide_gears(t, gears, false);
+    if (ng_ > 0) decide_gears(t, gears, false, broke);
   }
 
   void handle_contact_event(double t, const std::vector<int>& fired) {
@@ -845,6 +874,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   const Model& now() const { return stage(released_); }
 
   void time_event(double t) {
+    remember_gears();
     contact_time_event(t);
     if (ng_ > 0) decide_gears(t, {}, false);  // a load's jump may start or stop a gear
   }

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -558,7 +559,13 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_drives(top.node("drives"), m, diag);
   detail::check_motion_elements(m, diag);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
-  if (diag.empty()) detail::resolve_rigid(m, gears, bodies, detail::massless_members(m, joints), diag);
+  if (diag.empty()) {
+    // Massless bodies a joint eliminates, or one side of a lossy gear (its law needs no 1/I of that
+    // side: analysis/gear_clutch.hpp; resolve_lossy checks the other side).
+    std::unordered_set<std::string> massless_ok = detail::massless_members(m, joints);
+    for (const auto& g : lossy) massless_ok.insert(g.body_a), massless_ok.insert(g.body_b);
+    detail::resolve_rigid(m, gears, bodies, massless_ok, diag);
+  }
   if (diag.empty()) detail::resolve_lossy(m, lossy, diag);  // on the bodies the merge left
   if (diag.empty()) detail::check_motion_lossy(m, diag);
   if (diag.empty()) detail::resolve_joints(m, joints, bodies, diag);  // after both: contacts rewritten last

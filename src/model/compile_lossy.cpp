@@ -167,6 +167,7 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       if (sl.name == name) *body = sl.master, *rho = sl.ratio;
   };
   std::vector<int> used(m.bodies.size(), -1);
+  std::vector<Location> where;  // of each gear in m.lossy_gears
   for (size_t k = 0; k < gears.size(); ++k) {
     const LossyGearSpec& s = gears[k];
     LossyGear g = s.gear;
@@ -191,12 +192,12 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
         ok = false;
       }
       u = static_cast<int>(k);
-      // Friction to the fixed ground on a gear's body is decided with the gear (analysis/gear_lock.hpp).
+      // Friction to the fixed ground on a gear's body is decided with the gear (analysis/gear_lock.hpp),
+      // a clutch to another body too (analysis/gear_clutch.hpp; checked below, once every gear is known).
       for (const FrictionContact& c : m.contacts) {
         if (c.a != e && c.b != e) continue;
         const char* why = c.lock != 0 ? "freewheels and end stops on a lossy gear's bodies are not supported yet"
-                          : c.b >= 0 ? "a clutch or contact between two bodies on a lossy gear's body is not supported "
-                                       "yet (friction to the ground is: brakes, ground contacts, bearing friction)"
+                          : c.b >= 0 ? nullptr
                           : c.surface_times.size() > 1 ||
                                     (!c.surface_velocities.empty() && c.surface_velocities[0] != 0.0)
                               ? "a ground contact with a moving surface on a lossy gear's body is not supported yet "
@@ -211,6 +212,20 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     // Initial velocities on v_a = i v_b: one side's value gives the other's.
     Body& A = m.bodies[static_cast<size_t>(g.a)];
     Body& B = m.bodies[static_cast<size_t>(g.b)];
+    // One side may be massless (MSL's flange between a gear and a clutch): the gear's law then moves
+    // it, which needs inertia on the other side (analysis/gear_clutch.hpp).
+    if (A.inertia == 0.0 && B.inertia == 0.0) {
+      diag.error(s.where, fmt::format("lossy gear '{}': both '{}' and '{}' have zero inertia; the gear's law needs "
+                                      "inertia on at least one side: give one of them an inertia", g.name, A.name,
+                                      B.name));
+      ok = false;
+    }
+    for (const Body* x : {&A, &B})
+      if (x->inertia == 0.0 && x->motion != MotionKind::free) {
+        diag.error(s.where, fmt::format("lossy gear '{}': '{}' has zero inertia and a prescribed motion; give it an "
+                                        "inertia", g.name, x->name));
+        ok = false;
+      }
     if (A.v0 != 0.0 && B.v0 != 0.0 && !initial_values_agree(A.v0, g.ratio * B.v0)) {
       diag.error(s.where, fmt::format("lossy gear '{}': the initial velocities contradict the gear: {} {:.12g} and "
                                       "{} {:.12g} with v_a = {:.12g} v_b; give the velocity on one side only",
@@ -223,7 +238,58 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     }
     if (A.q0 == 0.0 && B.q0 != 0.0) A.q0 = g.ratio * B.q0;
     else if (B.q0 == 0.0) B.q0 = A.q0 / g.ratio;
-    if (ok) m.lossy_gears.push_back(std::move(g));
+    if (!ok) continue;
+    m.lossy_gears.push_back(std::move(g));
+    where.push_back(s.where);
+  }
+  // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear, and not on a
+  // gear that also has friction to the ground (its joint decision is analysis/gear_lock.hpp's alone).
+  auto gear_of = [&](int body) {
+    for (size_t k = 0; k < m.lossy_gears.size(); ++k)
+      if (m.lossy_gears[k].a == body || m.lossy_gears[k].b == body) return static_cast<int>(k);
+    return -1;
+  };
+  for (size_t k = 0; k < m.lossy_gears.size(); ++k) {
+    const LossyGear& g = m.lossy_gears[k];
+    const FrictionContact* clutch = nullptr;
+    const FrictionContact* grounded = nullptr;
+    for (const FrictionContact& c : m.contacts) {
+      const bool on_a = c.a == g.a || c.a == g.b, on_b = c.b >= 0 && (c.b == g.a || c.b == g.b);
+      if (!on_a && !on_b) continue;
+      if (c.b < 0) {
+        grounded = &c;
+        continue;
+      }
+      clutch = &c;
+      const int other = on_a ? c.b : c.a;
+      const std::string where_c = fmt::format("lossy gear '{}': contact '{}'", g.name, c.name);
+      if (c.joint || c.row.terms > 0)
+        diag.error(where[k], fmt::format("{}: a gear joint, or a contact acting through one, on a lossy gear's body "
+                                         "is not supported yet", where_c));
+      else if (on_a && on_b)
+        diag.error(where[k], fmt::format("{} joins the gear's own two bodies (the gear fixes their relative motion); "
+                                         "remove it", where_c));
+      else if (gear_of(other) >= 0)
+        diag.error(where[k], fmt::format("{} joins it to lossy gear '{}'; a clutch between two lossy gears is not "
+                                         "supported yet: put an inertia between them", where_c,
+                                         m.lossy_gears[static_cast<size_t>(gear_of(other))].name));
+    }
+    // Prescribed motions: a stuck clutch chain could tie one to a stuck gear (two kinematic ends);
+    // the coupled solve does not take them yet.
+    const bool massless = m.bodies[static_cast<size_t>(g.a)].inertia == 0.0 || m.bodies[static_cast<size_t>(g.b)].inertia == 0.0;
+    if (clutch || massless)
+      for (const Body& b : m.bodies)
+        if (b.motion != MotionKind::free) {
+          diag.error(where[k], fmt::format("lossy gear '{}': {} in a model with a prescribed motion ('{}') is not "
+                                           "supported yet", g.name,
+                                           clutch ? fmt::format("a clutch on its body ('{}')", clutch->name)
+                                                  : std::string("a massless side"), b.name));
+          break;
+        }
+    if (clutch && grounded)
+      diag.error(where[k], fmt::format("lossy gear '{}': its bodies have both a clutch ('{}') and friction to the "
+                                       "ground ('{}'); deciding all three together is not supported yet", g.name,
+                                       clutch->name, grounded->name));
   }
 }
 

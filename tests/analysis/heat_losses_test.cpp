@@ -86,7 +86,8 @@ simulation: {t_end: 0.5 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
 // Claim: in shipped models with every kind of dissipative element — friction contacts, brakes,
 // clutches, freewheels and stops with impacts (MSL Friction, CoupledClutches, OneWayClutch, the
 // translational HeatLosses), dampers and gaps whose flanks open off the flank (MSL Backlash,
-// ElastoGap: the gap release loss), lossy gears (MSL LossyGearDemo1) — the heat of the links
+// ElastoGap: the gap release loss), lossy gears (MSL LossyGearDemo1, and the Rotational HeatLosses
+// with a clutch on a gear's massless flange) — the heat of the links
 // adds up to the energy books' damping and gap release losses, that of the friction elements and
 // lossy gears to their friction and impact losses, and the total column to their sum and to
 // W − ΔT − ΔV: each a second quadrature (Gauss–Legendre on the dense output against the books'
@@ -94,7 +95,7 @@ simulation: {t_end: 0.5 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
 TEST_P(HeatLosses, HeatAddsUpToTheLossesOfTheBooks) {
   for (const char* name : {"msl/friction.yaml", "msl/coupled-clutches.yaml", "msl/one-way-clutch.yaml",
                            "msl/heat-losses-translational.yaml", "msl/backlash.yaml", "msl/elasto-gap.yaml",
-                           "msl/lossy-gear-demo1.yaml"}) {
+                           "msl/lossy-gear-demo1.yaml", "msl/heat-losses.yaml"}) {
     const Model m = load_model(test::example(name));
     const SimulationResult r = run_heat(m, GetParam());
     double links = 0, friction = 0;

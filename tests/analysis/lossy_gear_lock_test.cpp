@@ -288,9 +288,12 @@ TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
     EXPECT_NE(e.find("gear.yaml:6:"), std::string::npos) << more << "\n" << e;
     EXPECT_NE(e.find(why), std::string::npos) << more << "\n" << e;
   };
-  check("contacts:\n  c: {between: [B, C], static: 1 N*m, kinetic: 1 N*m}\n", "between two bodies");
-  check("clutches:\n  c: {between: [A, C], normal_force: 100 N, mu_s: 0.3, mu_k: 0.3, radius: 0.1 m}\n",
-        "between two bodies");
+  // A clutch to another body is decided with the gear (analysis/gear_clutch.hpp), but not one between
+  // the gear's own bodies, nor beside friction to the ground on the same gear.
+  check("contacts:\n  c: {between: [B, A], static: 1 N*m, kinetic: 1 N*m}\n", "joins the gear's own two bodies");
+  check("clutches:\n  c: {between: [A, C], normal_force: 100 N, mu_s: 0.3, mu_k: 0.3, radius: 0.1 m}\n"
+        "brakes:\n  br: {body: B, holding: 5 N*m}\n",
+        "both a clutch ('c') and friction to the ground ('br')");
   check("freewheels:\n  f: {between: [ground, A]}\n", "freewheels and end stops");
   check("contacts:\n  c: {between: [A, ground], static: 1 N*m, kinetic: 1 N*m, surface_velocity: 2 rad/s}\n",
         "moving surface");

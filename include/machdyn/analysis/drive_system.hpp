@@ -14,7 +14,8 @@
 ///   lossy gear   stuck, or rolling forward/backward with side a or b driving (elements/lossy_gear.hpp):
 ///                its torques X, Y are solved from the forces on its two bodies after every other
 ///                force, then a_b = a_a / i exactly; friction elements to the ground on its bodies
-///                slide while it rolls and are decided with it at rest (analysis/gear_lock.hpp)
+///                slide while it rolls and are decided with it at rest (analysis/gear_lock.hpp); a
+///                clutch from one of its bodies to another body is decided with it (analysis/gear_clutch.hpp)
 /// In a mode:  M(q) v' = f(t, q, v) − Jᵀ F_links − Gᵀ λ − Σ_sliding ĝ_k F_k,
 /// where row k of G is the sliding velocity u_k = v_a − v_b of stuck contact k and λ solves
 ///   (G M⁻¹ Gᵀ) λ = G M⁻¹ f̃ − ẇ     (f̃: all forces but λ; ẇ: the prescribed surface acceleration).
@@ -157,6 +158,16 @@ class DriveSystem final : public OdeSystem {
   /// F_a, F_b: the forces on gear g's bodies from everything but the gear and the stuck loads of its
   /// contacts, at (t, y) in the current modes.
   void gear_loads(int g, double t, const double* y, double* Fa, double* Fb);
+  /// Gears with a clutch (a friction contact between one of their bodies and another body) on their
+  /// bodies (analysis/gear_clutch.hpp): in such a model the stuck contacts are solved with the gears'
+  /// compliance, and F_a, F_b (gear_loads) include the stuck clutches' loads.
+  [[nodiscard]] bool has_coupled_gears() const { return coupled_; }
+  [[nodiscard]] bool coupled_gear(int g) const { return coupled_ && gear_clutch_[static_cast<size_t>(g)] != 0; }
+  /// The lossy gear body i belongs to, −1 for none.
+  [[nodiscard]] int gear_of_body(int i) const { return gear_of_body_[static_cast<size_t>(i)]; }
+  /// Puts every rolling coupled gear on the driving side consistent with the current contact modes
+  /// (analysis/gear_clutch.hpp; analysis/gear_clutch.cpp).
+  void settle_gear_sides(double t, const double* y);
 
   // Prescribed motions (elements/prescribed_motion.hpp), in body order: such a body has inverse
   // inertia 0 (infinitely heavy for stuck contacts and every mass-weighted split) and q'' = a(t).
@@ -282,6 +293,16 @@ class DriveSystem final : public OdeSystem {
   /// The joint event functions of the stuck gears with contacts into g (event_slots layout).
   void lock_event_functions(double t, double* g) const;
   GearLocks locks_;
+  // Coupled gears (analysis/drive_system_coupled.cpp): the stuck contacts solved with the compliance
+  // C (acc = C f + c0) of the bodies, diag(1/I) except each gear's block from its law.
+  bool coupled_ = false;
+  std::vector<char> gear_clutch_;  // per gear: a clutch on one of its bodies
+  std::vector<int> gear_of_body_;  // per body: its lossy gear, −1
+  /// λ of the stuck contacts with C, the accelerations, the gears' torques and losses (*fric) again.
+  void solve_coupled(double t, const double* y, double* acc, double* fc, const double* im, double* src, double* fric);
+  /// u ≡ 0 exactly on the stuck contacts of a coupled model: each gear's bodies keep their values (the
+  /// gear holds them on v_a = i v_b), the bodies stuck to them or to the ground take theirs.
+  void enforce_coupled(double t, double* x, const double* im, bool velocities) const;
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
   /// Adds the elements' torques to f; returns the source work rate Σ (M v + heat) and adds their heat
   /// power (Element::heat_power) to *loss.

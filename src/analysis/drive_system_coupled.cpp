@@ -1,0 +1,129 @@
+// The drive system's side of gears with clutches on their bodies (analysis/gear_clutch.hpp): the stuck
+// contacts solved with the compliance C of the bodies, whose gear blocks come from the gears' law.
+#include <Eigen/Dense>
+
+#include "machdyn/analysis/drive_system.hpp"
+
+namespace machdyn {
+namespace {
+
+/// λ = D (S D)⁺ r, the weighted least-norm solution of S λ = r (docs/hybrid.md); empty when `same_rank`
+/// and the weighted matrix loses rank (the masked contacts are needed).
+Eigen::MatrixXd weighted_solution(const Eigen::MatrixXd& S, const Eigen::VectorXd& w, bool same_rank) {
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-12);
+  cod.compute(S * w.asDiagonal());
+  if (same_rank) {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> full;
+    full.setThreshold(1e-12);
+    full.compute(S);
+    if (full.rank() != cod.rank()) return {};
+  }
+  return w.asDiagonal() * cod.pseudoInverse();
+}
+
+}  // namespace
+
+void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* fc, const double* im, double* src,
+                                double* fric) {
+  // Each gear's block of C: a = k_a F_a + k_b F_b + k_0 from its law at F = 0 and the unit forces.
+  std::vector<double> ka(static_cast<size_t>(ng_), 0.0), kb(static_cast<size_t>(ng_), 0.0);
+  for (int g = 0; g < ng_; ++g) {
+    const auto gi = static_cast<size_t>(g);
+    if (gear_mode_[gi] == GearMode::stuck) continue;
+    const LossyGearLaw& k = gears_[gi];
+    const double Ia = inertia_[static_cast<size_t>(k.a)], Ib = inertia_[static_cast<size_t>(k.b)], va = y[n_ + k.a];
+    const double a0 = k.solve(gear_mode_[gi], 0.0, 0.0, Ia, Ib, va).acc;
+    ka[gi] = k.solve(gear_mode_[gi], 1.0, 0.0, Ia, Ib, va).acc - a0;
+    kb[gi] = k.solve(gear_mode_[gi], 0.0, 1.0, Ia, Ib, va).acc - a0;
+  }
+  auto C = [&](int x, int z) {  // ∂acc_x / ∂f_z
+    const int g = gear_of_body_[static_cast<size_t>(x)];
+    if (g < 0) return x == z ? im[x] : 0.0;
+    const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+    if (z != k.a && z != k.b) return 0.0;
+    const double kz = z == k.a ? ka[static_cast<size_t>(g)] : kb[static_cast<size_t>(g)];
+    return x == k.a ? kz : kz / k.i;
+  };
+  const auto ns = static_cast<Eigen::Index>(stuck_.size());
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(ns, ns);
+  Eigen::VectorXd w(ns);
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    const ContactLaw& ci = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])];
+    w(i) = ci.share_weight();
+    r_(i) = ci.sliding_acceleration(t, acc);  // acc = C f + c_0: the gears already solved without λ
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      const VelocityRow& rj = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].row;
+      for (int p = 0; p < ci.row.terms; ++p)
+        for (int q = 0; q < rj.terms; ++q) S(i, j) += ci.row.w[p] * C(ci.row.body[p], rj.body[q]) * rj.w[q];
+    }
+  }
+  lam_ = weighted_solution(S, w, false) * r_;
+  // The one-sided rule (docs/hybrid.md): a freewheel loaded against its lock takes no share while
+  // the others carry every load alone.
+  bool masked = false;
+  if (ns >= 2)
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
+      if (c.lock != 0 && c.lock * lam_(j) < 0.0) w(j) = 0.0, masked = true;
+    }
+  if (masked)
+    if (const Eigen::MatrixXd P = weighted_solution(S, w, true); P.size() > 0) lam_ = P * r_;
+  // The loads on the bodies: the gears' sides through their law, the others through 1/I.
+  std::vector<double> df(static_cast<size_t>(n_), 0.0);
+  for (Eigen::Index j = 0; j < ns; ++j) {
+    const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
+    fc[stuck_[static_cast<size_t>(j)]] = lam_(j);
+    for (int p = 0; p < c.row.terms; ++p) df[static_cast<size_t>(c.row.body[p])] -= c.row.w[p] * lam_(j);
+    if (c.grounded) *src -= lam_(j) * c.surface_velocity(t);
+  }
+  for (int x = 0; x < n_; ++x)
+    if (gear_of_body_[static_cast<size_t>(x)] < 0) acc[x] += im[x] * df[static_cast<size_t>(x)];
+  for (int g = 0; g < ng_; ++g) {
+    const auto gi = static_cast<size_t>(g);
+    const LossyGearLaw& k = gears_[gi];
+    const double va = y[n_ + k.a];
+    *fric -= LossyGearLaw::loss_power(gear_t_[gi], va);
+    gear_fa_[gi] += df[static_cast<size_t>(k.a)];
+    gear_fb_[gi] += df[static_cast<size_t>(k.b)];
+    gear_t_[gi] = k.solve(gear_mode_[gi], gear_fa_[gi], gear_fb_[gi], inertia_[static_cast<size_t>(k.a)],
+                          inertia_[static_cast<size_t>(k.b)], va);
+    *fric += LossyGearLaw::loss_power(gear_t_[gi], va);
+    acc[k.a] = gear_mode_[gi] == GearMode::stuck ? 0.0 : gear_t_[gi].acc;
+    acc[k.b] = acc[k.a] / k.i;
+  }
+  enforce_coupled(t, acc, im, false);
+  if (!locks_.empty()) share_locks(t, fc);
+}
+
+void DriveSystem::enforce_coupled(double t, double* x, const double* im, bool velocities) const {
+  // Bodies held: the gears' (their law holds them on x_a = i x_b), then along the stuck contacts.
+  std::vector<char> held(static_cast<size_t>(n_), 0);
+  for (int i = 0; i < n_; ++i) held[static_cast<size_t>(i)] = gear_of_body_[static_cast<size_t>(i)] >= 0;
+  for (size_t pass = 0; pass <= stuck_.size(); ++pass) {
+    bool changed = false;
+    for (int k : stuck_) {
+      const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+      if (c.general) continue;
+      const auto a = static_cast<size_t>(c.a);
+      if (c.b < 0) {
+        if (!held[a]) x[c.a] = velocities ? c.surface_velocity(t) : c.surface_acceleration(t), held[a] = 1, changed = true;
+        continue;
+      }
+      const auto b = static_cast<size_t>(c.b);
+      if (held[a] && !held[b]) x[c.b] = x[c.a], held[b] = 1, changed = true;
+      else if (held[b] && !held[a]) x[c.a] = x[c.b], held[a] = 1, changed = true;
+    }
+    if (!changed) break;
+  }
+  // The rest: the momentum-weighted mean of each stuck pair (enforce_stuck); general rows (gear joints)
+  // keep the rounding of λ.
+  for (int k : stuck_) {
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+    if (c.general || c.b < 0 || held[static_cast<size_t>(c.a)] || held[static_cast<size_t>(c.b)]) continue;
+    const double ia = im[c.a], ib = im[c.b];
+    x[c.a] = x[c.b] = (ib * x[c.a] + ia * x[c.b]) / (ia + ib);
+  }
+}
+
+}  // namespace machdyn

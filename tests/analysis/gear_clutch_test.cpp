@@ -1,0 +1,264 @@
+// A lossy gear decided together with a clutch on one of its bodies (analysis/gear_clutch.hpp), against
+// closed forms derived here from the gear's law (elements/lossy_gear.hpp) and the clutch's: a sliding
+// clutch locks onto a rolling gear's output at the closed-form instant; a gear starts from rest with
+// its clutch holding and the clutch slips at the closed-form instant; a flywheel beyond a stuck clutch
+// drives the gear from its output side; a massless output side; and the
+// located errors of the combinations that remain unsupported.
+#include <cmath>
+#include <string>
+#include <vector>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "machdyn/analysis/simulate.hpp"
+#include "support/support.hpp"
+
+namespace machdyn {
+namespace {
+
+using test::series;
+
+std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element) {
+  std::vector<ModeEvent> out;
+  for (const auto& e : r.hybrid.events)
+    if (e.element == element && e.kind != "initial") out.push_back(e);
+  return out;
+}
+
+class GearClutchSim : public ::testing::TestWithParam<const char*> {};
+INSTANTIATE_TEST_SUITE_P(BothIntegrators, GearClutchSim, ::testing::Values("dopri5", "bdf"));
+
+// A motor torque M on A (I_A), a lossy gear A → B (ratio i, η_mf1 = 0.9, η_mf2 = 0.7, no bearing
+// friction), a clutch from B to C (I_C) whose torque limit rises as T(t) = k t (μ_s = μ_k = 0.5,
+// radius 1 m, normal force 2 k t), everything at rest at t = 0.
+// At t = 0 the gear cannot hold M (its forward margin −η M < 0) and the clutch carries nothing
+// (T(0) = 0): the gear starts forward with the clutch sliding (u = v_B − v_C > 0).
+// Sliding: the clutch puts −k t on B (F_b' = −k t / i in A's coordinate) and +k t on C. A drives
+// (D = M J_B + I_A k t / i > 0), so with E = η_mf1 I_A + J_B, J_B = I_B / i²:
+//   E a_A = η_mf1 M − k t / i  ⇒  v_A = (η_mf1 M t − k t² / (2 i)) / E,   v_B = v_A / i,
+//   I_C a_C = k t              ⇒  v_C = k t² / (2 I_C).
+// The clutch sticks where v_B = v_C, i.e. (dividing by t > 0)
+//   t* = (η_mf1 M / (i E)) / (k / (2 I_C) + k / (2 i² E)).
+// Stuck, C joins B's side: E₂ a_A = η_mf1 M with E₂ = η_mf1 I_A + (I_B + I_C)/i² (A still drives), and
+// the clutch holds C's torque λ = I_C a_A / i (+λ on C), which stays below k t* for these numbers.
+struct LockingClutch {
+  static constexpr double IA = 1.0, IC = 2.0, i = 2.0, eta = 0.9, M = 10.0, k = 20.0;
+  double IB = 0.5;  ///< 0: B is a massless flange (MSL's LossyGear – Clutch), J_B = 0 below
+  [[nodiscard]] double E() const { return eta * IA + IB / (i * i); }
+  [[nodiscard]] double E2() const { return eta * IA + (IB + IC) / (i * i); }
+  [[nodiscard]] double t_star() const { return (eta * M / (i * E())) / (k / (2.0 * IC) + k / (2.0 * i * i * E())); }
+  [[nodiscard]] double speed_a(double t) const {
+    const double ts = t_star();
+    if (t <= ts) return (eta * M * t - k * t * t / (2.0 * i)) / E();
+    return speed_a(ts) + eta * M / E2() * (t - ts);
+  }
+  [[nodiscard]] double speed_c(double t) const {
+    const double ts = t_star();
+    return t <= ts ? k * t * t / (2.0 * IC) : speed_a(t) / i;
+  }
+  [[nodiscard]] std::string yaml(const char* integrator) const {
+    return fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: 0.7}}
+clutches:
+  K: {{between: [B, C], normal_force: {{type: ramp, value: {} N, end: 2 s}}, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  M: {{type: constant, body: A, value: {} N*m}}
+simulation: {{t_end: 1, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, IB, IC, i, eta, 2.0 * 2.0 * k, M, integrator);
+  }
+};
+
+// Claim, with I_B = 0.5 and with B massless (I_B = 0): the clutch sticks once, at t* within 1e-8 s, and
+// stays stuck while the gear rolls forward with A driving throughout (no gear event); A's and C's speeds follow the closed form at every row within
+// 1e-8 rad/s (1e-6 on BDF), B's is A's / i within rounding, and the stuck clutch's torque equals
+// I_C a_A / i within 1e-8 N·m.
+TEST_P(GearClutchSim, SlidingClutchLocksOntoTheRollingGearAtTheClosedFormInstant) {
+  for (double IB : {0.5, 0.0}) {  // 0: B massless (the gear's block of C needs no 1/I_B)
+    LockingClutch R;
+    R.IB = IB;
+    const SimulationResult r = simulate(test::model_text(R.yaml(GetParam()), "gear.yaml"));
+    const auto clutch = events_of(r, "K");
+    ASSERT_EQ(clutch.size(), 1u) << IB;
+    EXPECT_EQ(clutch[0].to, "stuck");
+    EXPECT_NEAR(clutch[0].t, R.t_star(), 1e-8) << IB;
+    EXPECT_TRUE(events_of(r, "G").empty()) << IB;
+    const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+    const auto& t = series(r, "t_s");
+    const auto& wa = series(r, "A.velocity_rad_s");
+    const auto& wb = series(r, "B.velocity_rad_s");
+    const auto& wc = series(r, "C.velocity_rad_s");
+    const auto& F = series(r, "K.force_N_m");
+    const auto& mode = series(r, "G.mode");
+    for (size_t j = 0; j < t.size(); ++j) {
+      EXPECT_NEAR(wa[j], R.speed_a(t[j]), tol) << IB << " " << t[j];
+      EXPECT_NEAR(wc[j], R.speed_c(t[j]), tol) << IB << " " << t[j];
+      EXPECT_NEAR(wb[j], wa[j] / R.i, 1e-12 * (1.0 + std::abs(wa[j])));
+      EXPECT_EQ(mode[j], 1.0) << t[j];
+      if (t[j] > R.t_star() + 1e-9) {
+        EXPECT_NEAR(F[j], R.IC * (R.eta * R.M / R.E2()) / R.i, 1e-8) << IB << " " << t[j];
+      }
+    }
+  }
+}
+
+// A motor torque M = h t on A, the gear of the test above with a bearing friction τ = 1 N·m (both
+// directions: τ_bf,a = 0, τ_bf,b = τ), a clutch of constant torque T0 (μ_s = μ_k) from B to C.
+// At rest C has no load, so the stuck clutch carries nothing and the gear starts when its forward
+// margin −(η M − τ) reaches 0: t1 = τ / (η h), with the clutch stuck (C joins B's side; A drives):
+//   E₂ a_A = η h t − τ = η h (t − t1)  ⇒  v_A = η h (t − t1)² / (2 E₂),   λ = I_C a_A / i.
+// The clutch slips when λ = T0: t2 = t1 + T0 E₂ i / (I_C η h). Then C accelerates at T0 / I_C and
+//   E a_A = η h t − τ − T0 / i  ⇒  v_A(t) = v_A(t2) + (η h (t² − t2²)/2 − (τ + T0/i)(t − t2)) / E,
+//   v_C(t) = v_A(t2)/i + T0 (t − t2) / I_C.
+struct SlippingClutch {
+  static constexpr double IA = 1.0, IB = 0.5, IC = 2.0, i = 2.0, eta = 0.9, h = 10.0, tau = 1.0, T0 = 3.0;
+  static constexpr double E = eta * IA + IB / (i * i), E2 = eta * IA + (IB + IC) / (i * i);
+  static constexpr double t1 = tau / (eta * h), t2 = t1 + T0 * E2 * i / (IC * eta * h);
+  [[nodiscard]] static double speed_a(double t) {
+    if (t <= t1) return 0.0;
+    if (t <= t2) return eta * h * (t - t1) * (t - t1) / (2.0 * E2);
+    return speed_a(t2) + (eta * h * (t * t - t2 * t2) / 2.0 - (tau + T0 / i) * (t - t2)) / E;
+  }
+  [[nodiscard]] static double speed_c(double t) {
+    return t <= t2 ? speed_a(t) / i : speed_a(t2) / i + T0 * (t - t2) / IC;
+  }
+  [[nodiscard]] static std::string yaml(const char* integrator) {
+    return fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: 0.7,
+      bearing_friction: {} N*m}}
+clutches:
+  K: {{between: [B, C], normal_force: {} N, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  M: {{type: ramp, body: A, value: {} N*m, end: 1 s}}
+simulation: {{t_end: 1, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, IB, IC, i, eta, tau, 2.0 * T0, h, integrator);
+  }
+};
+
+// Claim: the gear starts forward at t1 and the clutch slips forward at t2, each once and within 1e-8 s;
+// A's and C's speeds follow the closed form at every row within 1e-8 rad/s (1e-6 on BDF); the stuck
+// clutch carries I_C a_A / i (0 at rest) within 1e-8 N·m, the sliding one T0.
+TEST_P(GearClutchSim, GearStartsWithItsClutchHoldingAndTheClutchSlipsAtTheClosedFormInstant) {
+  using R = SlippingClutch;
+  const SimulationResult r = simulate(test::model_text(R::yaml(GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), clutch = events_of(r, "K");
+  ASSERT_EQ(gear.size(), 1u);
+  EXPECT_EQ(gear[0].from, "stuck");
+  EXPECT_EQ(gear[0].to, "forward");
+  EXPECT_NEAR(gear[0].t, R::t1, 1e-8);
+  ASSERT_EQ(clutch.size(), 1u);
+  EXPECT_EQ(clutch[0].to, "slip+");
+  EXPECT_NEAR(clutch[0].t, R::t2, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& wc = series(r, "C.velocity_rad_s");
+  const auto& F = series(r, "K.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    EXPECT_NEAR(wa[j], R::speed_a(t[j]), tol) << t[j];
+    EXPECT_NEAR(wc[j], R::speed_c(t[j]), tol) << t[j];
+    const double aA = t[j] <= R::t1 ? 0.0 : R::eta * R::h * (t[j] - R::t1) / R::E2;
+    if (t[j] < R::t2 - 1e-9) {
+      EXPECT_NEAR(F[j], R::IC * aA / R::i, 1e-8) << t[j];
+    } else if (t[j] > R::t2 + 1e-9) {
+      EXPECT_NEAR(F[j], R::T0, 1e-12) << t[j];
+    }
+  }
+}
+
+// A (I_A = 1) braked by M = 5 N·m, the gear (i = 2, η_mf1 = 0.9, η_mf2 = 0.7, no bearing friction) to B
+// (I_B = 0.5, or massless), a clutch (10 N·m) held stuck to C (I_C = 2); everything turning forward,
+// v_A0 = 10 rad/s. The stuck clutch joins C to B's side, J = (I_B + I_C)/i². A is braked and C's
+// inertia keeps the train turning: D = −M J < 0 in forward rolling, so B drives and
+//   (I_A + η_mf2 J) a = −M  ⇒  v_A = v_A0 − M t / (I_A + η_mf2 J),  rest at t_s = v_A0 (I_A + η_mf2 J)/M;
+// then M turns A backward with A driving (no bearing friction: it cannot hold),
+//   (η_mf1 I_A + J) a = −η_mf1 M  ⇒  v_A = −η_mf1 M (t − t_s)/(η_mf1 I_A + J),
+// and the clutch carries C's torque I_C a / i throughout (|·| < 10 N·m: it stays stuck).
+// Claim, with I_B = 0.5 and 0: the gear starts on B's side (initial mode forward_b_drives), reverses once
+// at t_s within 1e-8 s to `backward` (A driving); A's speed and the clutch's torque follow the closed
+// form at every row within 1e-8 (1e-6 rad/s on BDF); the clutch never switches.
+TEST_P(GearClutchSim, FlywheelBeyondAStuckClutchDrivesTheGearFromItsOutputSide) {
+  for (double IB : {0.5, 0.0}) {
+    const double IA = 1.0, IC = 2.0, i = 2.0, e1 = 0.9, e2 = 0.7, M = 5.0, v0 = 10.0;
+    const double J = (IB + IC) / (i * i), ts = v0 * (IA + e2 * J) / M;
+    const double a1 = -M / (IA + e2 * J), a2 = -e1 * M / (e1 * IA + J);
+    const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2, velocity: {} rad/s}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2, velocity: {} rad/s}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+clutches:
+  K: {{between: [B, C], normal_force: 20 N, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  M: {{type: constant, body: A, value: {} N*m}}
+simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, v0, IB, IC, v0 / i, i, e1, e2, -M, GetParam()), "gear.yaml"));
+    std::string initial;
+    for (const auto& e : r.hybrid.events)
+      if (e.element == "G" && e.kind == "initial") initial = e.to;
+    EXPECT_EQ(initial, "forward_b_drives") << IB;
+    const auto gear = events_of(r, "G");
+    ASSERT_EQ(gear.size(), 1u) << IB;
+    EXPECT_EQ(gear[0].to, "backward");
+    EXPECT_NEAR(gear[0].t, ts, 1e-8) << IB;
+    EXPECT_TRUE(events_of(r, "K").empty()) << IB;
+    const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+    const auto& t = series(r, "t_s");
+    const auto& wa = series(r, "A.velocity_rad_s");
+    const auto& F = series(r, "K.force_N_m");
+    for (size_t j = 0; j < t.size(); ++j) {
+      const bool before = t[j] < ts;
+      EXPECT_NEAR(wa[j], before ? v0 + a1 * t[j] : a2 * (t[j] - ts), tol) << IB << " " << t[j];
+      if (std::abs(t[j] - ts) > 1e-9) {
+        EXPECT_NEAR(F[j], IC * (before ? a1 : a2) / i, 1e-8) << IB << " " << t[j];
+      }
+    }
+  }
+}
+
+// Claim: the combinations that remain unsupported are located errors at the gear's key, each
+// saying why: both sides massless, a massless side with a prescribed motion, a clutch between the
+// bodies of two lossy gears, a clutch on a gear in a model with a prescribed motion; a massless side
+// beside a body with inertia compiles.
+TEST(GearClutchCompile, UnsupportedCombinationsAreLocatedErrors) {
+  auto check = [](const std::string& text, const std::string& why) {
+    const std::string e = test::compile_errors(text, "gear.yaml");
+    EXPECT_NE(e.find("gear.yaml:6:"), std::string::npos) << text << "\n" << e;
+    EXPECT_NE(e.find(why), std::string::npos) << text << "\n" << e;
+  };
+  const std::string massless = "bodies:\n  A: {inertia: 0}\n  B: {inertia: 0}\n  C: {inertia: 3}\nlinks:\n"
+                               "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n";
+  check(massless, "both 'A' and 'B' have zero inertia");
+  const std::string moved = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 0, motion: {speed: 1 rad/s}}\n  C: {inertia: 3}\n"
+                            "links:\n  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n";
+  check(moved, "'B' has zero inertia and a prescribed motion");
+  const std::string two = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3}\n  D: {inertia: 1}\nlinks:\n"
+                          "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n"
+                          "  H: {type: lossy-gear, between: [C, D], efficiency: 0.9}\nclutches:\n"
+                          "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n";
+  const std::string e = test::compile_errors(two, "gear.yaml");  // reported at each gear's key
+  EXPECT_NE(e.find("gear.yaml:7:"), std::string::npos) << e;
+  EXPECT_NE(e.find("gear.yaml:8:"), std::string::npos) << e;
+  EXPECT_NE(e.find("joins it to lossy gear 'G'; a clutch between two lossy gears is not supported yet"), std::string::npos) << e;
+  check("bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3, motion: {speed: 1 rad/s}}\nlinks:\n"
+        "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\nclutches:\n"
+        "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n",
+        "a clutch on its body ('K') in a model with a prescribed motion ('C') is not supported yet");
+  const Model ok = test::model_text("bodies:\n  A: {inertia: 1}\n  B: {inertia: 0}\n  C: {inertia: 3}\nlinks:\n"
+                                    "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\nclutches:\n"
+                                    "  K: {between: [B, C], normal_force: 10 N, mu_s: 0.3, mu_k: 0.3, radius: 1 m}\n",
+                                    "gear.yaml");
+  ASSERT_EQ(ok.lossy_gears.size(), 1u);
+  EXPECT_EQ(ok.bodies[static_cast<size_t>(ok.lossy_gears[0].b)].inertia, 0.0);
+}
+
+}  // namespace
+}  // namespace machdyn
