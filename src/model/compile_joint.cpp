@@ -236,7 +236,7 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   for (int k = 0; k < r.terms; ++k)
     if (r.body[k] != x) add_term(sub, r.body[k], -r.w[k] / wx);
   // The joint's torques follow from X's torque balance (model.hpp: EliminatedJoint): what acts on X.
-  EliminatedJoint ej{j.name, j.member, j.w, wx, X.kind, {}, {}, {}, {}, {}, {}};
+  EliminatedJoint ej{j.name, j.member, j.w, wx, X.kind, {}, {}, {}, {}, {}, {}, {}, {}};
   for (size_t k = 0; k < m.links.size(); ++k) ok = rewrite_link(m, static_cast<int>(k), x, sub, why, diag, ej) && ok;
   for (FrictionContact& c : m.contacts) {
     VelocityRow row = c.row;
