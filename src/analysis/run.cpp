@@ -384,7 +384,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (extra_.heat) {  // every dissipative element (analysis/heat.hpp), then the model's total
       for (int j = 0; j < heat_.count(); ++j) {
-        names.push_back(heat_.name(j) + ".heat_power_W");
+        if (!heat_.own_power_column(j)) names.push_back(heat_.name(j) + ".heat_power_W");
         names.push_back(heat_.name(j) + ".heat_J");
       }
       names.emplace_back("heat_power_W");
@@ -457,7 +457,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (extra_.heat) {
       heat_.at(step_, t, y, p_.data(), q_.data(), nullptr);
       for (size_t j = 0; j < p_.size(); ++j) {
-        put(p_[j]);
+        if (j + 1 == p_.size() || !heat_.own_power_column(static_cast<int>(j))) put(p_[j]);
         put(q_[j]);
       }
     }
@@ -945,7 +945,7 @@ std::size_t extra_columns_bound(const Model& m, const OutputSelection& s) {
   if (s.deflection) n += 2 * m.links.size();
   if (s.acceleration) n += m.bodies.size();
   if (s.power) n += m.loads.size() + m.drives.size() + m.links.size();
-  if (s.heat) n += 2 * (m.contacts.size() + m.links.size() + m.lossy_gears.size() + 1);
+  if (s.heat) n += 2 * (m.contacts.size() + m.links.size() + m.lossy_gears.size() + m.drives.size() + 1);
   return n;
 }
 
