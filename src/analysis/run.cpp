@@ -451,7 +451,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (int l = 0; l < nl_; ++l)
         if (m_.links[static_cast<size_t>(l)].d > 0.0) {
           const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
-          put(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l)));
+          put(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l), sys_.link(l).drum(y)));  // c(q_a) of a winding rope
         }
     }
     if (extra_.heat) {
