@@ -423,6 +423,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       f += e.load_weight[k] * now().loads[static_cast<size_t>(e.loads[k])].at(t, y, y + n_);
     for (size_t k = 0; k < e.links.size(); ++k) f -= e.link_weight[k] * loads_[static_cast<size_t>(e.links[k])];
     for (size_t k = 0; k < e.contacts.size(); ++k) f -= e.contact_weight[k] * fc_[static_cast<size_t>(e.contacts[k])];
+    for (size_t k = 0; k < e.drives.size(); ++k) f += e.drive_weight[k] * sys_.drive_torque(e.drives[k], t, y);
     return f / e.wx;
   }
   /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
@@ -447,7 +448,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (const Load& ld : now().loads)  // the weights as the releases so far left them
         put(ld.at(t, y, y + n_) * ld.own(y + n_));  // M v_X (model.hpp: Load)
       for (int d = 0; d < nd_; ++d)
-        put(sys_.drive_torque(d, t, y) * y[n_ + sys_.drive_body(d)]);
+        put(sys_.drive_torque(d, t, y) * sys_.drive_speed(d, y));  // M ω_X (model.hpp: Drive)
       for (int l = 0; l < nl_; ++l)
         if (m_.links[static_cast<size_t>(l)].d > 0.0) {
           const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
@@ -507,7 +508,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;
-    for (int d = 0; d < nd_; ++d) f(sys_.drive_body(d)) += v < vals.size() ? vals[v++] : 0.0;
+    for (int d = 0; d < nd_; ++d) sys_.drive_place(d).spread(v < vals.size() ? vals[v++] : 0.0, f.data());
     for (int c = 0; c < nc_; ++c) sys_.contact(c).apply(v < vals.size() ? vals[v++] : 0.0, f.data());
     return f;
   }
