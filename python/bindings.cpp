@@ -92,7 +92,6 @@ const char* kind_name(LoadKind k) {
   }
   return "?";
 }
-std::string body_name(const Model& m, int i) { return i == kGround ? "ground" : m.bodies[static_cast<size_t>(i)].name; }
 
 py::list bodies(const Model& m) {
   py::list out;
@@ -114,8 +113,8 @@ py::list links(const Model& m) {
   for (const auto& l : m.links) {
     py::dict d;
     d["name"] = l.name, d["type"] = kind_name(l.kind);
-    d["between"] = py::make_tuple(body_name(m, l.a), body_name(m, l.b));
-    d["ratio"] = l.ratio, d["stiffness"] = l.c, d["damping"] = l.d;
+    d["between"] = py::make_tuple(shown_body(m, l.a, l.given_a), shown_body(m, l.b, l.given_b));
+    d["ratio"] = shown_ratio(m, l), d["stiffness"] = l.c, d["damping"] = l.d;
     d["load_unit"] = link_load_unit(m, l);
     d["gap"] = l.has_gap ? py::cast(l.gap) : py::none();
     out.append(d);
@@ -128,7 +127,7 @@ py::list loads(const Model& m) {
   for (const auto& l : m.loads) {
     py::dict d;
     d["name"] = l.name, d["type"] = l.kind == LoadKind::signal ? Signal::kind_name(l.signal.kind()) : kind_name(l.kind),
-    d["body"] = body_name(m, l.body), d["value"] = l.value;
+    d["body"] = shown_body(m, l.body, l.given_body), d["value"] = shown_value(m, l);
     out.append(d);
   }
   return out;
@@ -139,7 +138,7 @@ py::list drives(const Model& m) {
   for (const auto& d : m.drives) {
     py::dict e;
     e["name"] = d.name, e["type"] = d.law->type();
-    e["body"] = body_name(m, d.body), e["states"] = d.states();
+    e["body"] = shown_body(m, d.body, d.given_body), e["states"] = d.states();
     out.append(e);
   }
   return out;
@@ -150,7 +149,7 @@ py::list contacts(const Model& m) {
   for (const auto& c : m.contacts) {
     py::dict d;
     d["name"] = c.name, d["type"] = c.brake ? "brake" : "contact";
-    d["between"] = py::make_tuple(body_name(m, c.a), body_name(m, c.b));
+    d["between"] = py::make_tuple(shown_body(m, c.a, c.given_a), shown_body(m, c.b, c.given_b));
     d["static_limit"] = c.static_limit;
     out.append(d);
   }

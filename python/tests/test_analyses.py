@@ -126,3 +126,21 @@ def test_crane_release_during_a_run_equals_the_cli():
     r = machdyn.simulate(machdyn.load(path))
     assert any(e["kind"] == "release" and e["t"] == 1.2 for e in r.summary["events"])
     assert r.summary["energy"]["released_kinetic_J"] > 0
+
+
+def test_moved_elements_show_the_users_bodies():
+    # An ideal gear slaves the gearbox to the motor (rho = 1/4): compile moves the shaft's first end
+    # and the load onto the motor (ratio 2/rho = 8, value 40 rho = 10); the model lists them as written.
+    m = machdyn.loads("""
+bodies: {motor: {inertia: 2}, gearbox: {inertia: 1}, drum: {inertia: 5}}
+links:
+  g: {type: ideal-gear, between: [motor, gearbox], ratio: 4}
+  shaft: {type: spring, between: [gearbox, drum], ratio: 2, stiffness: 1e4}
+loads: {M: {type: constant, body: gearbox, value: 40}}
+""")
+    assert [b["name"] for b in m.bodies] == ["motor", "drum"]
+    shaft = next(l for l in m.links if l["name"] == "shaft")
+    assert shaft["between"] == ("gearbox", "drum")
+    assert shaft["ratio"] == pytest.approx(2.0, rel=1e-15)
+    assert m.loads[0]["body"] == "gearbox"
+    assert m.loads[0]["value"] == pytest.approx(40.0, rel=1e-15)

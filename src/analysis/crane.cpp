@@ -284,9 +284,9 @@ Model phi2_case_model(const Model& m, double vh) {
     if (R(i) != 0.0) out.bodies[static_cast<size_t>(i)].v0 = R(i) * beta;
   // A speed-controlled drive of the hoist runs at that steady speed: its reference holds it (its
   // own ramp would start from rest and brake the drive that the case starts at vh).
-  for (auto& d : out.drives)
-    if (R(d.body) != 0.0)
-      if (auto held = d.law->at_steady_speed(R(d.body) * beta)) d.law = std::move(held);
+  for (auto& d : out.drives)  // its own speed ω_X = Drive::own over the bodies' speeds R β
+    if (const double w = d.own(R.data()); w != 0.0)
+      if (auto held = d.law->at_steady_speed(w * beta)) d.law = std::move(held);
   return out;
 }
 

@@ -536,13 +536,13 @@ __attribute__((noinline)) double DriveSystem::drive_forces(double t, const doubl
   double src = 0.0;
   for (int d = 0; d < nd_; ++d) {  // their torque from their own states (model/element.hpp)
     const Element& k = drive(d);
-    const int b = drive_body(d);
     const double* x = y + drive_offset(d);
-    const double M = k.torque(t, y[n_ + b], x, drive_mode(d));
-    f[b] += M;
-    // Its heat is a loss, not work taken out: the source work is M v + heat (0 for a brake).
-    const double heat = k.heat_power(t, y[n_ + b], x, drive_mode(d));
-    src += M * y[n_ + b] + heat;
+    const double w = drive_speed(d, y);  // ω_X (model.hpp: Drive; the body's velocity on one body)
+    const double M = k.torque(t, w, x, drive_mode(d));
+    drive_place(d).spread(M, f);
+    // Its heat is a loss, not work taken out: the source work is M ω + heat (0 for a brake).
+    const double heat = k.heat_power(t, w, x, drive_mode(d));
+    src += M * w + heat;
     *loss += heat;
   }
   return src;
@@ -550,8 +550,8 @@ __attribute__((noinline)) double DriveSystem::drive_forces(double t, const doubl
 
 __attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* y, double* dydt) const {
   for (int d = 0; d < nd_; ++d) {
-    const int o = drive_offset(d), b = drive_body(d);
-    drive(d).rates(t, y[n_ + b], y + o, drive_mode(d), dydt + o, dydt[n_ + b]);
+    const int o = drive_offset(d);
+    drive(d).rates(t, drive_speed(d, y), y + o, drive_mode(d), dydt + o, drive_place(d).own(dydt + n_));
   }
 }
 
@@ -851,14 +851,21 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
   // rates x'(ω, x).
   for (int d = 0; d < nd_; ++d) {
     const Element& k = drive(d);
-    const int o = drive_offset(d), b = drive_body(d), vb = n_ + b, nx = k.states();
-    const ElementJacobian jd = k.jacobian(t, y[vb], y + o, drive_mode(d));
-    trip.emplace_back(vb, vb, jd.dM_domega * im(b));
-    for (int j = 0; j < nx; ++j) {
-      trip.emplace_back(vb, o + j, jd.dM_dx[j] * im(b));
-      trip.emplace_back(o + j, vb, jd.dx_domega[j]);
-      for (int c = 0; c < nx; ++c) trip.emplace_back(o + j, o + c, jd.dx_dx[j][c]);
+    const int o = drive_offset(d), nx = k.states();
+    const ElementJacobian jd = k.jacobian(t, drive_speed(d, y), y + o, drive_mode(d));
+    int b[2];
+    double w[2];  // ω = Σ w_i v_i, f_i += w_i M (model.hpp: Drive)
+    const int nt = drive_place(d).terms(b, w);
+    for (int i = 0; i < nt; ++i) {
+      const int vb = n_ + b[i];
+      for (int c = 0; c < nt; ++c) trip.emplace_back(vb, n_ + b[c], w[i] * w[c] * jd.dM_domega * im(b[i]));
+      for (int j = 0; j < nx; ++j) {
+        trip.emplace_back(vb, o + j, w[i] * jd.dM_dx[j] * im(b[i]));
+        trip.emplace_back(o + j, vb, w[i] * jd.dx_domega[j]);
+      }
     }
+    for (int j = 0; j < nx; ++j)
+      for (int c = 0; c < nx; ++c) trip.emplace_back(o + j, o + c, jd.dx_dx[j][c]);
   }
   J.resize(2 * n_ + nx_, 2 * n_ + nx_);
   J.setFromTriplets(trip.begin(), trip.end());
@@ -868,7 +875,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
 void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
   for (const auto& ld : m_.loads) ld.spread(ld.at(t, y, y + n_), f);
-  for (int d = 0; d < nd_; ++d) f[drive_body(d)] += drive_torque(d, t, y);
+  for (int d = 0; d < nd_; ++d) drive_place(d).spread(drive_torque(d, t, y), f);
   const double* q = machine_positions(y);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);
   for (int k = 0; k < nc_; ++k) contacts_[static_cast<size_t>(k)].apply(fc[k], f);
@@ -975,21 +982,20 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     if (!locks_.empty()) lock_event_functions(t, g);
   }
   for (int d = 0; d < nd_; ++d) {
-    const int b = drive_body(d);
-    drive(d).events(t, y[n_ + b], y + drive_offset(d), drive_mode(d), accelerations ? f_[static_cast<size_t>(b)] : 0.0,
-                    g + 2 * (nl_ + nc_ + d));
+    drive(d).events(t, drive_speed(d, y), y + drive_offset(d), drive_mode(d),
+                    accelerations ? drive_place(d).own(f_.data()) : 0.0, g + 2 * (nl_ + nc_ + d));
   }
 }
 
 int DriveSystem::natural_drive_mode(int d, double t, const double* y) {
   const Element& k = drive(d);
-  const int cur = drive_mode(d), b = drive_body(d);
+  const int cur = drive_mode(d);
   double acc = 0.0;
   if (k.reads_acceleration(cur)) {
     evaluate(t, y, f_.data(), fc_.data());
-    acc = f_[static_cast<size_t>(b)];
+    acc = drive_place(d).own(f_.data());
   }
-  return k.natural_mode(t, y[n_ + b], y + drive_offset(d), cur, acc);
+  return k.natural_mode(t, drive_speed(d, y), y + drive_offset(d), cur, acc);
 }
 
 int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
@@ -997,7 +1003,7 @@ int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
   const int old = drive_mode(d);
   if (!k.settles(old, now)) return now;
   evaluate(t, y, f_.data(), fc_.data());
-  return k.settle(t, y[n_ + drive_body(d)], old, now, f_[static_cast<size_t>(drive_body(d))]);
+  return k.settle(t, drive_speed(d, y), old, now, drive_place(d).own(f_.data()));
 }
 
 void DriveSystem::project_velocities(double t, double* y) const {

@@ -19,6 +19,14 @@ Heat::Heat(const Model& m, DriveSystem& sys) : sys_(sys), n_(m.dof()) {
     if (const LinkLaw& k = sys.link(l); k.d > 0.0 || k.kh > 0.0) add(links_, &link_el_, l, m.links[static_cast<size_t>(l)].name);
   for (int g = 0; g < static_cast<int>(m.lossy_gears.size()); ++g)
     add(gears_, nullptr, g, m.lossy_gears[static_cast<size_t>(g)].name);
+  own_power_.assign(names_.size(), 0);
+  for (int d = 0; d < static_cast<int>(m.drives.size()); ++d) {
+    const Drive& dr = m.drives[static_cast<size_t>(d)];
+    if (!dr.law->dissipates()) continue;
+    add(drives_, nullptr, d, dr.name);
+    const auto own = dr.law->output_names(m.bodies[static_cast<size_t>(dr.body)].kind);
+    own_power_.push_back(std::find(own.begin(), own.end(), "heat_power_W") != own.end());
+  }
   for (int k : contacts_)
     if (const auto& th = m.contacts[static_cast<size_t>(k)].thermal) {
       thermal_.push_back(contact_el_[static_cast<size_t>(k)]);
@@ -45,6 +53,8 @@ void Heat::power(double t, const double* y, double* p) {
     p[j++] = k.dissipation(s.delta, s.rate, sys_.gap_mode(l), k.drum(y));
   }
   for (int g : gears_) p[j++] = LossyGearLaw::loss_power(sys_.gear_torques(g, t, y), y[n_ + sys_.lossy_gear(g).a]);
+  for (int d : drives_)
+    p[j++] = sys_.drive(d).heat_power(t, sys_.drive_speed(d, y), y + sys_.drive_offset(d), sys_.drive_mode(d));
 }
 
 void Heat::integrate(const Stepper& st, double ta, double tb, double* heat, double* temperature) {

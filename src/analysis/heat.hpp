@@ -7,6 +7,8 @@
 //       (elements/link.hpp, the elasto-backlash cap included), plus the elastic energy its flank
 //       releases when it opens at zero force off the flank (the energy books' gap release loss)
 //   lossy gear: P = (X − Y) v_a (elements/lossy_gear.hpp `loss_power`)
+//   element with states of its own that dissipates (Element::dissipates: a thermal eddy-current brake's
+//       −M ω, a DC motor's R i²): P = Element::heat_power
 // the heat Q = ∫₀ᵗ P dt + the jumps at events (J), and the total over all elements (W, J): at t_end it
 // is what the energy books call dissipated (friction + damping + gap release + impact losses). For a
 // friction element with a thermal model also its temperature (elements/thermal.hpp). A piece of the
@@ -25,9 +27,12 @@ namespace machdyn::detail {
 class Heat {
  public:
   Heat(const Model& m, DriveSystem& sys);
-  /// The dissipative elements, in output order: friction elements, links, lossy gears (model order).
+  /// The dissipative elements, in output order: friction elements, links, lossy gears, drives (model order).
   [[nodiscard]] int count() const { return static_cast<int>(names_.size()); }
   [[nodiscard]] const std::string& name(int j) const { return names_[static_cast<size_t>(j)]; }
+  /// Whether element j writes NAME.heat_power_W among its own columns already (a thermal eddy-current
+  /// brake: Element::output_names), so the heat group adds only its NAME.heat_J.
+  [[nodiscard]] bool own_power_column(int j) const { return own_power_[static_cast<size_t>(j)] != 0; }
   /// Whether some element has a thermal model (its temperature is a standard output column).
   [[nodiscard]] bool any_thermal() const { return !thermal_.empty(); }
   /// Adds the piece [ta, tb] of the stepper's last step (tb: the end of the closed part of the run).
@@ -51,7 +56,8 @@ class Heat {
   DriveSystem& sys_;
   int n_;                            // bodies
   std::vector<std::string> names_;
-  std::vector<int> contacts_, links_, gears_;  // the elements' indices in the model, by kind
+  std::vector<int> contacts_, links_, gears_, drives_;  // the elements' indices in the model, by kind
+  std::vector<char> own_power_;      // per element: own_power_column()
   std::vector<int> contact_el_, link_el_;      // per contact / link: its element, −1 if none
   std::vector<int> thermal_;         // elements with a thermal model
   std::vector<ThermalLaw> law_;      // their laws, in that order

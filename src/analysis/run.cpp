@@ -385,7 +385,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (extra_.heat) {  // every dissipative element (analysis/heat.hpp), then the model's total
       for (int j = 0; j < heat_.count(); ++j) {
-        names.push_back(heat_.name(j) + ".heat_power_W");
+        if (!heat_.own_power_column(j)) names.push_back(heat_.name(j) + ".heat_power_W");
         names.push_back(heat_.name(j) + ".heat_J");
       }
       names.emplace_back("heat_power_W");
@@ -424,6 +424,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       f += e.load_weight[k] * now().loads[static_cast<size_t>(e.loads[k])].at(t, y, y + n_);
     for (size_t k = 0; k < e.links.size(); ++k) f -= e.link_weight[k] * loads_[static_cast<size_t>(e.links[k])];
     for (size_t k = 0; k < e.contacts.size(); ++k) f -= e.contact_weight[k] * fc_[static_cast<size_t>(e.contacts[k])];
+    for (size_t k = 0; k < e.drives.size(); ++k) f += e.drive_weight[k] * sys_.drive_torque(e.drives[k], t, y);
     return f / e.wx;
   }
   /// δ is in b's coordinate (a's for a link to the ground), in m at a machine's output point.
@@ -448,17 +449,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (const Load& ld : now().loads)  // the weights as the releases so far left them
         put(ld.at(t, y, y + n_) * ld.own(y + n_));  // M v_X (model.hpp: Load)
       for (int d = 0; d < nd_; ++d)
-        put(sys_.drive_torque(d, t, y) * y[n_ + sys_.drive_body(d)]);
+        put(sys_.drive_torque(d, t, y) * sys_.drive_speed(d, y));  // M ω_X (model.hpp: Drive)
       for (int l = 0; l < nl_; ++l)
         if (m_.links[static_cast<size_t>(l)].d > 0.0) {
           const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
-          put(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l)));
+          put(sys_.link(l).dissipation(s.delta, s.rate, sys_.gap_mode(l), sys_.link(l).drum(y)));  // c(q_a) of a winding rope
         }
     }
     if (extra_.heat) {
       heat_.at(step_, t, y, p_.data(), q_.data(), nullptr);
       for (size_t j = 0; j < p_.size(); ++j) {
-        put(p_[j]);
+        if (j + 1 == p_.size() || !heat_.own_power_column(static_cast<int>(j))) put(p_[j]);
         put(q_[j]);
       }
     }
@@ -508,7 +509,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;
-    for (int d = 0; d < nd_; ++d) f(sys_.drive_body(d)) += v < vals.size() ? vals[v++] : 0.0;
+    for (int d = 0; d < nd_; ++d) sys_.drive_place(d).spread(v < vals.size() ? vals[v++] : 0.0, f.data());
     for (int c = 0; c < nc_; ++c) sys_.contact(c).apply(v < vals.size() ? vals[v++] : 0.0, f.data());
     return f;
   }
@@ -975,7 +976,7 @@ std::size_t extra_columns_bound(const Model& m, const OutputSelection& s) {
   if (s.deflection) n += 2 * m.links.size();
   if (s.acceleration) n += m.bodies.size();
   if (s.power) n += m.loads.size() + m.drives.size() + m.links.size();
-  if (s.heat) n += 2 * (m.contacts.size() + m.links.size() + m.lossy_gears.size() + 1);
+  if (s.heat) n += 2 * (m.contacts.size() + m.links.size() + m.lossy_gears.size() + m.drives.size() + 1);
   return n;
 }
 

@@ -8,6 +8,7 @@
 
 #include "machdyn/elements/contact.hpp"
 #include "machdyn/elements/linear_model.hpp"
+#include "machdyn/elements/linearize.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/model/element.hpp"
 
@@ -47,7 +48,7 @@ Method choose_method(const Model& m, std::string* reason) {
   // the torque lag).
   for (const auto& d : m.drives) {
     LinearModel lin(n);
-    d.law->add_linear(d.body, 0, lin);
+    add_drive_linear(d, 0, lin);
     for (const auto& e : lin.D) rowD[static_cast<size_t>(e.row())] += std::abs(e.value());
     for (const auto& e : lin.K) rowK[static_cast<size_t>(e.row())] += std::abs(e.value());
     rho_D = std::max(rho_D, d.law->rate_bound());

@@ -36,6 +36,24 @@ Eigen::SparseMatrix<double> LinearModel::constraints() const {
   return assemble(static_cast<int>(G.size()), n, t);
 }
 
+void add_drive_linear(const Drive& d, int mode, LinearModel& lin) {
+  if (d.body2 < 0 && d.ratio == 1.0) return d.law->add_linear(d.body, mode, lin);
+  // The element's terms at its own point X (a scratch model of one coordinate), spread by
+  // δq_X = Σ ρ_i δq_i: an entry c at (X, X) is ρ_i ρ_j c at (i, j) (model.hpp: Drive).
+  LinearModel own(1);
+  d.law->add_linear(0, mode, own);
+  int b[2];
+  double w[2];
+  const int nt = d.terms(b, w);
+  auto spread = [&](const std::vector<Eigen::Triplet<double>>& from, std::vector<Eigen::Triplet<double>>& to) {
+    for (const auto& e : from)
+      for (int i = 0; i < nt; ++i)
+        for (int j = 0; j < nt; ++j) to.emplace_back(b[i], b[j], w[i] * w[j] * e.value());
+  };
+  spread(own.K, lin.K);
+  spread(own.D, lin.D);
+}
+
 LinearModel linearize(const Model& m, const Topology& topo, double t, const double* y) {
   const int n = m.dof();
   if (topo.gaps.size() != m.links.size() || topo.contacts.size() != m.contacts.size() ||
@@ -64,7 +82,7 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
   // Elements with states of their own in their mode 0 (model/element.hpp; a limited speed drive
   // is a constant torque and adds nothing): a DC motor its quasi-static slope k²/R, a speed drive its
   // PI law as damper K_p and spring K_p/T_i.
-  for (const Drive& d : m.drives) d.law->add_linear(d.body, 0, lin);
+  for (const Drive& d : m.drives) add_drive_linear(d, 0, lin);
   // Lossy gears: for modes the ideal gear, v_a − i v_b = 0 (elements/lossy_gear.hpp).
   for (const LossyGear& g : m.lossy_gears) LossyGearLaw::of(g).add_linear(lin);
   // Prescribed motions: fixed supports (elements/prescribed_motion.hpp).

@@ -33,6 +33,11 @@ std::string body_name(const Model& m, int b) {
   return b == kGround ? std::string("ground") : m.bodies[static_cast<std::size_t>(b)].name;
 }
 
+/// A link's ends as the file names them (compile may have moved them: model.hpp, Link::given_a).
+std::string ends(const Model& m, const Link& l) {
+  return shown_body(m, l.a, l.given_a) + " – " + shown_body(m, l.b, l.given_b);
+}
+
 const char* link_kind(LinkKind k) {
   switch (k) {
     case LinkKind::damper: return "damper";
@@ -65,7 +70,7 @@ std::string load_description(const Model& m, const Load& L) {
   const std::string u = pretty_unit(load_unit(kind)), vu = pretty_unit(velocity_unit(kind));
   const char* sym = kind == BodyKind::translational ? "F" : "M";
   switch (L.kind) {
-    case LoadKind::constant: return fmt::format("{} = {} {}", sym, num(L.value), u);
+    case LoadKind::constant: return fmt::format("{} = {} {}", sym, num(shown_value(m, L)), u);
     case LoadKind::signal: return fmt::format("{}(t): {}", sym, L.signal.describe(u));
     case LoadKind::expression: return fmt::format("{} = {} [{}]", sym, L.law->text(), u);
     case LoadKind::speed_table: return fmt::format("{}(v) over the speed [{}]: {}", sym, vu, L.signal.describe(u));
@@ -130,7 +135,7 @@ Table results_table(const Model& m, const SimulationResult& r) {
   for (std::size_t l = 0; l < m.links.size() && l < r.links.size(); ++l) {
     const auto& L = m.links[l];
     const auto& s = r.links[l];
-    t.rows.push_back({L.name, body_name(m, L.a) + " – " + body_name(m, L.b), num(s.max), num(s.t_max), num(s.min),
+    t.rows.push_back({L.name, ends(m, L), num(s.max), num(s.t_max), num(s.min),
                       num(s.t_min), num(s.static_load), num(s.dynamic_factor), pretty_unit(link_load_unit(m, L))});
   }
   t.note = "Peaks are located on the continuous solution. static: the load of rigid acceleration (the particular "
@@ -228,8 +233,7 @@ std::vector<Table> model_tables(const Model& m) {
     const auto kind = link_kind_body(m, l);
     const std::string load = pretty_unit(load_unit(kind)), pos = position_unit(kind);
     const std::string ru = ratio_unit(m, l);
-    links.rows.push_back({l.name, link_kind(l.kind), body_name(m, l.a) + " – " + body_name(m, l.b),
-                          num(l.ratio) + (ru.empty() ? "" : " " + ru),
+    links.rows.push_back({l.name, link_kind(l.kind), ends(m, l), num(shown_ratio(m, l)) + (ru.empty() ? "" : " " + ru),
                           l.kind == LinkKind::damper ? "–" : num(l.c) + " " + load + "/" + pos,
                           l.kind == LinkKind::spring ? "–" : num(l.d) + " " + load + "·s/" + pos});
   }
@@ -262,7 +266,7 @@ std::vector<Table> model_tables(const Model& m) {
     if (!c.surface_velocities.empty() && c.b == kGround)
       details = c.surface_times.empty() ? fmt::format("ground surface moves at {}", num(c.surface_velocities[0]))
                                         : "ground surface velocity: a table in t";
-    contacts.rows.push_back({c.name, c.brake ? "brake" : c.clutch ? "clutch" : "friction", body_name(m, c.a) + " – " + body_name(m, c.b),
+    contacts.rows.push_back({c.name, c.brake ? "brake" : c.clutch ? "clutch" : "friction", shown_body(m, c.a, c.given_a) + " – " + shown_body(m, c.b, c.given_b),
                              num(c.static_limit) + " " + u, kinetic, details.empty() ? "–" : details});
   }
   contacts.note = "Stuck while the transmitted force stays within F_s; sliding with F_k against the sliding velocity "
@@ -270,10 +274,10 @@ std::vector<Table> model_tables(const Model& m) {
   Table loads = table("Loads", {"load", "type", "body", "definition"});
   for (const auto& L : m.loads)
     loads.rows.push_back({L.name, L.kind == LoadKind::signal ? Signal::kind_name(L.signal.kind()) : load_kind(L.kind),
-                          body_name(m, L.body), load_description(m, L)});
+                          shown_body(m, L.body, L.given_body), load_description(m, L)});
   Table drives = table("Drives", {"drive", "type", "body", "definition"});
   for (const auto& d : m.drives)
-    drives.rows.push_back({d.name, d.law->type(), body_name(m, d.body),
+    drives.rows.push_back({d.name, d.law->type(), shown_body(m, d.body, d.given_body),
                            d.law->describe(m.bodies[static_cast<std::size_t>(d.body)].kind)});
   drives.note = "Elements with states of their own: L di/dt = u − R i − k ω, M = k i (DC motor); PI speed control "
                 "M = K_p e + (K_p/T_i) ∫e dt, |M| ≤ M_max, integral held while limited (speed drive); the laws of "

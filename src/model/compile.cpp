@@ -121,6 +121,15 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
   }
 }
 
+/// Fills the given_* names (model.hpp: Link::given_a) from the bodies the elements are on now.
+void remember_given_bodies(Model& m) {
+  auto name = [&](int b) { return shown_body(m, b, ""); };
+  for (Link& l : m.links) l.given_a = name(l.a), l.given_b = name(l.b);
+  for (FrictionContact& c : m.contacts) c.given_a = name(c.a), c.given_b = name(c.b);
+  for (Load& ld : m.loads) ld.given_body = name(ld.body);
+  for (Drive& d : m.drives) d.given_body = name(d.body);
+}
+
 void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears,
                    std::vector<detail::LossyGearSpec>& lossy, std::vector<detail::JointSpec>& joints,
                    Diagnostics& diag) {
@@ -558,6 +567,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_crane(top.node("crane"), m, diag);
   detail::compile_drives(top.node("drives"), m, diag);
   detail::check_motion_elements(m, diag);
+  // The bodies as the file names them, for display, before the merges below may move an element.
+  if (diag.empty()) remember_given_bodies(m);
   // Ideal gears merge their bodies into one degree of freedom: every element is attached by now.
   if (diag.empty()) {
     // Massless bodies a joint eliminates, or one side of a lossy gear (its law needs no 1/I of that

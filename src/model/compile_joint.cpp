@@ -131,7 +131,7 @@ void remove_body(Model& m, int x) {
     shift(c.a), shift(c.b);
     for (int j = 0; j < c.row.terms; ++j) shift(c.row.body[j]);
   }
-  for (Drive& d : m.drives) shift(d.body);
+  for (Drive& d : m.drives) shift(d.body), shift(d.body2);
   for (LossyGear& g : m.lossy_gears) shift(g.a), shift(g.b);
   for (RigidSlave& s : m.slaves) shift(s.master), shift(s.master2);
   for (MergedGear& g : m.merged_gears) shift(g.body);
@@ -208,11 +208,6 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   const std::string why = fmt::format("'{}' has no inertia, so {} eliminates it (its motion follows the other "
                                       "members)", X.name, j.what);
   bool ok = true;
-  for (const Drive& d : m.drives)
-    if (d.body == x) {
-      diag.error(m.where(d.name), fmt::format("drive '{}': {}; give '{}' an inertia", d.name, why, X.name));
-      ok = false;
-    }
   for (const LossyGear& g : m.lossy_gears)
     if (g.a == x || g.b == x) {
       diag.error(m.where(g.name), fmt::format("lossy gear '{}': {}; give '{}' an inertia", g.name, why, X.name));
@@ -236,7 +231,7 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   for (int k = 0; k < r.terms; ++k)
     if (r.body[k] != x) add_term(sub, r.body[k], -r.w[k] / wx);
   // The joint's torques follow from X's torque balance (model.hpp: EliminatedJoint): what acts on X.
-  EliminatedJoint ej{j.name, j.member, j.w, wx, X.kind, {}, {}, {}, {}, {}, {}};
+  EliminatedJoint ej{j.name, j.member, j.w, wx, X.kind, {}, {}, {}, {}, {}, {}, {}, {}};
   for (size_t k = 0; k < m.links.size(); ++k) ok = rewrite_link(m, static_cast<int>(k), x, sub, why, diag, ej) && ok;
   for (FrictionContact& c : m.contacts) {
     VelocityRow row = c.row;
@@ -308,6 +303,15 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
     const double rho = ld.ratio;
     ld.body = sub.body[0], ld.ratio = rho * sub.w[0];
     if (sub.terms > 1) ld.body2 = sub.body[1], ld.ratio2 = rho * sub.w[1];
+  }
+  // A drive on X likewise: it sees ω_X = Σ c_k v_k and puts c_k M on the others (model.hpp: Drive);
+  // every member is rotational (member_index), so its columns keep their units.
+  for (Drive& d : m.drives) {
+    if (d.body != x) continue;
+    ej.drives.push_back(static_cast<int>(&d - m.drives.data())), ej.drive_weight.push_back(d.ratio);
+    const double rho = d.ratio;
+    d.body = sub.body[0], d.ratio = rho * sub.w[0];
+    if (sub.terms > 1) d.body2 = sub.body[1], d.ratio2 = rho * sub.w[1];
   }
   // Its torque output would need X's equation of motion, which is gone.
   std::erase_if(m.merged_gears, [x](const MergedGear& g) { return g.body == x; });

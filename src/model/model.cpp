@@ -71,24 +71,6 @@ double load_law(const Load& l, double t, double q, double v, double* dMdq, doubl
 }
 }  // namespace
 
-// A load on a body slaved by ideal gears (ratio ρ ≠ 1): ρ M(t, ρ q, ρ v), slopes ρ² ∂M (model.hpp).
-double Load::evaluate(double t, double q, double v) const {
-  if (ratio == 1.0) return load_law<false>(*this, t, q, v, nullptr, nullptr);
-  return ratio * load_law<false>(*this, t, ratio * q, ratio * v, nullptr, nullptr);
-}
-
-double Load::slope(double t, double q, double v) const {
-  double dq, dv;
-  (void)load_law<true>(*this, t, ratio * q, ratio * v, &dq, &dv);
-  return ratio * ratio * dv;
-}
-
-double Load::position_slope(double t, double q, double v) const {
-  double dq, dv;
-  (void)load_law<true>(*this, t, ratio * q, ratio * v, &dq, &dv);
-  return ratio * ratio * dq;
-}
-
 double Load::own(const double* x) const { return ratio * x[body] + (body2 >= 0 ? ratio2 * x[body2] : 0.0); }
 
 double Load::at(double t, const double* q, const double* v) const {
@@ -123,6 +105,43 @@ std::vector<double> Load::breakpoints(double t0, double t1) const {
 }
 
 int Drive::states() const { return law->states(); }
+
+double Drive::own(const double* x) const { return ratio * x[body] + (body2 >= 0 ? ratio2 * x[body2] : 0.0); }
+
+void Drive::spread(double M, double* f) const {
+  f[body] += ratio * M;
+  if (body2 >= 0) f[body2] += ratio2 * M;
+}
+
+int Drive::terms(int* b, double* w) const {
+  b[0] = body, w[0] = ratio, b[1] = body2, w[1] = ratio2;
+  return body2 >= 0 ? 2 : 1;
+}
+
+std::string shown_body(const Model& m, int body, const std::string& given) {
+  if (!given.empty()) return given;
+  return body == kGround ? std::string("ground") : m.bodies[static_cast<size_t>(body)].name;
+}
+
+namespace {
+/// The one-master slave called `name` (RigidSlave), or null.
+const RigidSlave* slave_named(const Model& m, const std::string& name) {
+  for (const RigidSlave& s : m.slaves)
+    if (s.name == name && s.master2 < 0) return &s;
+  return nullptr;
+}
+}  // namespace
+
+double shown_ratio(const Model& m, const Link& l) {
+  const RigidSlave* s = l.b_weight == 1.0 && l.third == kGround ? slave_named(m, l.given_a) : nullptr;
+  return s && s->master == l.a ? l.ratio * s->ratio : l.ratio;
+}
+
+double shown_value(const Model& m, const Load& ld) {
+  if (ld.kind != LoadKind::constant) return ld.value;
+  const RigidSlave* s = ld.body2 < 0 ? slave_named(m, ld.given_body) : nullptr;
+  return s && s->master == ld.body ? ld.value / s->ratio : ld.value;
+}
 
 std::vector<double> Drive::breakpoints(double t0, double t1) const { return law->breakpoints(t0, t1); }
 

@@ -236,16 +236,7 @@ TEST(MasslessMemberErrors, AreLocated) {
       "bodies:\n  s: {inertia: 1 kg*m^2}\n  x: {inertia: 0 kg*m^2}\n  h: {inertia: 1 kg*m^2}\n"
       "  u: {inertia: 1 kg*m^2}\n  y: {inertia: 0 kg*m^2}\n  r: {inertia: 1 kg*m^2}\n"
       "links:\n  g: {type: ideal-gear, between: [s, x], ratio: 3, housing: h}\n";
-  // A drive (an element with states of its own) on the flange; loads are supported
-  // (massless_load_test.cpp).
-  const std::string drive = test::compile_errors(
-      "bodies:\n  s: {inertia: 1 kg*m^2}\n  x: {inertia: 0 kg*m^2}\n  h: {inertia: 1 kg*m^2}\n"
-      "links:\n  g: {type: ideal-gear, between: [s, x], ratio: 3, housing: h}\n"
-      "drives:\n  d: {type: dc-motor, body: x, resistance: 2 ohm, inductance: 1 H, motor_constant: 2 V*s/rad, "
-      "voltage: 100 V}\n",
-      "bearing.yaml");
-  EXPECT_NE(drive.find("bearing.yaml:8:3: error: drive 'd'"), std::string::npos) << drive;
-  EXPECT_NE(drive.find("give 'x' an inertia"), std::string::npos) << drive;
+  // (Loads and drives on the flange are supported: massless_load_test.cpp, massless_drive_test.cpp.)
   // A link between two flanges of two gears: four bodies.
   const std::string four = test::compile_errors(
       head + "  g2: {type: ideal-gear, between: [u, y], ratio: 2, housing: r}\n"

@@ -117,6 +117,95 @@ TEST_P(HeatLosses, HeatAddsUpToTheLossesOfTheBooks) {
   }
 }
 
+/// The books' dissipated energy, as summary.json's `energy.dissipated_J` (io/results.cpp) sums it.
+double dissipated(const EnergyBalance& E) { return E.friction_loss + E.damping_loss + E.release_loss + E.impact_loss; }
+
+// Claim: the thermal eddy-current brake (examples/msl/eddy-current-brake.yaml: J = 1 kg·m², ω0 =
+// 20 rad/s, C = 1 J/K, adiabatic) is one of the heat group's elements. Its heat is the kinetic energy
+// it took, brake.heat_J = ½ J (ω0² − ω²), and the heat its disc stores, C (T − T0), at every 1 ms row
+// (within 1e-6 J of 200 J on dopri5, 1e-5 J on bdf: ω, T and the heat are integrated separately); the
+// model's total heat_J is the brake's; at t_end it is the books' dissipated energy (source work − ΔT,
+// within 1e-5 J) and summary.json's `dissipated_J`. Its heat power stays its own column, written once.
+TEST_P(HeatLosses, EddyCurrentBrakeHeatIsInTheHeatGroupAndTheTotal) {
+  const SimulationResult r = run_heat(load_model(test::example("msl/eddy-current-brake.yaml")), GetParam());
+  EXPECT_EQ(std::count(r.column_names.begin(), r.column_names.end(), "brake.heat_power_W"), 1);
+  const auto &w = series(r, "inertia.velocity_rad_s"), &T = series(r, "brake.temperature_degC");
+  const auto &Q = series(r, "brake.heat_J"), &Qt = series(r, "heat_J");
+  const auto &P = series(r, "brake.heat_power_W"), &Pt = series(r, "heat_power_W");
+  ASSERT_EQ(Q.size(), 1001u);
+  const double tol = GetParam() == IntegratorChoice::bdf ? 1e-5 : 1e-6;
+  double worst_w = 0.0, worst_T = 0.0;
+  for (size_t k = 0; k < Q.size(); ++k) {
+    worst_w = std::max(worst_w, std::abs(Q[k] - 0.5 * 1.0 * (400.0 - w[k] * w[k])));
+    worst_T = std::max(worst_T, std::abs(Q[k] - 1.0 * (T[k] - 20.0)));
+    ASSERT_EQ(Qt[k], Q[k]);
+    ASSERT_EQ(Pt[k], P[k]);
+  }
+  EXPECT_LT(worst_w, tol) << "J, against ½ J (ω0² − ω²)";
+  EXPECT_LT(worst_T, tol) << "J, against C (T − T0)";
+  std::printf("HeatLosses eddy brake %s: heat vs ½J(ω0²−ω²) %.2e J, vs C(T−T0) %.2e J, Q(t_end) %.6g J\n",
+              GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", worst_w, worst_T, Q.back());
+  EXPECT_GT(Q.back(), 150.0);  // most of the 200 J
+  const EnergyBalance& E = r.hybrid.energy;
+  EXPECT_NEAR(Qt.back(), E.source_work - (E.kinetic_end - E.kinetic_start), tol);
+  EXPECT_NEAR(Qt.back(), dissipated(E), tol);
+  const auto summary = simulation_summary(load_model(test::example("msl/eddy-current-brake.yaml")), r);
+  EXPECT_NEAR(Qt.back(), summary["energy"]["dissipated_J"].get<double>(), tol);
+}
+
+// Claim: a DC motor's armature loss R i² is its heat (motor.heat_power_W, motor.heat_J), in the total.
+// A motor (R = 2 Ω, L = 50 mH, k = 0.8 V·s/rad, 100 V from t = 0) runs up a rotor J = 0.5 kg·m² with a
+// damper d = 0.1 N·m·s/rad to the ground:
+//   J ω' = k i − d ω,   L i' = u − R i − k ω,   Q' = R i²,   W' = u i   (the supply's work)
+// integrated here by RK4 (h = 1e-5 s). motor.heat_J follows Q within 1e-7 of Q(t_end) at every 10 ms
+// row; the total heat is the motor's and the damper's; the books' source work is the work the supply
+// put in less the inductance's stored energy, W − ½ L (i² − i0²), within 1e-7 relative, and the
+// total heat at t_end is the books' dissipated energy.
+TEST_P(HeatLosses, DcMotorArmatureLossFollowsAnRk4) {
+  const Model m = test::model_text(R"(
+bodies: {rotor: {inertia: 0.5 kg*m^2}}
+links: {d: {type: damper, between: [rotor, ground], damping: 0.1 N*m*s/rad}}
+drives:
+  motor: {type: dc-motor, body: rotor, resistance: 2 ohm, inductance: 50 mH, motor_constant: 0.8 V*s/rad, voltage: 100 V}
+simulation: {t_end: 2 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
+)");
+  const SimulationResult r = run_heat(m, GetParam());
+  const double J = 0.5, d = 0.1, R = 2.0, L = 0.05, k = 0.8, u = 100.0, h = 1e-5;
+  auto f = [&](const std::array<double, 4>& z) {  // z = (ω, i, Q, W)
+    return std::array<double, 4>{(k * z[1] - d * z[0]) / J, (u - R * z[1] - k * z[0]) / L, R * z[1] * z[1], u * z[1]};
+  };
+  auto add = [](const std::array<double, 4>& a, double c, const std::array<double, 4>& b) {
+    std::array<double, 4> o{};
+    for (size_t j = 0; j < 4; ++j) o[j] = a[j] + c * b[j];
+    return o;
+  };
+  std::array<double, 4> z{};
+  const auto &t = series(r, "t_s"), &Q = series(r, "motor.heat_J"), &Qd = series(r, "d.heat_J"), &Qt = series(r, "heat_J");
+  const auto& P = series(r, "motor.heat_power_W");
+  ASSERT_EQ(t.size(), 201u);
+  std::vector<double> Qref;
+  double tz = 0.0, worst = 0.0, worst_p = 0.0;
+  for (size_t row = 0; row < t.size(); ++row) {
+    for (; tz < t[row] - 0.5 * h; tz += h) {
+      const auto k1 = f(z), k2 = f(add(z, 0.5 * h, k1)), k3 = f(add(z, 0.5 * h, k2)), k4 = f(add(z, h, k3));
+      for (size_t j = 0; j < 4; ++j) z[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+    }
+    Qref.push_back(z[2]);
+    worst_p = std::max(worst_p, std::abs(P[row] - R * z[1] * z[1]));
+    ASSERT_NEAR(Qt[row], Q[row] + Qd[row], 1e-12 * std::max(1.0, Qt[row]));
+  }
+  for (size_t row = 0; row < t.size(); ++row) worst = std::max(worst, std::abs(Q[row] - Qref[row]));
+  EXPECT_LT(worst, 1e-7 * Qref.back()) << worst << " J of " << Qref.back();
+  EXPECT_LT(worst_p, 1e-6 * R * 50.0 * 50.0) << "W";  // of the stall loss R (u/R)² = 5 kW
+  EXPECT_GT(Qref.back(), 1000.0);                     // a real loss, not a rounding
+  const EnergyBalance& E = r.hybrid.energy;
+  const double W = z[3] - 0.5 * L * z[1] * z[1];
+  EXPECT_NEAR(E.source_work, W, 1e-7 * W);
+  EXPECT_NEAR(Qt.back(), dissipated(E), 1e-7 * W);
+  std::printf("HeatLosses DC motor %s: heat vs RK4 %.2e J of %.6g J, source work vs W − ½Li² %.2e J\n",
+              GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", worst, Qref.back(), E.source_work - W);
+}
+
 // ---------------------------------------------------------------------------------------------
 // An independent solution of MSL Translational.Examples.HeatLosses, written from MSL's component
 // equations as functions of the state, not from the library's engine. Displacements x from MSL's

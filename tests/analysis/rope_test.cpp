@@ -3,6 +3,7 @@
 // differences, a hoisting run against an RK4 integration written here, the static stretch, the
 // hook's frequency and the slack rope's tightening time against closed forms, on both integrators.
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 #include <Eigen/Core>
@@ -10,6 +11,7 @@
 
 #include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/equilibrium.hpp"
+#include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
@@ -238,6 +240,51 @@ TEST_P(Rope, SlackRopeTightensAtTheClosedFormTime) {
   ASSERT_GE(closed.size(), 1u);
   EXPECT_NEAR(closed[0], t_star, 1e-9 * t_star);
   EXPECT_GT(r.links[0].max, kMass * kG);
+}
+
+// Claim: a winding rope's damping_power_W (the `power` group) is its damper's F_d δ̇ with the stiffness
+// of the current free length. With `flank_law: elasto-backlash` the damper force is capped at the
+// spring force, F_d = min(c e, d δ̇), so the stiffness enters: the test takes F_d = F − c(L_f) e from
+// the rope's load F, c(L_f) = n E A / L_f with L_f = L_f0 − s q_a computed here from the drum's
+// position, e = δ − slack from the deflection columns, and checks the column against F_d δ̇ at every
+// row (to 1e-9 of the largest F δ̇). The drum winds 0.5 m of slack in before the rope tightens (L_f =
+// 9.5 m and less, c 5 % and more above c0), and the cap holds for a while after contact, so the
+// product with the start stiffness c0 = n E A / L_f0 differs from the column by far more than that.
+TEST_P(Rope, DampingPowerUsesTheCurrentFreeLength) {
+  Model m = model_of(hoist(", velocity: 8 rad/s", "", ", slack: 0.5 m, damping: 2e5 N*s/m, flank_law: elasto-backlash",
+                           "loads: {M: {type: constant, body: drum, value: 2600 N*m}}\n"
+                           "stops: {floor: {body: hook, min: 0 m}}\n"
+                           "simulation: {t_end: 0.6 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}\n"));
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m, {}, output_selection({"deflection", "power"}));
+  const auto &qa = series(r, "drum.position_rad"), &delta = series(r, "rope.deflection_m"),
+             &rate = series(r, "rope.deflection_rate_m_s"), &F = series(r, "rope.load_N"),
+             &P = series(r, "rope.damping_power_W"), &Lf = series(r, "rope.fall_length_m");
+  const double slack = 0.5, d = 2e5;
+  double scale = 0.0;
+  for (size_t k = 0; k < F.size(); ++k) scale = std::max(scale, std::abs(F[k] * rate[k]));
+  double worst = 0.0, worst_c0 = 0.0;
+  int capped = 0;
+  for (size_t k = 0; k < F.size(); ++k) {
+    const double L = kL0 - kS * qa[k], c = kN * kEA / L, e = delta[k] - slack;
+    EXPECT_NEAR(Lf[k], L, 1e-12 * kL0);
+    if (e <= 0.0) {  // slack: no load, no loss
+      EXPECT_EQ(F[k], 0.0);
+      EXPECT_EQ(P[k], 0.0);
+      continue;
+    }
+    const double Fd = F[k] - c * e;
+    worst = std::max(worst, std::abs(P[k] - Fd * rate[k]));
+    worst_c0 = std::max(worst_c0, std::abs(P[k] - (F[k] - kN * kEA / kL0 * e) * rate[k]));
+    if (Fd < d * rate[k] - 1e-6 * std::abs(d * rate[k])) ++capped;
+  }
+  ASSERT_GT(scale, 0.0);
+  EXPECT_LT(worst, 1e-9 * scale) << worst << " W of " << scale;
+  EXPECT_GT(capped, 5);                     // the cap held at several rows
+  EXPECT_GT(worst_c0, 1e-3 * scale);        // c0 instead of c(L_f) would fail the check above
+  EXPECT_LT(Lf.back(), kL0 - slack);        // wound in past the slack
+  std::printf("Rope damping power %s: %.2e W of %.3g W (start stiffness would be off by %.2e W), %d capped rows\n",
+              GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", worst, scale, worst_c0, capped);
 }
 
 // Claim (examples/rope-hoist.yaml): the 12 t load resting on the ground lifts off when its 4-fall

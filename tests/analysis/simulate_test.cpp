@@ -159,7 +159,7 @@ simulation: {t_end: 1, dt_out: 2e-5, rtol: 1e-10, atol: 1e-12}
     return T + 0.5 * 5e3 * d1 * d1 + 0.5 * 4e5 * d2 * d2;
   };
   auto power_in = [&](size_t i) {
-    return m.loads[0].evaluate(t[i], state(i, 0), state(i, 1)) * state(i, 1) - 300 * state(i, 5);
+    return test::load_at(m.loads[0], t[i], state(i, 0), state(i, 1)) * state(i, 1) - 300 * state(i, 5);
   };
   auto power_loss = [&](size_t i) {
     double r1 = state(i, 1) / 4 - state(i, 3), r2 = state(i, 3) / 20 - state(i, 5);

@@ -93,5 +93,59 @@ TEST(Report, FigureJsonColumns) {
   EXPECT_THROW(report::figure_json(f), std::invalid_argument);
 }
 
+/// Motor, gearbox and drum; an ideal gear slaves the gearbox to the motor (ρ = 1/4), so compile moves
+/// the shaft's first end and the load M onto the motor (shaft ratio 2/ρ = 8, M reduced to ρ·40 = 10).
+const char* kSlavedGearbox = R"(bodies:
+  motor: {inertia: 2 kg*m^2}
+  gearbox: {inertia: 1 kg*m^2}
+  drum: {inertia: 5 kg*m^2}
+links:
+  g: {type: ideal-gear, between: [motor, gearbox], ratio: 4}
+  shaft: {type: spring, between: [gearbox, drum], ratio: 2, stiffness: 1e4 N*m/rad}
+loads:
+  M: {type: constant, body: gearbox, value: 40 N*m}
+simulation: {t_end: 0.01 s}
+)";
+
+/// The row of table `caption` whose first cell is `name` (empty if none).
+std::vector<std::string> row_of(const Model& m, const std::string& caption, const std::string& name) {
+  for (const report::Table& t : report::model_tables(m))
+    if (t.caption == caption)
+      for (const auto& r : t.rows)
+        if (!r.empty() && r[0] == name) return r;
+  return {};
+}
+
+// Claim: the model tables show a link and a load that compile moved onto the ideal-gear group's
+// master on the body the file names, with the file's ratio and value (not "motor – drum", ratio 8,
+// M = 10), while the compiled model holds the moved ones.
+TEST(Report, MovedElementsShowTheUsersBodies) {
+  const Model m = test::model_text(kSlavedGearbox);
+  ASSERT_EQ(m.dof(), 2);
+  ASSERT_EQ(m.links[0].a, m.body_index("motor"));
+  ASSERT_DOUBLE_EQ(m.links[0].ratio, 8.0);
+  ASSERT_DOUBLE_EQ(m.loads[0].value, 10.0);
+  const auto link = row_of(m, "Links", "shaft"), load = row_of(m, "Loads", "M");
+  ASSERT_GE(link.size(), 4u);
+  EXPECT_EQ(link[2], "gearbox – drum");
+  EXPECT_EQ(link[3], "2");
+  ASSERT_GE(load.size(), 4u);
+  EXPECT_EQ(load[2], "gearbox");
+  EXPECT_EQ(load[3], "M = 40 N·m");
+}
+
+// Claim: `machdyn report` writes those rows into its page (exit 0).
+TEST(Report, CliShowsTheUsersBodies) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
+  const auto model = test::write_temp("slaved-gearbox.yaml", kSlavedGearbox);
+  const auto out = test::temp_dir() / "slaved-gearbox.html";
+  const auto r = test::run_cli("report '" + model + "' --quiet -o '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = test::slurp(out);
+  EXPECT_NE(html.find(">gearbox – drum</td>"), std::string::npos);
+  EXPECT_NE(html.find(">M = 40 N·m</td>"), std::string::npos);
+  EXPECT_EQ(html.find(">motor – drum</td>"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -35,9 +35,9 @@ TEST(SignalFiles, ReadsColumnsByNameWithHeaderUnits) {
                            "type: file, path: rec.csv, time: t, column: torque_kN*m");
   const Load& l = m.loads[0];
   EXPECT_EQ(l.kind, LoadKind::signal);
-  EXPECT_DOUBLE_EQ(l.evaluate(0.25, 0, 0), 1500.0);
-  EXPECT_DOUBLE_EQ(l.evaluate(0.5, 0, 0), 4000.0);  // two rows at one time: a jump
-  EXPECT_DOUBLE_EQ(l.evaluate(3.0, 0, 0), 3000.0);  // held after the last row
+  EXPECT_DOUBLE_EQ(test::load_at(l, 0.25, 0, 0), 1500.0);
+  EXPECT_DOUBLE_EQ(test::load_at(l, 0.5, 0, 0), 4000.0);  // two rows at one time: a jump
+  EXPECT_DOUBLE_EQ(test::load_at(l, 3.0, 0, 0), 3000.0);  // held after the last row
   EXPECT_EQ(m.breakpoints(5.0), (std::vector<double>{0.5, 1.0}));
 }
 
@@ -46,7 +46,7 @@ TEST(SignalFiles, ReadsColumnsByNameWithHeaderUnits) {
 TEST(SignalFiles, SpecUnitsAndSums) {
   const Model m = with_csv("plain", "time;value\n0;1\n2;3\n",
                            "type: sum, terms: [{type: file, path: plain.csv, unit: kN*m, time_unit: min}, 5 N*m]");
-  EXPECT_DOUBLE_EQ(m.loads[0].evaluate(60.0, 0, 0), 2005.0);  // t = 1 min of 2 min: 1 → 3 kN*m halfway
+  EXPECT_DOUBLE_EQ(test::load_at(m.loads[0], 60.0, 0, 0), 2005.0);  // t = 1 min of 2 min: 1 → 3 kN*m halfway
 }
 
 // Claim: a missing file is reported at the spec's `path` with the path looked for, and an unknown

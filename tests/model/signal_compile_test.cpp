@@ -45,20 +45,20 @@ TEST(SignalCompile, EveryKindFromItsFields) {
   ASSERT_EQ(m.loads.size(), 7u);
   const Load& s1 = m.loads[0];
   EXPECT_EQ(s1.kind, LoadKind::signal);
-  EXPECT_NEAR(s1.evaluate(0.6, 0, 0), 1000 + 2000 * std::sin(2 * kPi * 5 * 0.1 + kPi / 2), 1e-9);
-  EXPECT_NEAR(m.loads[1].evaluate(0.7, 0, 0), std::sin(3 * 0.7), 1e-14);
+  EXPECT_NEAR(test::load_at(s1, 0.6, 0, 0), 1000 + 2000 * std::sin(2 * kPi * 5 * 0.1 + kPi / 2), 1e-9);
+  EXPECT_NEAR(test::load_at(m.loads[1], 0.7, 0, 0), std::sin(3 * 0.7), 1e-14);
   const Load& p = m.loads[2];
-  EXPECT_EQ(p.evaluate(1.05, 0, 0), 2000.0);
-  EXPECT_EQ(p.evaluate(1.15, 0, 0), -1000.0);  // width 25 % of 0.4 s = 0.1 s
-  EXPECT_EQ(p.evaluate(1.85, 0, 0), -1000.0);  // after two periods
+  EXPECT_EQ(test::load_at(p, 1.05, 0, 0), 2000.0);
+  EXPECT_EQ(test::load_at(p, 1.15, 0, 0), -1000.0);  // width 25 % of 0.4 s = 0.1 s
+  EXPECT_EQ(test::load_at(p, 1.85, 0, 0), -1000.0);  // after two periods
   EXPECT_EQ(m.loads[3].kind, LoadKind::expression);
-  EXPECT_DOUBLE_EQ(m.loads[3].evaluate(2, 0.5, 4), 6 + 0.5 - 8);
-  EXPECT_DOUBLE_EQ(m.loads[4].evaluate(1, 0, 0), 5);
-  EXPECT_DOUBLE_EQ(m.loads[4].evaluate(2, 0, 0), 6);
+  EXPECT_DOUBLE_EQ(test::load_at(m.loads[3], 2, 0.5, 4), 6 + 0.5 - 8);
+  EXPECT_DOUBLE_EQ(test::load_at(m.loads[4], 1, 0, 0), 5);
+  EXPECT_DOUBLE_EQ(test::load_at(m.loads[4], 2, 0, 0), 6);
   const Load& tab = m.loads[5];
-  EXPECT_DOUBLE_EQ(tab.evaluate(0.25, 0, 0), 500.0);
-  EXPECT_DOUBLE_EQ(tab.evaluate(0.5, 0, 0), 3000.0);  // the jump
-  EXPECT_DOUBLE_EQ(tab.evaluate(1.5, 0, 0), 5000.0);  // extrapolated along the last segment
+  EXPECT_DOUBLE_EQ(test::load_at(tab, 0.25, 0, 0), 500.0);
+  EXPECT_DOUBLE_EQ(test::load_at(tab, 0.5, 0, 0), 3000.0);  // the jump
+  EXPECT_DOUBLE_EQ(test::load_at(tab, 1.5, 0, 0), 5000.0);  // extrapolated along the last segment
   EXPECT_EQ(m.loads[6].kind, LoadKind::constant);     // a constant stays a constant (the fast path)
   EXPECT_EQ(m.loads[6].value, 3000.0);
   EXPECT_EQ(m.breakpoints(10.0), (std::vector<double>{0.5, 1.0, 1.1, 1.4, 1.5, 2.0}));
@@ -74,24 +74,24 @@ TEST(SignalCompile, StateDependentLoadsAndMotorSwitching) {
   pos: {type: table, over: position, body: X, points: [[0, 0], [0.1 m, -50 N]]}
 )");
   const double wn = 1000 * 2 * kPi / 60;
-  EXPECT_NEAR(m.loads[0].evaluate(0, 0, wn), -8.0, 1e-12);
-  EXPECT_NEAR(m.loads[0].evaluate(0, 0, -wn), 8.0, 1e-12);  // always against the motion
-  EXPECT_NEAR(m.loads[1].evaluate(0, 0, 20), -50.0, 1e-12);
-  EXPECT_NEAR(m.loads[1].evaluate(0, 0, -20), 50.0, 1e-12);
-  EXPECT_LT(std::abs(m.loads[1].evaluate(0, 0, 19)), 50.0);
+  EXPECT_NEAR(test::load_at(m.loads[0], 0, 0, wn), -8.0, 1e-12);
+  EXPECT_NEAR(test::load_at(m.loads[0], 0, 0, -wn), 8.0, 1e-12);  // always against the motion
+  EXPECT_NEAR(test::load_at(m.loads[1], 0, 0, 20), -50.0, 1e-12);
+  EXPECT_NEAR(test::load_at(m.loads[1], 0, 0, -20), 50.0, 1e-12);
+  EXPECT_LT(std::abs(test::load_at(m.loads[1], 0, 0, 19)), 50.0);
   const Load& cat = m.loads[2];
   EXPECT_TRUE(cat.switched);
-  EXPECT_EQ(cat.evaluate(0.5, 0, 0), 0.0);                         // contactor open
-  EXPECT_DOUBLE_EQ(cat.evaluate(1.5, 0, 45), 275.0);               // forward, on the curve
-  EXPECT_DOUBLE_EQ(cat.evaluate(2.5, 0, -45), -275.0);             // reversed: the mirror image
-  EXPECT_DOUBLE_EQ(cat.evaluate(2.5, 0, 45), -300.0);              // reversed while turning forward: held end
-  EXPECT_EQ(cat.evaluate(3.5, 0, 45), 0.0);                        // open again
+  EXPECT_EQ(test::load_at(cat, 0.5, 0, 0), 0.0);                         // contactor open
+  EXPECT_DOUBLE_EQ(test::load_at(cat, 1.5, 0, 45), 275.0);               // forward, on the curve
+  EXPECT_DOUBLE_EQ(test::load_at(cat, 2.5, 0, -45), -275.0);             // reversed: the mirror image
+  EXPECT_DOUBLE_EQ(test::load_at(cat, 2.5, 0, 45), -300.0);              // reversed while turning forward: held end
+  EXPECT_EQ(test::load_at(cat, 3.5, 0, 45), 0.0);                        // open again
   EXPECT_EQ(m.breakpoints(10.0), (std::vector<double>{1.0, 2.0, 3.0}));
-  EXPECT_DOUBLE_EQ(m.loads[3].evaluate(0, 0.05, 0), -25.0);
+  EXPECT_DOUBLE_EQ(test::load_at(m.loads[3], 0, 0.05, 0), -25.0);
   EXPECT_EQ(m.loads[3].kind, LoadKind::position_table);
 }
 
-// Claim: ∂M/∂v (slope) and ∂M/∂q (position_slope) of every state-dependent load and of switched and
+// Claim: ∂M/∂v and ∂M/∂q (Load::slopes_at) of every state-dependent load and of switched and
 // reversed motors agree with central finite differences.
 TEST(SignalCompile, LoadSlopesAgreeWithFiniteDifferences) {
   const Model m = compile_text("slopes.yaml", R"(  fan: {type: drag, body: R, coefficient: 0.02}
@@ -108,10 +108,12 @@ TEST(SignalCompile, LoadSlopesAgreeWithFiniteDifferences) {
     for (double t : {1.0, 3.0})
       for (double q : {0.03, 0.2})
         for (double v : {-60.0, -7.0, 12.0, 47.0, 95.0}) {
-          const double fv = (l.evaluate(t, q, v + h) - l.evaluate(t, q, v - h)) / (2 * h);
-          const double fq = (l.evaluate(t, q + h, v) - l.evaluate(t, q - h, v)) / (2 * h);
-          EXPECT_NEAR(l.slope(t, q, v), fv, 1e-5 * std::max(1.0, std::abs(fv))) << l.name << " v " << v << " t " << t;
-          EXPECT_NEAR(l.position_slope(t, q, v), fq, 1e-5 * std::max(1.0, std::abs(fq))) << l.name << " q " << q;
+          const double fv = (test::load_at(l, t, q, v + h) - test::load_at(l, t, q, v - h)) / (2 * h);
+          const double fq = (test::load_at(l, t, q + h, v) - test::load_at(l, t, q - h, v)) / (2 * h);
+          double dq, dv;
+          test::load_slopes(l, t, q, v, &dq, &dv);
+          EXPECT_NEAR(dv, fv, 1e-5 * std::max(1.0, std::abs(fv))) << l.name << " v " << v << " t " << t;
+          EXPECT_NEAR(dq, fq, 1e-5 * std::max(1.0, std::abs(fq))) << l.name << " q " << q;
         }
 }
 

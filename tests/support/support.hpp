@@ -75,6 +75,20 @@ Model model_text(const std::string& yaml, const std::string& file = "test.yaml")
 /// it compiles.
 std::string compile_errors(const std::string& yaml, const std::string& file = "test.yaml");
 
+/// Load l's law M at (t, q, v) of the body it acts on (Load::at on that body alone; a load on one body).
+inline double load_at(const Load& l, double t, double q, double v) {
+  std::vector<double> qs(static_cast<size_t>(l.body) + 1, 0.0), vs(qs);
+  qs.back() = q, vs.back() = v;
+  return l.ratio * l.at(t, qs.data(), vs.data());
+}
+/// ∂M/∂q and ∂M/∂v of load_at() (the Jacobian's entries ρ² ∂M of Load::slopes_at).
+inline void load_slopes(const Load& l, double t, double q, double v, double* dMdq, double* dMdv) {
+  std::vector<double> qs(static_cast<size_t>(l.body) + 1, 0.0), vs(qs);
+  qs.back() = q, vs.back() = v;
+  l.slopes_at(t, qs.data(), vs.data(), dMdq, dMdv);
+  *dMdq *= l.ratio * l.ratio, *dMdv *= l.ratio * l.ratio;
+}
+
 /// The name suffix of a test parameterized over the integrators: "dopri5" or "bdf"
 /// (INSTANTIATE_TEST_SUITE_P(..., ::testing::Values(...), test::IntegratorName{})).
 struct IntegratorName {

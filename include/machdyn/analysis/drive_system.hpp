@@ -121,7 +121,13 @@ class DriveSystem final : public OdeSystem {
   // interface only: their states x_d start at y[drive_offset(d)], their modes are ints.
   [[nodiscard]] int drive_count() const { return nd_; }
   [[nodiscard]] const Element& drive(int d) const { return *drives_[static_cast<size_t>(d)]; }
+  /// Its (first) body; a drive on a joint member without inertia acts on two (drive_place).
   [[nodiscard]] int drive_body(int d) const { return drive_body_[static_cast<size_t>(d)]; }
+  /// Where element d acts: its bodies and weights (model.hpp: Drive::terms, spread).
+  [[nodiscard]] const Drive& drive_place(int d) const { return m_.drives[static_cast<size_t>(d)]; }
+  /// The velocity ω the element sees: Drive::own over the bodies' velocities (its body's velocity
+  /// for a drive on one body).
+  [[nodiscard]] double drive_speed(int d, const double* y) const { return drive_place(d).own(y + n_); }
   [[nodiscard]] int drive_offset(int d) const { return drive_off_[static_cast<size_t>(d)]; }
   [[nodiscard]] int drive_mode(int d) const { return drive_mode_[static_cast<size_t>(d)]; }
   void set_drive_mode(int d, int md) { drive_mode_[static_cast<size_t>(d)] = md; }
@@ -130,13 +136,13 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] int natural_drive_mode(int d, double t, const double* y);
   /// The mode of element d after its event switches it to `now` (Element::settle where it settles).
   [[nodiscard]] int settle_drive_mode(int d, double t, const double* y, int now);
-  /// The torque (or force) of element d on its body, N·m or N.
+  /// The torque (or force) M of element d at its own point (Drive::spread puts it on the bodies), N·m or N.
   [[nodiscard]] double drive_torque(int d, double t, const double* y) const {
-    return drive(d).torque(t, y[n_ + drive_body(d)], y + drive_offset(d), drive_mode(d));
+    return drive(d).torque(t, drive_speed(d, y), y + drive_offset(d), drive_mode(d));
   }
   /// Element d's own output columns at (t, y) (Element::outputs) into out.
   void drive_outputs(int d, double t, const double* y, double* out) const {
-    drive(d).outputs(t, y[n_ + drive_body(d)], y + drive_offset(d), drive_mode(d), out);
+    drive(d).outputs(t, drive_speed(d, y), y + drive_offset(d), drive_mode(d), out);
   }
 
   // Lossy gears (elements/lossy_gear.hpp), in the order of Model::lossy_gears.

@@ -9,12 +9,15 @@
 ///   acceleration: per body  NAME.acceleration_rad_s2|m_s2 = the right-hand side M⁻¹ f at the row
 ///                 (with stuck contacts their constraint forces; not a finite difference)
 ///   power:        per load and per drive  NAME.power_W = M v (W; > 0: it drives the body), and per
-///                 link with damping  NAME.damping_power_W = F_d δ̇ (the link law's dissipation)
+///                 link with damping  NAME.damping_power_W = F_d δ̇ (the link law's dissipation, a
+///                 winding rope's with the stiffness of its current free length)
 ///   heat:         per dissipative element  NAME.heat_power_W = P (W, ≥ 0) and NAME.heat_J = ∫₀ᵗ P dt
 ///                 plus its losses at events (J), and the model's total  heat_power_W, heat_J: friction
 ///                 elements (contact, brake, clutch, freewheel, stop) P = F u (0 while stuck; a stop's
 ///                 impact loss), links with damping P = F_d δ̇ (the gap release loss of a flank that
-///                 opens off the flank), lossy gears P = (X − Y) v_a (analysis/heat.hpp); integrated by
+///                 opens off the flank), lossy gears P = (X − Y) v_a, drives that dissipate P =
+///                 Element::heat_power (a thermal eddy-current brake's −M ω, whose NAME.heat_power_W is
+///                 already its own column; a DC motor's R i²) (analysis/heat.hpp); integrated by
 ///                 3-point Gauss–Legendre quadrature on the dense output of every step piece (exact for
 ///                 loads and speeds of degree ≤ 5 in t; otherwise to the integrator's tolerance, as the
 ///                 energy books' losses, whose sum the total heat_J equals at t_end).

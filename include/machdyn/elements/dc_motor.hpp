@@ -40,6 +40,11 @@ class DcMotor final : public Element {
   void rates(double t, double omega, const double* x, int, double* dx, double) const override {
     dx[0] = current_rate(t, omega, x[0]);
   }
+  /// The armature's copper loss R i² is heat (MSL's DC machines put it on their heat port): by
+  /// u i = R i² + L i di/dt + M ω the supply delivers M ω into the mechanics plus this heat (the
+  /// inductance's ½ L i² is stored, not counted).
+  [[nodiscard]] bool dissipates() const override { return true; }
+  [[nodiscard]] double heat_power(double, double, const double* x, int) const override { return R * x[0] * x[0]; }
   /// ∂M/∂i = k, ∂(di/dt)/∂ω = −k/L, ∂(di/dt)/∂i = −R/L.
   [[nodiscard]] ElementJacobian jacobian(double, double, const double*, int) const override;
   /// Linear model: the quasi-static slope (L → 0) dM/dω = −k²/R as a damper to the ground on

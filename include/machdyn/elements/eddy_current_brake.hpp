@@ -51,6 +51,7 @@ class EddyCurrentBrake final : public Element {
   /// ∂M/∂ω from the law; ∂M/∂T = −(ω/ω_k) ∂M/∂ω · ω_k,ref α (M depends on ω/ω_k only);
   /// ∂T'/∂ω = −(M + ω ∂M/∂ω)/C, ∂T'/∂T = −ω ∂M/∂T / C.
   [[nodiscard]] ElementJacobian jacobian(double t, double omega, const double* x, int) const override;
+  [[nodiscard]] bool dissipates() const override { return true; }
   /// All of −M ω becomes heat in the disc.
   [[nodiscard]] double heat_power(double t, double omega, const double* x, int mode) const override {
     return -torque(t, omega, x, mode) * omega;

@@ -15,6 +15,10 @@ namespace machdyn {
 /// the model (gaps: one per link, contacts and engaged: one per contact or empty).
 LinearModel linearize(const Model& m, const Topology& topo, double t = 0.0, const double* y = nullptr);
 
+/// Adds drive d's linear terms in `mode` (Element::add_linear) to lin: on its body, or, on a joint
+/// member without inertia (Drive::terms), a term c at X spread as ρ_i ρ_j c over its bodies i, j.
+void add_drive_linear(const Drive& d, int mode, LinearModel& lin);
+
 /// The topology the initial state implies: gaps closed where they press (LinkLaw::natural_mode),
 /// contacts stuck where the sliding velocity is zero, else sliding; brakes engaged when applied at t.
 Topology initial_topology(const Model& m, double t = 0.0);

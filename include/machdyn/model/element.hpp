@@ -57,8 +57,13 @@ class Element {
   virtual void rates(double t, double omega, const double* x, int mode, double* dx, double omega_dot) const = 0;
   /// ∂M/∂(ω, x) and ∂x'/∂(ω, x) at (t, ω, x) in `mode`.
   [[nodiscard]] virtual ElementJacobian jacobian(double t, double omega, const double* x, int mode) const = 0;
-  /// The part of −M ω turned into heat inside the element, W (≥ 0; 0 for a source such as a motor,
-  /// whose M ω is work from outside the mechanics). The energy books count it as a loss.
+  /// Whether it turns energy into heat (then it is one of the `heat` outputs' elements with its heat
+  /// NAME.heat_J, and its heat_power is in the model's total heat: analysis/heat.hpp).
+  [[nodiscard]] virtual bool dissipates() const { return false; }
+  /// The heat power inside the element, W (≥ 0): the part of −M ω it turns into heat (a brake), or
+  /// the loss of its own circuit (a DC motor's R i²); 0 for an ideal source. The energy books count it
+  /// as a loss and its source work as M ω + heat_power (the work its supply delivers into the
+  /// mechanics and the heat), so their dissipated energy is the total of the heat outputs.
   [[nodiscard]] virtual double heat_power(double /*t*/, double /*omega*/, const double* /*x*/, int /*mode*/) const {
     return 0.0;
   }

@@ -74,6 +74,9 @@ struct Link {
   LinkKind kind = LinkKind::spring;
   int a = kGround;     ///< body index or kGround
   int b = kGround;     ///< body index or kGround
+  /// The ends as the file names them, for display (report, Python): compile may move an end onto an
+  /// ideal-gear group's master or a joint's other members (RigidSlave). Empty: the name of a, b.
+  std::string given_a, given_b;
   double ratio = 1.0;  ///< i, nonzero; dimension of q_a / q_b
   double c = 0.0;      ///< stiffness, N·m/rad or N/m (in b's coordinate), >= 0
   double d = 0.0;      ///< damping, N·m·s/rad or N·s/m, >= 0
@@ -201,6 +204,7 @@ struct FrictionContact {
   double restitution = 0.0;          ///< e in [0, 1]
   int a = 0;                         ///< body index
   int b = kGround;                   ///< body index or kGround
+  std::string given_a, given_b;      ///< a, b as the file names them (display; as Link::given_a)
   double static_limit = 0.0;         ///< F_s0, N or N·m, > 0
   std::vector<double> speeds;        ///< sliding speeds of the kinetic table (ascending from 0), or empty
   std::vector<double> kinetic;       ///< F_k0: one value (constant; μ_c with Stribeck) or one per speed
@@ -275,7 +279,7 @@ struct Load {
   /// ρ ≠ 1 when the load was given on a body slaved by ideal gears (q_slave = ρ q_body, RigidSlave):
   /// the law sees the slave's own position and velocity and acts on `body` reduced by the ratio,
   ///   M_body(t, q, v) = ρ M(t, ρ q, ρ v)     (virtual work: M δq_slave = ρ M δq_body)
-  /// evaluate(), slope() and position_slope() apply it (slopes ρ² ∂M). A constant load is reduced
+  /// at(), slopes_at() and spread() apply it (the Jacobian's entries ρ² ∂M). A constant load is reduced
   /// by compile into `value` instead (ρ stays 1).
   double ratio = 1.0;
   /// A load on a joint member X without inertia (model/compile_joint.cpp, RigidSlave with two masters)
@@ -285,16 +289,13 @@ struct Load {
   /// body2 = -1: one body, the form above. Every consumer goes through own(), at() and spread().
   int body2 = -1;
   double ratio2 = 0.0;
+  /// The body as the file names it, for display (report, Python): `body` may be a master the load
+  /// was moved to. Empty: bodies[body]'s name.
+  std::string given_body;
   Signal on = Signal::constant(1.0);         ///< motors: contactor, 0 or 1
   Signal direction = Signal::constant(1.0);  ///< motors: +1 or −1
   bool switched = false;                     ///< motors: `on` or `direction` is not the constant 1
 
-  /// The load at time t for a body at position q moving with velocity v.
-  [[nodiscard]] double evaluate(double t, double q, double v) const;
-  /// ∂M/∂v, for the Jacobian.
-  [[nodiscard]] double slope(double t, double q, double v) const;
-  /// ∂M/∂q, for the Jacobian (nonzero for position tables and expressions in q).
-  [[nodiscard]] double position_slope(double t, double q, double v) const;
   /// Times in (t0, t1) where M jumps or has a kink in t (model/signal.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;
 
@@ -320,6 +321,21 @@ struct Drive {
   std::string name;
   int body = 0;
   std::shared_ptr<const Element> law;  ///< never null in a compiled model; shared, immutable
+  /// A drive on a joint member X without inertia (model/compile_joint.cpp) acts on two bodies as a
+  /// Load does: the element sees ω_X = ρ v[body] + ρ₂ v[body2] and by virtual work M δq_X the bodies
+  /// get f_body += ρ M, f_body2 += ρ₂ M. ρ = 1, body2 = −1: on `body` itself. Every consumer goes
+  /// through own(), spread() and terms().
+  double ratio = 1.0;
+  int body2 = -1;
+  double ratio2 = 0.0;
+  std::string given_body;  ///< the body as the file names it (display; as Load::given_body)
+
+  /// ρ x[body] + ρ₂ x[body2]: the element's own velocity (or acceleration) from the bodies' x.
+  [[nodiscard]] double own(const double* x) const;
+  /// Adds ρ M, ρ₂ M to f.
+  void spread(double M, double* f) const;
+  /// Its bodies and weights into b[2], w[2]; returns how many (1 or 2).
+  int terms(int* b, double* w) const;
 
   /// Number of continuous states (Element::states).
   [[nodiscard]] int states() const;
@@ -426,6 +442,8 @@ struct EliminatedJoint {
   std::vector<double> link_weight;
   std::vector<int> contacts;         ///< contacts and joints on X: f_X −= w_c f_c (the weight w_c)
   std::vector<double> contact_weight;
+  std::vector<int> drives;           ///< drives on X (indices into Model::drives): f_X += weight · M
+  std::vector<double> drive_weight;
 };
 
 /// The torque an ideal gear merged by compile passes (model/compile_rigid.cpp): the gear between A
@@ -531,6 +549,16 @@ Model model_after_releases(const Model& m, std::size_t count);
 /// Whether link l is a rope with falls (n > 1) or a free length (EA > 0): its runs add the columns
 /// "NAME.fall_tension_N" (T = F/n) and, with a length, "NAME.fall_length_m" (L_f).
 [[nodiscard]] inline bool is_rope_with_falls(const Link& l) { return l.tension_only && (l.falls > 1 || l.EA > 0.0); }
+
+/// The name of body `body` for display, or `given` (the name the file wrote, Link::given_a etc.) when
+/// not empty; "ground" for kGround.
+std::string shown_body(const Model& m, int body, const std::string& given);
+/// Link l's ratio as the file gives it, for display beside the given names: compile divides it by ρ
+/// when its first end is a body an ideal gear slaves (RigidSlave), this multiplies it back.
+double shown_ratio(const Model& m, const Link& l);
+/// A constant load's value as the file gives it, for display: compile reduces it by ρ when its body
+/// is slaved (Load::ratio), this divides it back. Other kinds: Load::value.
+double shown_value(const Model& m, const Load& ld);
 
 /// Unit suffixes for output columns: "rad" or "m", "rad/s" or "m/s", "N*m" or "N".
 const char* position_unit(BodyKind k);
