@@ -146,6 +146,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       const PrescribedMotionLaw& k = sys_.motion(j);
       y_[static_cast<size_t>(n_ + k.body)] = k.snapped_velocity(t, y_[static_cast<size_t>(n_ + k.body)]);
     }
+    // A lossy gear's free side exactly on v_a = i v_b of its prescribed side (the same rounding off).
+    for (int g = 0; g < ng_ && sys_.motion_count() > 0; ++g) {
+      const LossyGearLaw& k = sys_.lossy_gear(g);
+      double* v = y_.data() + n_;
+      if (m_.bodies[static_cast<size_t>(k.a)].motion != MotionKind::free) v[k.b] = v[k.a] / k.i;
+      else if (m_.bodies[static_cast<size_t>(k.b)].motion != MotionKind::free) v[k.a] = k.i * v[k.b];
+    }
     std::vector<int> own;
     int jump = -1;
     for (int f : fired) {
