@@ -2,7 +2,9 @@
 // one body of a worm gear, the load on the other. The torques X, Y, the mode, the heat and the source's
 // force against closed forms derived in each test's comment, on both integrators; the holding torque
 // at rest; and the located errors of what stays refused.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -78,6 +80,7 @@ simulation: {t_end: 3.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   const auto& wB = series(r, "B.velocity_rad_s");
   ASSERT_GT(t.size(), 3000u);
   double work = 0.0;  // ∫ R v_a dt of the rows (trapezoid), against the closed form below
+  double e_x = 0.0, e_t = 0.0;
   for (size_t k = 0; k < t.size(); ++k) {
     if (k > 0) work += 0.5 * (t[k] - t[k - 1]) * (R[k] * va(t[k]) + R[k - 1] * va(t[k - 1]));
     if (std::abs(std::remainder(t[k], kPi / 2.0)) < 1e-6) continue;  // at rest for an instant: X jumps
@@ -86,6 +89,7 @@ simulation: {t_end: 3.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
     EXPECT_NEAR(tb[k], -i * Y(t[k]), 1e-6 * i) << "t = " << t[k];
     EXPECT_NEAR(loss[k], (X(t[k]) - Y(t[k])) * va(t[k]), 1e-4) << "t = " << t[k];
     EXPECT_NEAR(R[k], IA * a + X(t[k]), 1e-6) << "t = " << t[k];
+    e_x = std::max({e_x, std::abs(ta[k] - X(t[k])), std::abs(R[k] - IA * a - X(t[k]))});
     EXPECT_NEAR(wB[k], va(t[k]) / i, 1e-7) << "t = " << t[k];
     EXPECT_EQ(md[k], mode(t[k])) << "t = " << t[k];
   }
@@ -97,6 +101,7 @@ simulation: {t_end: 3.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   for (size_t k = 0; k < want.size(); ++k) {
     EXPECT_NEAR(ch[k].first, want[k].first, 1e-8);
     EXPECT_EQ(ch[k].second, want[k].second);
+    e_t = std::max(e_t, std::abs(ch[k].first - want[k].first));
   }
   const double T = 3.5;
   auto P = [](double s) { return -250.0 * std::cos(4.0 * s) - 150.0 * std::cos(2.0 * s); };
@@ -106,6 +111,73 @@ simulation: {t_end: 3.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   EXPECT_NEAR(r.hybrid.energy.friction_loss, heat, 1e-7 * heat);
   const double W_src = 0.5 * IA * va(T) * va(T) + P(T) - P(0) + heat;
   EXPECT_NEAR(work, W_src, 1e-5 * W_src);  // the trapezoid's error on the 1 ms rows: ~1e-7 relative
+  EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-8 * r.hybrid.energy.source_work);
+  std::printf("PrescribedGear worm %s: X, R %.2e N*m; switches %.2e s; heat %.6f J vs %.6f; source work %.4f J vs "
+              "%.4f\n", GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", e_x, e_t,
+              r.hybrid.energy.friction_loss, heat, work, W_src);
+}
+
+// Claim: with bearing friction the prescribed worm follows MSL's quadrant equations (the lossTable form,
+// written here without the library's split of the bearing torques): in A's coordinate
+//   a drives:  Y = η_mf1 X − s τ_bf1  ⇒  X = (Y + s τ_bf1)/η_mf1
+//   b drives:  X = η_mf2 (Y + s τ_bf2)
+// and a drives while s (X − s τ_bf,a) > 0, τ_bf,a = η_mf2 (τ_bf1 − τ_bf2)/(η_mf1 η_mf2 − 1) (MSL's
+// tau_bf_a). The model of the first test with τ_bf1 = 0.5, τ_bf2 = 0.8 N·m: τ_bf,a = 0.1875 N·m, and the
+// side changes where Y = −s τ_bf,b, τ_bf,b = τ_bf1 − η_mf1 τ_bf,a = 0.33125 N·m:
+//   t1 = acos(−3.33125/20)/2 (forward),  t2 = π − acos(−2.66875/20)/2 (backward).
+// Heat: (X − Y) v_a per row; its integral Σ_phases (1/η_mf1 − 1)[P] + τ_bf1/η_mf1 [S], or
+// (η_mf2 − 1)[P] + η_mf2 τ_bf2 [S], with P as in the first test and S = ∫ s v_a dt = ∫ |v_a| dt.
+// Rows to 1e-6 N·m, switch instants to 1e-8 s, heat to 1e-7 relative.
+TEST_P(PrescribedGear, BearingFrictionFollowsMslsQuadrantEquations) {
+  const SimulationResult r = run(R"(bodies:
+  A: {inertia: 0.02 kg*m^2, motion: {speed: {type: sine, amplitude: 100 rad/s, frequency: 2 rad/s}}}
+  B: {inertia: 40 kg*m^2}
+links:
+  G: {type: lossy-gear, between: [A, B], ratio: 20, efficiency: 0.9, efficiency_reverse: 0.4,
+      bearing_friction: 0.5 N*m, bearing_friction_reverse: 0.8 N*m}
+loads:
+  MB: {type: constant, body: B, value: -60 N*m}
+simulation: {t_end: 3 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)", GetParam());
+  const double eta1 = 0.9, eta2 = 0.4, bf1 = 0.5, bf2 = 0.8;
+  const double bfa = eta2 * (bf1 - bf2) / (eta1 * eta2 - 1.0);
+  auto Y = [](double t) { return 20.0 * std::cos(2.0 * t) + 3.0; };
+  auto va = [](double t) { return 100.0 * std::sin(2.0 * t); };
+  auto a_drives = [&](double t) {
+    const double s = va(t) > 0.0 ? 1.0 : -1.0, Xa = (Y(t) + s * bf1) / eta1;
+    return s * (Xa - s * bfa) > 0.0;
+  };
+  auto X = [&](double t) {
+    const double s = va(t) > 0.0 ? 1.0 : -1.0;
+    return a_drives(t) ? (Y(t) + s * bf1) / eta1 : eta2 * (Y(t) + s * bf2);
+  };
+  const auto& t = series(r, "t_s");
+  const auto& ta = series(r, "G.torque_a_N_m");
+  const auto& loss = series(r, "G.loss_power_W");
+  ASSERT_GT(t.size(), 2000u);
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (std::abs(std::remainder(t[k], kPi / 2.0)) < 1e-6) continue;
+    EXPECT_NEAR(ta[k], X(t[k]), 1e-6) << "t = " << t[k];
+    EXPECT_NEAR(loss[k], (X(t[k]) - Y(t[k])) * va(t[k]), 1e-4) << "t = " << t[k];
+  }
+  const double bfb = bf1 - eta1 * bfa;
+  const double t1 = std::acos((-bfb - 3.0) / 20.0) / 2.0, t2 = kPi - std::acos((bfb - 3.0) / 20.0) / 2.0;
+  const auto ch = gear_changes(r);
+  const std::vector<std::pair<double, std::string>> want = {
+      {t1, "forward_b_drives"}, {kPi / 2, "backward"}, {t2, "backward_b_drives"}};
+  ASSERT_EQ(ch.size(), want.size());
+  for (size_t k = 0; k < want.size(); ++k) {
+    EXPECT_NEAR(ch[k].first, want[k].first, 1e-8);
+    EXPECT_EQ(ch[k].second, want[k].second);
+  }
+  auto P = [](double x) { return -250.0 * std::cos(4.0 * x) - 150.0 * std::cos(2.0 * x); };
+  auto A = [](double x) { return -50.0 * std::cos(2.0 * x); };  // ∫ v_a dt
+  const double fa = 1.0 / eta1 - 1.0, fb = eta2 - 1.0, T = 3.0;
+  const double heat = fa * (P(t1) - P(0)) + bf1 / eta1 * (A(t1) - A(0)) +                 // forward, a drives
+                      fb * (P(kPi / 2) - P(t1)) + eta2 * bf2 * (A(kPi / 2) - A(t1)) +     // forward, b drives
+                      fa * (P(t2) - P(kPi / 2)) - bf1 / eta1 * (A(t2) - A(kPi / 2)) +     // backward, a drives
+                      fb * (P(T) - P(t2)) - eta2 * bf2 * (A(T) - A(t2));                   // backward, b drives
+  EXPECT_NEAR(r.hybrid.energy.friction_loss, heat, 1e-7 * heat);
   EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-8 * r.hybrid.energy.source_work);
 }
 
