@@ -1,7 +1,8 @@
 // A lossy gear with a prescribed side (elements/lossy_gear.hpp "Prescribed side"): a speed source on
 // one body of a worm gear, the load on the other. The torques X, Y, the mode, the heat and the source's
-// force against closed forms derived in each test's comment, on both integrators; the holding torque
-// at rest; and the located errors of what stays refused.
+// force against closed forms derived in each test's comment, on both integrators (also with bearing
+// friction, against MSL's quadrant equations, and with the motion reaching the gear through an ideal
+// gear); the holding torque at rest; the shipped example; the located errors of what stays refused.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -115,6 +116,39 @@ simulation: {t_end: 3.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   std::printf("PrescribedGear worm %s: X, R %.2e N*m; switches %.2e s; heat %.6f J vs %.6f; source work %.4f J vs "
               "%.4f\n", GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", e_x, e_t,
               r.hybrid.energy.friction_loss, heat, work, W_src);
+}
+
+// Claim: the prescribed motion may reach the gear through an ideal gear. The first test's worm split in
+// two: a motor (I = 0.01 kg·m², the prescribed speed 100 sin 2t) turns the worm (I = 0.04 kg·m²) through
+// an ideal gear q_motor = 2 q_worm, the lossy gear q_worm = 10 q_drum. In the motor's coordinate the
+// group's inertia is 0.01 + 0.04/4 = 0.02 kg·m² and the lossy gear's ratio 2 · 10 = 20: the first test's
+// model, so X, Y are its closed forms; the gear's torque at the worm is X in the worm's coordinate,
+// 2 X, and the motor's source torque 0.02 a + X. Rows to 1e-6 N·m.
+TEST_P(PrescribedGear, MotionThroughAnIdealGearIsTheSameGear) {
+  const SimulationResult r = run(R"(bodies:
+  motor: {inertia: 0.01 kg*m^2, motion: {speed: {type: sine, amplitude: 100 rad/s, frequency: 2 rad/s}}}
+  worm: {inertia: 0.04 kg*m^2}
+  B: {inertia: 40 kg*m^2}
+links:
+  pre: {type: ideal-gear, between: [motor, worm], ratio: 2}
+  G: {type: lossy-gear, between: [worm, B], ratio: 10, efficiency: 0.9, efficiency_reverse: 0.4}
+loads:
+  MB: {type: constant, body: B, value: -60 N*m}
+simulation: {t_end: 3 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)", GetParam());
+  auto Y = [](double t) { return 20.0 * std::cos(2.0 * t) + 3.0; };
+  auto va = [](double t) { return 100.0 * std::sin(2.0 * t); };
+  auto X = [&](double t) { return va(t) * Y(t) > 0.0 ? Y(t) / 0.9 : 0.4 * Y(t); };
+  const auto& t = series(r, "t_s");
+  const auto& ta = series(r, "G.torque_a_N_m");
+  const auto& R = series(r, "motor.motion_torque_N_m");
+  ASSERT_GT(t.size(), 2000u);
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (std::abs(std::remainder(t[k], kPi / 2.0)) < 1e-6) continue;
+    EXPECT_NEAR(ta[k], 2.0 * X(t[k]), 1e-6) << "t = " << t[k];
+    EXPECT_NEAR(R[k], 0.02 * 200.0 * std::cos(2.0 * t[k]) + X(t[k]), 1e-6) << "t = " << t[k];
+  }
+  EXPECT_EQ(gear_changes(r).size(), 3u);  // t1, π/2, t2 of the first test
 }
 
 // Claim: with bearing friction the prescribed worm follows MSL's quadrant equations (the lossTable form,
