@@ -640,7 +640,7 @@ void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fr
     gear_fa_[gi] = f[k.a];
     gear_fb_[gi] = f[k.b];
     const double va = y[n_ + k.a];
-    if (const int j = gear_motion_[gi]; j >= 0) [[unlikely]]
+    if (gear_motion_[gi] >= 0) [[unlikely]]  // a prescribed side (elements/lossy_gear.hpp)
       gear_t_[gi] = given_gear_torques(g, t, va, f);
     else
       gear_t_[gi] = k.solve(gear_mode_[gi], f[k.a], f[k.b], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
