@@ -192,6 +192,16 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   gear_t_.assign(static_cast<size_t>(ng_), {});
   gear_fa_.assign(static_cast<size_t>(ng_), 0.0);
   gear_fb_.assign(static_cast<size_t>(ng_), 0.0);
+  // A prescribed side (elements/lossy_gear.hpp "Prescribed side"; compile allows at most one).
+  gear_motion_.assign(static_cast<size_t>(ng_), -1);
+  gear_b_given_.assign(static_cast<size_t>(ng_), 0);
+  for (int g = 0; g < ng_; ++g)
+    for (size_t j = 0; j < motions_.size(); ++j) {
+      const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+      if (motions_[j].body != k.a && motions_[j].body != k.b) continue;
+      gear_motion_[static_cast<size_t>(g)] = static_cast<int>(j);
+      gear_b_given_[static_cast<size_t>(g)] = motions_[j].body == k.b;
+    }
   locks_ = machdyn::gear_locks(gears_, contacts_);
   // Clutches on a gear's body (analysis/gear_clutch.hpp): the stuck contacts then see the gears' law.
   gear_of_body_.assign(static_cast<size_t>(n_), -1);
@@ -566,7 +576,7 @@ template <bool kMach>
 __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, const double* y, double* acc, double* fc,
                                                                        double* src, double* fric, double* damp) {
   forces<kMach>(t, y, acc, fc, src, fric, damp);
-  if (ng_ > 0) apply_gears(y, acc, fric);
+  if (ng_ > 0) apply_gears(t, y, acc, fric);
   if constexpr (kMach)
     if (!motions_.empty()) motion_forces(t, y + n_, acc, src);
   const double* im = kMach ? im_.data() : inv_mass_.data();
@@ -623,25 +633,39 @@ void DriveSystem::enforce_motions(double t, double* acc) const {
   for (const PrescribedMotionLaw& k : motions_) acc[k.body] = k.acceleration(t);
 }
 
-void DriveSystem::apply_gears(const double* y, double* f, double* p_fric) {
+void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fric) {
   for (int g = 0; g < ng_; ++g) {
     const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
     const auto gi = static_cast<size_t>(g);
     gear_fa_[gi] = f[k.a];
     gear_fb_[gi] = f[k.b];
     const double va = y[n_ + k.a];
-    gear_t_[gi] = k.solve(gear_mode_[gi], f[k.a], f[k.b], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
-                          1.0 / inv_mass_[static_cast<size_t>(k.b)], va);
+    if (gear_motion_[gi] >= 0) [[unlikely]]  // a prescribed side (elements/lossy_gear.hpp)
+      gear_t_[gi] = given_gear_torques(g, t, va, f);
+    else
+      gear_t_[gi] = k.solve(gear_mode_[gi], f[k.a], f[k.b], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
+                            1.0 / inv_mass_[static_cast<size_t>(k.b)], va);
     k.apply(gear_t_[gi], f);
     if (p_fric) *p_fric += LossyGearLaw::loss_power(gear_t_[gi], va);
   }
+}
+
+LossyGearLaw::Torques DriveSystem::given_gear_torques(int g, double t, double va, const double* f) const {
+  // The prescribed body's inertia is its motion's (inv_mass_ is 0 there); a = i a_b when b is given.
+  const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+  const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[static_cast<size_t>(g)])];
+  const bool bg = gear_b_given_[static_cast<size_t>(g)] != 0;
+  const double acc = bg ? k.i * p.acceleration(t) : p.acceleration(t);
+  const double Ia = bg ? inertia_[static_cast<size_t>(k.a)] : p.inertia, Ib = bg ? p.inertia : inertia_[static_cast<size_t>(k.b)];
+  return k.solve_given(gear_mode_[static_cast<size_t>(g)], bg, acc, f[k.a], f[k.b], Ia, Ib, va);
 }
 
 void DriveSystem::enforce_gears(double* acc) const {
   // The rounding of (F_a − X)/I_a removed: the two bodies stay exactly on v_a = i v_b.
   for (int g = 0; g < ng_; ++g) {
     const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
-    const double a = gear_mode_[static_cast<size_t>(g)] == GearMode::stuck ? 0.0 : gear_t_[static_cast<size_t>(g)].acc;
+    const auto gi = static_cast<size_t>(g);
+    const double a = gear_mode_[gi] == GearMode::stuck && gear_motion_[gi] < 0 ? 0.0 : gear_t_[gi].acc;
     acc[k.a] = a;
     acc[k.b] = a / k.i;
   }
@@ -651,6 +675,13 @@ GearMode DriveSystem::natural_gear_mode(int g, double t, const double* y, bool s
   evaluate(t, y, f_.data(), fc_.data());
   const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
   const double Fa = gear_fa_[static_cast<size_t>(g)], Fb = gear_fb_[static_cast<size_t>(g)];
+  if (gear_motion_[static_cast<size_t>(g)] >= 0) {  // a prescribed side: the mode from a(t) and v_a
+    const LossyGearLaw::Torques T = gear_t_[static_cast<size_t>(g)];  // T.acc = a in every mode
+    const bool bg = gear_b_given_[static_cast<size_t>(g)] != 0;
+    const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[static_cast<size_t>(g)])];
+    return k.decide_given(bg, T.acc, Fa, Fb, bg ? inertia_[static_cast<size_t>(k.a)] : p.inertia,
+                          bg ? p.inertia : inertia_[static_cast<size_t>(k.b)], y[n_ + k.a]);
+  }
   return k.decide(Fa, Fb, 1.0 / inv_mass_[static_cast<size_t>(k.a)], 1.0 / inv_mass_[static_cast<size_t>(k.b)],
                   y[n_ + k.a], strict ? 0.0 : k.allowance(Fa, Fb));
 }
@@ -976,6 +1007,10 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     for (int gi = 0; gi < ng_; ++gi) {
       const LossyGearLaw& k = gears_[static_cast<size_t>(gi)];
       const auto u = static_cast<size_t>(gi);
+      if (gear_motion_[u] >= 0) [[unlikely]] {
+        k.events_given(gear_mode_[u], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
+        continue;
+      }
       k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
                1.0 / inv_mass_[static_cast<size_t>(k.b)], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
     }

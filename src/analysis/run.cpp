@@ -146,6 +146,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       const PrescribedMotionLaw& k = sys_.motion(j);
       y_[static_cast<size_t>(n_ + k.body)] = k.snapped_velocity(t, y_[static_cast<size_t>(n_ + k.body)]);
     }
+    // A lossy gear's free side exactly on v_a = i v_b of its prescribed side (the same rounding off).
+    for (int g = 0; g < ng_ && sys_.motion_count() > 0; ++g) {
+      const LossyGearLaw& k = sys_.lossy_gear(g);
+      double* v = y_.data() + n_;
+      if (m_.bodies[static_cast<size_t>(k.a)].motion != MotionKind::free) v[k.b] = v[k.a] / k.i;
+      else if (m_.bodies[static_cast<size_t>(k.b)].motion != MotionKind::free) v[k.a] = k.i * v[k.b];
+    }
     std::vector<int> own;
     int jump = -1;
     for (int f : fired) {
@@ -351,7 +358,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (!m_.merged_gears.empty()) {
       if (!sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
-      for (const auto& g : m_.merged_gears) put(merged_gear_torque(g, t, y));
+      for (size_t k = 0; k < m_.merged_gears.size(); ++k) put(merged_gear_torque(k, t, y));
     }
     if (heat_.any_thermal()) {
       heat_.at(step_, t, y, nullptr, nullptr, temperature_.data());
@@ -397,9 +404,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// τ_B of merged ideal gear g (model.hpp: MergedGear) from its side S's equation of motion:
   /// ρ_E τ_E = I_S q̈_M − f_S, f_S the loads on S and the first ends of S's links (−F j_a and a winding
   /// rope's −W, as the drive system applies them), in the master's coordinate; acc_ holds q̈.
-  double merged_gear_torque(const MergedGear& g, double t, const double* y) const {
+  double merged_gear_torque(size_t gi, double t, const double* y) const {
+    const MergedGear& g = m_.merged_gears[gi];
     const int M = g.body;
     double f = 0.0;
+    for (const int d : merged_drives_[gi]) {  // drives on S's slaves: their share ρ M on the master
+      int b[2];
+      double w[2];
+      const double Md = sys_.drive_torque(d, t, y);
+      for (int i = 0, nt = sys_.drive_place(d).terms(b, w); i < nt; ++i)
+        if (b[i] == M) f += w[i] * Md;
+    }
     for (const int k : g.loads) {  // the load's share on M (model.hpp: Load::terms)
       const Load& ld = now().loads[static_cast<size_t>(k)];
       int b[2];
@@ -918,6 +933,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> p_, q_, temperature_;  // heat power, heat, temperatures at an output row
   SimulationResult& out_;
   DriveSystem sys_;
+  /// Per merged gear, the drives on its side S (by the body the file names; S never holds the master).
+  std::vector<std::vector<int>> merged_drives_ = [this] {
+    std::vector<std::vector<int>> out;
+    for (const MergedGear& g : m_.merged_gears) {
+      out.emplace_back();
+      for (size_t d = 0; d < m_.drives.size(); ++d)
+        if (std::find(g.side.begin(), g.side.end(), m_.drives[d].given_body) != g.side.end())
+          out.back().push_back(static_cast<int>(d));
+    }
+    return out;
+  }();
   detail::MachineJumps jumps_;
   detail::Heat heat_;
   int n_, N_, nl_, nc_, nd_, ng_;

@@ -134,6 +134,66 @@ GearMode LossyGearLaw::decide(double Fa, double Fb, double Ia, double Ib, double
   return rolling(s, Fa, Fb, Ia, Ib, va);
 }
 
+namespace {
+
+/// X̃ from Ỹ in direction s (header "Prescribed side"): a drives while s Ỹ > 0 (X̃ = Ỹ/η_mf1), else
+/// b (X̃ = η_mf2 Ỹ). Increasing in Ỹ.
+double mesh_in(int s, const LossyGearLaw::Coefficients& c, double Yt) {
+  return s * Yt > 0.0 ? Yt / c.eta1 : c.eta2 * Yt;
+}
+/// Its inverse, Ỹ from X̃: a drives while s X̃ > 0 (Ỹ = η_mf1 X̃), else b (Ỹ = X̃/η_mf2; η_mf2 > 0).
+double mesh_out(int s, const LossyGearLaw::Coefficients& c, double Xt) {
+  return s * Xt > 0.0 ? c.eta1 * Xt : Xt / c.eta2;
+}
+
+}  // namespace
+
+LossyGearLaw::Torques LossyGearLaw::solve_given(GearMode md, bool b_given, double acc, double Fa, double Fb, double Ia,
+                                                double Ib, double va) const {
+  const double Jb = Ib / (i * i), Fbp = Fb / i;
+  const Coefficients c = at(va);
+  Torques T;
+  T.acc = acc;
+  const int s = direction(md);
+  if (!b_given) {  // a prescribed: b's equation gives Y, the mode (or the locking range) X
+    T.Y = Jb * acc - Fbp;
+    if (s != 0) {
+      T.X = mesh_in(s, c, T.Y + s * c.bf_b) + s * c.bf_a;
+    } else {  // X_s(Y) = X̃ + s τ_bf,a of the rolling relation in s; the source's least force
+      const double lo = mesh_in(-1, c, T.Y - c.bf_b) - c.bf_a, hi = mesh_in(+1, c, T.Y + c.bf_b) + c.bf_a;
+      T.X = std::clamp(Fa - Ia * acc, lo, hi);
+    }
+    return T;
+  }
+  T.X = Fa - Ia * acc;  // b prescribed: a's equation gives X, the mode (or the locking range) Y
+  if (s != 0) {
+    T.Y = mesh_out(s, c, T.X - s * c.bf_a) - s * c.bf_b;
+  } else {  // Y_s(X) = X_s⁻¹(X): Y_+ ≤ Y_− (X_s increasing, X_− ≤ X_+)
+    const double lo = mesh_out(+1, c, T.X - c.bf_a) - c.bf_b, hi = mesh_out(-1, c, T.X + c.bf_a) + c.bf_b;
+    T.Y = std::clamp(Jb * acc - Fbp, lo, hi);
+  }
+  return T;
+}
+
+GearMode LossyGearLaw::decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
+                                    double va) const {
+  const int s = va > 0.0 ? 1 : va < 0.0 ? -1 : acc > 0.0 ? 1 : acc < 0.0 ? -1 : 0;
+  if (s == 0) return GearMode::stuck;
+  const Coefficients c = at(va);
+  // The known torque decides the side (header): s Ỹ, resp. s X̃, > 0: a drives.
+  const double known = b_given ? Fa - Ia * acc - s * c.bf_a : Ib / (i * i) * acc - Fb / i + s * c.bf_b;
+  const bool bd = s * known < 0.0;
+  return s > 0 ? (bd ? GearMode::forward_b : GearMode::forward) : (bd ? GearMode::backward_b : GearMode::backward);
+}
+
+void LossyGearLaw::events_given(GearMode md, double va, const Torques& T, double* ev) const {
+  if (direction(md) == 0) {
+    ev[0] = ev[1] = 1.0;
+    return;
+  }
+  events(md, 0.0, 0.0, 0.0, 0.0, va, T, ev);  // rolling: its events read only v_a and the torques
+}
+
 void LossyGearLaw::add_linear(LinearModel& lin) const {
   lin.G.push_back({{a, 1.0}, {b, -i}});
   lin.constraint_names.push_back(spec->name);

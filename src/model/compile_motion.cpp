@@ -72,14 +72,33 @@ void check_motion_elements(const Model& m, Diagnostics& diag) {
 }
 
 void check_motion_lossy(const Model& m, Diagnostics& diag) {
-  // A lossy gear decides its mode from the forces on both its bodies (elements/lossy_gear.hpp); with
-  // one body's acceleration given, that decision is another law, not written yet.
-  for (const auto& g : m.lossy_gears)
-    for (const int i : {g.a, g.b})
-      if (prescribed(m, i))
-        diag.error(m.where(g.name), fmt::format("lossy gear '{}': body '{}' has a prescribed motion ('motion', its own "
-                                                "or through ideal gears), not supported yet", g.name,
-                                                m.bodies[static_cast<size_t>(i)].name));
+  // A lossy gear with one prescribed side (elements/lossy_gear.hpp "Prescribed side"): its torques follow
+  // from the given motion. Refused: both sides given (two motions for one degree of freedom), a given b
+  // with a self-locking reverse efficiency (b could not drive), friction elements on its bodies (their
+  // decision with the gear at rest is another law).
+  for (const auto& g : m.lossy_gears) {
+    const bool pa = prescribed(m, g.a), pb = prescribed(m, g.b);
+    const std::string& A = m.bodies[static_cast<size_t>(g.a)].name;
+    const std::string& B = m.bodies[static_cast<size_t>(g.b)].name;
+    if (pa && pb) {
+      diag.error(m.where(g.name), fmt::format("lossy gear '{}': both '{}' and '{}' have a prescribed motion ('motion', "
+                                              "their own or through ideal gears); the gear ties them, give one only",
+                                              g.name, A, B));
+      continue;
+    }
+    if (!pa && !pb) continue;
+    if (pb && std::find(g.eta_reverse.begin(), g.eta_reverse.end(), 0.0) != g.eta_reverse.end())
+      diag.error(m.where(g.name), fmt::format("lossy gear '{}': '{}' has a prescribed motion and the gear is "
+                                              "self-locking (efficiency_reverse 0): it cannot drive '{}' backwards; "
+                                              "prescribe the motion of '{}' instead", g.name, B, A, A));
+    for (const auto& c : m.contacts)
+      if (c.a == g.a || c.a == g.b || c.b == g.a || c.b == g.b) {
+        diag.error(m.where(g.name), fmt::format("lossy gear '{}': '{}' has a prescribed motion and the friction "
+                                                "element '{}' acts on the gear's bodies; not supported yet", g.name,
+                                                pa ? A : B, c.name));
+        break;
+      }
+  }
 }
 
 }  // namespace machdyn::detail

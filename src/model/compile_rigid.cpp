@@ -93,6 +93,9 @@ bool initial_values_agree(double x, double y) {
 }
 
 namespace {
+
+const char* kind_word(BodyKind k) { return k == BodyKind::rotational ? "rotational" : "translational"; }
+
 /// Fills m.merged_gears (model.hpp: MergedGear) from the groups (master, ρ per body in the file's
 /// indices; idx: the indices after the merge), before loads and links are re-attached: for each gear
 /// the side S without the master, found by a walk over the other gears from the gear's end on S.
@@ -310,11 +313,19 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
                                                 m.bodies[static_cast<size_t>(master[static_cast<size_t>(e)])].name));
     c.a = to(c.a), c.b = to(c.b);
   }
+  // A drive on a slave sees ω_s = ρ ω_M and puts ρ M on the master (model.hpp: Drive::ratio), as a load
+  // does; its columns keep the slave's units only while both have one kind.
   for (Drive& d : m.drives) {
-    if (is_slave(d.body))
-      diag.error(m.where(d.name), fmt::format("drive '{}': {}; a drive on a slaved body is not supported yet: put it "
-                                              "on '{}'", d.name, slave_text(d.body),
-                                              m.bodies[static_cast<size_t>(master[static_cast<size_t>(d.body)])].name));
+    if (is_slave(d.body)) {
+      const auto M = static_cast<size_t>(master[static_cast<size_t>(d.body)]);
+      if (m.bodies[static_cast<size_t>(d.body)].kind != m.bodies[M].kind)
+        diag.error(m.where(d.name), fmt::format("drive '{}': {}, a {} body on a {} one; a drive on a slaved body "
+                                                "of another kind than its master is not supported yet: put it on "
+                                                "'{}'", d.name, slave_text(d.body),
+                                                kind_word(m.bodies[static_cast<size_t>(d.body)].kind),
+                                                kind_word(m.bodies[M].kind), m.bodies[M].name));
+      d.ratio *= rho[static_cast<size_t>(d.body)];
+    }
     d.body = to(d.body);
   }
   if (m.crane.load >= 0) {

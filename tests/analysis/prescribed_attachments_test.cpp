@@ -223,7 +223,7 @@ contacts:
 
 // Claim: the combinations still refused are located errors naming the elements: a freewheel or end
 // stop to the ground on a prescribed body, two prescribed bodies in one ideal-gear group, a lossy
-// gear on a prescribed body or on a body an ideal gear ties to one.
+// gear prescribed on both sides (directly, or on a body an ideal gear ties to a prescribed one).
 TEST(PrescribedAttachmentsCompile, RefusedCombinationsAreLocatedErrors) {
   struct Case {
     const char* yaml;
@@ -234,11 +234,11 @@ TEST(PrescribedAttachmentsCompile, RefusedCombinationsAreLocatedErrors) {
        "freewheel or end stop"},
       {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1, motion: {speed: 1 rad/s}}\n"
        "links:\n  g: {type: ideal-gear, between: [a, b], ratio: 2}\n", "one motion only"},
-      {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1}\n"
-       "links:\n  lg: {type: lossy-gear, between: [a, b], ratio: 2, efficiency: 0.9}\n", "lossy gear 'lg'"},
-      {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1}\n  c: {inertia: 1}\n"
+      {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1, motion: {speed: 1 rad/s}}\n"
+       "links:\n  lg: {type: lossy-gear, between: [a, b], ratio: 2, efficiency: 0.9}\n", "lossy gear 'lg': both"},
+      {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1}\n  c: {inertia: 1, motion: {speed: 0.5 rad/s}}\n"
        "links:\n  g: {type: ideal-gear, between: [a, b], ratio: 2}\n"
-       "  lg: {type: lossy-gear, between: [b, c], ratio: 2, efficiency: 0.9}\n", "lossy gear 'lg'"},
+       "  lg: {type: lossy-gear, between: [b, c], ratio: 2, efficiency: 0.9}\n", "lossy gear 'lg': both"},
       {"bodies:\n  a: {inertia: 1, motion: {speed: 2 rad/s}}\n  b: {inertia: 1, velocity: 3 rad/s}\n"
        "links:\n  g: {type: ideal-gear, between: [a, b], ratio: 2}\n", "contradicts"},
   };

@@ -290,8 +290,10 @@ class DriveSystem final : public OdeSystem {
   void share_one_sided(const double* im);
   /// Solves every lossy gear in its mode on the forces f (before the inertias divide them) and adds
   /// its torques; adds the losses to *p_fric (if given).
-  void apply_gears(const double* y, double* f, double* p_fric);
-  /// a_b = a_a / i exactly (0 when stuck), after the inertias divided the forces.
+  void apply_gears(double t, const double* y, double* f, double* p_fric);
+  /// Gear g's torques with its prescribed side (LossyGearLaw::solve_given) on the forces f at time t.
+  [[nodiscard]] LossyGearLaw::Torques given_gear_torques(int g, double t, double va, const double* f) const;
+  /// a_b = a_a / i exactly (0 when stuck; a with a prescribed side), after the inertias divided the forces.
   void enforce_gears(double* acc) const;
   /// The split of each stuck gear's holding torque with its stuck contacts (gear_lock.hpp): their
   /// loads into fc, the gear's X, Y (analysis/drive_system_locks.cpp).
@@ -399,6 +401,10 @@ class DriveSystem final : public OdeSystem {
   int ng_ = 0;                              // lossy gears
   std::vector<LossyGearLaw> gears_;
   std::vector<GearMode> gear_mode_;
+  /// Per gear with a prescribed side (elements/lossy_gear.hpp "Prescribed side"): the index of its motion
+  /// in motions_ (−1: none) and whether it is on body b.
+  std::vector<int> gear_motion_;
+  std::vector<char> gear_b_given_;
   std::vector<LossyGearLaw::Torques> gear_t_;  // the last evaluation's torques
   std::vector<double> gear_fa_, gear_fb_;       // the last evaluation's F_a, F_b (without the gear)
   std::vector<ContactLaw> contacts_;

@@ -48,6 +48,27 @@
 /// v_a ≠ 0, in the direction of v_a, with the driving side of sign(D); at v_a = 0 a start in the
 /// direction whose margin is negative (beyond a rounding allowance unless its event fired), else stuck.
 ///
+/// Prescribed side (a body with `motion:`, elements/prescribed_motion.hpp, on one side; compile refuses
+/// both): a = v_a' is given (i a_b when b is), so the gear's kinematics make the other side prescribed
+/// too, and only the torques and the mode remain. The free side's own equation gives its torque, the
+/// mode's relation the prescribed side's (whose source force R closes its equation and carries X or
+/// −i Y with everything else on it):
+///   a prescribed:  Y = J_b a − F_b',  Ỹ = Y + s τ_bf,b;  a drives: X̃ = Ỹ/η_mf1, b drives: X̃ = η_mf2 Ỹ
+///   b prescribed:  X = F_a − I_a a,   X̃ = X − s τ_bf,a;  a drives: Ỹ = η_mf1 X̃, b drives: Ỹ = X̃/η_mf2
+/// (X = X̃ + s τ_bf,a, Y = Ỹ − s τ_bf,b). s = sign(v_a), at v_a = 0 sign(a) (the motion leaves rest at
+/// once); a drives while s X̃ > 0, which is s Ỹ > 0 (the known one decides: no acceleration depends
+/// on the side, the switch is continuous in X and Y). b prescribed with b driving needs η_mf2 > 0
+/// (compile refuses a prescribed b with η_mf2 = 0: a self-locking gear cannot be back-driven).
+/// Stuck (v_a = 0 and a = 0): the gear holds X − Y in its locking range, X_−(Y) ≤ X ≤ X_+(Y) with X_s
+/// the rolling relation of direction s at v = 0 (increasing in Y, X_− ≤ X_+); of the holding torques
+/// the source delivers the least force: a prescribed: X = clamp(F_a − I_a a, X_−(Y), X_+(Y)); b
+/// prescribed: Y = clamp(J_b a − F_b', Y_+(X), Y_−(X)), Y_s = X_s⁻¹. So a self-locking gear (η_mf2 = 0)
+/// prescribed on a holds an overhauling load at rest with X = 0 (X_− ≤ 0 ≤ X_+): no source force when
+/// nothing else acts on a.
+/// Events: rolling as above (s v_a, the driving side); stuck none: a prescribed motion leaves rest at a
+/// breakpoint of its signal (a kink), where the run decides again; one that leaves rest smoothly (v = t²)
+/// keeps the stuck torques until the next event or breakpoint (its motion is exact: a in every mode).
+///
 /// Speed tables (MSL's lossTable): η_mf1, η_mf2, τ_bf1, τ_bf2 over |v_A| (the file's body A),
 /// interpolated linearly and held constant outside; their values at 0 decide the start.
 /// Valid range (compile checks): η_mf1 ∈ (0, 1], η_mf2 ∈ [0, 1], τ_bf1, τ_bf2 ≥ 0, i ≠ 0.
@@ -115,6 +136,16 @@ struct LossyGearLaw {
   /// The torque side b exerts on the gear, −i Y, at the file's body B in B's coordinate (MSL's
   /// flange_b.tau; at rest the holding torque of a self-locking gear), N·m or N.
   [[nodiscard]] double torque_at_b(const Torques& T) const { return -i * T.Y / spec->rho_b; }
+  /// A prescribed side (header "Prescribed side"): mode md's torques when body a (`b_given` false) or
+  /// body b follows a given motion; `acc` is a = v_a' (i a_b for b), returned as T.acc in every mode.
+  [[nodiscard]] Torques solve_given(GearMode md, bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
+                                    double va) const;
+  /// The mode of a gear with a prescribed side at (a, v_a): rolling in sign(v_a) (at rest sign(a)) on the
+  /// side the known torque drives, stuck when both are 0.
+  [[nodiscard]] GearMode decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
+                                      double va) const;
+  /// Its two event functions: rolling those of events(), stuck none (1, 1).
+  void events_given(GearMode md, double va, const Torques& T, double* ev) const;
   /// Linear terms: for modes a lossy gear is the ideal gear, the constraint row v_a − i v_b = 0.
   void add_linear(LinearModel& lin) const;
 

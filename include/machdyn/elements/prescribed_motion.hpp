@@ -16,8 +16,10 @@
 /// delivers it); stuck, it carries no load. Ideal gears that tie the body to free ones make their
 /// group prescribed (model/compile_rigid.hpp: the body is the group's master, I the reduced inertia,
 /// R the force at its coordinate). A release lowers I at its instant (`inertia`, kept by the drive
-/// system), so R jumps by −ΔI q''. Valid on a body with a constant inertia and no lossy gear (compile
-/// refuses one, located, as a freewheel or end stop that would lock it).
+/// system), so R jumps by −ΔI q''. A lossy gear on the body ties its other side to the motion; the gear's
+/// torque X (or −i Y) is part of f (elements/lossy_gear.hpp "Prescribed side"). Valid on a body with a
+/// constant inertia (compile refuses, located, a freewheel or end stop that would lock it, and a lossy
+/// gear prescribed on both sides).
 
 #include <cmath>
 #include <string>
