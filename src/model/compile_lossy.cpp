@@ -196,8 +196,10 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       // a clutch to another body too (analysis/gear_clutch.hpp; checked below, once every gear is known).
       for (const FrictionContact& c : m.contacts) {
         if (c.a != e && c.b != e) continue;
-        const char* why = c.lock != 0 ? "freewheels and end stops on a lossy gear's bodies are not supported yet"
-                          : c.b >= 0 ? nullptr
+        // A freewheel to another body is a one-sided clutch (analysis/gear_clutch.hpp).
+        const char* why = c.b >= 0 ? nullptr
+                          : c.lock != 0 ? "backstops and end stops (to the ground) on a lossy gear's bodies are not "
+                                          "supported yet (a freewheel to another body is)"
                           : c.surface_times.size() > 1 ||
                                     (!c.surface_velocities.empty() && c.surface_velocities[0] != 0.0)
                               ? "a ground contact with a moving surface on a lossy gear's body is not supported yet "

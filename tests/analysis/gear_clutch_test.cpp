@@ -224,6 +224,91 @@ simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
   }
 }
 
+// A motor M (I_M) drives a self-locking worm gear A → B (i = 10, η_mf1 = 0.5, η_mf2 = 0, no bearing
+// friction; I_A, I_B) through a freewheel [M, A] (M drives A forward, A may overrun M; no drag); a
+// load −L on B, the motor torque τ0 until t_off, −τ_r until t_on, τ0 again; everything at rest at 0.
+// 1. At rest the gear's forward margin −(η τ0 − L/i) < 0: it starts forward, the freewheel locked
+//    (M joins A's side; A drives):  (η (I_M + I_A) + J_B) a1 = η τ0 − L/i,  J_B = I_B/i²,
+//    its load λ = τ0 − I_M a1 > 0 (it holds).
+// 2. At t_off the motor alone would decelerate at −τ_r/I_M, faster than the gear alone does, so the
+//    freewheel overruns at once (λ of the locked pair < 0) and the gear coasts with A driving
+//    (A's inertia passes its energy to B):  (η I_A + J_B) a_c = −L/i,  rest at
+//    t_s = t_off + a1 t_off / |a_c|, where the self-locking gear holds the load (η_mf2 = 0).
+//    The motor: v_M = a1 t_off − τ_r (t − t_off)/I_M, below v_A throughout (overrunning).
+// 3. At t_on the motor accelerates at τ0/I_M and reaches A's rest at t_lock = t_on − v_M(t_on) I_M/τ0:
+//    the freewheel locks with the gear at rest, both decided together, and they start as in 1:
+//    v_A = a1 (t − t_lock).
+struct FreewheelWorm {
+  static constexpr double IM = 0.5, IA = 0.1, IB = 4.0, i = 10.0, eta = 0.5, L = 20.0, tau0 = 30.0, taur = 20.0;
+  static constexpr double t_off = 1.0, t_on = 3.5;
+  static constexpr double a1 = (eta * tau0 - L / i) / (eta * (IM + IA) + IB / (i * i));
+  static constexpr double ac = -(L / i) / (eta * IA + IB / (i * i));
+  static constexpr double ts = t_off - a1 * t_off / ac;
+  static constexpr double vm_on = a1 * t_off - taur * (t_on - t_off) / IM;
+  static constexpr double t_lock = t_on - vm_on * IM / tau0;
+  [[nodiscard]] static double speed_a(double t) {
+    if (t <= t_off) return a1 * t;
+    if (t <= ts) return a1 * t_off + ac * (t - t_off);
+    return t <= t_lock ? 0.0 : a1 * (t - t_lock);
+  }
+  [[nodiscard]] static double speed_m(double t) {
+    if (t <= t_off) return a1 * t;
+    if (t <= t_on) return a1 * t_off - taur * (t - t_off) / IM;
+    return t <= t_lock ? vm_on + tau0 * (t - t_on) / IM : speed_a(t);
+  }
+  [[nodiscard]] static std::string yaml(const char* integrator) {
+    return fmt::format(R"(bodies:
+  M: {{inertia: {} kg*m^2}}
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: 0}}
+freewheels:
+  F: {{between: [M, A]}}
+loads:
+  motor: {{type: table, body: M, points: [[0, {}], [{}, {}], [{}, {}], [{}, {}], [{}, {}], [6, {}]]}}
+  weight: {{type: constant, body: B, value: {} N*m}}
+simulation: {{t_end: 5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IM, IA, IB, i, eta, tau0, t_off, tau0, t_off, -taur, t_on, -taur, t_on, tau0, tau0, -L, integrator);
+  }
+};
+
+// Claim: the freewheel overruns at t_off and locks again at t_lock, the gear stops at t_s and starts
+// forward at t_lock (each once, within 1e-8 s; these are all their events); A's and M's speeds follow
+// the closed form at every row within 1e-8 rad/s (1e-6 on BDF), B's is A's / i within rounding; the
+// locked freewheel carries τ0 − I_M a1 within 1e-8 N·m, the overrunning one nothing.
+TEST_P(GearClutchSim, MotorFreewheelWormGearOverrunsStopsAndRelocksAtTheClosedFormInstants) {
+  using R = FreewheelWorm;
+  static_assert(-R::taur / R::IM < R::ac && R::vm_on < 0.0 && R::t_lock > R::ts && R::ts < R::t_on);
+  const SimulationResult r = simulate(test::model_text(R::yaml(GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), fw = events_of(r, "F");
+  ASSERT_EQ(fw.size(), 2u);
+  EXPECT_EQ(fw[0].to, "slip-");
+  EXPECT_NEAR(fw[0].t, R::t_off, 1e-8);
+  EXPECT_EQ(fw[1].to, "stuck");
+  EXPECT_NEAR(fw[1].t, R::t_lock, 1e-8);
+  ASSERT_EQ(gear.size(), 2u);
+  EXPECT_EQ(gear[0].to, "stuck");
+  EXPECT_NEAR(gear[0].t, R::ts, 1e-8);
+  EXPECT_EQ(gear[1].to, "forward");
+  EXPECT_NEAR(gear[1].t, R::t_lock, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wm = series(r, "M.velocity_rad_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& wb = series(r, "B.velocity_rad_s");
+  const auto& F = series(r, "F.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    EXPECT_NEAR(wa[j], R::speed_a(t[j]), tol) << t[j];
+    EXPECT_NEAR(wm[j], R::speed_m(t[j]), tol) << t[j];
+    EXPECT_NEAR(wb[j], wa[j] / R::i, 1e-12 * (1.0 + std::abs(wa[j])));
+    const bool locked = t[j] < R::t_off - 1e-9 || t[j] > R::t_lock + 1e-9;
+    if (locked || (t[j] > R::t_off + 1e-9 && t[j] < R::t_lock - 1e-9)) {
+      EXPECT_NEAR(F[j], locked ? R::tau0 - R::IM * R::a1 : 0.0, 1e-8) << t[j];
+    }
+  }
+}
+
 // Claim: the combinations that remain unsupported are located errors at the gear's key, each
 // saying why: both sides massless, a massless side with a prescribed motion, a clutch between the
 // bodies of two lossy gears, a clutch on a gear in a model with a prescribed motion; a massless side

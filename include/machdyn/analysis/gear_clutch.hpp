@@ -40,8 +40,8 @@
 ///   3. else no consistent combination: SolverError naming the gear.
 /// Events: those of the gear (elements/lossy_gear.hpp) and of the contacts (elements/contact.hpp),
 /// each from the joint solution above.
-/// Supported (compile checks): a two-body friction contact (not a freewheel or end stop) with one
-/// body on the gear and the other on no lossy gear; not on a gear that also has friction to the ground
+/// Supported (compile checks): a two-body friction contact or freewheel (a one-sided clutch: the
+/// one-sided rule above, its lock·λ ≥ 0 its stick rule) with one body on the gear and the other on no lossy gear; not on a gear that also has friction to the ground
 /// (analysis/gear_lock.hpp); no variable inertia among the gear's bodies; no prescribed motion in the
 /// model (a stuck chain could tie it to a stuck gear: two kinematic ends, which this solve does not take).
 
