@@ -773,7 +773,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // A gear at rest and its friction elements: decided together before the contacts are recorded
     // (decide_gears below repeats the same decision and records the gear).
     for (int g = 0; g < ng_; ++g)
-      if (locked_at_rest(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
+      if (locked_at_rest(g) && !sys_.coupled_gear(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
     // A gear with clutches at rest: decided with them (analysis/gear_clutch.hpp).
     for (int g = 0; g < ng_; ++g)
       if (sys_.coupled_gear(g) && y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0)

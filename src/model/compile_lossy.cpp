@@ -244,8 +244,8 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     m.lossy_gears.push_back(std::move(g));
     where.push_back(s.where);
   }
-  // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear, and not on a
-  // gear that also has friction to the ground (its joint decision is analysis/gear_lock.hpp's alone).
+  // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear (friction to
+  // the ground beside them is decided in the same decision).
   auto gear_of = [&](int body) {
     for (size_t k = 0; k < m.lossy_gears.size(); ++k)
       if (m.lossy_gears[k].a == body || m.lossy_gears[k].b == body) return static_cast<int>(k);
@@ -254,14 +254,9 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
   for (size_t k = 0; k < m.lossy_gears.size(); ++k) {
     const LossyGear& g = m.lossy_gears[k];
     const FrictionContact* clutch = nullptr;
-    const FrictionContact* grounded = nullptr;
     for (const FrictionContact& c : m.contacts) {
       const bool on_a = c.a == g.a || c.a == g.b, on_b = c.b >= 0 && (c.b == g.a || c.b == g.b);
-      if (!on_a && !on_b) continue;
-      if (c.b < 0) {
-        grounded = &c;
-        continue;
-      }
+      if ((!on_a && !on_b) || c.b < 0) continue;  // friction to the ground: decided with the gear too
       clutch = &c;
       const int other = on_a ? c.b : c.a;
       const std::string where_c = fmt::format("lossy gear '{}': contact '{}'", g.name, c.name);
@@ -288,10 +283,6 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
                                                   : std::string("a massless side"), b.name));
           break;
         }
-    if (clutch && grounded)
-      diag.error(where[k], fmt::format("lossy gear '{}': its bodies have both a clutch ('{}') and friction to the "
-                                       "ground ('{}'); deciding all three together is not supported yet", g.name,
-                                       clutch->name, grounded->name));
   }
 }
 

@@ -309,6 +309,88 @@ TEST_P(GearClutchSim, MotorFreewheelWormGearOverrunsStopsAndRelocksAtTheClosedFo
   }
 }
 
+// A gear A → B (i = 2, η_mf1 = 0.9, η_mf2 = 0.7, no bearing friction) with a brake on A (holding =
+// braking = H) and a clutch of constant torque T0 (μ_s = μ_k) from B to C; a ramp torque h t on C;
+// everything at rest. The brake and the clutch are decided in one decision with the gear.
+// 1. At rest C's torque passes the stuck clutch (λ = h t < T0 here): F_a = 0, F_b' = h t / i, so B
+//    drives forward, numerator N₊ = F_a + η_mf2 F_b'. The gear alone has N₊ > 0 at once: the brake
+//    carries the rest, the split rule's θ with N₊(F + θ d) = 0, d_a = −H: a brake torque of
+//    |λ_br| = η_mf2 h t / i, until it reaches H: the pair starts at t1 = H i / (η_mf2 h).
+// 2. Rolling forward, B driving (D = −H J − I_A h t / i < 0), the brake sliding at H, C stuck to B:
+//    (I_A + η_mf2 J) a = −H + η_mf2 h t / i,  J = (I_B + I_C)/i²  ⇒  a = η_mf2 h (t − t1) / (i E),
+//    E = I_A + η_mf2 J, v_A = η_mf2 h (t − t1)² / (2 i E); the clutch carries λ = h t − I_C a / i,
+//    which reaches T0 at t2 = (T0/h − κ t1)/(1 − κ), κ = I_C η_mf2 / (i² E).
+// 3. The clutch slides (C runs ahead), B still drives (D = −H J_B − I_A T0/i < 0):
+//    (I_A + η_mf2 J_B) a = −H + η_mf2 T0 / i, J_B = I_B / i²;  I_C a_C = h t − T0.
+struct BrakeAndClutch {
+  static constexpr double IA = 1.0, IB = 0.5, IC = 2.0, i = 2.0, e1 = 0.9, e2 = 0.7, H = 2.0, T0 = 8.0, h = 10.0;
+  static constexpr double J = (IB + IC) / (i * i), E = IA + e2 * J, t1 = H * i / (e2 * h);
+  static constexpr double kappa = IC * e2 / (i * i * E), t2 = (T0 / h - kappa * t1) / (1.0 - kappa);
+  static constexpr double a3 = (-H + e2 * T0 / i) / (IA + e2 * IB / (i * i));
+  [[nodiscard]] static double speed_a(double t) {
+    if (t <= t1) return 0.0;
+    if (t <= t2) return e2 * h * (t - t1) * (t - t1) / (2.0 * i * E);
+    return speed_a(t2) + a3 * (t - t2);
+  }
+  [[nodiscard]] static double speed_c(double t) {
+    return t <= t2 ? speed_a(t) / i : speed_a(t2) / i + (h * (t * t - t2 * t2) / 2.0 - T0 * (t - t2)) / IC;
+  }
+};
+
+// Claim: the brake carries η_mf2 h t / i while everything holds (within 1e-8 N·m), the gear and the
+// brake start together at t1 (gear to forward_b_drives, brake to sliding) and the clutch slips at t2,
+// each once within 1e-8 s; A's and C's speeds follow the closed form at every row within 1e-8 rad/s
+// (1e-6 on BDF); the brake slides at H, the clutch carries h t − I_C a / i, then T0.
+TEST_P(GearClutchSim, BrakeAndClutchOnOneGearAreDecidedTogether) {
+  using R = BrakeAndClutch;
+  static_assert(R::h * R::t1 < R::T0 && R::t2 > R::t1 && R::a3 > 0.0);
+  const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+brakes:
+  br: {{body: A, holding: {} N*m}}
+clutches:
+  K: {{between: [B, C], normal_force: {} N, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  P: {{type: ramp, body: C, value: {} N*m, end: 2 s}}
+simulation: {{t_end: 1.5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", R::IA, R::IB, R::IC, R::i, R::e1, R::e2, R::H, 2.0 * R::T0, 2.0 * R::h, GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), brake = events_of(r, "br"), clutch = events_of(r, "K");
+  ASSERT_EQ(gear.size(), 1u);
+  EXPECT_EQ(gear[0].to, "forward_b_drives");
+  EXPECT_NEAR(gear[0].t, R::t1, 1e-8);
+  ASSERT_EQ(brake.size(), 1u);
+  EXPECT_NE(brake[0].to, "stuck");
+  EXPECT_NEAR(brake[0].t, R::t1, 1e-8);
+  ASSERT_EQ(clutch.size(), 1u);
+  EXPECT_NE(clutch[0].to, "stuck");
+  EXPECT_NEAR(clutch[0].t, R::t2, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& wc = series(r, "C.velocity_rad_s");
+  const auto& Fbr = series(r, "br.force_N_m");
+  const auto& FK = series(r, "K.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    EXPECT_NEAR(wa[j], R::speed_a(t[j]), tol) << t[j];
+    EXPECT_NEAR(wc[j], R::speed_c(t[j]), tol) << t[j];
+    const double a = t[j] <= R::t1 ? 0.0 : R::e2 * R::h * (t[j] - R::t1) / (R::i * R::E);
+    if (t[j] < R::t1 - 1e-9) {
+      EXPECT_NEAR(std::abs(Fbr[j]), R::e2 * R::h * t[j] / R::i, 1e-8) << t[j];
+    } else if (t[j] > R::t1 + 1e-9) {
+      EXPECT_NEAR(std::abs(Fbr[j]), R::H, 1e-12) << t[j];
+    }
+    if (t[j] < R::t2 - 1e-9) {
+      EXPECT_NEAR(std::abs(FK[j]), R::h * t[j] - R::IC * a / R::i, 1e-8) << t[j];
+    } else if (t[j] > R::t2 + 1e-9) {
+      EXPECT_NEAR(std::abs(FK[j]), R::T0, 1e-12) << t[j];
+    }
+  }
+}
+
 // Claim: the combinations that remain unsupported are located errors at the gear's key, each
 // saying why: both sides massless, a massless side with a prescribed motion, a clutch between the
 // bodies of two lossy gears, a clutch on a gear in a model with a prescribed motion; a massless side

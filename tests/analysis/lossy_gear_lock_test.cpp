@@ -278,7 +278,7 @@ TEST_P(GearLockMsl, Demo2MatchesThePiecewiseClosedForm) {
 }
 
 // Claim: the friction elements that remain unsupported on a lossy gear's bodies are located errors
-// that say why (a clutch beside ground friction, a backstop, a moving ground surface); a brake, a ground
+// that say why (a clutch between the gear's own bodies, a backstop, a moving ground surface); a brake, a ground
 // contact and bearing friction compile.
 TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
   const std::string head = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3}\nlinks:\n"
@@ -288,12 +288,9 @@ TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
     EXPECT_NE(e.find("gear.yaml:6:"), std::string::npos) << more << "\n" << e;
     EXPECT_NE(e.find(why), std::string::npos) << more << "\n" << e;
   };
-  // A clutch to another body is decided with the gear (analysis/gear_clutch.hpp), but not one between
-  // the gear's own bodies, nor beside friction to the ground on the same gear.
+  // A clutch to another body is decided with the gear (analysis/gear_clutch.hpp; beside friction to the
+  // ground too), but not one between the gear's own bodies.
   check("contacts:\n  c: {between: [B, A], static: 1 N*m, kinetic: 1 N*m}\n", "joins the gear's own two bodies");
-  check("clutches:\n  c: {between: [A, C], normal_force: 100 N, mu_s: 0.3, mu_k: 0.3, radius: 0.1 m}\n"
-        "brakes:\n  br: {body: B, holding: 5 N*m}\n",
-        "both a clutch ('c') and friction to the ground ('br')");
   check("freewheels:\n  f: {between: [ground, A]}\n", "backstops and end stops");
   check("contacts:\n  c: {between: [A, ground], static: 1 N*m, kinetic: 1 N*m, surface_velocity: 2 rad/s}\n",
         "moving surface");

@@ -26,7 +26,8 @@
 /// A start in s sets the gear rolling in s (driving side by its law with the contacts' kinetic
 /// forces) and every contact sliding in sign(s κ_k): consistent, as F_k(0) ≤ F_s.
 /// Supported (compile checks): contacts with a row on exactly one of the gear's bodies and the
-/// ground, no moving surface, not a freewheel, stop or joint.
+/// ground, no moving surface, not a freewheel, stop or joint. With a clutch on the same gear the
+/// decision at rest is analysis/gear_clutch.hpp's, which takes these events and this split.
 
 #include <vector>
 
