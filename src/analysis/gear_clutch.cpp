@@ -77,6 +77,14 @@ GearMode decide_gear_clutch(DriveSystem& sys, int g, double t, const double* y, 
   if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
   const GearMode md = settle_rolling_side(sys, g, s, t, y);
   const double a = sys.gear_torques(g, t, y).acc;
+  if (L && a == 0.0) {
+    // The contacts hold the gear's other side (a chain stuck to a brake): the start moves nothing, and
+    // its ground friction would slide at rest. The gear holds with them (step 1's modes).
+    sys.set_gear_mode(g, GearMode::stuck);
+    set_lock(0);
+    if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
+    return GearMode::stuck;
+  }
   if (s * a >= -1e-12 * std::abs(a)) return md;
   throw SolverError(k.spec->name, t,
                     "no consistent modes of the lossy gear and the clutches on its bodies at rest (analysis/gear_clutch.hpp)");

@@ -4,7 +4,10 @@
 // its clutch holding and the clutch slips at the closed-form instant; a flywheel beyond a stuck clutch
 // drives the gear from its output side; a massless output side; and the
 // located errors of the combinations that remain unsupported.
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <fmt/format.h>
@@ -388,6 +391,46 @@ simulation: {{t_end: 1.5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}
     } else if (t[j] > R::t2 + 1e-9) {
       EXPECT_NEAR(std::abs(FK[j]), R::T0, 1e-12) << t[j];
     }
+  }
+}
+
+// MSL's Rotational HeatLosses with its BearingFriction moved onto the gear's input inertia4: the gear,
+// the bearing friction and the clutch on its flange in one decision, while the chain flange – clutch –
+// inertia5 – one-way clutch – inertia6 – brake can hold the gear's output side against the ground.
+// There it used to stall: the gear "started" with the chain holding its output (a = 0), its rest event
+// fired again every 1e-13 s. No independent reference here (heat_losses_rotational_test.cpp has one
+// for MSL's own placement). Claim: the run completes on both integrators within 200 000 steps, the
+// bearing friction switches with the gear (the same instants), the two integrators agree on every
+// speed within 1e-6 rad/s at every row, and the energy books close within 1e-8 of the source work.
+TEST(GearClutchBearing, HeatLossesWithBearingFrictionOnTheGearRunsOnBothIntegrators) {
+  std::ifstream in(test::example("msl/heat-losses.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string from = "bearingFriction: {between: [inertia3, ground]";
+  ASSERT_NE(yaml.find(from), std::string::npos);
+  yaml.replace(yaml.find(from), from.size(), "bearingFriction: {between: [inertia4, ground]");
+  std::vector<SimulationResult> runs;
+  for (IntegratorChoice integrator : {IntegratorChoice::dopri5, IntegratorChoice::bdf}) {
+    Model m = test::model_text(yaml, "heat-losses.yaml");
+    m.simulation.integrator = integrator;
+    m.simulation.max_steps = 200'000;
+    runs.push_back(simulate(m));
+    const auto& E = runs.back().hybrid.energy;
+    EXPECT_LT(std::abs(E.residual()), 1e-8 * E.source_work);
+    std::vector<double> gear, bearing;
+    for (const auto& e : runs.back().hybrid.events)
+      if (e.kind != "initial" && e.element == "lossyGear") gear.push_back(e.t);
+      else if (e.kind != "initial" && e.element == "bearingFriction") bearing.push_back(e.t);
+    ASSERT_FALSE(bearing.empty());
+    for (double t : bearing) EXPECT_NE(std::find(gear.begin(), gear.end(), t), gear.end()) << t;
+  }
+  for (const char* body : {"inertia1", "inertia4", "inertia5", "inertia6"}) {
+    const std::string col = std::string(body) + ".velocity_rad_s";
+    const auto& a = series(runs[0], col);
+    const auto& b = series(runs[1], col);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t j = 0; j < a.size(); ++j) EXPECT_NEAR(a[j], b[j], 1e-6) << col << " " << j;
   }
 }
 

@@ -40,7 +40,9 @@
 ///      the split of the holding torque is gear_lock's rule at these F;
 ///   2. else the gear starts in the direction s whose margin failed, its ground friction sliding
 ///      with it, Z decided again with the gear rolling (its side settled as above); kept when s a ≥ 0
-///      within rounding;
+///      within rounding; with ground friction and a = 0 exactly the stuck contacts hold the gear's
+///      other side (a chain stuck to a brake): the start moves nothing, the modes of 1. are kept
+///      (else its rest event s v_a would fire again at once, every 1e-13 s);
 ///   3. else no consistent combination: SolverError naming the gear.
 /// Events: those of the gear (elements/lossy_gear.hpp) and of the contacts (elements/contact.hpp),
 /// each from the joint solution above.
