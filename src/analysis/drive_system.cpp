@@ -993,10 +993,6 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     const ContactMode md = mode_[static_cast<size_t>(k)];
     c.events(md, t, fc_[static_cast<size_t>(k)], md == ContactMode::stuck && !c.kinematic ? 0.0 : c.sliding_velocity(t, y + n_),
              y[c.a], g + 2 * nl_ + 2 * k);
-    // Coupled models: a stuck freewheel's event agrees with its hold rule (lock·λ ≥ −1e-9,
-    // elements/contact.hpp), so one held unloaded beside a clutch that just broke away (λ = −1e-15)
-    // starts armed and overruns as its load turns, not at the next event of another element.
-    if (coupled_ && md == ContactMode::stuck && c.lock != 0 && !c.stop) g[2 * nl_ + 2 * k] += 1e-9;
   }
   // An element may read its body's acceleration in its mode (a speed drive on its limit).
   bool accelerations = false;

@@ -17,6 +17,16 @@ void DriveSystem::share_locks(double t, double* fc) {
     const auto gi = static_cast<size_t>(L.gear);
     if (gear_mode_[gi] != GearMode::stuck) continue;
     const LossyGearLaw& k = gears_[gi];
+    const double Ia = 1.0 / inv_mass_[static_cast<size_t>(k.a)], Ib = 1.0 / inv_mass_[static_cast<size_t>(k.b)];
+    if (L.blocked != 0) {  // a backstop carries what the gear's locking range leaves
+      const auto c = static_cast<size_t>(L.contacts[0]);
+      const double lam = backstop_load(L, k, contacts_[c], gear_fa_[gi], gear_fb_[gi]);
+      double e[2];
+      backstop_direction(L, contacts_[c], e);
+      if (mode_[c] == ContactMode::stuck) fc[c] = lam;
+      gear_t_[gi] = k.solve(GearMode::stuck, gear_fa_[gi] + lam * e[0], gear_fb_[gi] + lam * e[1], Ia, Ib, 0.0);
+      continue;
+    }
     double d[2];
     L.limit_forces(contacts_.data(), t, d);
     const double th = lock_share(k, gear_fa_[gi], gear_fb_[gi], d);
@@ -24,7 +34,6 @@ void DriveSystem::share_locks(double t, double* fc) {
       const auto c = static_cast<size_t>(L.contacts[j]);
       if (mode_[c] == ContactMode::stuck) fc[c] = th * (L.kappa[j] > 0.0 ? 1.0 : -1.0) * contacts_[c].static_limit(t);
     }
-    const double Ia = 1.0 / inv_mass_[static_cast<size_t>(k.a)], Ib = 1.0 / inv_mass_[static_cast<size_t>(k.b)];
     gear_t_[gi] = k.solve(GearMode::stuck, gear_fa_[gi] + th * d[0], gear_fb_[gi] + th * d[1], Ia, Ib, 0.0);
   }
 }
@@ -34,9 +43,14 @@ void DriveSystem::lock_event_functions(double t, double* g) const {
     for (int c : L.contacts) g[2 * nl_ + 2 * c] = g[2 * nl_ + 2 * c + 1] = 1.0;  // the gear's events are theirs
     const auto gi = static_cast<size_t>(L.gear);
     if (gear_mode_[gi] != GearMode::stuck) continue;
+    double* ev = g + 2 * (nl_ + nc_ + nd_ + L.gear);
+    if (L.blocked != 0) {
+      backstop_events(L, gears_[gi], gear_fa_[gi], gear_fb_[gi], ev);
+      continue;
+    }
     double d[2];
     L.limit_forces(contacts_.data(), t, d);
-    lock_events(gears_[gi], gear_fa_[gi], gear_fb_[gi], d, g + 2 * (nl_ + nc_ + nd_ + L.gear));
+    lock_events(gears_[gi], gear_fa_[gi], gear_fb_[gi], d, ev);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "machdyn/analysis/contact_decision.hpp"
+#include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/common/diagnostics.hpp"
 
 namespace machdyn {
@@ -47,20 +48,43 @@ GearMode decide_gear_clutch(DriveSystem& sys, int g, double t, const double* y, 
     if (law.joint || law.kinematic || sys.gear_locks().owner[static_cast<size_t>(c)] >= 0) continue;
     if (sys.contact_mode(c) == ContactMode::stuck || sys.sliding_velocity(c, t, y) == 0.0) Z.push_back(c);
   }
-  // 1. The gear holds, with the stuck clutches' loads in F_a, F_b.
+  // The gear's friction to the ground (analysis/gear_lock.hpp), if any: stuck with it, d its limits.
+  const int li = sys.gear_locks().of_gear[static_cast<size_t>(g)];
+  const GearLock* L = li >= 0 ? &sys.gear_locks().locks[static_cast<size_t>(li)] : nullptr;
+  auto set_lock = [&](int s) {  // s = 0: stuck; else sliding with the gear rolling in s
+    if (!L) return;
+    std::vector<ContactMode> modes = sys.contact_modes();
+    for (size_t j = 0; j < L->contacts.size(); ++j)
+      modes[static_cast<size_t>(L->contacts[j])] = s == 0 ? ContactMode::stuck
+                                                   : s * L->kappa[j] > 0.0 ? ContactMode::slip_pos
+                                                                           : ContactMode::slip_neg;
+    sys.set_contact_modes(modes);
+  };
+  // 1. The gear holds (with its ground friction), with the stuck clutches' loads in F_a, F_b.
   sys.set_gear_mode(g, GearMode::stuck);
+  set_lock(0);
   if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
-  double Fa = 0.0, Fb = 0.0;
+  double Fa = 0.0, Fb = 0.0, d[2] = {0.0, 0.0};
   sys.gear_loads(g, t, y, &Fa, &Fb);
-  const double tol = strict ? 0.0 : k.allowance(Fa, Fb);
-  const double mp = k.start_margin(+1, Fa, Fb), mm = k.start_margin(-1, Fa, Fb);
-  if (mp >= -tol && mm >= -tol) return GearMode::stuck;
-  // 2. It starts where its margin failed, the contacts decided again with it rolling.
-  const int s = mp < -tol ? 1 : -1;
+  if (L) L->limit_forces(&sys.contact(0), t, d);
+  const double tol = strict ? 0.0 : k.allowance(std::abs(Fa) + std::abs(d[0]), std::abs(Fb) + std::abs(d[1]));
+  const int s = lock_start(k, Fa, Fb, d, tol);  // d = 0: the gear's own margins
+  if (s == 0) return GearMode::stuck;
+  // 2. It starts where its margin failed (its ground friction sliding with it), the contacts decided
+  //    again with it rolling.
   sys.set_gear_mode(g, s > 0 ? GearMode::forward : GearMode::backward);
+  set_lock(s);
   if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
   const GearMode md = settle_rolling_side(sys, g, s, t, y);
   const double a = sys.gear_torques(g, t, y).acc;
+  if (L && a == 0.0) {
+    // The contacts hold the gear's other side (a chain stuck to a brake): the start moves nothing, and
+    // its ground friction would slide at rest. The gear holds with them (step 1's modes).
+    sys.set_gear_mode(g, GearMode::stuck);
+    set_lock(0);
+    if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
+    return GearMode::stuck;
+  }
   if (s * a >= -1e-12 * std::abs(a)) return md;
   throw SolverError(k.spec->name, t,
                     "no consistent modes of the lossy gear and the clutches on its bodies at rest (analysis/gear_clutch.hpp)");

@@ -40,6 +40,7 @@ GearLocks gear_locks(const std::vector<LossyGearLaw>& gears, const std::vector<C
       if (!on_gear || f.row.terms == 0) continue;
       L.contacts.push_back(static_cast<int>(c));
       L.kappa.push_back(kappa);
+      if (f.lock != 0) L.blocked = f.lock * (kappa > 0.0 ? 1 : -1);  // a backstop (the only one: compile)
       out.owner[c] = static_cast<int>(g);
     }
     if (L.contacts.empty()) continue;
@@ -73,6 +74,28 @@ double lock_share(const LossyGearLaw& g, double Fa, double Fb, const double* d) 
   return 0.0;
 }
 
+void backstop_events(const GearLock& L, const LossyGearLaw& g, double Fa, double Fb, double* ev) {
+  const int s_free = -L.blocked;
+  ev[s_free > 0 ? 0 : 1] = g.start_margin(s_free, Fa, Fb);
+  ev[s_free > 0 ? 1 : 0] = 1.0;  // never starts against the backstop
+}
+
+void backstop_direction(const GearLock& L, const ContactLaw& c, double* e) {
+  e[0] = e[1] = 0.0;
+  for (int p = 0; p < c.row.terms; ++p) e[c.row.body[p] == L.a ? 0 : 1] -= c.row.w[p];
+}
+
+double backstop_load(const GearLock& L, const LossyGearLaw& g, const ContactLaw& c, double Fa, double Fb) {
+  if (g.start_margin(L.blocked, Fa, Fb) >= 0.0) return 0.0;  // the gear holds alone
+  double e[2];
+  backstop_direction(L, c, e);
+  // λ has the sign of lock; widen the bracket until the margin holds at its end (it rises along it).
+  double end = c.lock * (1.0 + std::abs(Fa) + std::abs(Fb));
+  for (int k = 0; k < 60 && g.start_margin(L.blocked, Fa + end * e[0], Fb + end * e[1]) < 0.0; ++k) end *= 2.0;
+  return c.lock > 0 ? g.margin_root(L.blocked, Fa, Fb, e[0], e[1], 0.0, end)
+                    : g.margin_root(L.blocked, Fa, Fb, e[0], e[1], end, 0.0);
+}
+
 GearMode decide_gear_lock(DriveSystem& sys, int g, double t, const double* y, bool strict) {
   const GearLock& L = sys.gear_locks().locks[static_cast<size_t>(sys.gear_locks().of_gear[static_cast<size_t>(g)])];
   const LossyGearLaw& k = sys.lossy_gear(g);
@@ -84,7 +107,12 @@ GearMode decide_gear_lock(DriveSystem& sys, int g, double t, const double* y, bo
   sys.gear_loads(g, t, y, &Fa, &Fb);
   L.limit_forces(&sys.contact(0), t, d);
   const double tol = strict ? 0.0 : k.allowance(std::abs(Fa) + std::abs(d[0]), std::abs(Fb) + std::abs(d[1]));
-  const int s = lock_start(k, Fa, Fb, d, tol);
+  int s = lock_start(k, Fa, Fb, d, tol);
+  if (L.blocked != 0) {  // a backstop: only the free direction can start
+    double ev[2];
+    backstop_events(L, k, Fa, Fb, ev);
+    s = ev[0] < -tol ? 1 : ev[1] < -tol ? -1 : 0;
+  }
   if (s == 0) return GearMode::stuck;
   // Start together: the contacts slide with the gear, the driving side from their kinetic forces.
   for (size_t j = 0; j < L.contacts.size(); ++j)

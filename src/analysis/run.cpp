@@ -636,12 +636,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0 &&
            y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0;
   }
-  /// Whether contact k is decided again at any event: a stuck one (not a joint or a gear's), and a
-  /// kinematic one exactly at u = 0 (a prescribed speed that reached its rest at a kink).
+  /// Whether contact k is decided again at any event: a stuck one (not a joint or a gear's), a
+  /// kinematic one exactly at u = 0 (a prescribed speed that reached its rest at a kink), and one
+  /// sliding at exactly u = 0 (a clutch at its limit beside a stuck freewheel that holds u ≡ 0): its
+  /// sliding direction is only a label there, decided again with the others (else a freewheel
+  /// overrunning beside it leaves it sliding against its motion).
   bool decided_at_event(int k, double t) const {
     const ContactLaw& c = sys_.contact(k);
     if (c.kinematic && sys_.sliding_velocity(k, t, y_.data()) == 0.0) return true;
-    return sys_.contact_mode(k) == ContactMode::stuck && !c.joint && !gear_owned(k);
+    if (c.joint || gear_owned(k)) return false;
+    if (sys_.contact_mode(k) == ContactMode::stuck) return true;
+    return !c.stop && !released(k, t) && sys_.sliding_velocity(k, t, y_.data()) == 0.0;
   }
   /// Whether contact k belongs to a gear lock (decided with its gear, not by decide_contacts).
   bool gear_owned(int k) const { return sys_.gear_locks().owner[static_cast<size_t>(k)] >= 0; }
@@ -789,7 +794,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // A gear at rest and its friction elements: decided together before the contacts are recorded
     // (decide_gears below repeats the same decision and records the gear).
     for (int g = 0; g < ng_; ++g)
-      if (locked_at_rest(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
+      if (locked_at_rest(g) && !sys_.coupled_gear(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
     // A gear with clutches at rest: decided with them (analysis/gear_clutch.hpp).
     for (int g = 0; g < ng_; ++g)
       if (sys_.coupled_gear(g) && y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0)

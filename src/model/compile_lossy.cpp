@@ -182,6 +182,9 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       continue;
     }
     bool ok = true;
+    int friction_elements = 0;  // on either body of the gear
+    for (const FrictionContact& c : m.contacts)
+      friction_elements += c.a == g.a || c.a == g.b || c.b == g.a || c.b == g.b;
     for (int e : {g.a, g.b}) {
       int& u = used[static_cast<size_t>(e)];
       if (u >= 0) {
@@ -196,8 +199,14 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       // a clutch to another body too (analysis/gear_clutch.hpp; checked below, once every gear is known).
       for (const FrictionContact& c : m.contacts) {
         if (c.a != e && c.b != e) continue;
-        const char* why = c.lock != 0 ? "freewheels and end stops on a lossy gear's bodies are not supported yet"
-                          : c.b >= 0 ? nullptr
+        // A freewheel to another body is a one-sided clutch (analysis/gear_clutch.hpp); a backstop is
+        // decided with the gear alone (analysis/gear_lock.hpp).
+        const char* why = c.b >= 0 ? nullptr
+                          : c.stop ? "end stops on a lossy gear's bodies are not supported yet"
+                          : c.lock != 0 && friction_elements > 1
+                              ? "a backstop on a lossy gear's body must be the only friction element on the gear's "
+                                "bodies (no brake, contact or clutch beside it) for now"
+                          : c.lock != 0 ? nullptr
                           : c.surface_times.size() > 1 ||
                                     (!c.surface_velocities.empty() && c.surface_velocities[0] != 0.0)
                               ? "a ground contact with a moving surface on a lossy gear's body is not supported yet "
@@ -242,8 +251,8 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     m.lossy_gears.push_back(std::move(g));
     where.push_back(s.where);
   }
-  // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear, and not on a
-  // gear that also has friction to the ground (its joint decision is analysis/gear_lock.hpp's alone).
+  // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear (friction to
+  // the ground beside them is decided in the same decision).
   auto gear_of = [&](int body) {
     for (size_t k = 0; k < m.lossy_gears.size(); ++k)
       if (m.lossy_gears[k].a == body || m.lossy_gears[k].b == body) return static_cast<int>(k);
@@ -252,14 +261,9 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
   for (size_t k = 0; k < m.lossy_gears.size(); ++k) {
     const LossyGear& g = m.lossy_gears[k];
     const FrictionContact* clutch = nullptr;
-    const FrictionContact* grounded = nullptr;
     for (const FrictionContact& c : m.contacts) {
       const bool on_a = c.a == g.a || c.a == g.b, on_b = c.b >= 0 && (c.b == g.a || c.b == g.b);
-      if (!on_a && !on_b) continue;
-      if (c.b < 0) {
-        grounded = &c;
-        continue;
-      }
+      if ((!on_a && !on_b) || c.b < 0) continue;  // friction to the ground: decided with the gear too
       clutch = &c;
       const int other = on_a ? c.b : c.a;
       const std::string where_c = fmt::format("lossy gear '{}': contact '{}'", g.name, c.name);
@@ -286,10 +290,6 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
                                                   : std::string("a massless side"), b.name));
           break;
         }
-    if (clutch && grounded)
-      diag.error(where[k], fmt::format("lossy gear '{}': its bodies have both a clutch ('{}') and friction to the "
-                                       "ground ('{}'); deciding all three together is not supported yet", g.name,
-                                       clutch->name, grounded->name));
   }
 }
 

@@ -3,6 +3,7 @@
 // event-driven claim on both integrators.
 #include <cmath>
 #include <string>
+#include <vector>
 #include <gtest/gtest.h>
 
 #include "support/support.hpp"
@@ -67,6 +68,57 @@ simulation: {t_end: 1.5 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-12}
   // The energy books close: work of the torques = ΔT + the drag's loss.
   EXPECT_LT(std::abs(r.hybrid.energy.residual()), 1e-7 * r.hybrid.energy.source_work);
   EXPECT_GT(r.hybrid.energy.friction_loss, 0.0);
+}
+
+// A freewheel fw [X, Y] (X drives Y forward) and a friction contact K (3 N·m, μ_s = μ_k) in parallel
+// between X (I_X = 1) and Y (I_Y = 2), both at rest; a torque τ = 10 − 20 t on X only. Together the
+// pair accelerates at a = τ/3, and Y needs the load λ = I_Y a = 2τ/3 from X.
+//   0 … t_a = 0.275 s: λ > 3 is beyond K alone; the two share it (K at its limit, sliding at zero
+//     speed by the decision, fw the rest ≥ 0): u ≡ 0.
+//   At t_a, λ = 3: K can hold alone: K sticks and fw stays stuck, unloaded (the one-sided rule,
+//     docs/hybrid.md) — it is not labelled as overrunning while the contact holds the pair.
+//   At t_b = 0.725 s, λ = −3 (τ = −4.5): K breaks away backwards and fw overruns at once (Y ahead):
+//     I_X a_X = τ + 3, I_Y a_Y = −3 after it, v(t_b) = (10 t_b − 10 t_b²)/3 before.
+// Before the fix fw overran at t_a already (K kept sliding forwards at zero speed beside it while X
+// fell behind, and stuck 3e-9 s later; measured with main's CLI).
+// Claim: fw's only switch is the overrun at t_b and K sticks at t_a and breaks away at t_b (each
+// within 1e-8 s); X's and Y's speeds follow the closed form at every row within 1e-8 rad/s (1e-6 on
+// BDF); fw carries no negative load beyond its 1e-9 N·m allowance.
+TEST_P(Freewheel, ParallelClutchHoldsAndTheFreewheelOverrunsWhenItBreaksAway) {
+  Model m = model_of(R"(
+bodies: {X: {inertia: 1}, Y: {inertia: 2}}
+freewheels: {fw: {between: [X, Y]}}
+contacts: {K: {between: [X, Y], static: 3 N*m, kinetic: 3 N*m}}
+loads: {tau: {type: table, body: X, points: [[0, 10], [2, -30]]}}
+simulation: {t_end: 1.5 s, dt_out: 0.01 s, rtol: 1e-11, atol: 1e-13}
+)");
+  m.simulation.integrator = GetParam();
+  const double ta = 0.275, tb = 0.725, vb = (10.0 * tb - 10.0 * tb * tb) / 3.0;
+  const SimulationResult r = simulate(m);
+  std::vector<ModeEvent> fw, K;
+  for (const auto& e : r.hybrid.events)
+    if (e.kind != "initial") (e.element == "fw" ? fw : K).push_back(e);
+  ASSERT_EQ(fw.size(), 1u);
+  EXPECT_EQ(fw[0].to, "slip-");
+  EXPECT_NEAR(fw[0].t, tb, 1e-8);
+  ASSERT_EQ(K.size(), 2u);
+  EXPECT_EQ(K[0].to, "stuck");
+  EXPECT_NEAR(K[0].t, ta, 1e-8);
+  EXPECT_EQ(K[1].to, "slip-");
+  EXPECT_NEAR(K[1].t, tb, 1e-8);
+  const double tol = GetParam() == IntegratorChoice::dopri5 ? 1e-8 : 1e-6;
+  const auto& t = test::series(r, "t_s");
+  const auto& vx = test::series(r, "X.velocity_rad_s");
+  const auto& vy = test::series(r, "Y.velocity_rad_s");
+  const auto& F = test::series(r, "fw.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    const double s = t[j] - tb;
+    const double x = t[j] <= tb ? (10.0 * t[j] - 10.0 * t[j] * t[j]) / 3.0 : vb + 13.0 * s - 10.0 * (t[j] * t[j] - tb * tb);
+    const double y = t[j] <= tb ? x : vb - 1.5 * s;
+    EXPECT_NEAR(vx[j], x, tol) << t[j];
+    EXPECT_NEAR(vy[j], y, tol) << t[j];
+    EXPECT_GE(F[j], -1e-9) << t[j];
+  }
 }
 
 // Claim: a backstop ([ground, A]) lets A turn forward only. A at 2 rad/s forward under −5 N·m

@@ -4,7 +4,10 @@
 // its clutch holding and the clutch slips at the closed-form instant; a flywheel beyond a stuck clutch
 // drives the gear from its output side; a massless output side; and the
 // located errors of the combinations that remain unsupported.
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <fmt/format.h>
@@ -221,6 +224,213 @@ simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
         EXPECT_NEAR(F[j], IC * (before ? a1 : a2) / i, 1e-8) << IB << " " << t[j];
       }
     }
+  }
+}
+
+// A motor M (I_M) drives a self-locking worm gear A → B (i = 10, η_mf1 = 0.5, η_mf2 = 0, no bearing
+// friction; I_A, I_B) through a freewheel [M, A] (M drives A forward, A may overrun M; no drag); a
+// load −L on B, the motor torque τ0 until t_off, −τ_r until t_on, τ0 again; everything at rest at 0.
+// 1. At rest the gear's forward margin −(η τ0 − L/i) < 0: it starts forward, the freewheel locked
+//    (M joins A's side; A drives):  (η (I_M + I_A) + J_B) a1 = η τ0 − L/i,  J_B = I_B/i²,
+//    its load λ = τ0 − I_M a1 > 0 (it holds).
+// 2. At t_off the motor alone would decelerate at −τ_r/I_M, faster than the gear alone does, so the
+//    freewheel overruns at once (λ of the locked pair < 0) and the gear coasts with A driving
+//    (A's inertia passes its energy to B):  (η I_A + J_B) a_c = −L/i,  rest at
+//    t_s = t_off + a1 t_off / |a_c|, where the self-locking gear holds the load (η_mf2 = 0).
+//    The motor: v_M = a1 t_off − τ_r (t − t_off)/I_M, below v_A throughout (overrunning).
+// 3. At t_on the motor accelerates at τ0/I_M and reaches A's rest at t_lock = t_on − v_M(t_on) I_M/τ0:
+//    the freewheel locks with the gear at rest, both decided together, and they start as in 1:
+//    v_A = a1 (t − t_lock).
+struct FreewheelWorm {
+  static constexpr double IM = 0.5, IA = 0.1, IB = 4.0, i = 10.0, eta = 0.5, L = 20.0, tau0 = 30.0, taur = 20.0;
+  static constexpr double t_off = 1.0, t_on = 3.5;
+  static constexpr double a1 = (eta * tau0 - L / i) / (eta * (IM + IA) + IB / (i * i));
+  static constexpr double ac = -(L / i) / (eta * IA + IB / (i * i));
+  static constexpr double ts = t_off - a1 * t_off / ac;
+  static constexpr double vm_on = a1 * t_off - taur * (t_on - t_off) / IM;
+  static constexpr double t_lock = t_on - vm_on * IM / tau0;
+  [[nodiscard]] static double speed_a(double t) {
+    if (t <= t_off) return a1 * t;
+    if (t <= ts) return a1 * t_off + ac * (t - t_off);
+    return t <= t_lock ? 0.0 : a1 * (t - t_lock);
+  }
+  [[nodiscard]] static double speed_m(double t) {
+    if (t <= t_off) return a1 * t;
+    if (t <= t_on) return a1 * t_off - taur * (t - t_off) / IM;
+    return t <= t_lock ? vm_on + tau0 * (t - t_on) / IM : speed_a(t);
+  }
+  [[nodiscard]] static std::string yaml(const char* integrator) {
+    return fmt::format(R"(bodies:
+  M: {{inertia: {} kg*m^2}}
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: 0}}
+freewheels:
+  F: {{between: [M, A]}}
+loads:
+  motor: {{type: table, body: M, points: [[0, {}], [{}, {}], [{}, {}], [{}, {}], [{}, {}], [6, {}]]}}
+  weight: {{type: constant, body: B, value: {} N*m}}
+simulation: {{t_end: 5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IM, IA, IB, i, eta, tau0, t_off, tau0, t_off, -taur, t_on, -taur, t_on, tau0, tau0, -L, integrator);
+  }
+};
+
+// Claim: the freewheel overruns at t_off and locks again at t_lock, the gear stops at t_s and starts
+// forward at t_lock (each once, within 1e-8 s; these are all their events); A's and M's speeds follow
+// the closed form at every row within 1e-8 rad/s (1e-6 on BDF), B's is A's / i within rounding; the
+// locked freewheel carries τ0 − I_M a1 within 1e-8 N·m, the overrunning one nothing.
+TEST_P(GearClutchSim, MotorFreewheelWormGearOverrunsStopsAndRelocksAtTheClosedFormInstants) {
+  using R = FreewheelWorm;
+  static_assert(-R::taur / R::IM < R::ac && R::vm_on < 0.0 && R::t_lock > R::ts && R::ts < R::t_on);
+  const SimulationResult r = simulate(test::model_text(R::yaml(GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), fw = events_of(r, "F");
+  ASSERT_EQ(fw.size(), 2u);
+  EXPECT_EQ(fw[0].to, "slip-");
+  EXPECT_NEAR(fw[0].t, R::t_off, 1e-8);
+  EXPECT_EQ(fw[1].to, "stuck");
+  EXPECT_NEAR(fw[1].t, R::t_lock, 1e-8);
+  ASSERT_EQ(gear.size(), 2u);
+  EXPECT_EQ(gear[0].to, "stuck");
+  EXPECT_NEAR(gear[0].t, R::ts, 1e-8);
+  EXPECT_EQ(gear[1].to, "forward");
+  EXPECT_NEAR(gear[1].t, R::t_lock, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wm = series(r, "M.velocity_rad_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& wb = series(r, "B.velocity_rad_s");
+  const auto& F = series(r, "F.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    EXPECT_NEAR(wa[j], R::speed_a(t[j]), tol) << t[j];
+    EXPECT_NEAR(wm[j], R::speed_m(t[j]), tol) << t[j];
+    EXPECT_NEAR(wb[j], wa[j] / R::i, 1e-12 * (1.0 + std::abs(wa[j])));
+    const bool locked = t[j] < R::t_off - 1e-9 || t[j] > R::t_lock + 1e-9;
+    if (locked || (t[j] > R::t_off + 1e-9 && t[j] < R::t_lock - 1e-9)) {
+      EXPECT_NEAR(F[j], locked ? R::tau0 - R::IM * R::a1 : 0.0, 1e-8) << t[j];
+    }
+  }
+}
+
+// A gear A → B (i = 2, η_mf1 = 0.9, η_mf2 = 0.7, no bearing friction) with a brake on A (holding =
+// braking = H) and a clutch of constant torque T0 (μ_s = μ_k) from B to C; a ramp torque h t on C;
+// everything at rest. The brake and the clutch are decided in one decision with the gear.
+// 1. At rest C's torque passes the stuck clutch (λ = h t < T0 here): F_a = 0, F_b' = h t / i, so B
+//    drives forward, numerator N₊ = F_a + η_mf2 F_b'. The gear alone has N₊ > 0 at once: the brake
+//    carries the rest, the split rule's θ with N₊(F + θ d) = 0, d_a = −H: a brake torque of
+//    |λ_br| = η_mf2 h t / i, until it reaches H: the pair starts at t1 = H i / (η_mf2 h).
+// 2. Rolling forward, B driving (D = −H J − I_A h t / i < 0), the brake sliding at H, C stuck to B:
+//    (I_A + η_mf2 J) a = −H + η_mf2 h t / i,  J = (I_B + I_C)/i²  ⇒  a = η_mf2 h (t − t1) / (i E),
+//    E = I_A + η_mf2 J, v_A = η_mf2 h (t − t1)² / (2 i E); the clutch carries λ = h t − I_C a / i,
+//    which reaches T0 at t2 = (T0/h − κ t1)/(1 − κ), κ = I_C η_mf2 / (i² E).
+// 3. The clutch slides (C runs ahead), B still drives (D = −H J_B − I_A T0/i < 0):
+//    (I_A + η_mf2 J_B) a = −H + η_mf2 T0 / i, J_B = I_B / i²;  I_C a_C = h t − T0.
+struct BrakeAndClutch {
+  static constexpr double IA = 1.0, IB = 0.5, IC = 2.0, i = 2.0, e1 = 0.9, e2 = 0.7, H = 2.0, T0 = 8.0, h = 10.0;
+  static constexpr double J = (IB + IC) / (i * i), E = IA + e2 * J, t1 = H * i / (e2 * h);
+  static constexpr double kappa = IC * e2 / (i * i * E), t2 = (T0 / h - kappa * t1) / (1.0 - kappa);
+  static constexpr double a3 = (-H + e2 * T0 / i) / (IA + e2 * IB / (i * i));
+  [[nodiscard]] static double speed_a(double t) {
+    if (t <= t1) return 0.0;
+    if (t <= t2) return e2 * h * (t - t1) * (t - t1) / (2.0 * i * E);
+    return speed_a(t2) + a3 * (t - t2);
+  }
+  [[nodiscard]] static double speed_c(double t) {
+    return t <= t2 ? speed_a(t) / i : speed_a(t2) / i + (h * (t * t - t2 * t2) / 2.0 - T0 * (t - t2)) / IC;
+  }
+};
+
+// Claim: the brake carries η_mf2 h t / i while everything holds (within 1e-8 N·m), the gear and the
+// brake start together at t1 (gear to forward_b_drives, brake to sliding) and the clutch slips at t2,
+// each once within 1e-8 s; A's and C's speeds follow the closed form at every row within 1e-8 rad/s
+// (1e-6 on BDF); the brake slides at H, the clutch carries h t − I_C a / i, then T0.
+TEST_P(GearClutchSim, BrakeAndClutchOnOneGearAreDecidedTogether) {
+  using R = BrakeAndClutch;
+  static_assert(R::h * R::t1 < R::T0 && R::t2 > R::t1 && R::a3 > 0.0);
+  const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+brakes:
+  br: {{body: A, holding: {} N*m}}
+clutches:
+  K: {{between: [B, C], normal_force: {} N, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  P: {{type: ramp, body: C, value: {} N*m, end: 2 s}}
+simulation: {{t_end: 1.5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", R::IA, R::IB, R::IC, R::i, R::e1, R::e2, R::H, 2.0 * R::T0, 2.0 * R::h, GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), brake = events_of(r, "br"), clutch = events_of(r, "K");
+  ASSERT_EQ(gear.size(), 1u);
+  EXPECT_EQ(gear[0].to, "forward_b_drives");
+  EXPECT_NEAR(gear[0].t, R::t1, 1e-8);
+  ASSERT_EQ(brake.size(), 1u);
+  EXPECT_NE(brake[0].to, "stuck");
+  EXPECT_NEAR(brake[0].t, R::t1, 1e-8);
+  ASSERT_EQ(clutch.size(), 1u);
+  EXPECT_NE(clutch[0].to, "stuck");
+  EXPECT_NEAR(clutch[0].t, R::t2, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& wc = series(r, "C.velocity_rad_s");
+  const auto& Fbr = series(r, "br.force_N_m");
+  const auto& FK = series(r, "K.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    EXPECT_NEAR(wa[j], R::speed_a(t[j]), tol) << t[j];
+    EXPECT_NEAR(wc[j], R::speed_c(t[j]), tol) << t[j];
+    const double a = t[j] <= R::t1 ? 0.0 : R::e2 * R::h * (t[j] - R::t1) / (R::i * R::E);
+    if (t[j] < R::t1 - 1e-9) {
+      EXPECT_NEAR(std::abs(Fbr[j]), R::e2 * R::h * t[j] / R::i, 1e-8) << t[j];
+    } else if (t[j] > R::t1 + 1e-9) {
+      EXPECT_NEAR(std::abs(Fbr[j]), R::H, 1e-12) << t[j];
+    }
+    if (t[j] < R::t2 - 1e-9) {
+      EXPECT_NEAR(std::abs(FK[j]), R::h * t[j] - R::IC * a / R::i, 1e-8) << t[j];
+    } else if (t[j] > R::t2 + 1e-9) {
+      EXPECT_NEAR(std::abs(FK[j]), R::T0, 1e-12) << t[j];
+    }
+  }
+}
+
+// MSL's Rotational HeatLosses with its BearingFriction moved onto the gear's input inertia4: the gear,
+// the bearing friction and the clutch on its flange in one decision, while the chain flange – clutch –
+// inertia5 – one-way clutch – inertia6 – brake can hold the gear's output side against the ground.
+// There it used to stall: the gear "started" with the chain holding its output (a = 0), its rest event
+// fired again every 1e-13 s. No independent reference here (heat_losses_rotational_test.cpp has one
+// for MSL's own placement). Claim: the run completes on both integrators within 200 000 steps, the
+// bearing friction switches with the gear (the same instants), the two integrators agree on every
+// speed within 1e-6 rad/s at every row, and the energy books close within 1e-8 of the source work.
+TEST(GearClutchBearing, HeatLossesWithBearingFrictionOnTheGearRunsOnBothIntegrators) {
+  std::ifstream in(test::example("msl/heat-losses.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string from = "bearingFriction: {between: [inertia3, ground]";
+  ASSERT_NE(yaml.find(from), std::string::npos);
+  yaml.replace(yaml.find(from), from.size(), "bearingFriction: {between: [inertia4, ground]");
+  std::vector<SimulationResult> runs;
+  for (IntegratorChoice integrator : {IntegratorChoice::dopri5, IntegratorChoice::bdf}) {
+    Model m = test::model_text(yaml, "heat-losses.yaml");
+    m.simulation.integrator = integrator;
+    m.simulation.max_steps = 200'000;
+    runs.push_back(simulate(m));
+    const auto& E = runs.back().hybrid.energy;
+    EXPECT_LT(std::abs(E.residual()), 1e-8 * E.source_work);
+    std::vector<double> gear, bearing;
+    for (const auto& e : runs.back().hybrid.events)
+      if (e.kind != "initial" && e.element == "lossyGear") gear.push_back(e.t);
+      else if (e.kind != "initial" && e.element == "bearingFriction") bearing.push_back(e.t);
+    ASSERT_FALSE(bearing.empty());
+    for (double t : bearing) EXPECT_NE(std::find(gear.begin(), gear.end(), t), gear.end()) << t;
+  }
+  for (const char* body : {"inertia1", "inertia4", "inertia5", "inertia6"}) {
+    const std::string col = std::string(body) + ".velocity_rad_s";
+    const auto& a = series(runs[0], col);
+    const auto& b = series(runs[1], col);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t j = 0; j < a.size(); ++j) EXPECT_NEAR(a[j], b[j], 1e-6) << col << " " << j;
   }
 }
 

@@ -277,8 +277,63 @@ TEST_P(GearLockMsl, Demo2MatchesThePiecewiseClosedForm) {
   EXPECT_TRUE(seen[0] && seen[1] && seen[2]);
 }
 
+// A hoist: motor A (I_A = 0.2) – lossy gear (i = 20, η_mf1 = 0.8, η_mf2 = 0.6: not self-locking, no
+// bearing friction) – drum B (I_B = 5) with the load −L = −100 N·m; a backstop [ground, A] (A may turn
+// forward only); the motor torque τ0 = 10 N·m until t_off = 1 s, 0 until t_on = 3 s, τ0 again.
+// In a's coordinate F_b' = −L/i = −5, J_B = I_B/i² = 0.0125, E = η_mf1 I_A + J_B (A drives: elements/lossy_gear.hpp).
+// 1. At rest the gear's forward margin −(η_mf1 τ0 − L/i) = −3 < 0: it starts at once, A driving,
+//    a1 = (η_mf1 τ0 − L/i)/E; the backstop runs free.
+// 2. From t_off, F_a = 0: D = −I_A F_b' > 0, A still drives: a2 = (−L/i)/E; rest at t_s = t_off (1 − a1/a2).
+// 3. At rest the load would turn the gear back with B driving (N₋ = F_a + η_mf2 F_b' = −3 < 0): the
+//    backstop holds, carrying what makes the backward margin 0: a torque η_mf2 L/i = 3 N·m on A.
+// 4. At t_on the forward margin is −3 again: gear and backstop start together, v_A = a1 (t − t_on).
+// Claim: the gear stops at t_s and starts at t_on, the backstop locks and frees with it (each once, within
+// 1e-8 s); A's speed follows the closed form at every row within 1e-8 rad/s (1e-6 on BDF) and never
+// turns backwards beyond rounding; the locked backstop carries η_mf2 L/i within 1e-9 N·m.
+TEST_P(GearLockSim, BackstopHoldsAHoistGearThatIsNotSelfLocking) {
+  const double IA = 0.2, IB = 5.0, i = 20.0, e1 = 0.8, e2 = 0.6, L = 100.0, tau0 = 10.0, t_off = 1.0, t_on = 3.0;
+  const double E = e1 * IA + IB / (i * i), a1 = (e1 * tau0 - L / i) / E, a2 = (-L / i) / E;
+  const double ts = t_off * (1.0 - a1 / a2);
+  const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+freewheels:
+  bs: {{between: [ground, A]}}
+loads:
+  motor: {{type: table, body: A, points: [[0, {}], [{}, {}], [{}, 0], [{}, 0], [{}, {}], [5, {}]]}}
+  weight: {{type: constant, body: B, value: {} N*m}}
+simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, IB, i, e1, e2, tau0, t_off, tau0, t_off, t_on, t_on, tau0, tau0, -L, GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G"), bs = events_of(r, "bs");
+  ASSERT_EQ(gear.size(), 2u);
+  EXPECT_EQ(gear[0].to, "stuck");
+  EXPECT_NEAR(gear[0].t, ts, 1e-8);
+  EXPECT_EQ(gear[1].to, "forward");
+  EXPECT_NEAR(gear[1].t, t_on, 1e-8);
+  ASSERT_EQ(bs.size(), 2u);
+  EXPECT_EQ(bs[0].to, "stuck");
+  EXPECT_NEAR(bs[0].t, ts, 1e-8);
+  EXPECT_NE(bs[1].to, "stuck");
+  EXPECT_NEAR(bs[1].t, t_on, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& F = series(r, "bs.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    const double w = t[j] <= t_off ? a1 * t[j] : t[j] <= ts ? a1 * t_off + a2 * (t[j] - t_off) : t[j] <= t_on ? 0.0 : a1 * (t[j] - t_on);
+    EXPECT_NEAR(wa[j], w, tol) << t[j];
+    EXPECT_GE(wa[j], -1e-12) << t[j];
+    if (t[j] > ts + 1e-9 && t[j] < t_on - 1e-9) {
+      EXPECT_NEAR(std::abs(F[j]), e2 * L / i, 1e-9) << t[j];
+    }
+  }
+}
+
 // Claim: the friction elements that remain unsupported on a lossy gear's bodies are located errors
-// that say why (a clutch to another body, a freewheel, a moving ground surface); a brake, a ground
+// that say why (a clutch between the gear's own bodies, a backstop beside a brake, an end stop, a moving
+// ground surface); a brake, a ground
 // contact and bearing friction compile.
 TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
   const std::string head = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3}\nlinks:\n"
@@ -288,13 +343,12 @@ TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
     EXPECT_NE(e.find("gear.yaml:6:"), std::string::npos) << more << "\n" << e;
     EXPECT_NE(e.find(why), std::string::npos) << more << "\n" << e;
   };
-  // A clutch to another body is decided with the gear (analysis/gear_clutch.hpp), but not one between
-  // the gear's own bodies, nor beside friction to the ground on the same gear.
+  // A clutch to another body is decided with the gear (analysis/gear_clutch.hpp; beside friction to the
+  // ground too), but not one between the gear's own bodies.
   check("contacts:\n  c: {between: [B, A], static: 1 N*m, kinetic: 1 N*m}\n", "joins the gear's own two bodies");
-  check("clutches:\n  c: {between: [A, C], normal_force: 100 N, mu_s: 0.3, mu_k: 0.3, radius: 0.1 m}\n"
-        "brakes:\n  br: {body: B, holding: 5 N*m}\n",
-        "both a clutch ('c') and friction to the ground ('br')");
-  check("freewheels:\n  f: {between: [ground, A]}\n", "freewheels and end stops");
+  check("freewheels:\n  f: {between: [ground, A]}\nbrakes:\n  br: {body: B, holding: 5 N*m}\n",
+        "a backstop on a lossy gear's body must be the only friction element");
+  check("stops:\n  s: {body: A, min: -1 rad}\n", "end stops on a lossy gear's bodies are not supported yet");
   check("contacts:\n  c: {between: [A, ground], static: 1 N*m, kinetic: 1 N*m, surface_velocity: 2 rad/s}\n",
         "moving surface");
   const Model ok = test::model_text(head + "brakes:\n  br: {body: B, holding: 5 N*m}\ncontacts:\n"

@@ -406,7 +406,7 @@ TEST(LossyGearCompile, BadInputIsALocatedError) {
   check("between: [A, B], loss_table: [[0, 0.9, 0.9]]", "gear.yaml:5:", "5 entries");
   check("between: [A, B], efficiency: 0.9, loss_table: [[0, 0.9, 0.9, 0, 0]]", "gear.yaml:5:", "exclude each other");
   check("between: [A, B], efficiency: 0.9", "gear.yaml:5:", "friction element 'f'",
-        "freewheels:\n  f: {between: [ground, B]}\n");
+        "stops:\n  f: {body: B, min: -1 rad}\n");
   check("between: [A, B], efficiency: 0.9", "gear.yaml:5:", "move rigidly together",
         "  I: {type: ideal-gear, between: [A, B], ratio: 3}\n");
   const std::string two = errors_of(

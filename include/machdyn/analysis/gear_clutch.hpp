@@ -32,17 +32,24 @@
 /// sticks or slips with the side it implies: the small linear system per driving side of the gear's
 /// mode equation and the clutch's holding torque, the combination consistent with both kept.
 ///
-/// At rest (v_a = 0) the gear and the contacts at zero sliding speed Z are decided together:
-///   1. the gear stuck, Z by the stick rule; kept when both start margins of the gear's law hold,
-///      m_{±1}(F_a, F_b) ≥ −tol, with the stuck clutches' loads in F_a, F_b;
-///   2. else the gear starts in the direction s whose margin failed, Z decided again with the gear
-///      rolling (its side settled as above); kept when s a ≥ 0 within rounding;
+/// At rest (v_a = 0) the gear, its friction to the ground (analysis/gear_lock.hpp: brakes, bearing
+/// friction on its bodies) and the contacts at zero sliding speed Z are decided together:
+///   1. the gear and its ground friction stuck, Z by the stick rule; kept when the pair's events of
+///      analysis/gear_lock.hpp hold, m_{+1}(F + d) ≥ −tol and m_{−1}(F − d) ≥ −tol (d = 0 without
+///      ground friction: the gear's own margins), with the stuck clutches' loads in F = (F_a, F_b);
+///      the split of the holding torque is gear_lock's rule at these F;
+///   2. else the gear starts in the direction s whose margin failed, its ground friction sliding
+///      with it, Z decided again with the gear rolling (its side settled as above); kept when s a ≥ 0
+///      within rounding; with ground friction and a = 0 exactly the stuck contacts hold the gear's
+///      other side (a chain stuck to a brake): the start moves nothing, the modes of 1. are kept
+///      (else its rest event s v_a would fire again at once, every 1e-13 s);
 ///   3. else no consistent combination: SolverError naming the gear.
 /// Events: those of the gear (elements/lossy_gear.hpp) and of the contacts (elements/contact.hpp),
 /// each from the joint solution above.
-/// Supported (compile checks): a two-body friction contact (not a freewheel or end stop) with one
-/// body on the gear and the other on no lossy gear; not on a gear that also has friction to the ground
-/// (analysis/gear_lock.hpp); no variable inertia among the gear's bodies; no prescribed motion in the
+/// Supported (compile checks): a two-body friction contact or freewheel (a one-sided clutch: the
+/// one-sided rule above, its lock·λ ≥ 0 its stick rule) with one body on the gear and the other on
+/// no lossy gear (friction to the ground on the same gear is decided in the same decision, above);
+/// no variable inertia among the gear's bodies; no prescribed motion in the
 /// model (a stuck chain could tie it to a stuck gear: two kinematic ends, which this solve does not take).
 
 #include <vector>

@@ -25,8 +25,16 @@
 /// docs/hybrid.md). θ is continuous in the forces; it reaches ±1 exactly where a joint event fires.
 /// A start in s sets the gear rolling in s (driving side by its law with the contacts' kinetic
 /// forces) and every contact sliding in sign(s κ_k): consistent, as F_k(0) ≤ F_s.
+/// Backstop: a freewheel to the ground ([ground, A], free direction −lock in u) on one of the gear's
+/// bodies blocks the gear's rolling direction s_b = lock·sign(κ) and lets it roll in −s_b, sliding
+/// freely with it. It has no upper limit, so stuck with it the gear never starts in s_b (that event
+/// is 1) and starts in −s_b where its own margin m_{−s_b}(F) < 0 (the backstop carries nothing against
+/// it). The split: the gear holds what its locking range allows, the backstop the rest: λ = 0 while
+/// m_{s_b}(F) ≥ 0, else the λ (lock·λ > 0) with m_{s_b}(F + λ e) = 0, e its force on (a, b) per unit λ.
 /// Supported (compile checks): contacts with a row on exactly one of the gear's bodies and the
-/// ground, no moving surface, not a freewheel, stop or joint.
+/// ground, no moving surface, not a stop or joint; a backstop only as the one friction element on the
+/// gear's bodies (no brake or clutch beside it). With a clutch on the same gear the
+/// decision at rest is analysis/gear_clutch.hpp's, which takes these events and this split.
 
 #include <vector>
 
@@ -41,6 +49,7 @@ struct GearLock {
   int a = 0, b = 0;           ///< the gear's bodies
   std::vector<int> contacts;  ///< contact indices
   std::vector<double> kappa;  ///< κ_k: the contact's sliding velocity per unit v_a of the gear
+  int blocked = 0;            ///< a backstop's blocked rolling direction s_b (header), 0: none
 
   /// d (size 2: on a, on b): the contacts' forces at their static limits F_s(t) against forward
   /// rolling (header); `c` the model's contact laws, in order.
@@ -65,6 +74,13 @@ void lock_events(const LossyGearLaw& g, double Fa, double Fb, const double* d, d
 [[nodiscard]] int lock_start(const LossyGearLaw& g, double Fa, double Fb, const double* d, double tol);
 /// θ of the split (header) for a pair that holds; clamped to [−1, 1] otherwise.
 [[nodiscard]] double lock_share(const LossyGearLaw& g, double Fa, double Fb, const double* d);
+
+/// A backstop lock (L.blocked ≠ 0; header): its joint events at the forces F on the gear's bodies.
+void backstop_events(const GearLock& L, const LossyGearLaw& g, double Fa, double Fb, double* ev);
+/// A backstop lock's load λ of the split (header) at F; its contact's row in `c`.
+[[nodiscard]] double backstop_load(const GearLock& L, const LossyGearLaw& g, const ContactLaw& c, double Fa, double Fb);
+/// The force (e_a, e_b) a backstop's load puts on the gear's bodies per unit λ.
+void backstop_direction(const GearLock& L, const ContactLaw& c, double* e);
 
 class DriveSystem;
 /// The joint decision at rest of gear g and its contacts at (t, y): sets their modes in `sys` (the gear

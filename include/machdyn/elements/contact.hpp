@@ -15,7 +15,8 @@
 /// (|λ| ≤ F_s: the event located the crossing on this very function); any other gets a rounding
 /// allowance of 1e-12 F_s0, so a load exactly at the limit holds.
 /// A freewheel (lock = ±1) holds while lock·λ ≥ 0, has no upper limit, and slides only in its free
-/// direction −lock with its drag as kinetic level; its stuck event is lock·λ. An end stop is such a
+/// direction −lock with its drag as kinetic level; its stuck event is its hold rule, lock·λ + 1e-9
+/// (the allowance: one held unloaded at λ = −1e-15 starts armed). An end stop is such a
 /// lock to the ground that engages by position: while free its event is the distance to the stop.
 /// A general row (model/model.hpp VelocityRow: a joint, or a contact on a planetary gear's member
 /// without inertia) has u = Σ_j w_j v_j (− w(t) to the ground) and puts −w_j F on body j: the
@@ -158,7 +159,10 @@ struct ContactLaw {
       ev[0] = u;  // the motions leave rest (u: the sliding velocity, also while stuck)
       ev[1] = -u;
     } else if (md == ContactMode::stuck && lock != 0) {
-      ev[0] = lock * lambda;  // the load turns against the lock: it overruns
+      // The load turns against the lock: it overruns (a stop: the body leaves it). The event is the
+      // hold rule, allowance included, so one held unloaded at λ = −1e-15 (beside a clutch that just
+      // broke away) starts armed.
+      ev[0] = lock * lambda + 1e-9;
       ev[1] = 1.0;
     } else if (md == ContactMode::stuck) {
       const double Fs = static_limit(t);
