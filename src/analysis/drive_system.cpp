@@ -873,15 +873,8 @@ bool gap_only(const LinkLaw& k) { return k.gap & !(k.capped | k.shaped | k.windi
 
 void DriveSystem::link_loads(const double* y, double* F) const {
   const LinkLaw* k = links_.data();  // walked by pointer, the bounds in registers
-  if (all_plain_) {
-    for (int l = 0, nl = nl_; l < nl; ++l, ++k)
-      F[l] = plain(*k) ? k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0) : link_load(l, y);
-    return;
-  }
   for (int l = 0, nl = nl_; l < nl; ++l, ++k)
-    F[l] = plain(*k)      ? k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0)
-           : gap_only(*k) ? k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0)
-                          : link_load(l, y);
+    F[l] = plain(*k) ? k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0) : link_load(l, y);
 }
 
 void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double* F, double* rate) const {

@@ -1,7 +1,7 @@
-// The drive system's per-row and per-step evaluations (analysis/drive_system.hpp): link_loads() and
-// link_loads_and_rates() take each link by a path of its own (plain, gap, the whole law) and
-// contact_forces() a mode's small map inline; each must give the bits of the one law evaluated link
-// by link (link_load, link_load_rate) and of evaluate(), and the law's closed form.
+// The drive system's per-row and per-step evaluations (analysis/drive_system.hpp): link_loads()
+// and link_loads_and_rates() take each link by a path of its own (plain, gap in the rates' loop,
+// the whole law) and contact_forces() a mode's small map inline; each must give the bits of the one
+// law evaluated link by link (link_load, link_load_rate) and of evaluate(), and the closed form.
 #include <cmath>
 #include <string>
 #include <vector>

@@ -384,7 +384,7 @@ class DriveSystem final : public OdeSystem {
   bool windows_ = false;                 // some window is set
   mutable std::vector<double> qw_;       // positions clamped into the windows
   std::vector<LinkLaw> links_;
-  bool all_plain_ = true;  // every link plain (c δ + d δ̇): link_loads() keeps the chain's own loop
+  bool all_plain_ = true;  // every link plain (c δ + d δ̇): link_loads_and_rates() keeps the chain's own loop
   int ng_ = 0;                              // lossy gears
   std::vector<LossyGearLaw> gears_;
   std::vector<GearMode> gear_mode_;
