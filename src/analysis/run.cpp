@@ -174,7 +174,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
-    report_progress(st, start_, false);
+    if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
     if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
@@ -549,7 +549,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   // ---- progress ----
   /// The clock is read every 32 steps only; a report at most every progress_interval_s.
-  void report_progress(const Stepper& st, std::chrono::steady_clock::time_point start, bool finished) {
+  __attribute__((noinline)) void report_progress(const Stepper& st, std::chrono::steady_clock::time_point start,
+                                                 bool finished) {
     if (!opt_.progress) return;
     ++progress_steps_;
     if (!finished && (progress_steps_ & 31) != 0) return;
