@@ -171,7 +171,9 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   im_ = inv_mass_;
   for (const auto& l : model.links) {
     links_.push_back(LinkLaw::of(model, l));
-    has_machines_ = has_machines_ || links_.back().point;
+    const LinkLaw& k = links_.back();
+    has_machines_ = has_machines_ || k.point;
+    all_plain_ = all_plain_ && !(k.gap || k.capped || k.shaped || k.winding || k.point);
   }
   has_machines_ = has_machines_ || !machine_bodies_.empty();
   for (const auto& c : model.contacts) {
@@ -787,7 +789,7 @@ void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
     return;
   }
   if (!affine_) {
-    affine_ = &compile_affine();
+    use_affine();
     if (affine_->dense.kernel) {  // from now on inline (rhs)
       fast_ = &affine_->dense;
       rhs(t, y, dydt);
@@ -936,6 +938,9 @@ namespace {
 /// Calling the one law under this test lets the compiler drop the law's other branches: the
 /// same arithmetic, a fraction of the instructions.
 bool plain(const LinkLaw& k) { return !(k.gap | k.capped | k.shaped | k.winding | k.point); }
+/// A plain link with a gap (no cap, shape, winding or machine point): the same law from the flank of
+/// its mode, 0 while open; the same test lets the compiler drop the other branches.
+bool gap_only(const LinkLaw& k) { return k.gap & !(k.capped | k.shaped | k.winding | k.point); }
 
 }  // namespace
 
@@ -947,10 +952,26 @@ void DriveSystem::link_loads(const double* y, double* F) const {
 
 void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double* F, double* rate) const {
   const LinkLaw* k = links_.data();
+  if (all_plain_) {
+    for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
+      if (plain(*k)) {
+        F[l] = k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0);
+        rate[l] = k->load_rate(y, dy, dy + n_, GapMode::open);
+      } else {
+        F[l] = link_load(l, y);
+        rate[l] = link_load_rate(l, y, dy);
+      }
+    }
+    return;
+  }
   for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
     if (plain(*k)) {
       F[l] = k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0);
       rate[l] = k->load_rate(y, dy, dy + n_, GapMode::open);
+    } else if (gap_only(*k)) {
+      const GapMode g = gap_[static_cast<size_t>(l)];
+      F[l] = k->load(k->linear(y), k->linear(y + n_), g, 0.0);
+      rate[l] = k->load_rate(y, dy, dy + n_, g);
     } else {
       F[l] = link_load(l, y);
       rate[l] = link_load_rate(l, y, dy);
@@ -958,9 +979,9 @@ void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double
   }
 }
 
-void DriveSystem::contact_forces(double t, const double* y, double* fc) {
+void DriveSystem::contact_forces_other(double t, const double* y, double* fc) {
   if (affine_eligible_ && !dense_) {  // the mode's affine rows (compile_affine)
-    if (!affine_) affine_ = &compile_affine();
+    if (!affine_) use_affine();
     const AffineMode& a = *affine_;
     if (a.force_dense.kernel) {
       a.force_dense.apply(y, fc);
@@ -983,6 +1004,10 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     const LinkLaw& k = links_[static_cast<size_t>(l)];
     if (!k.gap) {
       g[2 * l] = g[2 * l + 1] = 1.0;
+      continue;
+    }
+    if (gap_only(k)) {  // the same law without the branches this link does not have
+      k.events(k.linear(y), k.linear(y + n_), gap_[static_cast<size_t>(l)], 0.0, g + 2 * l);
       continue;
     }
     const LinkLaw::Kinematics s = link_kinematics(l, y);

@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <utility>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/contact_decision.hpp"
@@ -134,7 +135,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   [[nodiscard]] int event_count() const override { return has_events_ ? sys_.event_slots() + jumps_.count() : 0; }
   void event_functions(double t, const double* y, double* g) override {
     sys_.event_functions(t, y, g);
-    jumps_.event_functions(y, g + sys_.event_slots());
+    if (jumps_.count() > 0) jumps_.event_functions(y, g + sys_.event_slots());
   }
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
@@ -153,7 +154,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (m_.bodies[static_cast<size_t>(k.a)].motion != MotionKind::free) v[k.b] = v[k.a] / k.i;
       else if (m_.bodies[static_cast<size_t>(k.b)].motion != MotionKind::free) v[k.a] = k.i * v[k.b];
     }
-    std::vector<int> own;
+    std::vector<int>& own = own_;  // kept: no allocation per event
+    own.clear();
     int jump = -1;
     for (int f : fired) {
       if (f < sys_.event_slots()) own.push_back(f);
@@ -180,7 +182,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
-    report_progress(st, start_, false);
+    if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
     if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
@@ -192,8 +194,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   void on_output(double t, const double* y) override {
     const size_t row = next_row();
-    output_head(row, t, y);
-    if (!plain_rows_) output(row, t, y);
+    if (plain_rows_) output_head(row, t, y);
+    else output(row, t, y);
   }
   void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
 
@@ -297,9 +299,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return row_++;
   }
 
-  /// The first columns of every row, and all of a plain chain's: t, the states, the link loads, by a
-  /// small function of its own (the hoist's rows without output()'s frame and group checks).
-  __attribute__((noinline)) void output_head(size_t row, double t, const double* y) {
+  /// A plain chain's rows (t, the states, the link loads) by a small function of their own (the
+  /// hoist's rows without output()'s frame and group checks).
+  __attribute__((noinline)) void output_head(size_t row, double t, const double* y) { head(row, t, y); }
+  /// The first columns of every row: t, the states, the link loads (into loads_ as well).
+  __attribute__((always_inline)) void head(size_t row, double t, const double* y) {
     std::vector<double>* col = out_.columns.data();
     (col++)->data()[row] = t;
     for (int i = 0; i < n_; ++i, col += 2) {
@@ -311,8 +315,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int l = 0; l < nl_; ++l) col[l].data()[row] = F[l];
   }
 
-  /// The rest of row `row` after output_head()'s columns (loads_ holds the link loads at t).
-  void output(size_t row, double t, const double* y) {
+  /// Row `row` of every other model: head()'s columns, then the contacts, gaps and the groups after.
+  __attribute__((noinline)) void output(size_t row, double t, const double* y) {
+    head(row, t, y);
     size_t c = 1 + 2 * static_cast<size_t>(n_) + static_cast<size_t>(nl_);
     auto& cols = out_.columns;
     auto put = [&](double v) { cols[c++][row] = v; };
@@ -561,7 +566,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   // ---- progress ----
   /// The clock is read every 32 steps only; a report at most every progress_interval_s.
-  void report_progress(const Stepper& st, std::chrono::steady_clock::time_point start, bool finished) {
+  __attribute__((noinline)) void report_progress(const Stepper& st, std::chrono::steady_clock::time_point start,
+                                                 bool finished) {
     if (!opt_.progress) return;
     ++progress_steps_;
     if (!finished && (progress_steps_ & 31) != 0) return;
@@ -694,7 +700,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     p.link_t_max.assign(static_cast<size_t>(nl_), t);
     p.link_min.assign(static_cast<size_t>(nl_), std::numeric_limits<double>::infinity());
     for (int l = 0; l < nl_; ++l) p.link_start.push_back(sys_.link_load(l, y_.data()));
-    out_.hybrid.slip_phases.push_back(p);
+    out_.hybrid.slip_phases.push_back(std::move(p));
     open_phase_[static_cast<size_t>(k)] = static_cast<int>(out_.hybrid.slip_phases.size()) - 1;
     ++phases_open_;
   }
@@ -973,6 +979,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   int phases_open_ = 0;
   std::vector<std::vector<double>> switches_;
   std::vector<int> strict_;  // stuck contacts whose limit event fired
+  std::vector<int> own_;     // handle_events: the fired slots of the drive system
   std::chrono::steady_clock::time_point start_;
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;

@@ -215,8 +215,15 @@ class DriveSystem final : public OdeSystem {
     return contacts_[static_cast<size_t>(k)].sliding_velocity(t, y + n_);
   }
   /// The contact forces F_k of evaluate() alone (stuck: λ; sliding: ±F_k): from the mode's affine
-  /// map where the model is affine in its state, without solving for the accelerations.
-  void contact_forces(double t, const double* y, double* fc);
+  /// map where the model is affine in its state, without solving for the accelerations. Inline: a
+  /// mode's small map of them is the whole call (output rows, event functions).
+  void contact_forces(double t, const double* y, double* fc) {
+    if (const AffineRows* f = force_fast_) {
+      f->apply(y, fc);
+      return;
+    }
+    contact_forces_other(t, y, fc);
+  }
   /// Accelerations (n) and contact forces F_k (stuck: λ; sliding: ±F_k; size = contacts).
   void evaluate(double t, const double* y, double* acc, double* contact_force);
   /// Generalized external forces f (n): loads, machine forces and the contact forces `fc`.
@@ -364,11 +371,19 @@ class DriveSystem final : public OdeSystem {
   bool affine_eligible_ = false;
   const AffineMode* affine_ = nullptr;  // the current mode's, or null until compiled
   const AffineRows* fast_ = nullptr;     // rows n… of the whole right-hand side, when small and current
+  const AffineRows* force_fast_ = nullptr;  // the contact forces' rows, when small and current
   void rhs_other(double t, const double* y, double* dydt);
+  void contact_forces_other(double t, const double* y, double* fc);
+  /// affine_ = the current mode's map (compiled or found), and its small contact-force rows.
+  void use_affine() {
+    affine_ = &compile_affine();
+    if (affine_->force_dense.kernel) force_fast_ = &affine_->force_dense;
+  }
   /// A mode changed: its affine map is compiled (or found) at the next evaluation.
   void mode_changed() {
     affine_ = nullptr;
     fast_ = dense_ && varying_.empty() ? &chain_ : nullptr;
+    force_fast_ = nullptr;
   }
   std::unordered_map<std::string, AffineMode> affine_cache_;
   const AffineMode& compile_affine();
@@ -398,6 +413,7 @@ class DriveSystem final : public OdeSystem {
   bool windows_ = false;                 // some window is set
   mutable std::vector<double> qw_;       // positions clamped into the windows
   std::vector<LinkLaw> links_;
+  bool all_plain_ = true;  // every link plain (c δ + d δ̇): link_loads_and_rates() keeps the chain's own loop
   int ng_ = 0;                              // lossy gears
   std::vector<LossyGearLaw> gears_;
   std::vector<GearMode> gear_mode_;

@@ -93,11 +93,14 @@ class PeakTracker {
     double rate_prev = 0.0, value_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
   };
   void consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
-  /// Inline: most values are neither a new extreme nor wanted as candidates.
+  /// Inline: most values are no new extreme (a wanted candidate goes straight to its callback).
   void consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
                       const Candidate& on_candidate) {
     const Extremes& g = sig_[static_cast<size_t>(j)];
-    if (started_ && v <= g.max && v >= g.min && !on_candidate) return;
+    if (started_ && v <= g.max && v >= g.min) {
+      if (on_candidate) on_candidate(j, t, v);
+      return;
+    }
     new_value(j, t, v, y, on_new_max, on_candidate);
   }
   void new_value(int j, double t, double v, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
