@@ -14,19 +14,14 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "support/events.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace {
 
+using test::events_of;
 using test::series;
-
-std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element) {
-  std::vector<ModeEvent> out;
-  for (const auto& e : r.hybrid.events)
-    if (e.element == element && e.kind != "initial") out.push_back(e);
-  return out;
-}
 
 class GearClutchSim : public ::testing::TestWithParam<const char*> {};
 INSTANTIATE_TEST_SUITE_P(BothIntegrators, GearClutchSim, ::testing::Values("dopri5", "bdf"));

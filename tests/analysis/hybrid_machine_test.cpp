@@ -14,20 +14,15 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/model/machine.hpp"
+#include "support/events.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace {
 
+using test::events_of;
 using test::column;
 
-
-std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element, const std::string& kind) {
-  std::vector<ModeEvent> out;
-  for (const auto& e : r.hybrid.events)
-    if (e.element == element && e.kind == kind) out.push_back(e);
-  return out;
-}
 
 // Composite 10-point Gauss–Legendre quadrature of f over [a, b] in `panels` panels.
 double gauss(const std::function<double(double)>& f, double a, double b, int panels) {

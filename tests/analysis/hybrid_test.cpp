@@ -13,11 +13,13 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "support/events.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace {
 
+using test::events_of;
 using test::at;
 using test::series;
 
@@ -36,13 +38,6 @@ Model with_integrator(Model m, IntegratorChoice ic) {
   return m;
 }
 SimulationResult run(const Model& m, IntegratorChoice ic) { return simulate(with_integrator(m, ic)); }
-
-std::vector<ModeEvent> events_of(const SimulationResult& r, const std::string& element, const std::string& kind = "") {
-  std::vector<ModeEvent> out;
-  for (const auto& e : r.hybrid.events)
-    if (e.element == element && e.kind != "initial" && (kind.empty() || e.kind == kind)) out.push_back(e);
-  return out;
-}
 
 // Claim: a body stays stuck while the load is within the static limit and slips exactly when it
 // reaches it. Load f = 100 t N on a 2 kg block, static limit 30 N: breakaway at t = 30/100 = 0.3 s.
