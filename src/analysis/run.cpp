@@ -195,6 +195,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void on_output(double t, const double* y) override {
     const size_t row = next_row();
     if (plain_rows_) output_head(row, t, y);
+    else if (contact_rows_) output_contacts(row, t, y);
     else output(row, t, y);
   }
   void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
@@ -283,20 +284,32 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // Every column group output() writes after the gap modes (a new one must be added here).
     tail_groups_ = nd_ > 0 || ng_ > 0 || !rope_links_.empty() || !m_.slaves.empty() || !m_.merged_gears.empty() ||
                    heat_.any_thermal() || !released_bodies_.empty() || sys_.motion_count() > 0 || extra_.any();
+    // Rows that end with the contacts and gap modes: output_contacts().
+    contact_rows_ = !plain_rows_ && nc_ > 0 && !sys_.has_machines() && m_.eliminated_joints.empty() && !tail_groups_;
     out_.columns.resize(names.size());
     if (!opt_.record_series) return;
     // Sized once (compile bounded the bytes); rows are written in place and the columns cut to
     // the rows written at the end: no capacity check per value on the output path.
     row_cap_ = static_cast<size_t>(m_.simulation.t_end / m_.simulation.dt_out) + 2;
     for (auto& col : out_.columns) col.resize(row_cap_);
+    point_columns();
+  }
+  /// col_[j] = out_.columns[j].data(): a row writes each value through one pointer, not through a
+  /// column's vector (refreshed whenever the columns are resized).
+  void point_columns() {
+    col_.resize(out_.columns.size());
+    for (size_t j = 0; j < col_.size(); ++j) col_[j] = out_.columns[j].data();
   }
   /// The index of the next output row (more room if the grid ever outgrows its bound).
   size_t next_row() {
-    if (row_ == row_cap_) {
-      row_cap_ = 2 * row_cap_ + 16;
-      for (auto& col : out_.columns) col.resize(row_cap_);
-    }
+    if (row_ == row_cap_) [[unlikely]] grow_rows();
     return row_++;
+  }
+  /// Out of line: inlined, its loop gave on_output() a stack frame and six saved registers per row.
+  __attribute__((noinline)) void grow_rows() {
+    row_cap_ = 2 * row_cap_ + 16;
+    for (auto& col : out_.columns) col.resize(row_cap_);
+    point_columns();
   }
 
   /// A plain chain's rows (t, the states, the link loads) by a small function of their own (the
@@ -304,40 +317,65 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   __attribute__((noinline)) void output_head(size_t row, double t, const double* y) { head(row, t, y); }
   /// The first columns of every row: t, the states, the link loads (into loads_ as well).
   __attribute__((always_inline)) void head(size_t row, double t, const double* y) {
-    std::vector<double>* col = out_.columns.data();
-    (col++)->data()[row] = t;
+    double* const* col = col_.data();
+    (*col++)[row] = t;
     for (int i = 0; i < n_; ++i, col += 2) {
-      col[0].data()[row] = y[i];
-      col[1].data()[row] = y[n_ + i];
+      col[0][row] = y[i];
+      col[1][row] = y[n_ + i];
     }
     double* F = loads_.data();
     sys_.link_loads(y, F);
-    for (int l = 0; l < nl_; ++l) col[l].data()[row] = F[l];
+    for (int l = 0; l < nl_; ++l) col[l][row] = F[l];
+  }
+
+  /// Row `row` of a model whose rows end with its contacts and gap modes (no machine, eliminated
+  /// joint or later group: contact_rows_, the travel start-up): output()'s columns without its checks.
+  __attribute__((noinline)) void output_contacts(size_t row, double t, const double* y) {
+    head(row, t, y);
+    double* const* col = col_.data() + 1 + 2 * n_ + nl_;
+    sys_.contact_forces(t, y, fc_.data());
+    col = contact_columns(row, t, y, col);
+    gap_columns(row, col);
+  }
+  /// The contacts' columns from fc_ (a gear joint: the torques −w_j λ; else F, u and the mode),
+  /// written through `col`; returns the column after them.
+  __attribute__((always_inline)) double* const* contact_columns(size_t row, double t, const double* y,
+                                                                double* const* col) const {
+    const double* fc = fc_.data();  // locals: the stores into the columns make no member reload
+    const double* v = y + n_;
+    const ContactMode* mode = sys_.contact_modes().data();
+    for (int k = 0; k < nc_; ++k) {
+      const ContactLaw& law = sys_.contact(k);
+      if (law.joint) {
+        for (int j = 0; j < law.row.terms; ++j) (*col++)[row] = -law.row.w[j] * fc[k];
+        continue;
+      }
+      (*col++)[row] = fc[k];
+      (*col++)[row] = law.sliding_velocity(t, v);  // = sys_.sliding_velocity(k, t, y)
+      (*col++)[row] = static_cast<double>(static_cast<int>(mode[k]));
+    }
+    return col;
+  }
+  /// The gap links' modes, written through `col`; returns the column after them.
+  __attribute__((always_inline)) double* const* gap_columns(size_t row, double* const* col) const {
+    for (const int l : gap_links_) (*col++)[row] = static_cast<double>(static_cast<int>(sys_.gap_mode(l)));
+    return col;
   }
 
   /// Row `row` of every other model: head()'s columns, then the contacts, gaps and the groups after.
   __attribute__((noinline)) void output(size_t row, double t, const double* y) {
     head(row, t, y);
-    size_t c = 1 + 2 * static_cast<size_t>(n_) + static_cast<size_t>(nl_);
-    auto& cols = out_.columns;
-    auto put = [&](double v) { cols[c++][row] = v; };
+    double* const* col = col_.data() + 1 + 2 * n_ + nl_;
+    auto put = [&](double v) { (*col++)[row] = v; };
     if (sys_.has_machines()) sys_.evaluate(t, y, acc_.data(), fc_.data());
     else if (nc_ > 0) sys_.contact_forces(t, y, fc_.data());
     if (sys_.has_machines()) acc_rows_.insert(acc_rows_.end(), acc_.begin(), acc_.end());  // for the machine series
-    for (int k = 0; k < nc_; ++k) {
-      if (const ContactLaw& law = sys_.contact(k); law.joint) {
-        for (int j = 0; j < law.row.terms; ++j) put(-law.row.w[j] * fc_[static_cast<size_t>(k)]);
-        continue;
-      }
-      put(fc_[static_cast<size_t>(k)]);
-      put(sys_.sliding_velocity(k, t, y));
-      put(static_cast<double>(static_cast<int>(sys_.contact_mode(k))));
-    }
+    col = contact_columns(row, t, y, col);
     for (const auto& e : m_.eliminated_joints) {
       const double lambda = eliminated_joint_load(e, t, y);
       for (const double w : e.w) put(-w * lambda);
     }
-    for (const int l : gap_links_) put(static_cast<double>(static_cast<int>(sys_.gap_mode(l))));
+    col = gap_columns(row, col);
     if (!tail_groups_) return;  // no drive, gear, rope, slave, thermal, release, motion or extra columns
     for (int d = 0; d < nd_; ++d) {
       put(sys_.drive_torque(d, t, y));
@@ -374,7 +412,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       sys_.evaluate(t, y, acc_.data(), fc_.data());
       for (int j = 0; j < sys_.motion_count(); ++j) put(sys_.motion_force(j));
     }
-    if (extra_.any()) extra_output(t, y, row, c);
+    if (extra_.any()) {
+      size_t c = static_cast<size_t>(col - col_.data());
+      extra_output(t, y, row, c);
+    }
   }
 
   // ---- the optional columns (analysis/extra_outputs.hpp) ----
@@ -961,6 +1002,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   bool has_events_ = false;
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
   bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
+  bool contact_rows_ = false;  // the rows end with the contacts and gap modes (output_contacts)
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
@@ -971,6 +1013,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
   std::vector<double> y_, acc_, fc_;
   std::vector<double> loads_;                // the link loads of an output row
+  std::vector<double*> col_;                 // the columns' data (point_columns)
   std::vector<int> gap_links_, rope_links_;  // links with a gap-mode column, ropes with fall columns
   std::vector<size_t> drive_cols_;           // per element with states: its own output columns
   std::vector<double> drive_vals_;           // their values at an output row
