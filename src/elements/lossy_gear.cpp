@@ -186,12 +186,12 @@ GearMode LossyGearLaw::decide_given(bool b_given, double acc, double Fa, double 
   return s > 0 ? (bd ? GearMode::forward_b : GearMode::forward) : (bd ? GearMode::backward_b : GearMode::backward);
 }
 
-void LossyGearLaw::events_given(GearMode md, double va, const Torques& T, double* ev) const {
-  if (direction(md) == 0) {
-    ev[0] = ev[1] = 1.0;
-    return;
-  }
-  events(md, 0.0, 0.0, 0.0, 0.0, va, T, ev);  // rolling: its events read only v_a and the torques
+void LossyGearLaw::events_given(GearMode md, GearMode now, double va, const Torques& T, double* ev) const {
+  if (direction(md) == 0) ev[0] = ev[1] = 1.0;
+  else events(md, 0.0, 0.0, 0.0, 0.0, va, T, ev);  // rolling: its events read only v_a and the torques
+  // The evaluation decided otherwise (header "Mode law"): the slot of the part that changed fires.
+  if (direction(now) != direction(md)) ev[0] = -1.0;
+  else if (now != md) ev[1] = -1.0;
 }
 
 void LossyGearLaw::add_linear(LinearModel& lin) const {
