@@ -1,7 +1,8 @@
 // A lossy gear with a prescribed side whose motion leaves rest and comes back to rest smoothly (speed and
 // acceleration both 0 there, no kink: an S-curve speed reference). The gear's mode is a function of t
 // alone (elements/lossy_gear.hpp "Mode law"), so the torques, the mode column, the heat and the source's
-// torque follow the motion from the first instant of the start to the hold, on both integrators.
+// torque follow the motion from the first instant of the start to the hold, on both integrators, with
+// the motion on the worm (a) and on the drum (b), lifting and lowering.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -125,6 +126,74 @@ simulation: {{t_end: 2.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}}
   EXPECT_NEAR(r.hybrid.energy.friction_loss, heat, 1e-7 * heat);
   EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-8 * r.hybrid.energy.source_work);
   std::printf("SmoothStartGear %s sigma %+d: X, R %.2e N*m; switches %.2e s; heat %.6f J vs %.6f\n",
+              integrator == IntegratorChoice::bdf ? "bdf" : "dopri5", sigma, e_x, e_t, r.hybrid.energy.friction_loss,
+              heat);
+}
+
+// Claim: the same bump prescribed on the drum B instead, v_b = v_a/20 (I_B = 40 kg·m², M_B = −60 N·m), the
+// worm A free (I_A = 0.02 kg·m², nothing else on it). A's own equation gives in every mode
+//   X = −I_A a,   a = σ 1600 u (1 − u)(1 − 2u)  (A's acceleration, = 20 a_b).
+// Rolling (s = σ): A drives while s X > 0 (the worm is braked: the second half, u > ½), Y = η_mf1 X; else
+// B drives (the drum accelerates the worm), Y = X/η_mf2; the switch where a = 0, at u = ½ (t = 1 s).
+// At rest X = 0 and the locking range of Y is [Y_+(0), Y_−(0)] = [0, 0]: Y = 0, the drum's source holds
+// the load alone. B's source closes B's equation: R_B = I_B a_b + 60 − 20 Y. Heat (X − Y) v_a: with
+// ∫ X v_a dt = −I_A v_a²/2 over each half and v_a(½) = 50 rad/s, it is
+//   I_A/2 · 50² · [(1/η_mf2 − 1) + (1 − η_mf1)] = 25 · 1.6 = 40 J.
+// Every row to 1e-6 N·m; the start, the driving side at 1 s and the stop to 1e-8 s; the heat to 1e-7.
+TEST_P(SmoothStartGear, OnTheDrumTheWormsEquationDecides) {
+  const auto [integrator, sigma] = GetParam();
+  Model m = test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: 0.02 kg*m^2}}
+  B: {{inertia: 40 kg*m^2, motion: {{speed: {{type: expression, expression: "{}40*((t-0.5+abs(t-0.5))/2)^2*((1.5-t+abs(1.5-t))/2)^2"}}}}}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: 20, efficiency: 0.9, efficiency_reverse: 0.4}}
+loads:
+  MB: {{type: constant, body: B, value: -60 N*m}}
+simulation: {{t_end: 2.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}}
+)", sigma < 0 ? "-" : ""), "gear.yaml");
+  m.simulation.integrator = integrator;
+  const SimulationResult r = simulate(m);
+  const double IA = 0.02, IB = 40.0, eta1 = 0.9, eta2 = 0.4, sg = sigma;
+  auto moving = [](double u) { return u > 0.0 && u < 1.0; };
+  auto v = [&](double u) { return moving(u) ? sg * 800.0 * u * u * (1 - u) * (1 - u) : 0.0; };
+  auto a = [&](double u) { return moving(u) ? sg * 1600.0 * u * (1 - u) * (1 - 2 * u) : 0.0; };
+  auto X = [&](double u) { return -IA * a(u); };
+  auto Y = [&](double u) { return !moving(u) ? 0.0 : sg * X(u) > 0.0 ? eta1 * X(u) : X(u) / eta2; };
+  const auto& t = series(r, "t_s");
+  const auto& ta = series(r, "G.torque_a_N_m");
+  const auto& tb = series(r, "G.torque_b_N_m");
+  const auto& loss = series(r, "G.loss_power_W");
+  const auto& md = series(r, "G.mode");
+  const auto& R = series(r, "B.motion_torque_N_m");
+  const auto& wA = series(r, "A.velocity_rad_s");
+  ASSERT_GT(t.size(), 2400u);
+  double e_x = 0.0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    const double u = t[k] - 0.5;
+    EXPECT_NEAR(ta[k], X(u), 1e-6) << "t = " << t[k];
+    EXPECT_NEAR(tb[k], -20.0 * Y(u), 20e-6) << "t = " << t[k];
+    EXPECT_NEAR(R[k], IB * a(u) / 20.0 + 60.0 - 20.0 * Y(u), 20e-6) << "t = " << t[k];
+    EXPECT_NEAR(loss[k], (X(u) - Y(u)) * v(u), 1e-4) << "t = " << t[k];
+    EXPECT_NEAR(wA[k], v(u), 2e-6) << "t = " << t[k];
+    EXPECT_EQ(md[k], moving(u) ? sg : 0.0) << "t = " << t[k];
+    e_x = std::max({e_x, std::abs(tb[k] + 20.0 * Y(u)), std::abs(R[k] - IB * a(u) / 20.0 - 60.0 + 20.0 * Y(u))});
+  }
+  const std::string dir = sg > 0 ? "forward" : "backward";
+  const std::vector<std::pair<double, std::string>> want = {{0.5, dir + "_b_drives"}, {1.0, dir}, {1.5, "stuck"}};
+  std::vector<std::pair<double, std::string>> got;
+  for (const auto& e : r.hybrid.events)
+    if (e.element == "G" && e.kind != "initial") got.emplace_back(e.t, e.to);
+  ASSERT_EQ(got.size(), want.size());
+  double e_t = 0.0;
+  for (size_t k = 0; k < want.size(); ++k) {
+    EXPECT_NEAR(got[k].first, want[k].first, 1e-8) << got[k].second;
+    EXPECT_EQ(got[k].second, want[k].second);
+    e_t = std::max(e_t, std::abs(got[k].first - want[k].first));
+  }
+  const double heat = 0.5 * IA * 50.0 * 50.0 * ((1.0 / eta2 - 1.0) + (1.0 - eta1));
+  EXPECT_NEAR(r.hybrid.energy.friction_loss, heat, 1e-7 * heat);
+  EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-8 * r.hybrid.energy.source_work);
+  std::printf("SmoothStartGear drum %s sigma %+d: Y, R %.2e N*m; switches %.2e s; heat %.6f J vs %.6f\n",
               integrator == IntegratorChoice::bdf ? "bdf" : "dopri5", sigma, e_x, e_t, r.hybrid.energy.friction_loss,
               heat);
 }
