@@ -671,7 +671,9 @@ LossyGearLaw::Torques DriveSystem::given_gear_torques(int g, double t, const dou
   const double acc = bg ? k.i * p.acceleration(t) : p.acceleration(t);
   const double Ia = bg ? inertia_[static_cast<size_t>(k.a)] : p.inertia, Ib = bg ? p.inertia : inertia_[static_cast<size_t>(k.b)];
   // The mode of (t) alone (lossy_gear.hpp "Mode law"), from the motion's speed: a hold exactly at rest.
-  gear_now_[gi] = k.decide_given(bg, acc, f[k.a], f[k.b], Ia, Ib, given_speed(p, k, bg, t, y + n_));
+  // The rounding allowances (lossy_gear.hpp "Mode law"): 1e-12 of the prescribed speed's scale (per s for a).
+  const double rest = 1e-12 * p.speed_scale * (bg ? std::abs(k.i) : 1.0);
+  gear_now_[gi] = k.decide_given(bg, acc, f[k.a], f[k.b], Ia, Ib, given_speed(p, k, bg, t, y + n_), rest, rest);
   return k.solve_given(gear_now_[gi], bg, acc, f[k.a], f[k.b], Ia, Ib, y[n_ + k.a]);
 }
 

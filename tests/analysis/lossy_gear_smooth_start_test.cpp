@@ -2,7 +2,7 @@
 // acceleration both 0 there, no kink: an S-curve speed reference). The gear's mode is a function of t
 // alone (elements/lossy_gear.hpp "Mode law"), so the torques, the mode column, the heat and the source's
 // torque follow the motion from the first instant of the start to the hold, on both integrators, with
-// the motion on the worm (a) and on the drum (b), lifting and lowering.
+// the motion on the worm (a) and on the drum (b), lifting and lowering; the shipped S-curve example.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -196,6 +197,45 @@ simulation: {{t_end: 2.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}}
   std::printf("SmoothStartGear drum %s sigma %+d: Y, R %.2e N*m; switches %.2e s; heat %.6f J vs %.6f\n",
               integrator == IntegratorChoice::bdf ? "bdf" : "dopri5", sigma, e_x, e_t, r.hybrid.energy.friction_loss,
               heat);
+}
+
+// Claim: examples/worm-hoist-s-curve.yaml does what its comment says. The motor's speed is 150 (S(c₁) −
+// S(c₂)), S(c) = 3c² − 2c³, c₁ = clamp(t − 0.5, 0, 1), c₂ = clamp(t − 4, 0, 1); a = 150 · 6c(1 − c) on the
+// ramps (− on the second). J_b = 4/40² = 0.0025 kg·m², −F_b' = 150/40 = 3.75 N·m, so Y = 0.0025 a + 3.75
+// ≥ 3.75 − 0.0025 · 225 > 0: A drives whenever it moves (X = Y/0.45, R = 0.02 a + X, mode +1), and at
+// rest the self-locking gear (η_mf2 = 0) holds the weight alone (X = 0, R = 0, mode 0). Every row to
+// 1e-6 N·m; the gear's changes are exactly a start at 0.5 s and a stop at 5 s (to 1e-8 s): a signal at
+// rest only up to its rounding makes no chatter.
+TEST(SmoothStartGearExample, WormHoistOnAnSCurveStartsAndStopsOnce) {
+  for (const IntegratorChoice integrator : {IntegratorChoice::dopri5, IntegratorChoice::bdf}) {
+    Model m = load_model(std::string(MACHDYN_SOURCE_DIR) + "/examples/worm-hoist-s-curve.yaml");
+    m.simulation.integrator = integrator;
+    const SimulationResult r = simulate(m);
+    auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
+    auto ramp_a = [](double c) { return c > 0.0 && c < 1.0 ? 150.0 * 6.0 * c * (1.0 - c) : 0.0; };
+    const auto& t = series(r, "t_s");
+    const auto& ta = series(r, "worm.torque_a_N_m");
+    const auto& R = series(r, "motor.motion_torque_N_m");
+    const auto& md = series(r, "worm.mode");
+    ASSERT_GT(t.size(), 590u);
+    for (size_t k = 0; k < t.size(); ++k) {
+      const double c1 = clamp01(t[k] - 0.5), c2 = clamp01(t[k] - 4.0);
+      const bool moving = c1 > 0.0 && c2 < 1.0;
+      const double a = ramp_a(c1) - ramp_a(c2);
+      const double X = moving ? (0.0025 * a + 3.75) / 0.45 : 0.0;
+      EXPECT_NEAR(ta[k], X, 1e-6) << "t = " << t[k];
+      EXPECT_NEAR(R[k], moving ? 0.02 * a + X : 0.0, 1e-6) << "t = " << t[k];
+      EXPECT_EQ(md[k], moving ? 1.0 : 0.0) << "t = " << t[k];
+    }
+    std::vector<std::pair<double, std::string>> got;
+    for (const auto& e : r.hybrid.events)
+      if (e.element == "worm" && e.kind != "initial") got.emplace_back(e.t, e.to);
+    ASSERT_EQ(got.size(), 2u);
+    EXPECT_NEAR(got[0].first, 0.5, 1e-8);
+    EXPECT_EQ(got[0].second, "forward");
+    EXPECT_NEAR(got[1].first, 5.0, 1e-8);
+    EXPECT_EQ(got[1].second, "stuck");
+  }
 }
 
 }  // namespace

@@ -67,7 +67,9 @@
 /// nothing else acts on a.
 /// Mode law: the gear has no degree of freedom, so its mode is a function of t alone, decided at every
 /// evaluation (decide_given): s = sign(v_a(t)), at rest sign(a(t)), stuck when both are 0 (v_a: the
-/// motion's speed, a prescribed speed's state snapped onto its signal, so a hold is exactly at rest);
+/// motion's speed, a prescribed speed's state snapped onto its signal, so a hold is exactly at rest;
+/// |v_a| and |a| both within a rounding allowance count as rest: 1e-12 of a prescribed speed's largest
+/// |v_a|, per second for a, so a signal at rest only up to its rounding, ±1e-29, does not chatter);
 /// the driving side from the known torque. A motion that leaves rest or comes to rest smoothly (v = t²,
 /// a = 0 there) thus changes mode where it happens. The run's mode (the events' reference, the event
 /// list) follows it: events_given is ≥ 0 while the evaluation's mode agrees with it — rolling s v_a and
@@ -147,9 +149,10 @@ struct LossyGearLaw {
   [[nodiscard]] Torques solve_given(GearMode md, bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
                                     double va) const;
   /// The mode of a gear with a prescribed side at (a, v_a) (header "Mode law"): rolling in sign(v_a) (at
-  /// rest sign(a)) on the side the known torque drives, stuck when both are 0.
-  [[nodiscard]] GearMode decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
-                                      double va) const;
+  /// rest sign(a)) on the side the known torque drives, stuck when both are 0, or both within the
+  /// rounding allowances |v_a| ≤ rest_v, |a| ≤ rest_a.
+  [[nodiscard]] GearMode decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib, double va,
+                                      double rest_v = 0.0, double rest_a = 0.0) const;
   /// Its two event functions (header "Mode law") for the run's mode md, the evaluation's mode `now`
   /// (decide_given), its torques T (solve_given in `now`) and v_a: ≥ 0 while now agrees with md.
   void events_given(GearMode md, GearMode now, double va, const Torques& T, double* ev) const;
