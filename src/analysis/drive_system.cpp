@@ -197,6 +197,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   // A prescribed side (elements/lossy_gear.hpp "Prescribed side"; compile allows at most one).
   gear_motion_.assign(static_cast<size_t>(ng_), -1);
   gear_b_given_.assign(static_cast<size_t>(ng_), 0);
+  gear_now_.assign(static_cast<size_t>(ng_), GearMode::stuck);
   for (int g = 0; g < ng_; ++g)
     for (size_t j = 0; j < motions_.size(); ++j) {
       const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
@@ -643,7 +644,7 @@ void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fr
     gear_fb_[gi] = f[k.b];
     const double va = y[n_ + k.a];
     if (gear_motion_[gi] >= 0) [[unlikely]]  // a prescribed side (elements/lossy_gear.hpp)
-      gear_t_[gi] = given_gear_torques(g, t, va, f);
+      gear_t_[gi] = given_gear_torques(g, t, y, f);
     else
       gear_t_[gi] = k.solve(gear_mode_[gi], f[k.a], f[k.b], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
                             1.0 / inv_mass_[static_cast<size_t>(k.b)], va);
@@ -652,14 +653,28 @@ void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fr
   }
 }
 
-LossyGearLaw::Torques DriveSystem::given_gear_torques(int g, double t, double va, const double* f) const {
+namespace {
+/// v_a of a gear with a prescribed side from the velocities v: the motion's speed snapped onto its
+/// signal (a hold is exactly at rest; elements/prescribed_motion.hpp), × i when b is the given side.
+double given_speed(const PrescribedMotionLaw& p, const LossyGearLaw& k, bool b_given, double t, const double* v) {
+  const double vp = p.snapped_velocity(t, v[p.body]);
+  return b_given ? k.i * vp : vp;
+}
+}  // namespace
+
+LossyGearLaw::Torques DriveSystem::given_gear_torques(int g, double t, const double* y, const double* f) {
   // The prescribed body's inertia is its motion's (inv_mass_ is 0 there); a = i a_b when b is given.
-  const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
-  const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[static_cast<size_t>(g)])];
-  const bool bg = gear_b_given_[static_cast<size_t>(g)] != 0;
+  const auto gi = static_cast<size_t>(g);
+  const LossyGearLaw& k = gears_[gi];
+  const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[gi])];
+  const bool bg = gear_b_given_[gi] != 0;
   const double acc = bg ? k.i * p.acceleration(t) : p.acceleration(t);
   const double Ia = bg ? inertia_[static_cast<size_t>(k.a)] : p.inertia, Ib = bg ? p.inertia : inertia_[static_cast<size_t>(k.b)];
-  return k.solve_given(gear_mode_[static_cast<size_t>(g)], bg, acc, f[k.a], f[k.b], Ia, Ib, va);
+  // The mode of (t) alone (lossy_gear.hpp "Mode law"), from the motion's speed: a hold exactly at rest.
+  // The rounding allowances (lossy_gear.hpp "Mode law"): 1e-12 of the prescribed speed's scale (per s for a).
+  const double rest = 1e-12 * p.speed_scale * (bg ? std::abs(k.i) : 1.0);
+  gear_now_[gi] = k.decide_given(bg, acc, f[k.a], f[k.b], Ia, Ib, given_speed(p, k, bg, t, y + n_), rest, rest);
+  return k.solve_given(gear_now_[gi], bg, acc, f[k.a], f[k.b], Ia, Ib, y[n_ + k.a]);
 }
 
 void DriveSystem::enforce_gears(double* acc) const {
@@ -677,13 +692,8 @@ GearMode DriveSystem::natural_gear_mode(int g, double t, const double* y, bool s
   evaluate(t, y, f_.data(), fc_.data());
   const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
   const double Fa = gear_fa_[static_cast<size_t>(g)], Fb = gear_fb_[static_cast<size_t>(g)];
-  if (gear_motion_[static_cast<size_t>(g)] >= 0) {  // a prescribed side: the mode from a(t) and v_a
-    const LossyGearLaw::Torques T = gear_t_[static_cast<size_t>(g)];  // T.acc = a in every mode
-    const bool bg = gear_b_given_[static_cast<size_t>(g)] != 0;
-    const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[static_cast<size_t>(g)])];
-    return k.decide_given(bg, T.acc, Fa, Fb, bg ? inertia_[static_cast<size_t>(k.a)] : p.inertia,
-                          bg ? p.inertia : inertia_[static_cast<size_t>(k.b)], y[n_ + k.a]);
-  }
+  // A prescribed side: the evaluation has decided it (given_gear_torques, from a(t) and v_a(t)).
+  if (gear_motion_[static_cast<size_t>(g)] >= 0) return gear_now_[static_cast<size_t>(g)];
   return k.decide(Fa, Fb, 1.0 / inv_mass_[static_cast<size_t>(k.a)], 1.0 / inv_mass_[static_cast<size_t>(k.b)],
                   y[n_ + k.a], strict ? 0.0 : k.allowance(Fa, Fb));
 }
@@ -1029,7 +1039,9 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
       const LossyGearLaw& k = gears_[static_cast<size_t>(gi)];
       const auto u = static_cast<size_t>(gi);
       if (gear_motion_[u] >= 0) [[unlikely]] {
-        k.events_given(gear_mode_[u], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
+        const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[u])];
+        k.events_given(gear_mode_[u], gear_now_[u], given_speed(p, k, gear_b_given_[u] != 0, t, y + n_), gear_t_[u],
+                       g + 2 * (nl_ + nc_ + nd_ + gi));
         continue;
       }
       k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],

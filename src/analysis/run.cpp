@@ -385,7 +385,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int g = 0; g < ng_; ++g) {
       const LossyGearLaw& k = sys_.lossy_gear(g);
       const LossyGearLaw::Torques T = sys_.gear_torques(g, t, y);
-      put(static_cast<double>(direction(sys_.gear_mode(g))));
+      put(static_cast<double>(direction(sys_.gear_mode_now(g))));
       put(k.torque_at_a(T));
       put(k.torque_at_b(T));
       put(LossyGearLaw::loss_power(T, y[n_ + k.a]));

@@ -175,10 +175,11 @@ LossyGearLaw::Torques LossyGearLaw::solve_given(GearMode md, bool b_given, doubl
   return T;
 }
 
-GearMode LossyGearLaw::decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
-                                    double va) const {
-  const int s = va > 0.0 ? 1 : va < 0.0 ? -1 : acc > 0.0 ? 1 : acc < 0.0 ? -1 : 0;
-  if (s == 0) return GearMode::stuck;
+GearMode LossyGearLaw::decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib, double va,
+                                    double rest_v, double rest_a) const {
+  // Rest only with both within the allowances: a speed that is tiny but falling to rest keeps its sign.
+  if (std::abs(va) <= rest_v && std::abs(acc) <= rest_a) return GearMode::stuck;
+  const int s = va > 0.0 ? 1 : va < 0.0 ? -1 : acc > 0.0 ? 1 : -1;
   const Coefficients c = at(va);
   // The known torque decides the side (header): s Ỹ, resp. s X̃, > 0: a drives.
   const double known = b_given ? Fa - Ia * acc - s * c.bf_a : Ib / (i * i) * acc - Fb / i + s * c.bf_b;
@@ -186,12 +187,12 @@ GearMode LossyGearLaw::decide_given(bool b_given, double acc, double Fa, double 
   return s > 0 ? (bd ? GearMode::forward_b : GearMode::forward) : (bd ? GearMode::backward_b : GearMode::backward);
 }
 
-void LossyGearLaw::events_given(GearMode md, double va, const Torques& T, double* ev) const {
-  if (direction(md) == 0) {
-    ev[0] = ev[1] = 1.0;
-    return;
-  }
-  events(md, 0.0, 0.0, 0.0, 0.0, va, T, ev);  // rolling: its events read only v_a and the torques
+void LossyGearLaw::events_given(GearMode md, GearMode now, double va, const Torques& T, double* ev) const {
+  if (direction(md) == 0) ev[0] = ev[1] = 1.0;
+  else events(md, 0.0, 0.0, 0.0, 0.0, va, T, ev);  // rolling: its events read only v_a and the torques
+  // The evaluation decided otherwise (header "Mode law"): the slot of the part that changed fires.
+  if (direction(now) != direction(md)) ev[0] = -1.0;
+  else if (now != md) ev[1] = -1.0;
 }
 
 void LossyGearLaw::add_linear(LinearModel& lin) const {

@@ -149,6 +149,11 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] int gear_count() const { return ng_; }
   [[nodiscard]] const LossyGearLaw& lossy_gear(int g) const { return gears_[static_cast<size_t>(g)]; }
   [[nodiscard]] GearMode gear_mode(int g) const { return gear_mode_[static_cast<size_t>(g)]; }
+  /// The mode of the last evaluation: gear_mode(g), except for a gear with a prescribed side, whose
+  /// mode every evaluation decides (elements/lossy_gear.hpp "Prescribed side"; the output column).
+  [[nodiscard]] GearMode gear_mode_now(int g) const {
+    return gear_motion_[static_cast<size_t>(g)] >= 0 ? gear_now_[static_cast<size_t>(g)] : gear_mode(g);
+  }
   void set_gear_mode(int g, GearMode md) { gear_mode_[static_cast<size_t>(g)] = md; }
   /// The mode gear g takes at (t, y), the other elements in their modes (LossyGearLaw::decide);
   /// `strict`: its event fired, no rounding allowance on the start margins.
@@ -298,8 +303,9 @@ class DriveSystem final : public OdeSystem {
   /// Solves every lossy gear in its mode on the forces f (before the inertias divide them) and adds
   /// its torques; adds the losses to *p_fric (if given).
   void apply_gears(double t, const double* y, double* f, double* p_fric);
-  /// Gear g's torques with its prescribed side (LossyGearLaw::solve_given) on the forces f at time t.
-  [[nodiscard]] LossyGearLaw::Torques given_gear_torques(int g, double t, double va, const double* f) const;
+  /// Gear g's torques with its prescribed side on the forces f at (t, y): its mode decided here
+  /// (LossyGearLaw::decide_given, kept in gear_now_), then LossyGearLaw::solve_given.
+  [[nodiscard]] LossyGearLaw::Torques given_gear_torques(int g, double t, const double* y, const double* f);
   /// a_b = a_a / i exactly (0 when stuck; a with a prescribed side), after the inertias divided the forces.
   void enforce_gears(double* acc) const;
   /// The split of each stuck gear's holding torque with its stuck contacts (gear_lock.hpp): their
@@ -421,6 +427,7 @@ class DriveSystem final : public OdeSystem {
   /// in motions_ (−1: none) and whether it is on body b.
   std::vector<int> gear_motion_;
   std::vector<char> gear_b_given_;
+  std::vector<GearMode> gear_now_;  // a prescribed gear's mode at the last evaluation (gear_mode_: the run's)
   std::vector<LossyGearLaw::Torques> gear_t_;  // the last evaluation's torques
   std::vector<double> gear_fa_, gear_fb_;       // the last evaluation's F_a, F_b (without the gear)
   std::vector<ContactLaw> contacts_;

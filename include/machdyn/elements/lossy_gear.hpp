@@ -65,9 +65,17 @@
 /// prescribed: Y = clamp(J_b a − F_b', Y_+(X), Y_−(X)), Y_s = X_s⁻¹. So a self-locking gear (η_mf2 = 0)
 /// prescribed on a holds an overhauling load at rest with X = 0 (X_− ≤ 0 ≤ X_+): no source force when
 /// nothing else acts on a.
-/// Events: rolling as above (s v_a, the driving side); stuck none: a prescribed motion leaves rest at a
-/// breakpoint of its signal (a kink), where the run decides again; one that leaves rest smoothly (v = t²)
-/// keeps the stuck torques until the next event or breakpoint (its motion is exact: a in every mode).
+/// Mode law: the gear has no degree of freedom, so its mode is a function of t alone, decided at every
+/// evaluation (decide_given): s = sign(v_a(t)), at rest sign(a(t)), stuck when both are 0 (v_a: the
+/// motion's speed, a prescribed speed's state snapped onto its signal, so a hold is exactly at rest;
+/// |v_a| and |a| both within a rounding allowance count as rest: 1e-12 of a prescribed speed's largest
+/// |v_a|, per second for a, so a signal at rest only up to its rounding, ±1e-29, does not chatter);
+/// the driving side from the known torque. A motion that leaves rest or comes to rest smoothly (v = t²,
+/// a = 0 there) thus changes mode where it happens. The run's mode (the events' reference, the event
+/// list) follows it: events_given is ≥ 0 while the evaluation's mode agrees with it — rolling s v_a and
+/// the driving side as above (they locate the switches precisely), −1 in the slot whose part (the
+/// direction, resp. the driving side) disagrees — so the integrator stops at every switch (the heat's
+/// integrand has a kink there) and the run records it.
 ///
 /// Speed tables (MSL's lossTable): η_mf1, η_mf2, τ_bf1, τ_bf2 over |v_A| (the file's body A),
 /// interpolated linearly and held constant outside; their values at 0 decide the start.
@@ -140,12 +148,14 @@ struct LossyGearLaw {
   /// body b follows a given motion; `acc` is a = v_a' (i a_b for b), returned as T.acc in every mode.
   [[nodiscard]] Torques solve_given(GearMode md, bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
                                     double va) const;
-  /// The mode of a gear with a prescribed side at (a, v_a): rolling in sign(v_a) (at rest sign(a)) on the
-  /// side the known torque drives, stuck when both are 0.
-  [[nodiscard]] GearMode decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib,
-                                      double va) const;
-  /// Its two event functions: rolling those of events(), stuck none (1, 1).
-  void events_given(GearMode md, double va, const Torques& T, double* ev) const;
+  /// The mode of a gear with a prescribed side at (a, v_a) (header "Mode law"): rolling in sign(v_a) (at
+  /// rest sign(a)) on the side the known torque drives, stuck when both are 0, or both within the
+  /// rounding allowances |v_a| ≤ rest_v, |a| ≤ rest_a.
+  [[nodiscard]] GearMode decide_given(bool b_given, double acc, double Fa, double Fb, double Ia, double Ib, double va,
+                                      double rest_v = 0.0, double rest_a = 0.0) const;
+  /// Its two event functions (header "Mode law") for the run's mode md, the evaluation's mode `now`
+  /// (decide_given), its torques T (solve_given in `now`) and v_a: ≥ 0 while now agrees with md.
+  void events_given(GearMode md, GearMode now, double va, const Torques& T, double* ev) const;
   /// Linear terms: for modes a lossy gear is the ideal gear, the constraint row v_a − i v_b = 0.
   void add_linear(LinearModel& lin) const;
 
