@@ -10,6 +10,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "support/rk4.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -50,14 +51,7 @@ struct Reference {
     return {y[2] / kJ, md == on_limit ? -kKp * e_dot(y) : 0.0, (kMmax - y[2]) / kTm};
   }
   static std::array<double, 3> rk4(Mode md, double t, const std::array<double, 3>& y, double h) {
-    auto add = [](const std::array<double, 3>& a, const std::array<double, 3>& b, double s) {
-      return std::array<double, 3>{a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
-    };
-    const auto k1 = rate(md, t, y), k2 = rate(md, t + h / 2, add(y, k1, h / 2)),
-               k3 = rate(md, t + h / 2, add(y, k2, h / 2)), k4 = rate(md, t + h, add(y, k3, h));
-    std::array<double, 3> out{};
-    for (int i = 0; i < 3; ++i) out[i] = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-    return out;
+    return test::rk4_step([md](double s, const std::array<double, 3>& z) { return rate(md, s, z); }, t, y, h);
   }
   // The switching function of mode md that ends it (< 0: it has ended), and the mode after.
   static double guard(Mode md, double t, const std::array<double, 3>& y, Mode* next) {

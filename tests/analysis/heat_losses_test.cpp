@@ -14,6 +14,7 @@
 #include "machdyn/analysis/extra_outputs.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/results.hpp"
+#include "support/rk4.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -295,16 +296,7 @@ struct HeatLossesReference {
     return std::min({e2, e3, e4});
   }
   Y step(double t, const Y& y, double h) const {
-    auto add = [](const Y& a, const Y& k, double s) {
-      Y r;
-      for (int i = 0; i < kN; ++i) r[i] = a[i] + s * k[i];
-      return r;
-    };
-    const Y k1 = rate(t, y), k2 = rate(t + h / 2, add(y, k1, h / 2));
-    const Y k3 = rate(t + h / 2, add(y, k2, h / 2)), k4 = rate(t + h, add(y, k3, h));
-    Y r;
-    for (int i = 0; i < kN; ++i) r[i] = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-    return r;
+    return test::rk4_step([this](double s, const Y& z) { return rate(s, z); }, t, y, h);
   }
   /// Re-decides every friction element at t: a slide that ended sticks (v = 0), a stop reached sets
   /// the position on it and v = 0, a stuck element whose force exceeds its limit slides that way.

@@ -17,6 +17,7 @@
 
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "support/rk4.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -666,16 +667,7 @@ struct RotationalFrictionReference {
     return std::min(ec, eb);
   }
   Y step(double t, bool off, const Y& y, double h) const {
-    auto add = [](const Y& a, const Y& k, double s) {
-      Y r;
-      for (int i = 0; i < 6; ++i) r[i] = a[i] + s * k[i];
-      return r;
-    };
-    const Y k1 = rate(t, off, y), k2 = rate(t + h / 2, off, add(y, k1, h / 2));
-    const Y k3 = rate(t + h / 2, off, add(y, k2, h / 2)), k4 = rate(t + h, off, add(y, k3, h));
-    Y r;
-    for (int i = 0; i < 6; ++i) r[i] = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-    return r;
+    return test::rk4_step([this, off](double s, const Y& z) { return rate(s, off, z); }, t, y, h);
   }
   void record(double t, const char* element, int from, int to) {
     events.push_back({t, element, to == 0 ? "stick" : from == 0 ? "slip" : "reversal"});
@@ -1032,16 +1024,7 @@ struct PreLoadReference {
     return {y[3], y[4], y[5], f[0] / m[0], f[1] / m[1], f[2] / m[2]};
   }
   Y step(double t, const Y& y, double h) const {
-    auto add = [](const Y& a, const Y& k, double s) {
-      Y r;
-      for (size_t i = 0; i < 6; ++i) r[i] = a[i] + s * k[i];
-      return r;
-    };
-    const Y k1 = rate(t, y), k2 = rate(t + h / 2, add(y, k1, h / 2));
-    const Y k3 = rate(t + h / 2, add(y, k2, h / 2)), k4 = rate(t + h, add(y, k3, h));
-    Y r;
-    for (size_t i = 0; i < 6; ++i) r[i] = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-    return r;
+    return test::rk4_step([this](double s, const Y& z) { return rate(s, z); }, t, y, h);
   }
   bool changed(const Y& y) const {
     for (size_t j = 0; j < 4; ++j)
