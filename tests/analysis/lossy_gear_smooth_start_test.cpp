@@ -21,6 +21,23 @@ namespace {
 
 using test::series;
 
+/// Checks gear `gear`'s mode changes (time, new mode) against `want` (times to 1e-8 s); returns the
+/// largest time error.
+double check_switches(const SimulationResult& r, const std::string& gear,
+                      const std::vector<std::pair<double, std::string>>& want) {
+  std::vector<std::pair<double, std::string>> got;
+  for (const auto& e : r.hybrid.events)
+    if (e.element == gear && e.kind != "initial") got.emplace_back(e.t, e.to);
+  EXPECT_EQ(got.size(), want.size());
+  double e_t = 0.0;
+  for (size_t k = 0; k < want.size() && k < got.size(); ++k) {
+    EXPECT_NEAR(got[k].first, want[k].first, 1e-8) << got[k].second;
+    EXPECT_EQ(got[k].second, want[k].second);
+    e_t = std::max(e_t, std::abs(got[k].first - want[k].first));
+  }
+  return e_t;
+}
+
 class SmoothStartGear : public ::testing::TestWithParam<std::pair<IntegratorChoice, int>> {};
 INSTANTIATE_TEST_SUITE_P(IntegratorsAndDirections, SmoothStartGear,
                          ::testing::Values(std::pair{IntegratorChoice::dopri5, 1}, std::pair{IntegratorChoice::bdf, 1},
@@ -114,16 +131,7 @@ simulation: {{t_end: 2.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}}
     e_x = std::max({e_x, std::abs(ta[k] - X(u)), std::abs(R[k] - IA * a(u) - X(u))});
   }
   EXPECT_GE(at_rest, 1499u);  // [0, 0.5] and [1.5, 2.5] s: the holds before and after are checked too
-  std::vector<std::pair<double, std::string>> got;
-  for (const auto& e : r.hybrid.events)
-    if (e.element == "G" && e.kind != "initial") got.emplace_back(e.t, e.to);
-  ASSERT_EQ(got.size(), want.size());
-  double e_t = 0.0;
-  for (size_t k = 0; k < want.size(); ++k) {
-    EXPECT_NEAR(got[k].first, want[k].first, 1e-8) << got[k].second;
-    EXPECT_EQ(got[k].second, want[k].second);
-    e_t = std::max(e_t, std::abs(got[k].first - want[k].first));
-  }
+  const double e_t = check_switches(r, "G", want);
   EXPECT_NEAR(r.hybrid.energy.friction_loss, heat, 1e-7 * heat);
   EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-8 * r.hybrid.energy.source_work);
   std::printf("SmoothStartGear %s sigma %+d: X, R %.2e N*m; switches %.2e s; heat %.6f J vs %.6f\n",
@@ -181,16 +189,7 @@ simulation: {{t_end: 2.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}}
   }
   const std::string dir = sg > 0 ? "forward" : "backward";
   const std::vector<std::pair<double, std::string>> want = {{0.5, dir + "_b_drives"}, {1.0, dir}, {1.5, "stuck"}};
-  std::vector<std::pair<double, std::string>> got;
-  for (const auto& e : r.hybrid.events)
-    if (e.element == "G" && e.kind != "initial") got.emplace_back(e.t, e.to);
-  ASSERT_EQ(got.size(), want.size());
-  double e_t = 0.0;
-  for (size_t k = 0; k < want.size(); ++k) {
-    EXPECT_NEAR(got[k].first, want[k].first, 1e-8) << got[k].second;
-    EXPECT_EQ(got[k].second, want[k].second);
-    e_t = std::max(e_t, std::abs(got[k].first - want[k].first));
-  }
+  const double e_t = check_switches(r, "G", want);
   const double heat = 0.5 * IA * 50.0 * 50.0 * ((1.0 / eta2 - 1.0) + (1.0 - eta1));
   EXPECT_NEAR(r.hybrid.energy.friction_loss, heat, 1e-7 * heat);
   EXPECT_NEAR(r.hybrid.energy.residual(), 0.0, 1e-8 * r.hybrid.energy.source_work);
@@ -227,14 +226,7 @@ TEST(SmoothStartGearExample, WormHoistOnAnSCurveStartsAndStopsOnce) {
       EXPECT_NEAR(R[k], moving ? 0.02 * a + X : 0.0, 1e-6) << "t = " << t[k];
       EXPECT_EQ(md[k], moving ? 1.0 : 0.0) << "t = " << t[k];
     }
-    std::vector<std::pair<double, std::string>> got;
-    for (const auto& e : r.hybrid.events)
-      if (e.element == "worm" && e.kind != "initial") got.emplace_back(e.t, e.to);
-    ASSERT_EQ(got.size(), 2u);
-    EXPECT_NEAR(got[0].first, 0.5, 1e-8);
-    EXPECT_EQ(got[0].second, "forward");
-    EXPECT_NEAR(got[1].first, 5.0, 1e-8);
-    EXPECT_EQ(got[1].second, "stuck");
+    check_switches(r, "worm", {{0.5, "forward"}, {5.0, "stuck"}});
   }
 }
 
