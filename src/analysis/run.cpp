@@ -535,6 +535,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     double t = 0.0;
     std::vector<double> y;
     std::vector<ContactMode> modes;
+    std::vector<GearMode> gears;  // the lossy gears' modes: a stuck one is held (held())
     size_t stage = 0;  // releases applied at its instant: the masses and weights it belongs to
   };
   void ingredients(double t, const double* y, Extreme& out) {
@@ -546,17 +547,51 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
+    out.gears.resize(static_cast<size_t>(ng_));
+    for (int g = 0; g < ng_; ++g) out.gears[static_cast<size_t>(g)] = sys_.gear_mode_now(g);
     if (nc_ == 0) return;
     out.t = t;
     out.y.assign(y, y + N_);
     out.modes = sys_.contact_modes();
   }
-  /// Appends the contact forces of an extreme (in its modes) to its ingredients.
+  /// Appends the contact forces of an extreme (in its modes) to its ingredients: a sliding contact's
+  /// friction force; a held one's is a reaction, which the quasi-static problem solves for (0 here).
   void contact_forces(Extreme& e) {
     if (nc_ == 0 || e.y.empty()) return;
     sys_.set_contact_modes(e.modes);
     sys_.evaluate(e.t, e.y.data(), acc_.data(), fc_.data());
+    const std::vector<char> h = held(e);
+    for (int c = 0; c < nc_; ++c)
+      if (h[static_cast<size_t>(c)]) fc_[static_cast<size_t>(c)] = 0.0;
     e.vals.insert(e.vals.end(), fc_.begin(), fc_.end());
+  }
+  /// The elements an extreme holds, per contact then per lossy gear: constraints of its quasi-static
+  /// problem (static_loads.hpp), not forces. A contact held stuck and engaged (a joint always; a
+  /// kinematic one adds no row: its bodies are supports), a lossy gear at rest.
+  std::vector<char> held(const Extreme& e) const {
+    std::vector<char> h(static_cast<size_t>(nc_ + ng_), 0);
+    for (int c = 0; c < nc_ && !e.modes.empty(); ++c) {
+      const ContactLaw& law = sys_.contact(c);
+      h[static_cast<size_t>(c)] = law.joint || (e.modes[static_cast<size_t>(c)] == ContactMode::stuck &&
+                                                !law.released(e.t) && !law.kinematic);
+    }
+    for (int g = 0; g < ng_ && !e.gears.empty(); ++g)
+      h[static_cast<size_t>(nc_ + g)] = e.gears[static_cast<size_t>(g)] == GearMode::stuck;
+    return h;
+  }
+  /// The rows G of the held elements: a contact's stuck row u = 0 (elements/contact.hpp add_linear), a
+  /// gear's ratio row v_a − i v_b = 0 (elements/lossy_gear.hpp add_linear) and, as its stuck mode has
+  /// v_a = 0 (a = 0: the gear holds X − Y within its locking range), v_a = 0: both sides at rest.
+  ConstraintRows held_rows(const std::vector<char>& h) const {
+    LinearModel lin(n_);
+    for (int c = 0; c < nc_; ++c)
+      if (h[static_cast<size_t>(c)]) sys_.contact(c).add_linear(ContactMode::stuck, true, 0.0, 0.0, lin);
+    for (int g = 0; g < ng_; ++g)
+      if (h[static_cast<size_t>(nc_ + g)]) {
+        sys_.lossy_gear(g).add_linear(lin);
+        lin.G.push_back({{sys_.lossy_gear(g).a, 1.0}});
+      }
+    return lin.G;
   }
   /// The generalized forces f (n) of a set of ingredients, with the constant loads of `mm` (the
   /// model after the releases of the extreme's instant).
@@ -578,15 +613,18 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void summarize_links() {
     // One sparse factorization, one solve per distinct force vector (constant loads: one solve).
     if (nl_ == 0) return;
-    // One solver per set of masses: the model's, and after each release an extreme falls behind.
-    std::map<size_t, std::unique_ptr<ParticularSolver>> particular;
-    std::map<std::pair<size_t, std::vector<double>>, Eigen::VectorXd> solved;
+    // One solver per set of masses (the model's, and after each release an extreme falls behind) and
+    // of held elements (constraints, not forces: an extreme's stuck brake holds its drum).
+    using Solver = std::pair<size_t, std::vector<char>>;
+    std::map<Solver, std::unique_ptr<ParticularSolver>> particular;
+    std::map<std::pair<Solver, std::vector<double>>, Eigen::VectorXd> solved;
     auto static_loads = [&](const Extreme& e) -> const Eigen::VectorXd& {
-      const auto key = std::make_pair(e.stage, e.vals);
+      Solver which{e.stage, held(e)};
+      const auto key = std::make_pair(which, e.vals);
       auto it = solved.find(key);
       if (it == solved.end()) {
-        auto& p = particular[e.stage];
-        if (!p) p = std::make_unique<ParticularSolver>(stage(e.stage));
+        auto& p = particular[which];
+        if (!p) p = std::make_unique<ParticularSolver>(stage(e.stage), held_rows(which.second));
         it = solved.emplace(key, p->solve(forces(e.vals, stage(e.stage)))).first;
       }
       return it->second;

@@ -14,11 +14,48 @@
 namespace machdyn {
 
 namespace {
+/// The rows of G that constrain free bodies: entries on bodies with prescribed motion dropped (they
+/// are supports), each row scaled to unit length, and a row that repeats the others (two brakes on
+/// one drum) left out — the rank is kept by a dense elimination over the few bodies the rows touch.
+ConstraintRows free_independent_rows(const Model& m, const ConstraintRows& G) {
+  ConstraintRows out;
+  if (G.empty()) return out;
+  std::vector<int> col(static_cast<size_t>(m.dof()), -1);
+  int touched = 0;
+  std::vector<std::vector<std::pair<int, double>>> rows;
+  for (const auto& g : G) {
+    std::vector<std::pair<int, double>> r;
+    double norm = 0.0;
+    for (const auto& [j, w] : g)
+      if (j >= 0 && w != 0.0 && m.bodies[static_cast<size_t>(j)].motion == MotionKind::free) r.emplace_back(j, w), norm += w * w;
+    if (r.empty()) continue;
+    for (auto& [j, w] : r) {
+      w /= std::sqrt(norm);
+      if (col[static_cast<size_t>(j)] < 0) col[static_cast<size_t>(j)] = touched++;
+    }
+    rows.push_back(std::move(r));
+  }
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(0, touched);
+  for (auto& r : rows) {
+    Eigen::MatrixXd E(D.rows() + 1, touched);
+    E.topRows(D.rows()) = D;
+    E.row(D.rows()).setZero();
+    for (const auto& [j, w] : r) E(D.rows(), col[static_cast<size_t>(j)]) += w;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(E);
+    lu.setThreshold(1e-10);
+    if (lu.rank() <= D.rows()) continue;
+    D = std::move(E);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 /// ker K when a link ends on a massless member (elements/link.hpp: δ over three bodies, or a weight
 /// on b), which the walk over two-body links below cannot follow: the null space of the springs'
 /// K = Σ c j jᵀ, scaled to a unit diagonal (bodies without a spring keep 1) so that rotational and
-/// translational coordinates weigh alike; a body with prescribed motion is held (a support).
-Eigen::MatrixXd rigid_motions_by_null_space(const Model& m) {
+/// translational coordinates weigh alike; a body with prescribed motion is held (a support). With
+/// constraint rows G: the null space of the sum with Σ (S g)(S g)ᵀ / |S g|², ker K ∩ ker G.
+Eigen::MatrixXd rigid_motions_by_null_space(const Model& m, const ConstraintRows& G) {
   const int n = m.dof();
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
   for (const auto& l : m.links) {
@@ -32,6 +69,11 @@ Eigen::MatrixXd rigid_motions_by_null_space(const Model& m) {
   Eigen::MatrixXd S = s.asDiagonal() * K * s.asDiagonal();
   for (int i = 0; i < n; ++i)
     if (m.bodies[static_cast<size_t>(i)].motion != MotionKind::free) S(i, i) += 1.0;
+  for (const auto& g : G) {
+    Eigen::VectorXd sg = Eigen::VectorXd::Zero(n);
+    for (const auto& [j, w] : g) sg(j) += s(j) * w;
+    S += sg * sg.transpose() / sg.squaredNorm();
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
   const double tol = 1e-10 * std::max(1.0, eig.eigenvalues().cwiseAbs().maxCoeff());
   std::vector<Eigen::Index> null;
@@ -48,10 +90,13 @@ Eigen::MatrixXd rigid_motions_by_null_space(const Model& m) {
 }
 }  // namespace
 
-Eigen::MatrixXd rigid_motions(const Model& m) {
+Eigen::MatrixXd rigid_motions(const Model& m, const ConstraintRows& G_all) {
   const int n = m.dof();
+  const ConstraintRows G = free_independent_rows(m, G_all);
   for (const auto& l : m.links)
-    if (l.c > 0.0 && (l.third >= 0 || l.b_weight != 1.0)) return rigid_motions_by_null_space(m);
+    if (l.c > 0.0 && (l.third >= 0 || l.b_weight != 1.0)) return rigid_motions_by_null_space(m, G);
+  for (const auto& g : G)
+    if (g.size() > 2) return rigid_motions_by_null_space(m, G);  // a row over three bodies (a planetary joint)
   // Spring graph: adjacency with the factor that carries q across a link (q_b = q_a / i).
   struct Edge {
     int to;
@@ -69,6 +114,18 @@ Eigen::MatrixXd rigid_motions(const Model& m) {
     }
     adj[static_cast<size_t>(l.a)].push_back({l.b, 1.0 / l.ratio});
     adj[static_cast<size_t>(l.b)].push_back({l.a, l.ratio});
+  }
+  // A held element: a row on one body holds it to the ground, a row w_a v_a + w_b v_b = 0 carries q
+  // as a link's ratio does, q_b = −(w_a / w_b) q_a.
+  for (const auto& g : G) {
+    if (g.size() == 1) {
+      grounded[static_cast<size_t>(g[0].first)] = true;
+      continue;
+    }
+    const auto [a, wa] = g[0];
+    const auto [b, wb] = g[1];
+    adj[static_cast<size_t>(a)].push_back({b, -wa / wb});
+    adj[static_cast<size_t>(b)].push_back({a, -wb / wa});
   }
   std::vector<double> value(static_cast<size_t>(n), 0.0);
   std::vector<int> group(static_cast<size_t>(n), -1);
@@ -117,13 +174,15 @@ struct ParticularSolver::Impl {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   std::vector<int> pins;  // pinned coordinates (q_p = 0), or empty: the bordered system
   std::vector<int> fixed;  // bodies with prescribed motion: supports (q = 0), in both systems
+  Eigen::Index rows = 0;   // size of the system: n (+ r with the border) + the rows of G
   explicit Impl(const Model& model) : m(model) {}
 };
 
-ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
+ParticularSolver::ParticularSolver(const Model& m, const ConstraintRows& G_all) : impl_(new Impl(m)) {
   const int n = m.dof();
   Impl& s = *impl_;
-  s.R = rigid_motions(m);
+  const ConstraintRows G = free_independent_rows(m, G_all);
+  s.R = rigid_motions(m, G);
   const auto r = s.R.cols();
   Eigen::VectorXd M(n);
   for (int i = 0; i < n; ++i) M(i) = m.bodies[static_cast<size_t>(i)].inertia;
@@ -164,10 +223,25 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
     });
   }
   for (int i : s.fixed) trip.emplace_back(i, i, 1.0);
+  // The rows of G border the system ([K Gᵀ; G 0]); a pinned coordinate's entries drop out with it
+  // (q_p = 0; a row left empty is implied by the pins, as R spans ker G).
+  auto border_constraints = [&](Eigen::Index base) {
+    for (const auto& g : G) {
+      bool any = false;
+      for (const auto& [j, w] : g)
+        if (!(pins_ok && pinned[static_cast<size_t>(j)])) {
+          trip.emplace_back(base, j, w), trip.emplace_back(j, base, w);
+          any = true;
+        }
+      if (any) ++base;
+    }
+    return base;
+  };
   if (pins_ok) {
     for (int i : pin) trip.emplace_back(i, i, 1.0);
     s.pins = pin;
-    Eigen::SparseMatrix<double> A(n, n);
+    s.rows = border_constraints(n);
+    Eigen::SparseMatrix<double> A(s.rows, s.rows);
     A.setFromTriplets(trip.begin(), trip.end());
     s.lu.compute(A);
     return;
@@ -178,8 +252,8 @@ ParticularSolver::ParticularSolver(const Model& m) : impl_(new Impl(m)) {
         trip.emplace_back(i, n + k, s.MR(i, k));
         trip.emplace_back(n + k, i, s.MR(i, k));
       }
-  const auto N = n + r;
-  Eigen::SparseMatrix<double> A(N, N);
+  s.rows = border_constraints(n + r);
+  Eigen::SparseMatrix<double> A(s.rows, s.rows);
   A.setFromTriplets(trip.begin(), trip.end());
   s.lu.compute(A);
 }
@@ -190,7 +264,7 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   const Impl& s = *impl_;
   const Model& m = s.m;
   const int n = m.dof();
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(s.pins.empty() ? n + s.R.cols() : n);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(s.rows);
   rhs.head(n) = f;
   if (s.R.cols() > 0) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
   for (int p : s.pins) rhs(p) = 0.0;
@@ -204,8 +278,8 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   return F;
 }
 
-Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f) {
-  return ParticularSolver(m).solve(f);
+Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f, const ConstraintRows& G) {
+  return ParticularSolver(m, G).solve(f);
 }
 
 }  // namespace machdyn

@@ -8,20 +8,34 @@
 ///   K q_e = f − M R a'',  Rᵀ M q_e = 0  (solved as one sparse saddle-point system),
 ///   link loads F = C B q_e.
 /// It equals the modal form Σ_elastic φ_k φ_kᵀ f / ω_k² (analysis/modes.hpp), which the tests check.
+///
+/// With constraints G (the elements held at an extreme: stuck contacts, stuck lossy gears; rows as
+/// elements/linear_model.hpp's G, u = G v) the problem is M q'' + K q + Gᵀ λ = f, G q'' = 0, G q_e = 0:
+///   R = basis of ker K ∩ ker G (a body held to the ground by a row is not free; a row between two
+///       bodies carries q like a link's ratio, q_b = −(w_a/w_b) q_a);
+///   a'' as above with this R, and [K Gᵀ; G 0] [q_e; λ] = [f − M R a''; 0] (pinned as without G).
+/// λ is the held elements' reaction: it is part of the solution, never a given force. Entries on
+/// bodies with prescribed motion are dropped (they are supports already); rows that repeat others
+/// (two brakes on one drum) are left out, as they add no constraint.
 
+#include <utility>
+#include <vector>
 #include <Eigen/Core>
 
 #include "machdyn/model/model.hpp"
 
 namespace machdyn {
 
-/// Basis of ker K as columns (n × r), one column per free group of bodies.
-Eigen::MatrixXd rigid_motions(const Model& m);
+/// Constraint rows G: each a list of (body, weight) pairs, u = Σ w_j v_j = 0 (as LinearModel::G).
+using ConstraintRows = std::vector<std::vector<std::pair<int, double>>>;
+
+/// Basis of ker K ∩ ker G as columns (n × r), one column per free group of bodies.
+Eigen::MatrixXd rigid_motions(const Model& m, const ConstraintRows& G = {});
 
 /// Factors the saddle-point system once; solve() then costs O(n) per load vector.
 class ParticularSolver {
  public:
-  explicit ParticularSolver(const Model& m);
+  explicit ParticularSolver(const Model& m, const ConstraintRows& G = {});
   ~ParticularSolver();
   ParticularSolver(const ParticularSolver&) = delete;
   ParticularSolver& operator=(const ParticularSolver&) = delete;
@@ -33,7 +47,7 @@ class ParticularSolver {
   Impl* impl_;
 };
 
-/// One-off form of ParticularSolver(m).solve(f).
-Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f);
+/// One-off form of ParticularSolver(m, G).solve(f).
+Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f, const ConstraintRows& G = {});
 
 }  // namespace machdyn

@@ -1,0 +1,184 @@
+// The quasi-static load at a link's extreme with held elements (analysis/static_loads.hpp): a stuck
+// brake, clutch or self-locked lossy gear is a constraint of the quasi-static problem, not a force
+// equal to its reaction at the extreme (which holds the dynamic part too); a sliding brake's kinetic
+// torque stays a force. Every claim on both integrators, against closed forms or an RK4 in the test.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <gtest/gtest.h>
+
+#include "support/rk4.hpp"
+#include "support/support.hpp"
+
+#include "machdyn/analysis/simulate.hpp"
+
+namespace machdyn {
+namespace {
+
+class HeldStatic : public ::testing::TestWithParam<IntegratorChoice> {};
+INSTANTIATE_TEST_SUITE_P(Integrators, HeldStatic, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
+                         test::IntegratorName{});
+
+SimulationResult run(const std::string& yaml, IntegratorChoice integrator) {
+  Model m = test::model_text(yaml, "held.yaml");
+  m.simulation.integrator = integrator;
+  return simulate(m);
+}
+
+const LinkSummary& link(const SimulationResult& r, const Model& m, const std::string& name) {
+  for (size_t k = 0; k < m.links.size(); ++k)
+    if (m.links[k].name == name) return r.links[k];
+  ADD_FAILURE() << "no link " << name;
+  return r.links.front();
+}
+
+// How many mode changes element `name` had after the start.
+int changes(const SimulationResult& r, const std::string& name) {
+  return static_cast<int>(std::count_if(r.hybrid.events.begin(), r.hybrid.events.end(), [&](const ModeEvent& e) {
+    return e.element == name && e.kind != "initial";
+  }));
+}
+
+const double g = 9.81, m_hook = 500.0, c_rope = 2e6, i_rope = 5.0;
+
+const char* kBrakeHeld = R"(gravity: 9.81 m/s^2
+bodies:
+  drum: {type: rotational, inertia: 2 kg*m^2}
+  hook: {type: translational, mass: 500 kg, vertical: up}
+links:
+  rope: {type: rope, between: [drum, hook], ratio: 5 rad/m, stiffness: 2 MN/m}
+brakes:
+  B: {body: drum, holding: 5 kN*m}
+simulation: {t_end: 0.1 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)";
+
+// Claim: a hook (m = 500 kg) dropped on a taut rope at zero load (c = 2 MN/m) from a drum a brake
+// holds has the quasi-static rope load m g exactly and the dynamic factor 2.
+// Derivation: the brake holds (rope torque ≤ 2 m g / i = 1962 N·m < 5 kN·m), so the drum stays at
+// rest and the hook's stretch x obeys m x'' = m g − c x, x(0) = x'(0) = 0: F = c x = m g (1 − cos ωt),
+// ω = √(c/m), largest 2 m g at t = π/ω. Quasi-statically the held drum is a support: K q = f gives
+// F = m g. (Taken as a force equal to its torque at the extreme, the brake gave 9364 N, factor 1.048.)
+TEST_P(HeldStatic, BrakeHeldDrumHasStaticWeightAndFactorTwo) {
+  const SimulationResult r = run(kBrakeHeld, GetParam());
+  const Model m = test::model_text(kBrakeHeld, "held.yaml");
+  const LinkSummary& rope = link(r, m, "rope");
+  const double W = m_hook * g, omega = std::sqrt(c_rope / m_hook);
+  EXPECT_EQ(changes(r, "B"), 0);  // held throughout
+  EXPECT_NEAR(rope.static_at_max, W, 1e-9 * W);
+  EXPECT_NEAR(rope.max, 2 * W, 1e-6 * W);
+  EXPECT_NEAR(rope.t_max, std::numbers::pi / omega, 1e-6);
+  EXPECT_NEAR(rope.dynamic_factor, 2.0, 1e-6);
+}
+
+const char* kWormHeld = R"(gravity: 9.81 m/s^2
+bodies:
+  motor: {type: rotational, inertia: 0.05 kg*m^2}
+  wheel: {type: rotational, inertia: 0.5 kg*m^2}
+  drum: {type: rotational, inertia: 2 kg*m^2}
+  hook: {type: translational, mass: 500 kg, vertical: up}
+links:
+  worm: {type: lossy-gear, between: [motor, wheel], ratio: 40, efficiency: 0.45, efficiency_reverse: 0}
+  shaft: {type: spring, between: [wheel, drum], stiffness: 1e5 N*m/rad}
+  rope: {type: rope, between: [drum, hook], ratio: 5 rad/m, stiffness: 2 MN/m}
+simulation: {t_end: 0.1 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)";
+
+// Claim: behind a self-locking worm gear (η_mf2 = 0) at rest, the same drop gives the rope the
+// quasi-static load m g and the shaft from the worm wheel to the drum m g / i_rope = m g R
+// (R = 1/i = 0.2 m: the drum's torque balance, shaft torque = rope force · R) = 981 N·m.
+// Derivation: stuck, the gear holds both sides at rest (elements/lossy_gear.hpp: a = 0, X = F_a,
+// Y = −F_b'; η_mf2 = 0 holds any torque from the wheel), so quasi-statically the wheel is a support:
+// K q = f along wheel–shaft–drum–rope–hook. The peaks are checked against an RK4 of the drum and hook
+// with the wheel at rest (I_d q_d'' = −k_s q_d − F_r/i, m q_h'' = F_r − m g, F_r = max(0, c (q_d/i − q_h)),
+// shaft load −k_s q_d), so each factor is the RK4's peak over the static load above.
+// (With the gear left out, as before, the wheel, drum and hook fell as one body: rope 446 N, factor 22.)
+TEST_P(HeldStatic, SelfLockedWormGearHoldsLikeASupport) {
+  const SimulationResult r = run(kWormHeld, GetParam());
+  const Model m = test::model_text(kWormHeld, "held.yaml");
+  const double W = m_hook * g, k_s = 1e5, I_d = 2.0;
+  // Reference: RK4, h = 1e-6 s, the largest sampled loads.
+  using Y = std::array<double, 4>;  // q_d, v_d, q_h, v_h
+  auto f = [&](double, const Y& y) {
+    const double Fr = std::max(0.0, c_rope * (y[0] / i_rope - y[2]));
+    return Y{y[1], (-k_s * y[0] - Fr / i_rope) / I_d, y[3], (Fr - W) / m_hook};
+  };
+  Y y{0, 0, 0, 0};
+  double rope_max = 0.0, shaft_max = 0.0;
+  const double h = 1e-6;
+  for (int k = 0; k < 100000; ++k) {
+    y = test::rk4_step(f, k * h, y, h);
+    rope_max = std::max(rope_max, c_rope * (y[0] / i_rope - y[2]));
+    shaft_max = std::max(shaft_max, -k_s * y[0]);
+  }
+  const LinkSummary& rope = link(r, m, "rope");
+  const LinkSummary& shaft = link(r, m, "shaft");
+  EXPECT_EQ(changes(r, "worm"), 0);  // at rest throughout
+  EXPECT_NEAR(rope.static_at_max, W, 1e-9 * W);
+  EXPECT_NEAR(shaft.static_at_max, W / i_rope, 1e-9 * W);
+  EXPECT_NEAR(rope.max, rope_max, 1e-6 * W);
+  EXPECT_NEAR(shaft.max, shaft_max, 1e-6 * W);
+  EXPECT_NEAR(rope.dynamic_factor, rope_max / W, 1e-6);
+  EXPECT_NEAR(shaft.dynamic_factor, shaft_max / (W / i_rope), 1e-6);
+}
+
+// A clutch K (limit 0.5 · 10 kN · 0.1 m = 500 N·m) stuck between A (1 kg·m²) and B (3 kg·m²), a
+// spring (1e4 N·m/rad) from B to C (2 kg·m²), a torque T = 100 N·m on A from rest; and the same drive
+// with A and B merged into one body AB (4 kg·m²).
+const char* kClutched = R"(bodies: {A: {inertia: 1}, B: {inertia: 3}, C: {inertia: 2}}
+links: {s: {type: spring, between: [B, C], stiffness: 1e4 N*m/rad}}
+clutches: {K: {between: [A, B], normal_force: 10 kN, mu_s: 0.5, mu_k: 0.4, radius: 0.1 m}}
+loads: {T: {type: constant, body: A, value: 100 N*m}}
+simulation: {t_end: 0.05 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)";
+const char* kMerged = R"(bodies: {AB: {inertia: 4}, C: {inertia: 2}}
+links: {s: {type: spring, between: [AB, C], stiffness: 1e4 N*m/rad}}
+loads: {T: {type: constant, body: AB, value: 100 N*m}}
+simulation: {t_end: 0.05 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)";
+
+// Claim: a stuck clutch makes its pair one rigid body for the quasi-static load too: the spring's
+// static load and peak equal those of the merged model, and the closed form. Derivation: the pair
+// AB (I = 4) and C under T: static F_st = T I_C / (I_AB + I_C) = 100/3 N·m (C's share of the rigid
+// acceleration); dynamic F = F_st (1 − cos ωt), ω² = k (1/I_AB + 1/I_C), peak 2 F_st. The clutch holds:
+// its torque T − I_A a ≤ 100 N·m < 500 N·m. (As a force equal to its torque at the peak, 91.7 N·m, it
+// gave 36.7 N·m.)
+TEST_P(HeldStatic, StuckClutchTiesItsBodiesLikeOneBody) {
+  const SimulationResult a = run(kClutched, GetParam()), b = run(kMerged, GetParam());
+  const double F_st = 100.0 * 2.0 / 6.0;
+  ASSERT_EQ(a.links.size(), 1u);
+  ASSERT_EQ(b.links.size(), 1u);
+  EXPECT_EQ(changes(a, "K"), 0);
+  EXPECT_NEAR(a.links[0].static_at_max, F_st, 1e-9 * F_st);
+  EXPECT_NEAR(a.links[0].static_at_max, b.links[0].static_at_max, 1e-9 * F_st);
+  EXPECT_NEAR(a.links[0].max, 2 * F_st, 1e-6 * F_st);
+  EXPECT_NEAR(a.links[0].max, b.links[0].max, 1e-6 * F_st);
+  EXPECT_NEAR(a.links[0].dynamic_factor, 2.0, 1e-6);
+}
+
+// Claim: a sliding brake's kinetic torque stays a force of the quasi-static problem. A drum
+// (1 kg·m²) turning at 100 rad/s with a spring (1e4 N·m/rad) to B (3 kg·m², same speed); a brake on
+// the drum slides with M_k = 200 N·m (holding 250). Derivation: while it slides (until ≈ 2 s) the pair
+// decelerates rigidly at M_k/4: static spring load −M_k I_B/(I_d + I_B) = −150 N·m; dynamic
+// F = −150 (1 − cos ωt), ω² = k (1 + 1/3): least −300 N·m at π/ω, factor 2.
+TEST_P(HeldStatic, SlidingBrakeTorqueStaysAForce) {
+  const char* yaml = R"(bodies:
+  drum: {inertia: 1, velocity: 100 rad/s}
+  B: {inertia: 3, velocity: 100 rad/s}
+links: {s: {type: spring, between: [drum, B], stiffness: 1e4 N*m/rad}}
+brakes: {P: {body: drum, holding: 250 N*m, braking: 200 N*m}}
+simulation: {t_end: 0.05 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)";
+  const SimulationResult r = run(yaml, GetParam());
+  const double omega = std::sqrt(1e4 * (1.0 + 1.0 / 3.0));
+  ASSERT_EQ(r.links.size(), 1u);
+  EXPECT_EQ(changes(r, "P"), 0);  // sliding throughout
+  EXPECT_NEAR(r.links[0].static_at_min, -150.0, 1e-9 * 150.0);
+  EXPECT_NEAR(r.links[0].min, -300.0, 1e-6 * 150.0);
+  EXPECT_NEAR(r.links[0].t_min, std::numbers::pi / omega, 1e-6);
+  EXPECT_NEAR(r.links[0].dynamic_factor, 2.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace machdyn
