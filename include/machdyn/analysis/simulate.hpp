@@ -18,7 +18,9 @@ namespace machdyn {
 /// CLI, the load-case table, the report, sweeps and JSON. `t_max`/`t_min` are located to ~1e-12
 /// relative on the dense output (the load rate changes sign there), not only on output points.
 /// Each extreme has its own quasi-static load: the particular solution (static_loads.hpp) for the
-/// loads acting at its instant — the load of rigid acceleration. The peak is the extreme of larger
+/// loads acting at its instant — the load of rigid acceleration; the elements held at that instant
+/// (stuck brakes, clutches, stops, joints, lossy gears at rest) are its constraints, not forces
+/// (docs/design.md). The peak is the extreme of larger
 /// magnitude (the maximum on a tie), and
 ///   dynamic_factor = peak / static_load,  static_load = the quasi-static load at t_peak,
 /// NaN when |static_load| ≤ 1e-9 |peak| (no quasi-static load to compare with).
