@@ -7,12 +7,14 @@
 #include <Eigen/Core>
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/static_loads.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/elements/contact.hpp"
 #include "machdyn/elements/link.hpp"
+#include "machdyn/elements/lossy_gear.hpp"
 
 namespace machdyn {
 namespace {
@@ -38,16 +40,13 @@ void check_supported(const Model& m) {
                                               "is not supported there yet; start with 'initial: given'", pre, c.name));
       continue;
     }
-    // Stops and brakes to the ground are decided below; a brake not yet applied is free.
-    if (c.stop || (c.brake && (c.scale(0.0) == 0.0 || c.b == kGround))) continue;
+    // Stops are decided below; a brake or clutch applied at t = 0 holds (its body to the ground or its
+    // two bodies together, within its limit), one not yet applied is free.
+    if (c.stop || c.brake || c.clutch) continue;
     diag.error(m.where(c.name), fmt::format("{}: the force at rest of {} '{}' is not decided by its law (friction "
                                             "holds anything within its limit); start with 'initial: given'",
-                                            pre, c.brake ? "brake" : c.lock != 0 ? "freewheel" : "contact", c.name));
+                                            pre, c.lock != 0 ? "freewheel" : "contact", c.name));
   }
-  for (const auto& g : m.lossy_gears)
-    diag.error(m.where(g.name), fmt::format("{}: the torque lossy gear '{}' holds at rest is not decided by its law (it "
-                                            "holds anything within its locking range); start with 'initial: given'",
-                                            pre, g.name));
   diag.throw_if_any();
 }
 
@@ -66,10 +65,24 @@ EquilibriumStart static_equilibrium(const Model& m) {
   std::vector<LinkLaw> laws;
   laws.reserve(nl);
   for (const auto& l : m.links) laws.push_back(LinkLaw::of(m, l));
-  std::vector<int> stops, brakes;  // end stops; brakes applied at t = 0 (they hold their body)
+  // End stops; brakes to the ground applied at t = 0 (they hold their body where it is); brakes on a
+  // housing body and clutches applied at t = 0 (they tie their bodies: a row of G, their stuck row
+  // u = 0, elements/contact.hpp add_linear); lossy gears, each held at rest on both sides (stuck:
+  // elements/lossy_gear.hpp, a = 0), their bodies pinned like a braked body.
+  std::vector<int> stops, brakes, couplings, gear_bodies;
   for (size_t k = 0; k < m.contacts.size(); ++k) {
-    if (m.contacts[k].stop) stops.push_back(static_cast<int>(k));
-    if (m.contacts[k].brake && m.contacts[k].scale(0.0) > 0.0) brakes.push_back(static_cast<int>(k));
+    const FrictionContact& c = m.contacts[k];
+    if (c.stop) stops.push_back(static_cast<int>(k));
+    if ((c.brake || c.clutch) && c.scale(0.0) > 0.0)
+      (c.b == kGround && c.row.terms == 0 ? brakes : couplings).push_back(static_cast<int>(k));
+  }
+  LinearModel coupled(n);  // the couplings' rows
+  for (int k : couplings)
+    ContactLaw::of(m.contacts[static_cast<size_t>(k)], m).add_linear(ContactMode::stuck, true, 0.0, 0.0, coupled);
+  std::vector<LossyGearLaw> gears;
+  for (const auto& g : m.lossy_gears) {
+    gears.push_back(LossyGearLaw::of(g));
+    gear_bodies.push_back(g.a), gear_bodies.push_back(g.b);
   }
 
   Eigen::VectorXd q(n), q_given(n), v_given(n), M(n);
@@ -134,14 +147,47 @@ EquilibriumStart static_equilibrium(const Model& m) {
     tied.bodies = m.bodies;
     for (size_t k = 0; k < nl; ++k)
       if (laws[k].transmits(mode[k]) && m.links[k].c > 0.0) tied.links.push_back(m.links[k]);
+    auto tie = [&](int body) {
+      Link l;
+      l.b = body;
+      l.c = 1.0;
+      tied.links.push_back(l);
+    };
     for (size_t k = 0; k < m.contacts.size(); ++k)
-      if (held[k]) {
-        Link tie;
-        tie.b = m.contacts[k].a;
-        tie.c = 1.0;
-        tied.links.push_back(tie);
-      }
-    return rigid_motions(tied);
+      if (held[k]) tie(m.contacts[k].a);
+    for (int b : gear_bodies) tie(b);
+    return rigid_motions(tied, coupled.G);
+  };
+  // The pinned bodies (a held stop or brake, a gear's sides) and the couplings' rows that add to them
+  // (a clutch beside a brake on the same body; two clutches on one pair add one row): the rows of
+  // the border, each independent of the pins and the rows before it.
+  auto pinned = [&]() {
+    std::vector<int> p = gear_bodies;
+    for (size_t k = 0; k < m.contacts.size(); ++k)
+      if (held[k]) p.push_back(m.contacts[k].a);
+    return p;
+  };
+  auto independent_couplings = [&](const std::vector<int>& pins) {
+    ConstraintRows rows;
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(pins.size()), n);
+    for (size_t k = 0; k < pins.size(); ++k) D(static_cast<Eigen::Index>(k), pins[k]) = 1.0;
+    const auto rank = [](const Eigen::MatrixXd& X) {
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(X);
+      lu.setThreshold(1e-10);
+      return lu.rank();
+    };
+    Eigen::Index have = rank(D);
+    for (const auto& g : coupled.G) {
+      Eigen::MatrixXd E(D.rows() + 1, n);
+      E.topRows(D.rows()) = D;
+      E.row(D.rows()).setZero();
+      for (const auto& [j, w] : g) E(D.rows(), j) += w;
+      const Eigen::Index now = rank(E);
+      if (now <= have) continue;
+      D = std::move(E), have = now;
+      rows.push_back(g);
+    }
+    return rows;
   };
 
   EquilibriumStart out;
@@ -190,21 +236,30 @@ EquilibriumStart static_equilibrium(const Model& m) {
     const Eigen::MatrixXd MR = M.asDiagonal() * R;
     Eigen::VectorXd acc = Eigen::VectorXd::Zero(r);  // the rigid acceleration a'' of each free group
     if (r > 0) acc = (R.transpose() * MR).ldlt().solve(R.transpose() * s.g);
-    // [K MR; (MR)ᵀ 0] [Δ; μ] = [g − MR a''; RᵀM (q_given − q)], K = −∂g/∂q; a held body's row pins it.
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + r, n + r);
-    Eigen::VectorXd rhs(n + r);
+    // [K MR Gᵀ; (MR)ᵀ 0 0; G 0 0] [Δ; μ; λ] = [g − MR a''; RᵀM (q_given − q); 0], K = −∂g/∂q, G the
+    // couplings' rows (G Δ = 0: a clutch keeps the given relative position); a held body's row pins it.
+    const ConstraintRows G = independent_couplings(pinned());
+    const auto nc = static_cast<Eigen::Index>(G.size());
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + r + nc, n + r + nc);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + r + nc);
     A.topLeftCorner(n, n) = -s.J;
-    A.topRightCorner(n, r) = MR;
-    A.bottomLeftCorner(r, n) = MR.transpose();
+    A.block(0, n, n, r) = MR;
+    A.block(n, 0, r, n) = MR.transpose();
+    for (Eigen::Index k = 0; k < nc; ++k)
+      for (const auto& [j, w] : G[static_cast<size_t>(k)]) A(n + r + k, j) += w, A(j, n + r + k) += w;
     rhs.head(n) = s.g - MR * acc;
-    rhs.tail(r) = MR.transpose() * (q_given - q);
+    rhs.segment(n, r) = MR.transpose() * (q_given - q);
+    auto pin = [&](int body, double to) {
+      A.row(body).setZero();
+      A(body, body) = 1.0;
+      rhs(body) = to;
+    };
     for (size_t k = 0; k < m.contacts.size(); ++k) {  // a stop pins its body at the stop, a brake where it is
       if (!held[k]) continue;
       const FrictionContact& c = m.contacts[k];
-      A.row(c.a).setZero();
-      A(c.a, c.a) = 1.0;
-      rhs(c.a) = c.stop ? c.stop_position - q(c.a) : 0.0;
+      pin(c.a, c.stop ? c.stop_position - q(c.a) : 0.0);
     }
+    for (int b : gear_bodies) pin(b, 0.0);  // a gear at rest holds both sides where they are
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
     if (!lu.isInvertible())
       throw InputError(Location{m.source, 0, 0}, "simulation: 'initial: equilibrium': the equilibrium equations are "
@@ -245,16 +300,68 @@ EquilibriumStart static_equilibrium(const Model& m) {
     throw InputError(Location{m.source, 0, 0}, fmt::format("simulation: 'initial: equilibrium': the modes of the ropes, "
                                                            "gaps and stops did not settle in {} steps", kMaxIterations));
 
-  // Every free group balanced: the net load along its rigid motion vanishes; every brake holds.
+  // Every free group balanced: the net load along its rigid motion vanishes; every held element holds
+  // its reaction λ: Hᵀ λ = g − M R a'' over the rows H of everything held (a pinned body's unit row,
+  // a coupling's row; the element puts −w_j λ on body j), least-norm where two share one body.
   s = evaluate(q);
   Diagnostics diag;
+  ConstraintRows H;
+  std::vector<int> brake_row(m.contacts.size(), -1), gear_row(gears.size(), -1);
+  for (size_t k = 0; k < m.contacts.size(); ++k)
+    if (held[k]) brake_row[k] = static_cast<int>(H.size()), H.push_back({{m.contacts[k].a, 1.0}});
+  for (size_t g = 0; g < gears.size(); ++g) {
+    gear_row[g] = static_cast<int>(H.size());
+    H.push_back({{gears[g].a, 1.0}});
+    H.push_back({{gears[g].b, 1.0}});
+  }
+  const auto first_coupling = static_cast<Eigen::Index>(H.size());
+  H.insert(H.end(), coupled.G.begin(), coupled.G.end());
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(H.size()));
+  if (!H.empty()) {
+    Eigen::MatrixXd Ht = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(H.size()));
+    for (size_t k = 0; k < H.size(); ++k)
+      for (const auto& [j, w] : H[k]) Ht(j, static_cast<Eigen::Index>(k)) += w;
+    Eigen::VectorXd rest = s.g;
+    if (R.cols() > 0) {
+      const Eigen::MatrixXd MR = M.asDiagonal() * R;
+      rest -= MR * (R.transpose() * MR).ldlt().solve(R.transpose() * s.g);
+    }
+    lambda = Ht.completeOrthogonalDecomposition().solve(rest);
+  }
+  const std::string pre = "simulation: 'initial: equilibrium': no static equilibrium:";
+  auto unit_of = [&](int body) { return load_unit(m.bodies[static_cast<size_t>(body)].kind); };
   for (int k : brakes) {
     const FrictionContact& c = m.contacts[static_cast<size_t>(k)];
-    if (!ContactLaw::of(c).holds(s.g(c.a), 0.0, false))
-      diag.error(m.where(c.name), fmt::format("simulation: 'initial: equilibrium': no static equilibrium: brake '{}' "
-                                              "would have to hold {:.6g} {}, more than its static limit {:.6g} {} at "
-                                              "t = 0", c.name, std::abs(s.g(c.a)), load_unit(m.bodies[static_cast<size_t>(c.a)].kind),
-                                              c.scale(0.0) * c.static_limit, load_unit(m.bodies[static_cast<size_t>(c.a)].kind)));
+    const double l = lambda(brake_row[static_cast<size_t>(k)]);
+    if (!ContactLaw::of(c).holds(l, 0.0, false))
+      diag.error(m.where(c.name), fmt::format("{} brake '{}' would have to hold {:.6g} {}, more than its static limit "
+                                              "{:.6g} {} at t = 0", pre, c.name, std::abs(l), unit_of(c.a),
+                                              c.scale(0.0) * c.static_limit, unit_of(c.a)));
+  }
+  for (size_t k = 0; k < couplings.size(); ++k) {
+    const FrictionContact& c = m.contacts[static_cast<size_t>(couplings[k])];
+    const double l = lambda(first_coupling + static_cast<Eigen::Index>(k));
+    if (!ContactLaw::of(c).holds(l, 0.0, false))
+      diag.error(m.where(c.name), fmt::format("{} {} '{}' would have to hold {:.6g} {}, more than its static limit "
+                                              "{:.6g} {} at t = 0", pre, c.clutch ? "clutch" : "brake", c.name,
+                                              std::abs(l), unit_of(c.a), c.scale(0.0) * c.static_limit, unit_of(c.a)));
+  }
+  for (size_t g = 0; g < gears.size(); ++g) {
+    // Stuck, the gear holds X = F_a and Y = −F_b/i (elements/lossy_gear.hpp): F_a, F_b are its rows' λ.
+    const LossyGearLaw& law = gears[g];
+    const double Fa = lambda(gear_row[g]), Fb = lambda(gear_row[g] + 1);
+    const double Ia = m.bodies[static_cast<size_t>(law.a)].inertia, Ib = m.bodies[static_cast<size_t>(law.b)].inertia;
+    const GearMode md = law.decide(Fa, Fb, Ia, Ib, 0.0, law.allowance(Fa, Fb));
+    if (md == GearMode::stuck) continue;
+    const int dir = direction(md);
+    const std::string& a = m.bodies[static_cast<size_t>(law.a)].name;
+    const std::string& b = m.bodies[static_cast<size_t>(law.b)].name;
+    diag.error(m.where(law.spec->name),
+               fmt::format("{} lossy gear '{}' cannot hold at rest: the loads on its sides at t = 0 ({:.6g} {} on '{}', "
+                           "{:.6g} {} on '{}') lie beyond its locking range by {:.6g} {} (in the coordinate of '{}'; "
+                           "it would start {}); start with 'initial: given'",
+                           pre, law.spec->name, Fa, unit_of(law.a), a, Fb, unit_of(law.b), b,
+                           -law.start_margin(dir, Fa, Fb), unit_of(law.a), a, dir > 0 ? "forward" : "backward"));
   }
   for (Eigen::Index k = 0; k < R.cols(); ++k) {
     const double net = R.col(k).dot(s.g), scale = R.col(k).cwiseAbs().dot(s.scale);

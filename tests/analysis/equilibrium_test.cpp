@@ -258,5 +258,105 @@ simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12, initial: equi
   EXPECT_LT(max_deviation(series(r, "drum.position_rad"), 0.2), 1e-12);
 }
 
+double max_abs(const std::vector<double>& s) { return max_deviation(s, 0.0); }
+
+// Claim: a self-locking worm gear (η_mf2 = 0) holds a hanging load at rest: the equilibrium pins
+// the gear's two sides where they are (stuck: a = 0, elements/lossy_gear.hpp) and K q = f stretches
+// the rest. By hand, with the worm wheel at q_w = 0.7/40 (the gear's q_A = i q_B from the motor's
+// given angle): the drum's balance F_s = F_r / i_r with the rope's F_r = m g, so the shaft
+// [wheel, drum] (δ = q_w − q_d) turns the drum to q_d = q_w − m g/(i_r k_s) and the rope
+// (δ = q_d/i_r − x) puts the hook at x = q_d/i_r − m g/c. The run stays at rest.
+TEST_P(Equilibrium, SelfLockingWormGearHoldsTheHangingLoad) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 0.05 kg*m^2, position: 0.7 rad}
+  wheel: {inertia: 0.5 kg*m^2}
+  drum: {inertia: 2 kg*m^2}
+  hook: {type: translational, mass: 500 kg, vertical: up}
+links:
+  worm: {type: lossy-gear, between: [motor, wheel], ratio: 40, efficiency: 0.45, efficiency_reverse: 0}
+  shaft: {type: spring, between: [wheel, drum], stiffness: 1e5 N*m/rad}
+  rope: {type: rope, between: [drum, hook], ratio: 5 rad/m, stiffness: 2 MN/m}
+simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equilibrium}
+)");
+  m.simulation.integrator = GetParam();
+  const double W = 500 * 9.81, q_w = 0.7 / 40, q_d = q_w - W / (5 * 1e5), x = q_d / 5 - W / 2e6;
+  const EquilibriumStart e = static_equilibrium(m);
+  EXPECT_EQ(e.q0[0], 0.7);
+  EXPECT_NEAR(e.q0[1], q_w, 1e-15);
+  EXPECT_NEAR(e.q0[2], q_d, 1e-12 * std::abs(q_d));
+  EXPECT_NEAR(e.q0[3], x, 1e-12 * std::abs(x));
+  const SimulationResult r = simulate(m);
+  for (const char* v : {"motor.velocity_rad_s", "wheel.velocity_rad_s", "drum.velocity_rad_s", "hook.velocity_m_s"})
+    EXPECT_LT(max_abs(series(r, v)), 1e-9) << v;
+  EXPECT_LT(max_deviation(series(r, "hook.position_m"), x), 1e-9);
+  EXPECT_LT(max_deviation(series(r, "rope.load_N"), W), 1e-6 * W);
+}
+
+// Claim: a clutch applied at t = 0 ties its two bodies: a brake holds the motor, the clutch the drum
+// to it at the given relative angle, and the load hangs (x = q_d/i − m g/c by hand). The clutch carries
+// m g / i = 981 N·m. The run stays at rest.
+TEST_P(Equilibrium, AppliedClutchTiesItsBodies) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 0.5 kg*m^2, position: 0.1 rad}
+  drum: {inertia: 50 kg*m^2, position: 0.3 rad}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links: {rope: {type: spring, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}}
+brakes: {hold: {body: motor, holding: 2000 N*m}}
+clutches: {K: {between: [motor, drum], normal_force: 10 kN, mu_s: 0.5, mu_k: 0.4, radius: 0.3 m}}
+simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equilibrium}
+)");
+  m.simulation.integrator = GetParam();
+  const double x = 0.3 / 10 - 1000 * 9.81 / 2e6;
+  const EquilibriumStart e = static_equilibrium(m);
+  EXPECT_EQ(e.q0[0], 0.1);
+  EXPECT_EQ(e.q0[1], 0.3);
+  EXPECT_NEAR(e.q0[2], x, 1e-12 * std::abs(x));
+  const SimulationResult r = simulate(m);
+  for (const char* v : {"motor.velocity_rad_s", "drum.velocity_rad_s", "load.velocity_m_s"})
+    EXPECT_LT(max_abs(series(r, v)), 1e-9) << v;
+  EXPECT_LT(max_deviation(series(r, "load.position_m"), x), 1e-9);
+}
+
+// Claim: a held element that cannot hold the equilibrium's reaction is a located error naming the
+// reaction and the limit: a clutch of 0.5 · 2 kN · 0.3 m = 300 N·m under the 981 N·m the load pulls;
+// a lossy gear that is not self-locking (η_mf2 = 0.9) under the same load (F_b = −981 N·m on the
+// drum), nothing on the worm (F_a = 0): b drives backward (s = −1), and its start margin
+// (elements/lossy_gear.hpp) −s N_s/η_mf2 with N_s = F_a + η_mf2 F_b/i is F_b/i = −24.525 N·m < 0.
+TEST(EquilibriumInput, HeldElementsBeyondTheirLimitAreLocatedErrors) {
+  const std::string c = error_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 0.5 kg*m^2}
+  drum: {inertia: 50 kg*m^2}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links: {rope: {type: spring, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}}
+brakes: {hold: {body: motor, holding: 2000 N*m}}
+clutches: {K: {between: [motor, drum], normal_force: 2 kN, mu_s: 0.5, mu_k: 0.4, radius: 0.3 m}}
+simulation: {initial: equilibrium}
+)", true);
+  EXPECT_NE(c.find("eq.yaml:9:"), std::string::npos) << c;
+  EXPECT_NE(c.find("clutch 'K' would have to hold 981 N*m, more than its static limit 300 N*m"), std::string::npos) << c;
+  const std::string g = error_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 0.05 kg*m^2}
+  drum: {inertia: 2 kg*m^2}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links:
+  worm: {type: lossy-gear, between: [motor, drum], ratio: 40, efficiency: 0.45, efficiency_reverse: 0.9}
+  rope: {type: spring, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}
+simulation: {initial: equilibrium}
+)", true);
+  EXPECT_NE(g.find("eq.yaml:8:"), std::string::npos) << g;
+  EXPECT_NE(g.find("lossy gear 'worm' cannot hold at rest"), std::string::npos) << g;
+  EXPECT_NE(g.find("-981 N*m on 'drum'"), std::string::npos) << g;
+  EXPECT_NE(g.find("by 24.525 N*m"), std::string::npos) << g;
+  EXPECT_NE(g.find("would start backward"), std::string::npos) << g;
+}
+
 }  // namespace
 }  // namespace machdyn

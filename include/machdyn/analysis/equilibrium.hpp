@@ -13,7 +13,12 @@
 ///   v = R (RᵀMR)⁻¹ RᵀM v_given        (no elastic motion; the rigid motions keep their momentum)
 /// Ropes and gaps take the flank they press (slack ropes carry nothing), end stops hold a body that
 /// presses into them (a load resting on the ground), a brake to the ground applied at t = 0 holds its
-/// body where it is (within its static limit); a free group whose loads do not balance moves as a
+/// body where it is (within its static limit); a clutch (or a brake on a housing body) applied at
+/// t = 0 ties its two bodies at their given relative position (a constraint row G Δ = 0, its stuck row
+/// of elements/contact.hpp; within its static limit); a lossy gear is at rest (stuck,
+/// elements/lossy_gear.hpp) and holds both its sides where they are, if its locking range holds the
+/// torques on them (a self-locking worm gear holds a hanging load); each held element's reaction λ
+/// solves Hᵀ λ = g − M R a'' over the rows H of everything held; a free group whose loads do not balance moves as a
 /// whole until the first open rope, gap flank or stop takes it up: an active-set iteration decides these modes,
 /// each step one dense linear solve (O(n³); the modes settle in a few steps).
 /// Units: SI of each coordinate (rad or m, rad/s or m/s), forces N or N·m.
@@ -21,8 +26,9 @@
 /// Throws InputError (located at the element) when no equilibrium exists: a free group whose loads
 /// do not balance (names its bodies and the net load), given velocities that contradict the ratios
 /// of the stiff links (names the body and the speed rigid motion gives), modes that do not settle,
-/// a brake that cannot hold its load, and for elements whose rest force is not decided by the law
-/// here (friction contacts, brakes between bodies, freewheels, machines with variable inertia).
+/// a brake or clutch that cannot hold its load (its reaction and limit), a lossy gear whose torques lie
+/// beyond its locking range (the torques and by how much), and for elements whose rest force is not
+/// decided by the law here (friction contacts, freewheels, gear joints, machines with variable inertia).
 
 #include <vector>
 
