@@ -1,6 +1,7 @@
 #include "machdyn/analysis/contact_decision.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -13,8 +14,14 @@ namespace {
 class Decision {
  public:
   Decision(DriveSystem& sys, double t, const double* y, const std::vector<int>& strict)
-      : sys_(sys), t_(t), y_(y), strict_(strict), acc_(static_cast<size_t>(sys.dof())),
-        fc_(sys.model().contacts.size()) {}
+      : sys_(sys), t_(t), y_(y), strict_(strict) {
+    const size_t n = static_cast<size_t>(sys.dof()), nc = sys.model().contacts.size();
+    if (n + nc > small_.size()) big_.assign(n + nc, 0.0);
+    acc_ = n + nc > small_.size() ? big_.data() : small_.data();
+    fc_ = acc_ + n;
+  }
+  Decision(const Decision&) = delete;  // acc_ and fc_ point into this object
+  Decision& operator=(const Decision&) = delete;
 
   /// The stick rule of contact k on the last evaluation (elements/contact.hpp).
   bool holds(int k) const {
@@ -25,10 +32,14 @@ class Decision {
     sys_.set_contact_modes(modes);
     // A rolling gear with clutches takes the driving side these modes imply (analysis/gear_clutch.hpp).
     if (sys_.has_coupled_gears()) sys_.settle_gear_sides(t_, y_);
-    sys_.evaluate(t_, y_, acc_.data(), fc_.data());
+    sys_.evaluate(t_, y_, acc_, fc_);
   }
   bool consistent(const std::vector<ContactMode>& modes, const std::vector<int>& Z) {
     evaluate(modes);
+    return holds_all(modes, Z);
+  }
+  /// Whether the modes of Z are consistent on the last evaluation (of these modes).
+  bool holds_all(const std::vector<ContactMode>& modes, const std::vector<int>& Z) const {
     for (int k : Z) {
       const ContactMode md = modes[static_cast<size_t>(k)];
       const double s = static_cast<double>(static_cast<int>(md));
@@ -38,7 +49,7 @@ class Decision {
     return true;
   }
   double force(int k) const { return fc_[static_cast<size_t>(k)]; }
-  double sliding_acceleration(int k) const { return sys_.contact(k).sliding_acceleration(t_, acc_.data()); }
+  double sliding_acceleration(int k) const { return sys_.contact(k).sliding_acceleration(t_, acc_); }
   /// The rounding of u̇ = a_a − a_b: 1e-12 (|a_a| + |a_b|) (a general row: 1e-12 Σ |w_j a_j|). With μ_s = μ_k a breakaway starts with
   /// u̇ = 0 exactly; formed by the sliding equations it may come out −1e-14 while the stuck load is
   /// 1e-14 beyond the limit (MSL's Friction example on BDF), and neither mode would be consistent.
@@ -58,7 +69,12 @@ class Decision {
   double t_;
   const double* y_;
   const std::vector<int>& strict_;
-  std::vector<double> acc_, fc_;
+  // The last evaluation's accelerations (dof) and contact forces: on the stack for a small model
+  // (no allocation at every event), else on the heap.
+  std::array<double, 32> small_{};
+  std::vector<double> big_;
+  double* acc_ = nullptr;
+  double* fc_ = nullptr;
 };
 
 }  // namespace
@@ -86,6 +102,7 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
   }
   for (int k : Z) modes[static_cast<size_t>(k)] = ContactMode::stuck;
   // Release the most overloaded stuck contact until the stuck set holds.
+  bool evaluated = false;  // the last evaluation is of `modes` (no contact released after it)
   for (size_t round = 0; round <= Z.size(); ++round) {
     d.evaluate(modes);
     int worst = -1;
@@ -95,10 +112,14 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
       const double ratio = sys.contact(k).overload(d.force(k), t);
       if (worst < 0 || ratio > worst_ratio) worst = k, worst_ratio = ratio;
     }
-    if (worst < 0) break;
+    if (worst < 0) {
+      evaluated = true;
+      break;
+    }
     modes[static_cast<size_t>(worst)] = d.force(worst) > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
   }
-  if (d.consistent(modes, Z)) return modes;
+  // The same modes evaluated again would give the same accelerations and forces: checked as they are.
+  if (evaluated ? d.holds_all(modes, Z) : d.consistent(modes, Z)) return modes;
   // Every combination, fewest sliding contacts first, then in index order.
   if (Z.size() > 10)
     throw SolverError(m.contacts[static_cast<size_t>(Z[0])].name, t,

@@ -316,15 +316,21 @@ double DriveSystem::point_load_rate(int l, const double* y, const double* dy) co
 
 void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
   const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-  std::vector<double> im(static_cast<size_t>(n_));
-  inverse_inertias(y, im.data());
+  // I⁻¹: the constant inverse masses themselves unless a machine's inertia varies (no copy per event).
+  std::vector<double> im_q;
+  const double* im = inv_mass_.data();
+  if (!machine_bodies_.empty()) {
+    im_q.resize(static_cast<size_t>(n_));
+    inverse_inertias(y, im_q.data());
+    im = im_q.data();
+  }
   const double u = sliding_velocity(k, t, y);
   if (c.kinematic) {  // no inertia to share by: its first body takes the rounding of the motions
     y[n_ + c.row.body[0]] -= u / c.row.w[0];
     return;
   }
   if (c.general) {  // the rounding of the step stays (no unit row to share exactly)
-    step_onto_row(c.row, u, y + n_, im.data());
+    step_onto_row(c.row, u, y + n_, im);
     return;
   }
   if (coupled_ && c.b >= 0) {  // a clutch on a gear's body: the other side takes u (the gear holds v_a = i v_b)
@@ -346,7 +352,7 @@ void DriveSystem::zero_sliding_velocity(int k, double t, double* y) const {
       return;
     }
   }
-  const double ia = im[static_cast<size_t>(c.a)], ib = c.b >= 0 ? im[static_cast<size_t>(c.b)] : 0.0;
+  const double ia = im[c.a], ib = c.b >= 0 ? im[c.b] : 0.0;
   y[n_ + c.a] -= u * ia / (ia + ib);
   if (c.b >= 0) y[n_ + c.b] += u * ib / (ia + ib);
   // Exact zero (rounding of the split above): the contact's own body takes the remainder.

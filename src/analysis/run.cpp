@@ -815,7 +815,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   void apply_contact_modes(double t, const std::vector<ContactMode>& old_modes, const std::vector<ContactMode>& modes,
                            bool initial) {
-    sys_.set_contact_modes(modes);
+    // The decision leaves the drive system in the modes it returns: formed once, not again.
+    if (sys_.contact_modes() != modes) sys_.set_contact_modes(modes);
     for (int k = 0; k < nc_; ++k) {
       const ContactMode a = old_modes[static_cast<size_t>(k)], b = modes[static_cast<size_t>(k)];
       if (!initial && a == b) continue;
@@ -891,7 +892,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   void handle_event(double t, const std::vector<int>& fired) {
     std::vector<int> gears;  // lossy gears whose event fired: decided after the others
-    std::vector<int> broke;  // stuck contacts whose breakaway fired (a coupled gear's decision is strict on them)
+    // Stuck contacts whose breakaway fired (a coupled gear's decision is strict on them); kept: no
+    // allocation at every breakaway.
+    std::vector<int>& broke = broke_;
+    broke.clear();
     for (int slot : fired)
       if (!sys_.slot_is_link(slot) && !sys_.slot_is_drive(slot) && !sys_.slot_is_gear(slot) &&
           sys_.contact_mode(sys_.slot_element(slot)) == ContactMode::stuck)
@@ -909,7 +913,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void handle_contact_event(double t, const std::vector<int>& fired) {
-    std::vector<int> Z;
+    std::vector<int>& Z = Z_;  // kept: no allocation per event
+    Z.clear();
     strict_.clear();
     const double V_before = sys_.elastic_energy(y_.data());
     bool gap_changed = false;
@@ -942,7 +947,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::sort(Z.begin(), Z.end());
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
     if (Z.empty()) return;
-    const std::vector<ContactMode> old = sys_.contact_modes();
+    std::vector<ContactMode>& old = old_modes_;  // kept: no allocation per event
+    old = sys_.contact_modes();
     // A contact whose sliding speed reached zero is decided at zero speed: the located time lies a
     // rounding error past the crossing, so its u is set to exactly 0 first (a slide that goes on,
     // or reverses, then starts on its event function's zero, not past it).
@@ -1061,6 +1067,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<std::vector<double>> switches_;
   std::vector<int> strict_;  // stuck contacts whose limit event fired
   std::vector<int> own_;     // handle_events: the fired slots of the drive system
+  std::vector<int> Z_;       // handle_contact_event: the contacts decided
+  std::vector<int> broke_;   // handle_event: the stuck contacts whose breakaway fired
+  std::vector<ContactMode> old_modes_;  // handle_contact_event: their modes before
   std::chrono::steady_clock::time_point start_;
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
