@@ -528,13 +528,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   // ---- quasi-static loads at the extremes ----
   /// What the generalized forces at (t, y) are made of beyond the constant loads: the values of the
-  /// time- or speed-dependent loads and the machines' forces Q(q) — O(loads + machines), not O(n),
-  /// per new extreme. With contacts also the state and the contact modes, whose contact forces are
-  /// formed once at the end (contact_forces).
+  /// time- or speed-dependent loads, the machines' forces Q(q), the drives' torques and the contacts'
+  /// forces, with the contact and gear modes that decide what is held — O(loads + machines + drives +
+  /// contacts + gears), not O(n), per new extreme and in memory.
   struct Extreme {
     std::vector<double> vals;
     double t = 0.0;
-    std::vector<double> y;
     std::vector<ContactMode> modes;
     std::vector<GearMode> gears;  // the lossy gears' modes: a stuck one is held (held())
     std::vector<double> gear_v;   // their speeds v_a: a rolling one's relation (rolling())
@@ -557,19 +556,33 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     if (nc_ == 0) return;
     out.t = t;
-    out.y.assign(y, y + N_);
     out.modes = sys_.contact_modes();
+    contact_forces(y, out);
   }
   /// Appends the contact forces of an extreme (in its modes) to its ingredients: a sliding contact's
-  /// friction force; a held one's is a reaction, which the quasi-static problem solves for (0 here).
-  void contact_forces(Extreme& e) {
-    if (nc_ == 0 || e.y.empty()) return;
-    sys_.set_contact_modes(e.modes);
-    sys_.evaluate(e.t, e.y.data(), acc_.data(), fc_.data());
+  /// friction force from its law at (t, v) (elements/contact.hpp kinetic_force); a held one's is a
+  /// reaction, which the quasi-static problem solves for (0 here); a kinematic one stuck carries
+  /// nothing (its bodies are supports). A released brake the dynamics keep stuck is no constraint of
+  /// the quasi-static problem (held()): its force is the dynamics' λ at (t, y) — the one case that
+  /// evaluates the system (O(n)), only while such a brake is stuck.
+  void contact_forces(const double* y, Extreme& e) {
     const std::vector<char> h = held(e);
+    bool reaction = false;
     for (int c = 0; c < nc_; ++c)
-      if (h[static_cast<size_t>(c)]) fc_[static_cast<size_t>(c)] = 0.0;
-    e.vals.insert(e.vals.end(), fc_.begin(), fc_.end());
+      reaction = reaction || (e.modes[static_cast<size_t>(c)] == ContactMode::stuck && !h[static_cast<size_t>(c)] &&
+                              !sys_.contact(c).kinematic);
+    if (reaction) {
+      extreme_acc_.resize(static_cast<size_t>(n_));
+      extreme_fc_.resize(static_cast<size_t>(nc_));
+      sys_.evaluate(e.t, y, extreme_acc_.data(), extreme_fc_.data());
+    }
+    for (int c = 0; c < nc_; ++c) {
+      const ContactMode md = e.modes[static_cast<size_t>(c)];
+      const ContactLaw& law = sys_.contact(c);
+      if (md != ContactMode::stuck) e.vals.push_back(law.kinetic_force(md, e.t, law.sliding_velocity(e.t, y + n_)));
+      else if (h[static_cast<size_t>(c)] || law.kinematic) e.vals.push_back(0.0);
+      else e.vals.push_back(extreme_fc_[static_cast<size_t>(c)]);
+    }
   }
   /// The elements an extreme holds, per contact then per lossy gear: constraints of its quasi-static
   /// problem (static_loads.hpp), not forces. A contact held stuck and engaged (a joint always; a
@@ -658,10 +671,6 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       }
       return it->second;
     };
-    for (int l = 0; l < nl_; ++l) {
-      contact_forces(at_max_[static_cast<size_t>(l)]);
-      contact_forces(at_min_[static_cast<size_t>(l)]);
-    }
     for (int l = 0; l < nl_; ++l) {
       LinkSummary s;
       s.max = peaks_.max(l), s.min = peaks_.min(l), s.t_max = peaks_.t_max(l), s.t_min = peaks_.t_min(l);
@@ -1078,6 +1087,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
   std::vector<int> machine_bodies_;
   std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
+  std::vector<double> extreme_acc_, extreme_fc_;  // scratch of contact_forces(): a released brake's λ
   std::vector<double> y_, acc_, fc_;
   std::vector<double> loads_;                // the link loads of an output row
   std::vector<double*> col_;                 // the columns' data (point_columns)
