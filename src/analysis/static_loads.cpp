@@ -14,9 +14,6 @@
 namespace machdyn {
 
 namespace {
-/// The rows of G that constrain free bodies: entries on bodies with prescribed motion dropped (they
-/// are supports), each row scaled to unit length, and a row that repeats the others (two brakes on
-/// one drum) left out — the rank is kept by a dense elimination over the few bodies the rows touch.
 /// A row's entries on free bodies, scaled to unit length (empty when none is left).
 std::vector<std::pair<int, double>> free_unit_row(const Model& m, const std::vector<std::pair<int, double>>& g) {
   std::vector<std::pair<int, double>> r;
