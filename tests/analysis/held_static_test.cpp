@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <gtest/gtest.h>
 
@@ -264,6 +265,30 @@ TEST_P(HeldStatic, RollingWormGearLowersWithTheReverseEfficiency) {
   ASSERT_EQ(gear_mode_at(r, "worm", shaft.t_max), "backward_b_drives");
   EXPECT_NEAR(rope.static_at_max, rope_st, 1e-9 * rope_st);
   EXPECT_NEAR(shaft.static_at_max, shaft_st, 1e-9 * shaft_st);
+}
+
+// Claim: behind a rolling gear the whole chain is one rigid group of the quasi-static load: m0 (1 kg)
+// —lossy gear, ratio 1, η_mf1 = 0.9— m1 —springs— … m20 (1 kg each), 100 N on m0. Rolling forward
+// with a driving, (η_mf1 I_a + J_b) a = η_mf1 F_a (J_b = 20 kg, no load on b): a = 90/20.9 m/s², and
+// spring c_k carries the masses beyond it, static (20 − k) a.
+TEST_P(HeldStatic, ChainBehindARollingGearIsOneRigidGroup) {
+  std::ostringstream y;
+  y << "bodies:\n  m0: {type: translational, mass: 1 kg}\n";
+  for (int k = 1; k <= 20; ++k) y << "  m" << k << ": {type: translational, mass: 1 kg}\n";
+  y << "links:\n  g: {type: lossy-gear, between: [m0, m1], ratio: 1, efficiency: 0.9, efficiency_reverse: 0.8}\n";
+  for (int k = 1; k < 20; ++k) y << "  c" << k << ": {type: spring, between: [m" << k << ", m" << k + 1 << "], stiffness: 1e4 N/m}\n";
+  y << "loads: {P: {type: constant, body: m0, value: 100 N}}\nsimulation: {t_end: 0.2 s, dt_out: 1 ms}\n";
+  const std::string yaml = y.str();
+  const SimulationResult r = run(yaml, GetParam());
+  const Model m = test::model_text(yaml, "held.yaml");
+  const double a = 0.9 * 100.0 / (0.9 * 1.0 + 20.0);
+  for (int k = 1; k < 20; ++k) {
+    std::string name = "c";
+    name += std::to_string(k);
+    const LinkSummary& c = link(r, m, name);
+    ASSERT_EQ(gear_mode_at(r, "g", c.t_max), "forward") << k;
+    EXPECT_NEAR(c.static_at_max, (20 - k) * a, 1e-9 * 100.0) << k;
+  }
 }
 
 }  // namespace
