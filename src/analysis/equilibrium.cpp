@@ -68,8 +68,8 @@ EquilibriumStart static_equilibrium(const Model& m) {
   // End stops; brakes to the ground applied at t = 0 (they hold their body where it is); brakes on a
   // housing body and clutches applied at t = 0 (they tie their bodies: a row of G, their stuck row
   // u = 0, elements/contact.hpp add_linear); lossy gears, each held at rest on both sides (stuck:
-  // elements/lossy_gear.hpp, a = 0), their bodies pinned like a braked body.
-  std::vector<int> stops, brakes, couplings, gear_bodies;
+  // its ratio and rest rows, elements/lossy_gear.hpp add_linear), rows of G like a clutch's.
+  std::vector<int> stops, brakes, couplings;
   for (size_t k = 0; k < m.contacts.size(); ++k) {
     const FrictionContact& c = m.contacts[k];
     if (c.stop) stops.push_back(static_cast<int>(k));
@@ -80,10 +80,13 @@ EquilibriumStart static_equilibrium(const Model& m) {
   for (int k : couplings)
     ContactLaw::of(m.contacts[static_cast<size_t>(k)], m).add_linear(ContactMode::stuck, true, 0.0, 0.0, coupled);
   std::vector<LossyGearLaw> gears;
+  LinearModel geared(n);  // the gears' rows, two per gear (ratio, rest)
   for (const auto& g : m.lossy_gears) {
     gears.push_back(LossyGearLaw::of(g));
-    gear_bodies.push_back(g.a), gear_bodies.push_back(g.b);
+    gears.back().add_linear(GearMode::stuck, geared);
   }
+  ConstraintRows tying = geared.G;  // every row that ties bodies: the gears', then the couplings'
+  tying.insert(tying.end(), coupled.G.begin(), coupled.G.end());
 
   Eigen::VectorXd q(n), q_given(n), v_given(n), M(n);
   for (int i = 0; i < n; ++i) {
@@ -155,14 +158,13 @@ EquilibriumStart static_equilibrium(const Model& m) {
     };
     for (size_t k = 0; k < m.contacts.size(); ++k)
       if (held[k]) tie(m.contacts[k].a);
-    for (int b : gear_bodies) tie(b);
-    return rigid_motions(tied, coupled.G);
+    return rigid_motions(tied, tying);
   };
-  // The pinned bodies (a held stop or brake, a gear's sides) and the couplings' rows that add to them
+  // The pinned bodies (a held stop or brake) and the gears' and couplings' rows that add to them
   // (a clutch beside a brake on the same body; two clutches on one pair add one row): the rows of
   // the border, each independent of the pins and the rows before it.
   auto pinned = [&]() {
-    std::vector<int> p = gear_bodies;
+    std::vector<int> p;
     for (size_t k = 0; k < m.contacts.size(); ++k)
       if (held[k]) p.push_back(m.contacts[k].a);
     return p;
@@ -177,7 +179,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
       return lu.rank();
     };
     Eigen::Index have = rank(D);
-    for (const auto& g : coupled.G) {
+    for (const auto& g : tying) {
       Eigen::MatrixXd E(D.rows() + 1, n);
       E.topRows(D.rows()) = D;
       E.row(D.rows()).setZero();
@@ -237,7 +239,8 @@ EquilibriumStart static_equilibrium(const Model& m) {
     Eigen::VectorXd acc = Eigen::VectorXd::Zero(r);  // the rigid acceleration a'' of each free group
     if (r > 0) acc = (R.transpose() * MR).ldlt().solve(R.transpose() * s.g);
     // [K MR Gᵀ; (MR)ᵀ 0 0; G 0 0] [Δ; μ; λ] = [g − MR a''; RᵀM (q_given − q); 0], K = −∂g/∂q, G the
-    // couplings' rows (G Δ = 0: a clutch keeps the given relative position); a held body's row pins it.
+    // gears' and couplings' rows (G Δ = 0: a gear holds its sides, a clutch keeps the given relative
+    // position); a held body's row pins it.
     const ConstraintRows G = independent_couplings(pinned());
     const auto nc = static_cast<Eigen::Index>(G.size());
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + r + nc, n + r + nc);
@@ -259,7 +262,6 @@ EquilibriumStart static_equilibrium(const Model& m) {
       const FrictionContact& c = m.contacts[k];
       pin(c.a, c.stop ? c.stop_position - q(c.a) : 0.0);
     }
-    for (int b : gear_bodies) pin(b, 0.0);  // a gear at rest holds both sides where they are
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
     if (!lu.isInvertible())
       throw InputError(Location{m.source, 0, 0}, "simulation: 'initial: equilibrium': the equilibrium equations are "
@@ -306,14 +308,11 @@ EquilibriumStart static_equilibrium(const Model& m) {
   s = evaluate(q);
   Diagnostics diag;
   ConstraintRows H;
-  std::vector<int> brake_row(m.contacts.size(), -1), gear_row(gears.size(), -1);
+  std::vector<int> brake_row(m.contacts.size(), -1);
   for (size_t k = 0; k < m.contacts.size(); ++k)
     if (held[k]) brake_row[k] = static_cast<int>(H.size()), H.push_back({{m.contacts[k].a, 1.0}});
-  for (size_t g = 0; g < gears.size(); ++g) {
-    gear_row[g] = static_cast<int>(H.size());
-    H.push_back({{gears[g].a, 1.0}});
-    H.push_back({{gears[g].b, 1.0}});
-  }
+  const auto first_gear = static_cast<Eigen::Index>(H.size());
+  H.insert(H.end(), geared.G.begin(), geared.G.end());
   const auto first_coupling = static_cast<Eigen::Index>(H.size());
   H.insert(H.end(), coupled.G.begin(), coupled.G.end());
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(H.size()));
@@ -347,9 +346,12 @@ EquilibriumStart static_equilibrium(const Model& m) {
                                               std::abs(l), unit_of(c.a), c.scale(0.0) * c.static_limit, unit_of(c.a)));
   }
   for (size_t g = 0; g < gears.size(); ++g) {
-    // Stuck, the gear holds X = F_a and Y = −F_b/i (elements/lossy_gear.hpp): F_a, F_b are its rows' λ.
+    // Stuck, the gear holds X = F_a and Y = −F_b/i (elements/lossy_gear.hpp): F_a, F_b are what its
+    // two rows hold on its bodies, Σ_k w_kj λ_k.
     const LossyGearLaw& law = gears[g];
-    const double Fa = lambda(gear_row[g]), Fb = lambda(gear_row[g] + 1);
+    double Fa = 0.0, Fb = 0.0;
+    for (Eigen::Index k = first_gear + 2 * static_cast<Eigen::Index>(g); k < first_gear + 2 * static_cast<Eigen::Index>(g) + 2; ++k)
+      for (const auto& [j, w] : H[static_cast<size_t>(k)]) (j == law.a ? Fa : Fb) += w * lambda(k);
     const double Ia = m.bodies[static_cast<size_t>(law.a)].inertia, Ib = m.bodies[static_cast<size_t>(law.b)].inertia;
     const GearMode md = law.decide(Fa, Fb, Ia, Ib, 0.0, law.allowance(Fa, Fb));
     if (md == GearMode::stuck) continue;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <memory>
 #include <utility>
 #include <fmt/format.h>
@@ -527,15 +528,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   // ---- quasi-static loads at the extremes ----
   /// What the generalized forces at (t, y) are made of beyond the constant loads: the values of the
-  /// time- or speed-dependent loads and the machines' forces Q(q) — O(loads + machines), not O(n),
-  /// per new extreme. With contacts also the state and the contact modes, whose contact forces are
-  /// formed once at the end (contact_forces).
+  /// time- or speed-dependent loads, the machines' forces Q(q), the drives' torques and the contacts'
+  /// forces, with the contact and gear modes that decide what is held — O(loads + machines + drives +
+  /// contacts + gears), not O(n), per new extreme and in memory.
   struct Extreme {
     std::vector<double> vals;
     double t = 0.0;
-    std::vector<double> y;
     std::vector<ContactMode> modes;
     std::vector<GearMode> gears;  // the lossy gears' modes: a stuck one is held (held())
+    std::vector<double> gear_v;   // their speeds v_a: a rolling one's relation (rolling())
     size_t stage = 0;  // releases applied at its instant: the masses and weights it belongs to
   };
   void ingredients(double t, const double* y, Extreme& out) {
@@ -548,22 +549,40 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
     out.gears.resize(static_cast<size_t>(ng_));
-    for (int g = 0; g < ng_; ++g) out.gears[static_cast<size_t>(g)] = sys_.gear_mode_now(g);
+    out.gear_v.resize(static_cast<size_t>(ng_));
+    for (int g = 0; g < ng_; ++g) {
+      out.gears[static_cast<size_t>(g)] = sys_.gear_mode_now(g);
+      out.gear_v[static_cast<size_t>(g)] = y[n_ + sys_.lossy_gear(g).a];
+    }
     if (nc_ == 0) return;
     out.t = t;
-    out.y.assign(y, y + N_);
     out.modes = sys_.contact_modes();
+    contact_forces(y, out);
   }
   /// Appends the contact forces of an extreme (in its modes) to its ingredients: a sliding contact's
-  /// friction force; a held one's is a reaction, which the quasi-static problem solves for (0 here).
-  void contact_forces(Extreme& e) {
-    if (nc_ == 0 || e.y.empty()) return;
-    sys_.set_contact_modes(e.modes);
-    sys_.evaluate(e.t, e.y.data(), acc_.data(), fc_.data());
+  /// friction force from its law at (t, v) (elements/contact.hpp kinetic_force); a held one's is a
+  /// reaction, which the quasi-static problem solves for (0 here); a kinematic one stuck carries
+  /// nothing (its bodies are supports). A released brake the dynamics keep stuck is no constraint of
+  /// the quasi-static problem (held()): its force is the dynamics' λ at (t, y) — the one case that
+  /// evaluates the system (O(n)), only while such a brake is stuck.
+  void contact_forces(const double* y, Extreme& e) {
     const std::vector<char> h = held(e);
+    bool reaction = false;
     for (int c = 0; c < nc_; ++c)
-      if (h[static_cast<size_t>(c)]) fc_[static_cast<size_t>(c)] = 0.0;
-    e.vals.insert(e.vals.end(), fc_.begin(), fc_.end());
+      reaction = reaction || (e.modes[static_cast<size_t>(c)] == ContactMode::stuck && !h[static_cast<size_t>(c)] &&
+                              !sys_.contact(c).kinematic);
+    if (reaction) {
+      extreme_acc_.resize(static_cast<size_t>(n_));
+      extreme_fc_.resize(static_cast<size_t>(nc_));
+      sys_.evaluate(e.t, y, extreme_acc_.data(), extreme_fc_.data());
+    }
+    for (int c = 0; c < nc_; ++c) {
+      const ContactMode md = e.modes[static_cast<size_t>(c)];
+      const ContactLaw& law = sys_.contact(c);
+      if (md != ContactMode::stuck) e.vals.push_back(law.kinetic_force(md, e.t, law.sliding_velocity(e.t, y + n_)));
+      else if (h[static_cast<size_t>(c)] || law.kinematic) e.vals.push_back(0.0);
+      else e.vals.push_back(extreme_fc_[static_cast<size_t>(c)]);
+    }
   }
   /// The elements an extreme holds, per contact then per lossy gear: constraints of its quasi-static
   /// problem (static_loads.hpp), not forces. A contact held stuck and engaged (a joint always; a
@@ -579,19 +598,35 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       h[static_cast<size_t>(nc_ + g)] = e.gears[static_cast<size_t>(g)] == GearMode::stuck;
     return h;
   }
-  /// The rows G of the held elements: a contact's stuck row u = 0 (elements/contact.hpp add_linear), a
-  /// gear's ratio row v_a − i v_b = 0 (elements/lossy_gear.hpp add_linear) and, as its stuck mode has
-  /// v_a = 0 (a = 0: the gear holds X − Y within its locking range), v_a = 0: both sides at rest.
-  ConstraintRows held_rows(const std::vector<char>& h) const {
+  /// The lossy gears an extreme finds rolling: constraints with their own reaction (LossyGearLaw::
+  /// reaction), per gear g its number, the weights of H on a and b and the constant force on a.
+  std::vector<double> rolling(const Extreme& e) const {
+    std::vector<double> r;
+    for (int g = 0; g < ng_ && !e.gears.empty(); ++g) {
+      const GearMode md = e.gears[static_cast<size_t>(g)];
+      if (md == GearMode::stuck) continue;
+      const LossyGearLaw::Reaction x = sys_.lossy_gear(g).reaction(md, e.gear_v[static_cast<size_t>(g)]);
+      r.insert(r.end(), {static_cast<double>(g), x.H[0].second, x.H[1].second, x.f0_a});
+    }
+    return r;
+  }
+  /// The rows G of the held elements and their reactions H (empty: along the row): a contact's stuck
+  /// row u = 0 (elements/contact.hpp add_linear), a stuck gear's ratio and rest rows (elements/
+  /// lossy_gear.hpp add_linear: a = 0, both sides at rest), a rolling gear's ratio row with its mode's
+  /// reaction (`roll`, rolling()).
+  std::pair<ConstraintRows, ConstraintRows> held_rows(const std::vector<char>& h, const std::vector<double>& roll) const {
     LinearModel lin(n_);
     for (int c = 0; c < nc_; ++c)
       if (h[static_cast<size_t>(c)]) sys_.contact(c).add_linear(ContactMode::stuck, true, 0.0, 0.0, lin);
     for (int g = 0; g < ng_; ++g)
-      if (h[static_cast<size_t>(nc_ + g)]) {
-        sys_.lossy_gear(g).add_linear(lin);
-        lin.G.push_back({{sys_.lossy_gear(g).a, 1.0}});
-      }
-    return lin.G;
+      if (h[static_cast<size_t>(nc_ + g)]) sys_.lossy_gear(g).add_linear(GearMode::stuck, lin);
+    ConstraintRows H(lin.G.size());
+    for (size_t k = 0; k < roll.size(); k += 4) {
+      const LossyGearLaw& law = sys_.lossy_gear(static_cast<int>(roll[k]));
+      law.add_linear(lin);
+      H.push_back({{law.a, roll[k + 1]}, {law.b, roll[k + 2]}});
+    }
+    return {lin.G, H};
   }
   /// The generalized forces f (n) of a set of ingredients, with the constant loads of `mm` (the
   /// model after the releases of the extreme's instant).
@@ -615,24 +650,27 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (nl_ == 0) return;
     // One solver per set of masses (the model's, and after each release an extreme falls behind) and
     // of held elements (constraints, not forces: an extreme's stuck brake holds its drum).
-    using Solver = std::pair<size_t, std::vector<char>>;
+    // A rolling lossy gear keeps its ratio, its reaction follows its mode's efficiency (rolling()).
+    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>>;
     std::map<Solver, std::unique_ptr<ParticularSolver>> particular;
     std::map<std::pair<Solver, std::vector<double>>, Eigen::VectorXd> solved;
     auto static_loads = [&](const Extreme& e) -> const Eigen::VectorXd& {
-      Solver which{e.stage, held(e)};
+      Solver which{e.stage, held(e), rolling(e)};
       const auto key = std::make_pair(which, e.vals);
       auto it = solved.find(key);
       if (it == solved.end()) {
+        const auto& [st, h, roll] = which;
         auto& p = particular[which];
-        if (!p) p = std::make_unique<ParticularSolver>(stage(e.stage), held_rows(which.second));
-        it = solved.emplace(key, p->solve(forces(e.vals, stage(e.stage)))).first;
+        if (!p) {
+          const auto [G, H] = held_rows(h, roll);
+          p = std::make_unique<ParticularSolver>(stage(st), G, H);
+        }
+        Eigen::VectorXd f = forces(e.vals, stage(st));
+        for (size_t k = 0; k < roll.size(); k += 4) f(sys_.lossy_gear(static_cast<int>(roll[k])).a) += roll[k + 3];
+        it = solved.emplace(key, p->solve(f)).first;
       }
       return it->second;
     };
-    for (int l = 0; l < nl_; ++l) {
-      contact_forces(at_max_[static_cast<size_t>(l)]);
-      contact_forces(at_min_[static_cast<size_t>(l)]);
-    }
     for (int l = 0; l < nl_; ++l) {
       LinkSummary s;
       s.max = peaks_.max(l), s.min = peaks_.min(l), s.t_max = peaks_.t_max(l), s.t_min = peaks_.t_min(l);
@@ -1055,6 +1093,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
   std::vector<int> machine_bodies_;
   std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
+  std::vector<double> extreme_acc_, extreme_fc_;  // scratch of contact_forces(): a released brake's λ
   std::vector<double> y_, acc_, fc_;
   std::vector<double> loads_;                // the link loads of an output row
   std::vector<double*> col_;                 // the columns' data (point_columns)

@@ -14,29 +14,38 @@
 namespace machdyn {
 
 namespace {
+/// A row's entries on free bodies, scaled to unit length (empty when none is left).
+std::vector<std::pair<int, double>> free_unit_row(const Model& m, const std::vector<std::pair<int, double>>& g) {
+  std::vector<std::pair<int, double>> r;
+  double norm = 0.0;
+  for (const auto& [j, w] : g)
+    if (j >= 0 && w != 0.0 && m.bodies[static_cast<size_t>(j)].motion == MotionKind::free) r.emplace_back(j, w), norm += w * w;
+  for (auto& [j, w] : r) w /= std::sqrt(norm);
+  return r;
+}
+
 /// The rows of G that constrain free bodies: entries on bodies with prescribed motion dropped (they
 /// are supports), each row scaled to unit length, and a row that repeats the others (two brakes on
 /// one drum) left out — the rank is kept by a dense elimination over the few bodies the rows touch.
-ConstraintRows free_independent_rows(const Model& m, const ConstraintRows& G) {
+/// `kept` (if given): the index in G of each row returned.
+ConstraintRows free_independent_rows(const Model& m, const ConstraintRows& G, std::vector<size_t>* kept = nullptr) {
   ConstraintRows out;
   if (G.empty()) return out;
   std::vector<int> col(static_cast<size_t>(m.dof()), -1);
   int touched = 0;
   std::vector<std::vector<std::pair<int, double>>> rows;
-  for (const auto& g : G) {
-    std::vector<std::pair<int, double>> r;
-    double norm = 0.0;
-    for (const auto& [j, w] : g)
-      if (j >= 0 && w != 0.0 && m.bodies[static_cast<size_t>(j)].motion == MotionKind::free) r.emplace_back(j, w), norm += w * w;
+  std::vector<size_t> from;
+  for (size_t k = 0; k < G.size(); ++k) {
+    std::vector<std::pair<int, double>> r = free_unit_row(m, G[k]);
     if (r.empty()) continue;
-    for (auto& [j, w] : r) {
-      w /= std::sqrt(norm);
+    for (const auto& [j, w] : r)
       if (col[static_cast<size_t>(j)] < 0) col[static_cast<size_t>(j)] = touched++;
-    }
     rows.push_back(std::move(r));
+    from.push_back(k);
   }
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(0, touched);
-  for (auto& r : rows) {
+  for (size_t k = 0; k < rows.size(); ++k) {
+    auto& r = rows[k];
     Eigen::MatrixXd E(D.rows() + 1, touched);
     E.topRows(D.rows()) = D;
     E.row(D.rows()).setZero();
@@ -46,6 +55,7 @@ ConstraintRows free_independent_rows(const Model& m, const ConstraintRows& G) {
     if (lu.rank() <= D.rows()) continue;
     D = std::move(E);
     out.push_back(std::move(r));
+    if (kept) kept->push_back(from[k]);
   }
   return out;
 }
@@ -175,13 +185,24 @@ struct ParticularSolver::Impl {
   std::vector<int> pins;  // pinned coordinates (q_p = 0), or empty: the bordered system
   std::vector<int> fixed;  // bodies with prescribed motion: supports (q = 0), in both systems
   Eigen::Index rows = 0;   // size of the system: n (+ r with the border) + the rows of G
+  bool reacting = false;   // some row's reaction is not along it (H ≠ G): a'' solved with q_e and λ
   explicit Impl(const Model& model) : m(model) {}
 };
 
-ParticularSolver::ParticularSolver(const Model& m, const ConstraintRows& G_all) : impl_(new Impl(m)) {
+ParticularSolver::ParticularSolver(const Model& m, const ConstraintRows& G_all, const ConstraintRows& H_all)
+    : impl_(new Impl(m)) {
   const int n = m.dof();
   Impl& s = *impl_;
-  const ConstraintRows G = free_independent_rows(m, G_all);
+  std::vector<size_t> kept;
+  const ConstraintRows G = free_independent_rows(m, G_all, &kept);
+  // The reaction rows on free bodies, unit length; a row whose reaction reaches no free body would
+  // leave its λ undetermined: taken along its row.
+  ConstraintRows H(G.size());
+  for (size_t k = 0; k < G.size(); ++k)
+    if (kept[k] < H_all.size() && !H_all[kept[k]].empty()) {
+      H[k] = free_unit_row(m, H_all[kept[k]]);
+      s.reacting = s.reacting || !H[k].empty();
+    }
   s.R = rigid_motions(m, G);
   const auto r = s.R.cols();
   Eigen::VectorXd M(n);
@@ -210,6 +231,10 @@ ParticularSolver::ParticularSolver(const Model& m, const ConstraintRows& G_all) 
     Eigen::MatrixXd Rp(r, r);
     for (Eigen::Index k = 0; k < r; ++k) Rp.row(k) = s.R.row(pin[static_cast<size_t>(k)]);
     pins_ok = Eigen::FullPivLU<Eigen::MatrixXd>(Rp).rank() == r;
+  }
+  if (s.reacting) {
+    reacting_system(G, H, pins_ok ? pin : std::vector<int>{}, fixed);
+    return;
   }
   // K from the links' own Jacobian terms (elements/link.hpp): ∂(acc·M)/∂q = −K. Every link counts
   // as a closed spring; the rows and columns of pinned coordinates are left out.
@@ -258,6 +283,44 @@ ParticularSolver::ParticularSolver(const Model& m, const ConstraintRows& G_all) 
   s.lu.compute(A);
 }
 
+void ParticularSolver::reacting_system(const ConstraintRows& G, const ConstraintRows& H, const std::vector<int>& pins,
+                                       const std::vector<char>& fixed) {
+  // [K −Hᵀ MR; G 0 0; P 0 0] [q_e; λ; a''] = [f; 0; 0] (header): all of K (a pinned coordinate's
+  // equation is needed, its q is set by its row of P), a body with prescribed motion a support.
+  Impl& s = *impl_;
+  const Model& m = s.m;
+  const int n = m.dof();
+  const auto nG = static_cast<Eigen::Index>(G.size()), r = s.R.cols();
+  std::vector<Eigen::Triplet<double>> trip;
+  for (const auto& l : m.links) {
+    if (l.c <= 0.0) continue;
+    LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int row, int col, double v) {
+      if (col >= n || fixed[static_cast<size_t>(row)] || fixed[static_cast<size_t>(col)]) return;
+      trip.emplace_back(row, col, -v);
+    });
+  }
+  for (int i : s.fixed) trip.emplace_back(i, i, 1.0);
+  for (Eigen::Index k = 0; k < nG; ++k) {
+    const auto& g = G[static_cast<size_t>(k)];
+    const auto& h = H[static_cast<size_t>(k)].empty() ? g : H[static_cast<size_t>(k)];
+    for (const auto& [j, w] : g) trip.emplace_back(n + k, j, w);
+    for (const auto& [j, w] : h) trip.emplace_back(j, n + k, -w);
+  }
+  for (Eigen::Index k = 0; k < r; ++k) {
+    const Eigen::Index row = n + nG + k;
+    for (int i = 0; i < n; ++i)
+      if (s.MR(i, k) != 0.0) {
+        trip.emplace_back(i, row, s.MR(i, k));
+        if (pins.empty()) trip.emplace_back(row, i, s.MR(i, k));  // no pins: (MR)ᵀ q_e = 0
+      }
+    if (!pins.empty()) trip.emplace_back(row, pins[static_cast<size_t>(k)], 1.0);
+  }
+  s.rows = n + nG + r;
+  Eigen::SparseMatrix<double> A(s.rows, s.rows);
+  A.setFromTriplets(trip.begin(), trip.end());
+  s.lu.compute(A);
+}
+
 ParticularSolver::~ParticularSolver() { delete impl_; }
 
 Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
@@ -266,7 +329,7 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   const int n = m.dof();
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(s.rows);
   rhs.head(n) = f;
-  if (s.R.cols() > 0) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
+  if (s.R.cols() > 0 && !s.reacting) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
   for (int p : s.pins) rhs(p) = 0.0;
   for (int p : s.fixed) rhs(p) = 0.0;
   const Eigen::VectorXd sol = s.lu.solve(rhs);
@@ -278,8 +341,9 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   return F;
 }
 
-Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f, const ConstraintRows& G) {
-  return ParticularSolver(m, G).solve(f);
+Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f, const ConstraintRows& G,
+                                      const ConstraintRows& H) {
+  return ParticularSolver(m, G, H).solve(f);
 }
 
 }  // namespace machdyn

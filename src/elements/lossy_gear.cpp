@@ -58,6 +58,23 @@ bool LossyGearLaw::b_side_drives(int s, const Coefficients& c, double Fa, double
   return s * D < 0.0;
 }
 
+namespace {
+/// The relation p X − q Y = c of rolling in s with side b driving or not (LossyGearLaw::relation).
+LossyGearLaw::Relation relation_of(int s, bool b_drive, const LossyGearLaw::Coefficients& c) {
+  if (b_drive) return {1.0, c.eta2, s * c.eta2 * c.bf2};
+  return {c.eta1, 1.0, s * c.bf1};
+}
+}  // namespace
+
+LossyGearLaw::Relation LossyGearLaw::relation(GearMode md, double va) const {
+  return relation_of(direction(md), b_drives(md), at(va));
+}
+
+LossyGearLaw::Reaction LossyGearLaw::reaction(GearMode md, double va) const {
+  const Relation r = relation(md, va);
+  return {{{a, -r.q}, {b, i * r.p}}, -r.c / r.p};
+}
+
 LossyGearLaw::Torques LossyGearLaw::solve(GearMode md, double Fa, double Fb, double Ia, double Ib, double va) const {
   const double Jb = Ib / (i * i), Fbp = Fb / i;
   Torques T;
@@ -67,9 +84,9 @@ LossyGearLaw::Torques LossyGearLaw::solve(GearMode md, double Fa, double Fb, dou
     T.Y = -Fbp;
     return T;
   }
-  const Coefficients c = at(va);
-  if (b_drives(md)) T.acc = (Fa + c.eta2 * Fbp - s * c.eta2 * c.bf2) / (Ia + c.eta2 * Jb);
-  else T.acc = (c.eta1 * Fa + Fbp - s * c.bf1) / (c.eta1 * Ia + Jb);
+  // The relation p X − q Y = c with X = F_a − I_a a, Y = J_b a − F_b'.
+  const Relation r = relation(md, va);
+  T.acc = (r.p * Fa + r.q * Fbp - r.c) / (r.p * Ia + r.q * Jb);
   T.X = Fa - Ia * T.acc;
   T.Y = Jb * T.acc - Fbp;
   return T;
@@ -78,8 +95,10 @@ LossyGearLaw::Torques LossyGearLaw::solve(GearMode md, double Fa, double Fb, dou
 double LossyGearLaw::start_margin(int s, double Fa, double Fb) const {
   const Coefficients c = at(0.0);
   const double Fbp = Fb / i;
-  if (s * (Fa - s * c.bf_a) > 0.0) return -s * (c.eta1 * Fa + Fbp - s * c.bf1);  // a would drive
-  const double N = Fa + c.eta2 * Fbp - s * c.eta2 * c.bf2;                     // b would drive
+  const bool b_drive = s * (Fa - s * c.bf_a) <= 0.0;
+  const Relation r = relation_of(s, b_drive, c);
+  const double N = r.p * Fa + r.q * Fbp - r.c;  // the numerator of the mode's equation (header)
+  if (!b_drive) return -s * N;                  // a would drive
   return c.eta2 > 0.0 ? -s * N / c.eta2 : -s * N;
 }
 
@@ -197,6 +216,13 @@ void LossyGearLaw::events_given(GearMode md, GearMode now, double va, const Torq
 
 void LossyGearLaw::add_linear(LinearModel& lin) const {
   lin.G.push_back({{a, 1.0}, {b, -i}});
+  lin.constraint_names.push_back(spec->name);
+}
+
+void LossyGearLaw::add_linear(GearMode md, LinearModel& lin) const {
+  add_linear(lin);
+  if (md != GearMode::stuck) return;
+  lin.G.push_back({{a, 1.0}});  // stuck: a = 0, so v_a = 0 (and v_b = v_a / i)
   lin.constraint_names.push_back(spec->name);
 }
 

@@ -1,11 +1,13 @@
 // The quasi-static load at a link's extreme with held elements (analysis/static_loads.hpp): a stuck
 // brake, clutch or self-locked lossy gear is a constraint of the quasi-static problem, not a force
 // equal to its reaction at the extreme (which holds the dynamic part too); a sliding brake's kinetic
-// torque stays a force. Every claim on both integrators, against closed forms or an RK4 in the test.
+// torque stays a force; a rolling lossy gear keeps its ratio, its reaction following its mode's
+// efficiency. Every claim on both integrators, against closed forms or an RK4 in the test.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <gtest/gtest.h>
 
@@ -178,6 +180,115 @@ simulation: {t_end: 0.05 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
   EXPECT_NEAR(r.links[0].min, -300.0, 1e-6 * 150.0);
   EXPECT_NEAR(r.links[0].t_min, std::numbers::pi / omega, 1e-6);
   EXPECT_NEAR(r.links[0].dynamic_factor, 2.0, 1e-6);
+}
+
+// The mode of lossy gear `name` at t: the target of its last event at or before t.
+std::string gear_mode_at(const SimulationResult& r, const std::string& name, double t) {
+  std::string md;
+  for (const ModeEvent& e : r.hybrid.events)
+    if (e.element == name && e.t <= t) md = e.to;
+  return md;
+}
+
+// A worm hoist: motor (I_a = 0.05 kg·m²) —worm 40:1, η_mf1 = 0.9, η_mf2 = 0.8— wheel (0.5 kg·m²)
+// —shaft 1e5 N·m/rad— drum (I_d = 2 kg·m²) —rope 5 rad/m, 2 MN/m— hook (500 kg), from rest on an
+// unstretched rope; `M` on the motor, bearing friction τ_bf1 = τ_bf2 = `bf` (/tmp/lead/roll.yaml: M = 40
+// N·m, bf = 0).
+std::string worm_hoist(double M, double bf) {
+  return R"(gravity: 9.81 m/s^2
+bodies:
+  motor: {type: rotational, inertia: 0.05 kg*m^2}
+  wheel: {type: rotational, inertia: 0.5 kg*m^2}
+  drum: {type: rotational, inertia: 2 kg*m^2}
+  hook: {type: translational, mass: 500 kg, vertical: up}
+links:
+  worm: {type: lossy-gear, between: [motor, wheel], ratio: 40, efficiency: 0.9, efficiency_reverse: 0.8,
+         bearing_friction: )" +
+         std::to_string(bf) + R"( N*m}
+  shaft: {type: spring, between: [wheel, drum], stiffness: 1e5 N*m/rad}
+  rope: {type: rope, between: [drum, hook], ratio: 5 rad/m, stiffness: 2 MN/m}
+loads:
+  M: {type: constant, body: motor, value: )" +
+         std::to_string(M) + R"( N*m}
+simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
+)";
+}
+
+// The rigid worm hoist's quasi-static loads in a rolling mode of the worm (elements/lossy_gear.hpp).
+// In the motor's coordinate (a = motor's acceleration, i = 40, i_r = 5): side b carries the wheel,
+// drum and hook as J_b = (0.5 + I_d + m/i_r²)/i² and the hook's weight as F_b' = −(m g / i_r)/i; side a
+// has I_a and F_a = M. Eliminating the gear torques X (into the gear from a) and Y (out to b) from
+// I_a a = F_a − X, J_b a = F_b' + Y with the mode's relation (MSL's quadrant losses, bearing
+// torques τ_bf1 = τ_bf2 = bf, direction s):
+//   a drives (lifting, s = +1):   Y = η_mf1 X − s bf      ⇒  (η_mf1 I_a + J_b) a = η_mf1 F_a + F_b' − s bf
+//   b drives (lowering, s = −1):  X = η_mf2 (Y + s bf)    ⇒  (I_a + η_mf2 J_b) a = F_a + η_mf2 F_b' − s η_mf2 bf
+// The hook accelerates at a_h = a/(i i_r): the rope's static load is m (g + a_h); the drum's balance
+// gives the shaft's, I_d a/i + m (g + a_h)/i_r. Returns {rope, shaft}.
+std::array<double, 2> rigid_worm_hoist(double M, double bf, bool b_drives) {
+  const double I_a = 0.05, I_d = 2.0, i = 40.0, eta1 = 0.9, eta2 = 0.8;
+  const double J_b = (0.5 + I_d + m_hook / (i_rope * i_rope)) / (i * i), Fb = -(m_hook * g / i_rope) / i;
+  const double a = b_drives ? (M + eta2 * Fb + eta2 * bf) / (I_a + eta2 * J_b) : (eta1 * M + Fb - bf) / (eta1 * I_a + J_b);
+  const double a_h = a / (i * i_rope), rope = m_hook * (g + a_h);
+  return {rope, I_d * a / i + rope / i_rope};
+}
+
+// Claim: a worm hoist lifting (40 N·m on the motor: the worm rolls forward, the motor driving) has
+// the rigid system's quasi-static loads at both links' extremes: rope m (g + a_h) = 5390.7 N, shaft
+// 1087.9 N·m (rigid_worm_hoist, a drives). (With the rolling gear left out its two sides were
+// separate groups: rope 545 N, factor 19.8; shaft 21.8 N·m, factor 100.9.)
+TEST_P(HeldStatic, RollingWormGearLiftsWithTheForwardEfficiency) {
+  const std::string yaml = worm_hoist(40.0, 0.0);
+  const SimulationResult r = run(yaml, GetParam());
+  const Model m = test::model_text(yaml, "held.yaml");
+  const auto [rope_st, shaft_st] = rigid_worm_hoist(40.0, 0.0, false);
+  const LinkSummary& rope = link(r, m, "rope");
+  const LinkSummary& shaft = link(r, m, "shaft");
+  ASSERT_EQ(gear_mode_at(r, "worm", rope.t_max), "forward");
+  ASSERT_EQ(gear_mode_at(r, "worm", shaft.t_max), "forward");
+  EXPECT_NEAR(rope.static_at_max, rope_st, 1e-9 * rope_st);
+  EXPECT_NEAR(shaft.static_at_max, shaft_st, 1e-9 * shaft_st);
+  EXPECT_NEAR(rope.dynamic_factor, rope.max / rope_st, 1e-9);
+}
+
+// Claim: the same hoist with bearing friction 2 N·m lowering its load (no torque on the motor: the
+// hook's weight back-drives the worm, rolling backward with side b driving) has the rigid system's
+// quasi-static loads with the reverse efficiency and the bearing torque (the gear's constant part):
+// rope m (g + a_h) = 4169.5 N, shaft 819.2 N·m (rigid_worm_hoist, b drives).
+TEST_P(HeldStatic, RollingWormGearLowersWithTheReverseEfficiency) {
+  const std::string yaml = worm_hoist(0.0, 2.0);
+  const SimulationResult r = run(yaml, GetParam());
+  const Model m = test::model_text(yaml, "held.yaml");
+  const auto [rope_st, shaft_st] = rigid_worm_hoist(0.0, 2.0, true);
+  const LinkSummary& rope = link(r, m, "rope");
+  const LinkSummary& shaft = link(r, m, "shaft");
+  ASSERT_EQ(gear_mode_at(r, "worm", rope.t_max), "backward_b_drives");
+  ASSERT_EQ(gear_mode_at(r, "worm", shaft.t_max), "backward_b_drives");
+  EXPECT_NEAR(rope.static_at_max, rope_st, 1e-9 * rope_st);
+  EXPECT_NEAR(shaft.static_at_max, shaft_st, 1e-9 * shaft_st);
+}
+
+// Claim: behind a rolling gear the whole chain is one rigid group of the quasi-static load: m0 (1 kg)
+// —lossy gear, ratio 1, η_mf1 = 0.9— m1 —springs— … m20 (1 kg each), 100 N on m0. Rolling forward
+// with a driving, (η_mf1 I_a + J_b) a = η_mf1 F_a (J_b = 20 kg, no load on b): a = 90/20.9 m/s², and
+// spring c_k carries the masses beyond it, static (20 − k) a.
+TEST_P(HeldStatic, ChainBehindARollingGearIsOneRigidGroup) {
+  std::ostringstream y;
+  y << "bodies:\n  m0: {type: translational, mass: 1 kg}\n";
+  for (int k = 1; k <= 20; ++k) y << "  m" << k << ": {type: translational, mass: 1 kg}\n";
+  y << "links:\n  g: {type: lossy-gear, between: [m0, m1], ratio: 1, efficiency: 0.9, efficiency_reverse: 0.8}\n";
+  for (int k = 1; k < 20; ++k) y << "  c" << k << ": {type: spring, between: [m" << k << ", m" << k + 1 << "], stiffness: 1e4 N/m}\n";
+  y << "loads: {P: {type: constant, body: m0, value: 100 N}}\nsimulation: {t_end: 0.2 s, dt_out: 1 ms}\n";
+  const std::string yaml = y.str();
+  const SimulationResult r = run(yaml, GetParam());
+  const Model m = test::model_text(yaml, "held.yaml");
+  const double a = 0.9 * 100.0 / (0.9 * 1.0 + 20.0);
+  for (int k = 1; k < 20; ++k) {
+    std::string name = "c";
+    name += std::to_string(k);
+    const LinkSummary& c = link(r, m, name);
+    ASSERT_EQ(gear_mode_at(r, "g", c.t_max), "forward") << k;
+    EXPECT_NEAR(c.static_at_max, (20 - k) * a, 1e-9 * 100.0) << k;
+  }
 }
 
 }  // namespace

@@ -17,6 +17,16 @@
 /// λ is the held elements' reaction: it is part of the solution, never a given force. Entries on
 /// bodies with prescribed motion are dropped (they are supports already); rows that repeat others
 /// (two brakes on one drum) are left out, as they add no constraint.
+///
+/// A row whose reaction does not act along it (a rolling lossy gear keeps its ratio, G, but its
+/// torques follow its mode's efficiency relation, LossyGearLaw::reaction: forces Hᵀ λ with H ≠ G, and
+/// a constant part the caller adds to f) makes the problem M q'' + K q = f + Hᵀ λ, G q'' = 0, G q_e = 0
+/// (H = G for the other rows). Then the rigid acceleration depends on λ (Rᵀ Hᵀ ≠ 0: the reaction
+/// does work), so a'' is an unknown of the same bordered, unsymmetric solve:
+///   [K  −Hᵀ  MR] [q_e]   [f]
+///   [G   0   0 ] [λ  ] = [0]        (P: the pins, or (MR)ᵀ when they do not serve)
+///   [P   0   0 ] [a''] = [0]
+/// whose MR columns (one per rigid motion) are dense: O(n) per rigid motion for a chain.
 
 #include <utility>
 #include <vector>
@@ -35,7 +45,8 @@ Eigen::MatrixXd rigid_motions(const Model& m, const ConstraintRows& G = {});
 /// Factors the saddle-point system once; solve() then costs O(n) per load vector.
 class ParticularSolver {
  public:
-  explicit ParticularSolver(const Model& m, const ConstraintRows& G = {});
+  /// H[k]: the reaction row of G[k] (empty, or k ≥ H.size(): along G[k]).
+  explicit ParticularSolver(const Model& m, const ConstraintRows& G = {}, const ConstraintRows& H = {});
   ~ParticularSolver();
   ParticularSolver(const ParticularSolver&) = delete;
   ParticularSolver& operator=(const ParticularSolver&) = delete;
@@ -45,9 +56,13 @@ class ParticularSolver {
  private:
   struct Impl;
   Impl* impl_;
+  /// Factors the unsymmetric system of rows with their own reactions (header); `pins` empty: (MR)ᵀ.
+  void reacting_system(const ConstraintRows& G, const ConstraintRows& H, const std::vector<int>& pins,
+                       const std::vector<char>& fixed);
 };
 
-/// One-off form of ParticularSolver(m, G).solve(f).
-Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f, const ConstraintRows& G = {});
+/// One-off form of ParticularSolver(m, G, H).solve(f).
+Eigen::VectorXd particular_link_loads(const Model& m, const Eigen::VectorXd& f, const ConstraintRows& G = {},
+                                      const ConstraintRows& H = {});
 
 }  // namespace machdyn

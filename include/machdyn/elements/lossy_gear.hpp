@@ -82,6 +82,8 @@
 /// Valid range (compile checks): η_mf1 ∈ (0, 1], η_mf2 ∈ [0, 1], τ_bf1, τ_bf2 ≥ 0, i ≠ 0.
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "machdyn/elements/linear_model.hpp"
 #include "machdyn/model/model.hpp"
@@ -158,6 +160,29 @@ struct LossyGearLaw {
   void events_given(GearMode md, GearMode now, double va, const Torques& T, double* ev) const;
   /// Linear terms: for modes a lossy gear is the ideal gear, the constraint row v_a − i v_b = 0.
   void add_linear(LinearModel& lin) const;
+  /// The rows of mode md as constraints (the quasi-static load, analysis/static_loads.hpp; the
+  /// equilibrium start): the ratio row v_a − i v_b = 0 in every mode and, stuck (a = 0), the rest row
+  /// v_a = 0 (both sides at rest). A rolling gear's reaction is not along its row: see reaction().
+  void add_linear(GearMode md, LinearModel& lin) const;
+
+  /// The torque relation of a rolling mode md at v_a, p X − q Y = c (header "Mesh and bearings"):
+  ///   a drives:  η_mf1 X − Y = s τ_bf1        (p = η_mf1, q = 1,      c = s τ_bf1)
+  ///   b drives:  X − η_mf2 Y = s η_mf2 τ_bf2  (p = 1,     q = η_mf2,  c = s η_mf2 τ_bf2)
+  /// p > 0 in both; with X = F_a − I_a a, Y = J_b a − F_b' it gives the mode's equation of motion
+  /// (p I_a + q J_b) a = p F_a + q F_b' − c (solve, start_margin).
+  struct Relation {
+    double p = 1.0, q = 1.0, c = 0.0;
+  };
+  [[nodiscard]] Relation relation(GearMode md, double va) const;
+  /// A rolling mode md at v_a as a constraint with its own reaction (the quasi-static load): the gear
+  /// keeps its ratio (add_linear's row, G) and its torques satisfy relation(): X = q μ + c/p, Y = p μ
+  /// for one reaction μ, so its forces on the bodies (apply: −X on a, +i Y on b) are H μ + f0 with
+  /// H = {a: −q, b: i p} and f0 = −c/p on a. H ≠ G: the reaction does work (the loss (X − Y) v_a).
+  struct Reaction {
+    std::vector<std::pair<int, double>> H;  ///< (body, weight) pairs, as a row of LinearModel::G
+    double f0_a = 0.0;                      ///< the constant force on body a (N·m or N)
+  };
+  [[nodiscard]] Reaction reaction(GearMode md, double va) const;
 
   /// The start margin m_s of direction s at rest (header), ≥ 0 while the gear holds against a start
   /// in s. Piecewise linear in (F_a, F_b/i) with one kink, where the driving side changes (s F̃_a = 0);
