@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "analysis/affine_kernels.hpp"
 #include "common/compiler.hpp"
 #include "machdyn/model/machine.hpp"
 
@@ -47,23 +48,7 @@ void affine_rows(const int* cols, int ncols, const double* A, const double* c, c
   }
   for (int r = 0; r < R; ++r) out[C + r] = s[r];
 }
-// The same sums for a fixed column count K as well (ncols == K): unrolled, the sums stay in
-// registers and no loop control is left (a small mode's map: K ≤ 8 columns, R ≤ 8 rows).
-template <int R, int C, int K>
-void affine_rows_k(const int* cols, int, const double* A, const double* c, const double* y, double* out) {
-  for (int i = 0; i < C; ++i) out[i] = y[C + i];
-  double s[R];
-  for (int r = 0; r < R; ++r) s[r] = c[r];
-#pragma GCC unroll 8
-  for (int k = 0; k < K; ++k) {
-    const double x = y[cols[k]];
-#pragma GCC unroll 8
-    for (int r = 0; r < R; ++r) s[r] += A[k * R + r] * x;
-  }
-  for (int r = 0; r < R; ++r) out[C + r] = s[r];
-}
-
-using RowsKernel = void (*)(const int*, int, const double*, const double*, const double*, double*);
+using detail::RowsKernel;
 // The kernels by row count R = 1…16: without a copy (contact forces), with C = R (a chain's
 // accelerations, a mode without energy books) and with C = R − 3 (a mode with the three energy rates).
 template <int... Rs>
@@ -106,21 +91,6 @@ constexpr auto kRowsCopy = kernels(1, std::make_integer_sequence<int, 16>{});
 constexpr auto kRowsEnergy = kernels(2, std::make_integer_sequence<int, 16>{});
 constexpr int kMaxRowsCols = 32;  // beyond: the compressed rows (dense zeros would cost more)
 
-// The unrolled kernels by R = 1…8 and K = 1…8, for the three copy counts as above.
-constexpr int kUnrolled = 8;
-template <int R, int... Ks>
-constexpr std::array<RowsKernel, sizeof...(Ks)> unrolled_row(int shift, std::integer_sequence<int, Ks...>) {
-  if (shift == 0) return {affine_rows_k<R, 0, Ks + 1>...};
-  if (shift == 1) return {affine_rows_k<R, R, Ks + 1>...};
-  return {(R > 3 ? affine_rows_k<R, (R > 3 ? R - 3 : 0), Ks + 1> : nullptr)...};
-}
-template <int... Rs>
-constexpr std::array<std::array<RowsKernel, kUnrolled>, sizeof...(Rs)> unrolled(int shift, std::integer_sequence<int, Rs...>) {
-  return {unrolled_row<Rs + 1>(shift, std::make_integer_sequence<int, kUnrolled>{})...};
-}
-constexpr auto kUnrolledRows = unrolled(0, std::make_integer_sequence<int, kUnrolled>{});
-constexpr auto kUnrolledCopy = unrolled(1, std::make_integer_sequence<int, kUnrolled>{});
-constexpr auto kUnrolledEnergy = unrolled(2, std::make_integer_sequence<int, kUnrolled>{});
 }  // namespace
 
 void DriveSystem::AffineRows::build(const Eigen::MatrixXd& M, const Eigen::VectorXd& c0, int r0, int r1, int m) {
@@ -145,9 +115,10 @@ void DriveSystem::AffineRows::build(const Eigen::MatrixXd& M, const Eigen::Vecto
   for (int r = r0; r < r1; ++r) c.push_back(c0(r));
   kernel = k;
   const int K = static_cast<int>(cols.size());
-  if (rows <= kUnrolled && K >= 1 && K <= kUnrolled) {
-    const auto rk = static_cast<size_t>(rows - 1), kk = static_cast<size_t>(K - 1);
-    kernel = m == 0 ? kUnrolledRows[rk][kk] : m == rows ? kUnrolledCopy[rk][kk] : kUnrolledEnergy[rk][kk];
+  if (rows <= detail::kUnrolledRows && K >= 1 && K <= detail::kUnrolledCols) {
+    static const bool avx = detail::cpu_has_avx();
+    const auto shape = m == 0 ? detail::RowsCopy::none : m == rows ? detail::RowsCopy::all : detail::RowsCopy::energy;
+    kernel = detail::unrolled_rows_kernel(rows, K, shape, avx);
   }
 }
 
