@@ -128,7 +128,8 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
   }
   const double* y1 = s.y();
   const double* dy1 = s.dydt();
-  if (tb != s.t()) {
+  const bool step_end = tb == s.t();  // read once: t() is virtual
+  if (!step_end) {
     yb_.resize(y_.size());
     db_.resize(y_.size());
     s.interpolate(tb, yb_.data());
@@ -149,7 +150,7 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     consider_value(j, tb, v1, y1, on_new_max, on_candidate);
     g.rate_prev = r1, g.value_prev = v1;
   }
-  last_end_ = tb == s.t() ? tb : -1.0;
+  last_end_ = step_end ? tb : -1.0;
 }
 
 }  // namespace machdyn
