@@ -81,9 +81,16 @@ class Decision {
 
 std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const double* y, const std::vector<int>& Z,
                                          const std::vector<int>& strict) {
+  std::vector<ContactMode> modes;
+  decide_contacts(sys, t, y, Z, strict, modes);
+  return modes;
+}
+
+void decide_contacts(DriveSystem& sys, double t, const double* y, const std::vector<int>& Z,
+                     const std::vector<int>& strict, std::vector<ContactMode>& modes) {
   Decision d(sys, t, y, strict);
   const Model& m = sys.model();
-  std::vector<ContactMode> modes = sys.contact_modes();
+  modes = sys.contact_modes();
   // Kinematic contacts (between prescribed motions, elements/contact.hpp) change no acceleration:
   // their modes follow the motions, decided first and apart from the others.
   std::vector<int> kin;
@@ -98,7 +105,8 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
     for (int k : Z)
       if (!sys.contact(k).kinematic) rest.push_back(k);
     sys.set_contact_modes(modes);
-    return rest.empty() ? modes : decide_contacts(sys, t, y, rest, strict);
+    if (!rest.empty()) decide_contacts(sys, t, y, rest, strict, modes);
+    return;
   }
   for (int k : Z) modes[static_cast<size_t>(k)] = ContactMode::stuck;
   // Release the most overloaded stuck contact until the stuck set holds.
@@ -119,7 +127,7 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
     modes[static_cast<size_t>(worst)] = d.force(worst) > 0 ? ContactMode::slip_pos : ContactMode::slip_neg;
   }
   // The same modes evaluated again would give the same accelerations and forces: checked as they are.
-  if (evaluated ? d.holds_all(modes, Z) : d.consistent(modes, Z)) return modes;
+  if (evaluated ? d.holds_all(modes, Z) : d.consistent(modes, Z)) return;
   // Every combination, fewest sliding contacts first, then in index order.
   if (Z.size() > 10)
     throw SolverError(m.contacts[static_cast<size_t>(Z[0])].name, t,
@@ -139,7 +147,7 @@ std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const doubl
     for (size_t i = 0; i < Z.size(); ++i, c /= 3)
       modes[static_cast<size_t>(Z[i])] =
           c % 3 == 0 ? ContactMode::stuck : c % 3 == 1 ? ContactMode::slip_pos : ContactMode::slip_neg;
-    if (d.consistent(modes, Z)) return modes;
+    if (d.consistent(modes, Z)) return;
   }
   std::string names;
   for (int k : Z) names += (names.empty() ? "" : "', '") + m.contacts[static_cast<size_t>(k)].name;

@@ -566,10 +566,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// the quasi-static problem (held()): its force is the dynamics' λ at (t, y) — the one case that
   /// evaluates the system (O(n)), only while such a brake is stuck.
   void contact_forces(const double* y, Extreme& e) {
-    const std::vector<char> h = held(e);
+    // held_contact per contact, not held(): no vector per new extreme.
     bool reaction = false;
     for (int c = 0; c < nc_; ++c)
-      reaction = reaction || (e.modes[static_cast<size_t>(c)] == ContactMode::stuck && !h[static_cast<size_t>(c)] &&
+      reaction = reaction || (e.modes[static_cast<size_t>(c)] == ContactMode::stuck && !held_contact(e, c) &&
                               !sys_.contact(c).kinematic);
     if (reaction) {
       extreme_acc_.resize(static_cast<size_t>(n_));
@@ -580,7 +580,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       const ContactMode md = e.modes[static_cast<size_t>(c)];
       const ContactLaw& law = sys_.contact(c);
       if (md != ContactMode::stuck) e.vals.push_back(law.kinetic_force(md, e.t, law.sliding_velocity(e.t, y + n_)));
-      else if (h[static_cast<size_t>(c)] || law.kinematic) e.vals.push_back(0.0);
+      else if (held_contact(e, c) || law.kinematic) e.vals.push_back(0.0);
       else e.vals.push_back(extreme_fc_[static_cast<size_t>(c)]);
     }
   }
@@ -589,14 +589,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// kinematic one adds no row: its bodies are supports), a lossy gear at rest.
   std::vector<char> held(const Extreme& e) const {
     std::vector<char> h(static_cast<size_t>(nc_ + ng_), 0);
-    for (int c = 0; c < nc_ && !e.modes.empty(); ++c) {
-      const ContactLaw& law = sys_.contact(c);
-      h[static_cast<size_t>(c)] = law.joint || (e.modes[static_cast<size_t>(c)] == ContactMode::stuck &&
-                                                !law.released(e.t) && !law.kinematic);
-    }
+    for (int c = 0; c < nc_ && !e.modes.empty(); ++c) h[static_cast<size_t>(c)] = held_contact(e, c);
     for (int g = 0; g < ng_ && !e.gears.empty(); ++g)
       h[static_cast<size_t>(nc_ + g)] = e.gears[static_cast<size_t>(g)] == GearMode::stuck;
     return h;
+  }
+  /// Whether an extreme holds contact c (its modes set): a joint always, else stuck and engaged
+  /// (a kinematic one adds no row: its bodies are supports).
+  bool held_contact(const Extreme& e, int c) const {
+    const ContactLaw& law = sys_.contact(c);
+    return law.joint ||
+           (e.modes[static_cast<size_t>(c)] == ContactMode::stuck && !law.released(e.t) && !law.kinematic);
   }
   /// The lossy gears an extreme finds rolling: constraints with their own reaction (LossyGearLaw::
   /// reaction), per gear g its number, the weights of H on a and b and the constant force on a.
@@ -992,7 +995,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // or reverses, then starts on its event function's zero, not past it).
     for (int k : Z)
       if (old[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
-    const std::vector<ContactMode> now = decide_contacts(sys_, t, y_.data(), Z, strict_);
+    std::vector<ContactMode>& now = new_modes_;  // kept, as old_modes_
+    decide_contacts(sys_, t, y_.data(), Z, strict_, now);
     strict_.clear();
     apply_contact_modes(t, old, now, false);
   }
@@ -1108,7 +1112,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<int> own_;     // handle_events: the fired slots of the drive system
   std::vector<int> Z_;       // handle_contact_event: the contacts decided
   std::vector<int> broke_;   // handle_event: the stuck contacts whose breakaway fired
-  std::vector<ContactMode> old_modes_;  // handle_contact_event: their modes before
+  std::vector<ContactMode> old_modes_, new_modes_;  // handle_contact_event: their modes before and after
   std::chrono::steady_clock::time_point start_;
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;

@@ -3,6 +3,7 @@
 // the resistance W between m2 and the ground. The run forms the returned modes only once because
 // the decision leaves the drive system in them: that is checked with every answer.
 #include <string>
+#include <utility>
 #include <vector>
 #include <gtest/gtest.h>
 
@@ -83,6 +84,23 @@ TEST(ContactDecision, BothSlideAboveTheAdhesionLimit) {
   EXPECT_EQ(d.W, ContactMode::slip_pos);
   EXPECT_NEAR(d.lambda_adhesion, 5500.0, 1e-9);
   EXPECT_TRUE(d.system_in_modes);
+}
+
+// Claim: the form that writes into a kept vector (the run's, reused at every event) gives the same
+// answers as above whatever the vector held before: stale modes of another length are overwritten.
+// F = 20 kN: both slide forward (above); then F = 1 kN into the same vector: both hold.
+TEST(ContactDecision, IntoAKeptVectorOverwritesWhatItHeld) {
+  std::vector<ContactMode> modes(5, ContactMode::slip_neg);
+  for (const auto& [F, expected] : {std::pair{20000.0, ContactMode::slip_pos}, std::pair{1000.0, ContactMode::stuck}}) {
+    const Model m = wheel_and_trolley(F);
+    DriveSystem sys(m, false);
+    std::vector<double> y(static_cast<size_t>(sys.size()), 0.0);
+    decide_contacts(sys, 0.0, y.data(), {0, 1}, {}, modes);
+    ASSERT_EQ(modes.size(), 2U);
+    EXPECT_EQ(modes[static_cast<size_t>(contact_index(m, "adhesion"))], expected) << "F = " << F;
+    EXPECT_EQ(modes[static_cast<size_t>(contact_index(m, "W"))], expected) << "F = " << F;
+    EXPECT_TRUE(sys.contact_modes() == modes);
+  }
 }
 
 }  // namespace

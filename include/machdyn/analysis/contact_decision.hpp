@@ -25,5 +25,8 @@ namespace machdyn {
 /// (or more than 10 contacts are at rest at once and the release sequence failed).
 std::vector<ContactMode> decide_contacts(DriveSystem& sys, double t, const double* y, const std::vector<int>& Z,
                                          const std::vector<int>& strict);
+/// The same decision into `modes` (overwritten; its capacity reused: no allocation per event).
+void decide_contacts(DriveSystem& sys, double t, const double* y, const std::vector<int>& Z,
+                     const std::vector<int>& strict, std::vector<ContactMode>& modes);
 
 }  // namespace machdyn
