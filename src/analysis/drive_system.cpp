@@ -104,12 +104,15 @@ void DriveSystem::AffineRows::build(const Eigen::MatrixXd& M, const Eigen::Vecto
                        : m == rows - 3 ? kRowsEnergy[static_cast<size_t>(rows - 1)]
                                        : nullptr;
   if (!k) return;
+  cols.reserve(static_cast<size_t>(M.cols()));  // sized once, as A and c: no allocation per doubling
   for (Eigen::Index j = 0; j < M.cols(); ++j)
     if ((M.block(r0, j, rows, 1).array() != 0.0).any()) cols.push_back(static_cast<int>(j));
   if (static_cast<int>(cols.size()) > kMaxRowsCols) {
     cols.clear();
     return;
   }
+  A.reserve(cols.size() * static_cast<size_t>(rows));
+  c.reserve(static_cast<size_t>(rows));
   for (const int j : cols)
     for (int r = r0; r < r1; ++r) A.push_back(M(r, j));
   for (int r = r0; r < r1; ++r) c.push_back(c0(r));
@@ -737,6 +740,9 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
     y(j) = 0.0;
   }
   auto compress = [N](const Eigen::MatrixXd& M, std::vector<int>& start, std::vector<int>& col, std::vector<double>& val) {
+    // Sized once: one allocation per vector, not one per doubling.
+    const auto nnz = static_cast<size_t>((M.array() != 0.0).count());
+    start.reserve(static_cast<size_t>(M.rows()) + 1), col.reserve(nnz), val.reserve(nnz);
     for (int i = 0; i < M.rows(); ++i) {
       start.push_back(static_cast<int>(col.size()));
       for (int j = 0; j < N; ++j)
