@@ -10,6 +10,7 @@
 #include <Eigen/QR>
 #include <fmt/format.h>
 
+#include "analysis/independent_rows.hpp"
 #include "machdyn/analysis/static_loads.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/elements/contact.hpp"
@@ -170,25 +171,9 @@ EquilibriumStart static_equilibrium(const Model& m) {
     return p;
   };
   auto independent_couplings = [&](const std::vector<int>& pins) {
-    ConstraintRows rows;
-    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(pins.size()), n);
-    for (size_t k = 0; k < pins.size(); ++k) D(static_cast<Eigen::Index>(k), pins[k]) = 1.0;
-    const auto rank = [](const Eigen::MatrixXd& X) {
-      Eigen::FullPivLU<Eigen::MatrixXd> lu(X);
-      lu.setThreshold(1e-10);
-      return lu.rank();
-    };
-    Eigen::Index have = rank(D);
-    for (const auto& g : tying) {
-      Eigen::MatrixXd E(D.rows() + 1, n);
-      E.topRows(D.rows()) = D;
-      E.row(D.rows()).setZero();
-      for (const auto& [j, w] : g) E(D.rows(), j) += w;
-      const Eigen::Index now = rank(E);
-      if (now <= have) continue;
-      D = std::move(E), have = now;
-      rows.push_back(g);
-    }
+    ConstraintRows before, rows;
+    for (int p : pins) before.push_back({{p, 1.0}});
+    for (size_t k : detail::independent_rows(before, tying)) rows.push_back(tying[k]);
     return rows;
   };
 

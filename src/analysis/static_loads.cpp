@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include "analysis/independent_rows.hpp"
 #include "machdyn/elements/link.hpp"
 
 namespace machdyn {
@@ -26,40 +27,80 @@ std::vector<std::pair<int, double>> free_unit_row(const Model& m, const std::vec
 
 /// The rows of G that constrain free bodies: entries on bodies with prescribed motion dropped (they
 /// are supports), each row scaled to unit length, and a row that repeats the others (two brakes on
-/// one drum) left out — the rank is kept by a dense elimination over the few bodies the rows touch.
-/// `kept` (if given): the index in G of each row returned.
+/// one drum) left out (detail::independent_rows). `kept` (if given): the index in G of each row returned.
 ConstraintRows free_independent_rows(const Model& m, const ConstraintRows& G, std::vector<size_t>* kept = nullptr) {
-  ConstraintRows out;
-  if (G.empty()) return out;
-  std::vector<int> col(static_cast<size_t>(m.dof()), -1);
-  int touched = 0;
-  std::vector<std::vector<std::pair<int, double>>> rows;
+  ConstraintRows rows;
   std::vector<size_t> from;
   for (size_t k = 0; k < G.size(); ++k) {
     std::vector<std::pair<int, double>> r = free_unit_row(m, G[k]);
     if (r.empty()) continue;
-    for (const auto& [j, w] : r)
-      if (col[static_cast<size_t>(j)] < 0) col[static_cast<size_t>(j)] = touched++;
     rows.push_back(std::move(r));
     from.push_back(k);
   }
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(0, touched);
-  for (size_t k = 0; k < rows.size(); ++k) {
-    auto& r = rows[k];
-    Eigen::MatrixXd E(D.rows() + 1, touched);
-    E.topRows(D.rows()) = D;
-    E.row(D.rows()).setZero();
-    for (const auto& [j, w] : r) E(D.rows(), col[static_cast<size_t>(j)]) += w;
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(E);
-    lu.setThreshold(1e-10);
-    if (lu.rank() <= D.rows()) continue;
-    D = std::move(E);
-    out.push_back(std::move(r));
+  ConstraintRows out;
+  for (size_t k : detail::independent_rows({}, rows)) {
+    out.push_back(std::move(rows[k]));
     if (kept) kept->push_back(from[k]);
   }
   return out;
 }
 
+/// K from the links' own Jacobian terms (elements/link.hpp): ∂(acc·M)/∂q = −K, every link counted
+/// as a closed spring; the entries in a row or column of `skip` left out.
+void stiffness_triplets(const Model& m, const std::vector<char>& skip, std::vector<Eigen::Triplet<double>>& trip) {
+  const int n = m.dof();
+  for (const auto& l : m.links) {
+    if (l.c <= 0.0) continue;
+    LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int row, int col, double v) {
+      if (col >= n || skip[static_cast<size_t>(row)] || skip[static_cast<size_t>(col)]) return;
+      trip.emplace_back(row, col, -v);
+    });
+  }
+}
+}  // namespace
+
+namespace detail {
+std::vector<size_t> independent_rows(const ConstraintRows& before, const ConstraintRows& rows) {
+  // Columns: only the bodies the rows touch.
+  std::vector<int> col;
+  auto column = [&](int j) {
+    for (size_t c = 0; c < col.size(); ++c)
+      if (col[c] == j) return static_cast<Eigen::Index>(c);
+    col.push_back(j);
+    return static_cast<Eigen::Index>(col.size() - 1);
+  };
+  for (const auto* set : {&before, &rows})
+    for (const auto& g : *set)
+      for (const auto& [j, w] : g) column(j);
+  const auto width = static_cast<Eigen::Index>(col.size());
+  auto rank = [](const Eigen::MatrixXd& X) {
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(X);
+    lu.setThreshold(1e-10);
+    return lu.rank();
+  };
+  auto with = [&](const Eigen::MatrixXd& D, const std::vector<std::pair<int, double>>& g) {
+    Eigen::MatrixXd E(D.rows() + 1, width);
+    E.topRows(D.rows()) = D;
+    E.row(D.rows()).setZero();
+    for (const auto& [j, w] : g) E(D.rows(), column(j)) += w;
+    return E;
+  };
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(0, width);
+  for (const auto& g : before) D = with(D, g);
+  Eigen::Index have = D.rows() > 0 ? rank(D) : 0;
+  std::vector<size_t> kept;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    Eigen::MatrixXd E = with(D, rows[k]);
+    const Eigen::Index now = rank(E);
+    if (now <= have) continue;
+    D = std::move(E), have = now;
+    kept.push_back(k);
+  }
+  return kept;
+}
+}  // namespace detail
+
+namespace {
 /// ker K when a link ends on a massless member (elements/link.hpp: δ over three bodies, or a weight
 /// on b), which the walk over two-body links below cannot follow: the null space of the springs'
 /// K = Σ c j jᵀ, scaled to a unit diagonal (bodies without a spring keep 1) so that rotational and
@@ -236,17 +277,12 @@ ParticularSolver::ParticularSolver(const Model& m, const ConstraintRows& G_all, 
     reacting_system(G, H, pins_ok ? pin : std::vector<int>{}, fixed);
     return;
   }
-  // K from the links' own Jacobian terms (elements/link.hpp): ∂(acc·M)/∂q = −K. Every link counts
-  // as a closed spring; the rows and columns of pinned coordinates are left out.
+  // K without the rows and columns of pinned coordinates and of prescribed bodies.
   std::vector<Eigen::Triplet<double>> trip;
-  for (const auto& l : m.links) {
-    if (l.c <= 0.0) continue;
-    LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int row, int col, double v) {
-      if (col >= n || (pins_ok && (pinned[static_cast<size_t>(row)] || pinned[static_cast<size_t>(col)]))) return;
-      if (fixed[static_cast<size_t>(row)] || fixed[static_cast<size_t>(col)]) return;
-      trip.emplace_back(row, col, -v);
-    });
-  }
+  std::vector<char> skip = fixed;
+  if (pins_ok)
+    for (int i : pin) skip[static_cast<size_t>(i)] = 1;
+  stiffness_triplets(m, skip, trip);
   for (int i : s.fixed) trip.emplace_back(i, i, 1.0);
   // The rows of G border the system ([K Gᵀ; G 0]); a pinned coordinate's entries drop out with it
   // (q_p = 0; a row left empty is implied by the pins, as R spans ker G).
@@ -292,13 +328,7 @@ void ParticularSolver::reacting_system(const ConstraintRows& G, const Constraint
   const int n = m.dof();
   const auto nG = static_cast<Eigen::Index>(G.size()), r = s.R.cols();
   std::vector<Eigen::Triplet<double>> trip;
-  for (const auto& l : m.links) {
-    if (l.c <= 0.0) continue;
-    LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int row, int col, double v) {
-      if (col >= n || fixed[static_cast<size_t>(row)] || fixed[static_cast<size_t>(col)]) return;
-      trip.emplace_back(row, col, -v);
-    });
-  }
+  stiffness_triplets(m, fixed, trip);
   for (int i : s.fixed) trip.emplace_back(i, i, 1.0);
   for (Eigen::Index k = 0; k < nG; ++k) {
     const auto& g = G[static_cast<size_t>(k)];
