@@ -12,7 +12,6 @@ namespace {
 // loop control is left (a small mode's map: K ≤ 8 columns, R ≤ 8 rows).
 template <int R, int C, int K>
 void rows_sse2(const int* cols, int, const double* A, const double* c, const double* y, double* out) {
-  for (int i = 0; i < C; ++i) out[i] = y[C + i];
   double s[R];
   for (int r = 0; r < R; ++r) s[r] = c[r];
 #pragma GCC unroll 8
@@ -21,7 +20,7 @@ void rows_sse2(const int* cols, int, const double* A, const double* c, const dou
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) s[r] += A[k * R + r] * x;
   }
-  for (int r = 0; r < R; ++r) out[C + r] = s[r];
+  store_in_pairs<C, R>(y, s, out);
 }
 
 // AVX: the same sums four rows to a register (then two, then one). target("avx") enables no FMA,
@@ -30,7 +29,6 @@ void rows_sse2(const int* cols, int, const double* A, const double* c, const dou
 template <int R, int C, int K>
 __attribute__((target("avx"))) void rows_avx(const int* cols, int, const double* A, const double* c,
                                              const double* y, double* out) {
-  for (int i = 0; i < C; ++i) out[i] = y[C + i];
   constexpr int R4 = R / 4, R2 = (R % 4) / 2, R1 = R % 2;
   __m256d s4[R4 > 0 ? R4 : 1];
   __m128d s2 = _mm_setzero_pd();
@@ -48,9 +46,11 @@ __attribute__((target("avx"))) void rows_avx(const int* cols, int, const double*
     if constexpr (R2 > 0) s2 = _mm_add_pd(s2, _mm_mul_pd(_mm_loadu_pd(a + 4 * R4), _mm256_castpd256_pd128(x4)));
     if constexpr (R1 > 0) s1 += a[R - 1] * *xp;
   }
-  for (int q = 0; q < R4; ++q) _mm256_storeu_pd(out + C + 4 * q, s4[q]);
-  if constexpr (R2 > 0) _mm_storeu_pd(out + C + 4 * R4, s2);
-  if constexpr (R1 > 0) out[C + R - 1] = s1;
+  alignas(32) double s[4 * R4 + 3];  // 256-bit sums stored whole would straddle the stepper's pairs
+  for (int q = 0; q < R4; ++q) _mm256_store_pd(s + 4 * q, s4[q]);
+  if constexpr (R2 > 0) _mm_store_pd(s + 4 * R4, s2);
+  if constexpr (R1 > 0) s[R - 1] = s1;
+  store_in_pairs<C, R>(y, s, out);
 }
 
 // The tables by R (outer) and K (inner) for one copy count; the energy copy exists for R > 3 only.

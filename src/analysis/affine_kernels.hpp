@@ -2,6 +2,8 @@
 // The small dense kernels of DriveSystem::AffineRows (private to src/): out = A y + c for R rows,
 // K columns, in two instruction sets with the same rounding.
 
+#include <emmintrin.h>
+
 namespace machdyn::detail {
 
 /// out = A y + c: cols[k] picks the k-th column's entry of y, A column-major (R rows a column),
@@ -26,5 +28,25 @@ bool cpu_has_avx();
 /// R ≤ 3): the 256-bit AVX build when `avx`, else the SSE2 build. The caller must ask for avx only
 /// when cpu_has_avx().
 RowsKernel unrolled_rows_kernel(int R, int K, RowsCopy copy, bool avx);
+
+/// out[0, C + R) = (y[C], …, y[2C − 1], s[0], …, s[R − 1]), the values unchanged, stored as 16-byte
+/// pairs (out[2m], out[2m + 1]) and the copies read from y's pairs (y[2m], y[2m + 1]). Why: a
+/// stepper's vectorized loops (Dopri5's stages) store and load these arrays in exactly such pairs,
+/// and a load that straddles two stores cannot take its data from them; it waits until both reach
+/// the cache, once per stage (on AMD Zen 3 some 2.5 % of the travel start-up, docs/benchmarks.md).
+/// s is the caller's local array: inlined, the compiler keeps it in registers.
+template <int C, int R>
+__attribute__((always_inline)) inline void store_in_pairs(const double* y, const double* s, double* out) {
+  __m128d yp[C > 0 ? C : 1];
+  for (int m = C / 2; m < C; ++m) yp[m] = _mm_loadu_pd(y + 2 * m);
+  auto val = [&](int j) {
+    if (j >= C) return s[j - C];
+    const int i = C + j;
+    return i % 2 ? _mm_cvtsd_f64(_mm_unpackhi_pd(yp[i / 2], yp[i / 2])) : _mm_cvtsd_f64(yp[i / 2]);
+  };
+#pragma GCC unroll 16
+  for (int j = 0; j + 1 < C + R; j += 2) _mm_storeu_pd(out + j, _mm_set_pd(val(j + 1), val(j)));
+  if constexpr ((C + R) % 2 == 1) out[C + R - 1] = val(C + R - 1);
+}
 
 }  // namespace machdyn::detail

@@ -39,14 +39,13 @@ namespace {
 // for i < C first (q̇ = v), the rows then from out[C] on.
 template <int R, int C>
 void affine_rows(const int* cols, int ncols, const double* A, const double* c, const double* y, double* out) {
-  for (int i = 0; i < C; ++i) out[i] = y[C + i];
   double s[R];
   for (int r = 0; r < R; ++r) s[r] = c[r];
   for (int k = 0; k < ncols; ++k, A += R) {
     const double x = y[cols[k]];
     for (int r = 0; r < R; ++r) s[r] += A[r] * x;
   }
-  for (int r = 0; r < R; ++r) out[C + r] = s[r];
+  detail::store_in_pairs<C, R>(y, s, out);
 }
 using detail::RowsKernel;
 // The kernels by row count R = 1…16: without a copy (contact forces), with C = R (a chain's
@@ -64,9 +63,9 @@ void chain_rows(const int*, int, const double* A, const double* b, const double*
   using Vec = Eigen::Matrix<double, N, 1>;
   using Mat = Eigen::Matrix<double, N, N>;
   Eigen::Map<const Vec> q(y), v(y + N), bb(b);
-  Eigen::Map<Vec> qd(dydt), acc(dydt + N);
-  qd = v;
+  Vec acc;
   acc.noalias() = Eigen::Map<const Mat>(A) * q + Eigen::Map<const Mat>(A + N * N) * v + bb;
+  detail::store_in_pairs<N, N>(y, acc.data(), dydt);  // q̇ = v, then the accelerations
 }
 constexpr RowsKernel kChain[] = {chain_rows<1>, chain_rows<2>, chain_rows<3>, chain_rows<4>,
                                  chain_rows<5>, chain_rows<6>, chain_rows<7>, chain_rows<8>};
@@ -77,10 +76,10 @@ template <int N>
 void chain_rows_undamped(const int*, int, const double* A, const double* b, const double* y, double* dydt) {
   using Vec = Eigen::Matrix<double, N, 1>;
   using Mat = Eigen::Matrix<double, N, N>;
-  Eigen::Map<const Vec> q(y), v(y + N), bb(b);
-  Eigen::Map<Vec> qd(dydt), acc(dydt + N);
-  qd = v;
+  Eigen::Map<const Vec> q(y), bb(b);
+  Vec acc;
   acc.noalias() = Eigen::Map<const Mat>(A) * q + bb;
+  detail::store_in_pairs<N, N>(y, acc.data(), dydt);
 }
 constexpr RowsKernel kChainUndamped[] = {chain_rows_undamped<1>, chain_rows_undamped<2>, chain_rows_undamped<3>,
                                          chain_rows_undamped<4>, chain_rows_undamped<5>, chain_rows_undamped<6>,
