@@ -1,6 +1,8 @@
 #include "machdyn/analysis/peak_tracker.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/LU>
@@ -46,12 +48,36 @@ PeakTracker::PeakTracker(int state_size, const PeakSignals& signals)
       dy_(static_cast<size_t>(state_size)), samples_(static_cast<size_t>((kDegree - 1) * state_size)), vals_(static_cast<size_t>(signals.count())),
       rates_(static_cast<size_t>(signals.count())) {}
 
-void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate) {
-  consider_value(j, t, signals_.value(j, y), y, on_new_max, on_candidate);
+void PeakTracker::consider(int j, double t, const double* y, const NewMax& on_new_max) {
+  consider_value(j, t, signals_.value(j, y), y, on_new_max);
 }
 
-void PeakTracker::new_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
-                            const Candidate& on_candidate) {
+int PeakTracker::open_window(double t) {
+  int w;
+  if (!free_.empty()) {
+    w = free_.back();
+    free_.pop_back();
+  } else {
+    w = static_cast<int>(windows_.size());
+    windows_.emplace_back();
+  }
+  Window& W = windows_[static_cast<size_t>(w)];
+  const size_t n = sig_.size();
+  W.max.assign(n, -std::numeric_limits<double>::infinity());
+  W.t_max.assign(n, t);
+  W.min.assign(n, std::numeric_limits<double>::infinity());
+  open_.push_back(w);
+  return w;
+}
+
+void PeakTracker::close_window(int w) {
+  const auto it = std::find(open_.begin(), open_.end(), w);
+  if (it == open_.end()) return;
+  open_.erase(it);
+  free_.push_back(w);
+}
+
+void PeakTracker::new_value(int j, double t, double v, const double* y, const NewMax& on_new_max) {
   Extremes& g = sig_[static_cast<size_t>(j)];
   if (!started_ || v > g.max) {
     g.max = v, g.t_max = t;
@@ -61,7 +87,6 @@ void PeakTracker::new_value(int j, double t, double v, const double* y, const Ne
     g.min = v, g.t_min = t;
     if (on_new_max) on_new_max(j, false, t, y);
   }
-  if (on_candidate) on_candidate(j, t, v);
 }
 
 double PeakTracker::locate_extremum(const Stepper& s, int j, double t0, double r0, double t1, double r1) {
@@ -108,11 +133,16 @@ bool PeakTracker::inside_extremes(const Stepper& s, int j, double ta, double tb,
   }
   // The margin covers the rounding of the samples, of the coefficients and of a located value.
   const double margin = 1e-6 * scale;
-  return hi + margin <= g.max && lo - margin >= g.min;
+  if (!(hi + margin <= g.max && lo - margin >= g.min)) return false;
+  for (const int w : open_) {
+    const Window& W = windows_[static_cast<size_t>(w)];
+    const auto i = static_cast<size_t>(j);
+    if (!(hi + margin <= W.max[i] && lo - margin >= W.min[i])) return false;
+  }
+  return true;
 }
 
-void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max,
-                             const Candidate& on_candidate) {
+void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max) {
   const int n = static_cast<int>(sig_.size());
   if (n == 0) return;  // a model without links has nothing to track
   if (ta != last_end_) {  // a fresh start: the state and the rates at ta
@@ -122,7 +152,7 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
       Extremes& g = sig_[static_cast<size_t>(j)];
       g.rate_prev = signals_.rate(j, y_.data(), dy_.data());
       g.value_prev = signals_.value(j, y_.data());
-      consider_value(j, ta, g.value_prev, y_.data(), on_new_max, on_candidate);
+      consider_value(j, ta, g.value_prev, y_.data(), on_new_max);
     }
     started_ = true;
   }
@@ -142,12 +172,12 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     Extremes& g = sig_[static_cast<size_t>(j)];
     const double r1 = rates_[static_cast<size_t>(j)], v1 = vals_[static_cast<size_t>(j)];
     if (((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) &&
-        (on_candidate || !inside_extremes(s, j, ta, tb, g.value_prev, v1))) {
+        !inside_extremes(s, j, ta, tb, g.value_prev, v1)) {
       const double te = locate_extremum(s, j, ta, g.rate_prev, tb, r1);
       s.interpolate(te, y_.data());
-      consider(j, te, y_.data(), on_new_max, on_candidate);
+      consider(j, te, y_.data(), on_new_max);
     }
-    consider_value(j, tb, v1, y1, on_new_max, on_candidate);
+    consider_value(j, tb, v1, y1, on_new_max);
     g.rate_prev = r1, g.value_prev = v1;
   }
   last_end_ = step_end ? tb : -1.0;

@@ -43,6 +43,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     acc_.assign(static_cast<size_t>(n_), 0.0);
     fc_.assign(static_cast<size_t>(nc_), 0.0);
     open_phase_.assign(static_cast<size_t>(nc_), -1);
+    phase_window_.assign(static_cast<size_t>(nc_), -1);
     for (int k = 0; k < nc_; ++k) was_released_.push_back(m_.contacts[static_cast<size_t>(k)].released(0.0));
     switches_.resize(static_cast<size_t>(nl_ + nc_ + nd_ + ng_));
     at_max_.resize(static_cast<size_t>(nl_));
@@ -57,7 +58,6 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
       ingredients(t, y, (is_max ? at_max_ : at_min_)[static_cast<size_t>(l)]);
     };
-    on_candidate_ = [this](int l, double t, double F) { slip_phase_candidate(l, t, F); };
     setup_columns();
   }
 
@@ -189,8 +189,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
     // The extremes over [extremes_from, t_end] (SimulateOptions): the part of the piece from there.
     if (tb >= opt_.extremes_from)
-      peaks_.on_segment(st, std::max(ta, opt_.extremes_from), tb, on_new_max_,
-                        phases_open_ > 0 ? on_candidate_ : no_candidate_);
+      peaks_.on_segment(st, std::max(ta, opt_.extremes_from), tb, on_new_max_);
     jumps_.on_segment(st, ta, tb);
   }
   void on_output(double t, const double* y) override {
@@ -816,13 +815,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     p.contact = m_.contacts[static_cast<size_t>(k)].name;
     p.direction = static_cast<int>(md);
     p.t_start = p.t_end = t;
-    p.link_max.assign(static_cast<size_t>(nl_), -std::numeric_limits<double>::infinity());
-    p.link_t_max.assign(static_cast<size_t>(nl_), t);
-    p.link_min.assign(static_cast<size_t>(nl_), std::numeric_limits<double>::infinity());
     for (int l = 0; l < nl_; ++l) p.link_start.push_back(sys_.link_load(l, y_.data()));
     out_.hybrid.slip_phases.push_back(std::move(p));
     open_phase_[static_cast<size_t>(k)] = static_cast<int>(out_.hybrid.slip_phases.size()) - 1;
-    ++phases_open_;
+    phase_window_[static_cast<size_t>(k)] = peaks_.open_window(t);  // the link extremes over the phase
   }
 
   void close_phase(int k, double t) {
@@ -830,6 +826,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (ph < 0) return;
     SlipPhase& p = out_.hybrid.slip_phases[static_cast<size_t>(ph)];
     p.t_end = t;
+    const int w = phase_window_[static_cast<size_t>(k)];
+    const PeakTracker::Window& W = peaks_.window(w);
+    p.link_max = W.max, p.link_t_max = W.t_max, p.link_min = W.min;
+    peaks_.close_window(w);
     // A phase of zero length saw no solution: report the loads at its instant.
     for (int l = 0; l < nl_; ++l) {
       const size_t li = static_cast<size_t>(l);
@@ -839,19 +839,6 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       }
     }
     ph = -1;
-    --phases_open_;
-  }
-
-  /// A candidate value F of link l at t (peak tracker): the open slip phases' link extremes.
-  void slip_phase_candidate(int l, double t, double F) {
-    for (int k = 0; k < nc_; ++k) {
-      const int ph = open_phase_[static_cast<size_t>(k)];
-      if (ph < 0) continue;
-      SlipPhase& s = out_.hybrid.slip_phases[static_cast<size_t>(ph)];
-      const size_t li = static_cast<size_t>(l);
-      if (F > s.link_max[li]) s.link_max[li] = F, s.link_t_max[li] = t;
-      s.link_min[li] = std::min(s.link_min[li], F);
-    }
   }
 
   void apply_contact_modes(double t, const std::vector<ContactMode>& old_modes, const std::vector<ContactMode>& modes,
@@ -1092,8 +1079,6 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
-  PeakTracker::Candidate on_candidate_;
-  const PeakTracker::Candidate no_candidate_;  // while no slip phase is open (no copy per step)
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
   std::vector<int> machine_bodies_;
   std::vector<Extreme> at_max_, at_min_;  // force ingredients at each link's extremes
@@ -1106,7 +1091,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> drive_vals_;           // their values at an output row
   std::vector<int> open_phase_;
   std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
-  int phases_open_ = 0;
+  std::vector<int> phase_window_;  // per contact: its open slip phase's window in peaks_
   std::vector<std::vector<double>> switches_;
   std::vector<int> strict_;  // stuck contacts whose limit event fired
   std::vector<int> own_;     // handle_events: the fired slots of the drive system

@@ -12,6 +12,7 @@
 /// reports could change, and the located value would be thrown away. A stepper whose dense output
 /// has a lower degree d (dopri5: 4) is bounded from d + 1 samples (set_dense_degree).
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -67,20 +68,16 @@ class PeakTracker {
  public:
   /// Follows every signal of `signals` (kept by reference) over a state of `state_size`.
   PeakTracker(int state_size, const PeakSignals& signals);
-
   /// Called when signal j reaches a new maximum (is_max) or minimum at time t with state y.
   using NewMax = std::function<void(int j, bool is_max, double t, const double* y)>;
-  /// Called for every candidate value (ends of pieces, interior extrema) of signal j, if set.
-  using Candidate = std::function<void(int j, double t, double value)>;
   /// The solution on [ta, tb] ⊂ [s.t_prev(), s.t()] (a driver piece, solve/driver.hpp). A piece
   /// that starts where the last one ended continues it (its start was seen, its rate is known).
-  void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max, const Candidate& on_candidate = {});
+  void on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max);
   /// After an event or a restart: the next piece starts afresh (the state or the rate may jump).
   void restart() { last_end_ = -1.0; }
   /// The degree of the stepper's dense output in t, 4 (dopri5) or 6 (the default: any stepper of
   /// solve/stepper.hpp); other values throw std::invalid_argument.
   void set_dense_degree(int degree);
-
   [[nodiscard]] double max(int j) const { return sig_[static_cast<size_t>(j)].max; }
   [[nodiscard]] double min(int j) const { return sig_[static_cast<size_t>(j)].min; }
   [[nodiscard]] double t_max(int j) const { return sig_[static_cast<size_t>(j)].t_max; }
@@ -88,27 +85,42 @@ class PeakTracker {
   /// Whether any value was seen (a run of zero length has none).
   [[nodiscard]] bool started() const { return started_; }
 
+  /// The extremes of every signal over a window of time (a slip phase): from open_window(t) on,
+  /// every value the tracker takes (the ends of pieces, their located interior extrema) enters the
+  /// open windows too, until close_window. A window that saw no value has max −∞, min +∞ and
+  /// t_max = its opening time.
+  struct Window {
+    std::vector<double> max, t_max, min;  // per signal
+  };
+  /// Opens a window at t; returns its handle (valid until close_window).
+  int open_window(double t);
+  /// The window's extremes so far.
+  [[nodiscard]] const Window& window(int w) const { return windows_[static_cast<size_t>(w)]; }
+  /// Closes window w (its handle may be handed out again).
+  void close_window(int w);
+
  private:
   struct Extremes {
     double rate_prev = 0.0, value_prev = 0.0, max = 0.0, min = 0.0, t_max = 0.0, t_min = 0.0;
   };
-  void consider(int j, double t, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
-  /// Inline: most values are no new extreme (a wanted candidate goes straight to its callback).
-  void consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max,
-                      const Candidate& on_candidate) {
+  void consider(int j, double t, const double* y, const NewMax& on_new_max);
+  /// Inline: most values are no new extreme of the run (and no window is open).
+  void consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max) {
     const Extremes& g = sig_[static_cast<size_t>(j)];
-    if (started_ && v <= g.max && v >= g.min) {
-      if (on_candidate) on_candidate(j, t, v);
-      return;
+    if (!(started_ && v <= g.max && v >= g.min)) new_value(j, t, v, y, on_new_max);
+    for (const int w : open_) {
+      Window& W = windows_[static_cast<size_t>(w)];
+      const auto i = static_cast<size_t>(j);
+      if (v > W.max[i]) W.max[i] = v, W.t_max[i] = t;
+      W.min[i] = std::min(W.min[i], v);
     }
-    new_value(j, t, v, y, on_new_max, on_candidate);
   }
-  void new_value(int j, double t, double v, const double* y, const NewMax& on_new_max, const Candidate& on_candidate);
+  void new_value(int j, double t, double v, const double* y, const NewMax& on_new_max);
   double locate_extremum(const Stepper& s, int j, double t0, double r0, double t1, double r1);
   /// Whether signal j on the piece [ta, tb] (values v0, v1 at its ends) stays inside its extremes
-  /// so far by a margin: then its interior extremum need not be located.
+  /// so far, and inside those of every open window, by a margin: then its interior extremum need
+  /// not be located (it could change nothing the tracker reports).
   bool inside_extremes(const Stepper& s, int j, double ta, double tb, double v0, double v1);
-
   const PeakSignals& signals_;
   std::vector<Extremes> sig_;
   bool started_ = false;
@@ -118,6 +130,8 @@ class PeakTracker {
   std::vector<double> samples_;  // the state at the piece's interior sample times (inside_extremes)
   bool sampled_ = false;         // samples_ holds the current piece's
   std::vector<double> vals_, rates_;  // the signals' values and rates at the end of a piece
+  std::vector<Window> windows_;      // by handle, open or free
+  std::vector<int> open_, free_;     // the open windows' handles; closed handles to reuse
 };
 
 }  // namespace machdyn
