@@ -1,7 +1,9 @@
 // The peak tracker (analysis/peak_tracker.hpp) on a known solution, fed by the one driver: the
 // extremes lie between output points and between steps, and the pieces a breakpoint cuts a step
 // into must give the same extremes.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -130,6 +132,104 @@ TEST_P(Peaks, BoundedExtremaChangeNothing) {
       if (zeta > 0) EXPECT_GE(feed.sl.rates - feed.sb.rates, 30) << degree;
       else EXPECT_GT(feed.bounded.max(0), 10.0) << degree;  // the growth: e^(ζω·40) ≈ 11
     }
+}
+
+/// The decaying oscillation with breakpoints at which a test opens and closes a window.
+class DampedCut final : public EventSystem {
+ public:
+  DampedCut(double w, double zeta, std::vector<double> cuts) : w_(w), z_(zeta), cuts_(std::move(cuts)) {}
+  int size() const override { return 2; }
+  void rhs(double, const double* y, double* dy) override {
+    dy[0] = y[1];
+    dy[1] = -w_ * w_ * y[0] - 2 * z_ * w_ * y[1];
+  }
+  std::vector<double> breakpoints(double, double) const override { return cuts_; }
+
+ private:
+  double w_, z_;
+  std::vector<double> cuts_;
+};
+
+/// Two trackers (bounded and locating every extremum) with a window open over [t1, t2].
+struct FeedWindow final : StepObserver {
+  FeedWindow(double a, double b) : t1(a), t2(b) {}
+  void on_segment(const Stepper& s, double ta, double tb) override {
+    bounded.on_segment(s, ta, tb, {});
+    located.on_segment(s, ta, tb, {});
+  }
+  void on_event(double t, const double*, const std::vector<int>&) override {
+    bounded.restart(), located.restart();
+    if (t == t1) wb = bounded.open_window(t), wl = located.open_window(t);
+    if (t == t2) {
+      in_bounded = bounded.window(wb), in_located = located.window(wl);
+      bounded.close_window(wb), located.close_window(wl);
+    }
+  }
+  void on_output(double, const double*) override {}
+  double t1, t2;
+  Counted sb{false}, sl{true};
+  PeakTracker bounded{2, sb}, located{2, sl};
+  int wb = -1, wl = -1;
+  PeakTracker::Window in_bounded, in_located;
+};
+
+// Claim: a window keeps the extremes of the signal over its own time span — here a local minimum
+// of a decaying oscillation inside [t1, t2] that is no extreme of the whole run (the run's minimum
+// came one period earlier and was deeper), so the run's Bernstein bound alone would skip it — equal
+// to the closed form y = e^(−ζωt) (cos ω_d t + ζω/ω_d sin ω_d t), s = 2 y − 0.5 y', its minimum
+// found by bisection on s′ = 0, and bit for bit equal to a tracker that locates every extremum.
+TEST_P(Peaks, WindowKeepsTheExtremesOfItsSpan) {
+  const double w = 3.0, zeta = 0.02, wd = w * std::sqrt(1 - zeta * zeta);
+  auto y = [&](double t) { return std::exp(-zeta * w * t) * (std::cos(wd * t) + zeta * w / wd * std::sin(wd * t)); };
+  auto yd = [&](double t) { return -w * w / wd * std::exp(-zeta * w * t) * std::sin(wd * t); };
+  auto s = [&](double t) { return 2 * y(t) - 0.5 * yd(t); };
+  // s′ = 2 y′ − 0.5 y″ with y″ = −ω² y − 2ζω y′.
+  auto sd = [&](double t) { return 2 * yd(t) - 0.5 * (-w * w * y(t) - 2 * zeta * w * yd(t)); };
+  const double t1 = 5.0, t2 = 6.3;  // the second minimum of s lies near 5.47 (the first near 1.27)
+  double lo = t1 + 0.1, hi = t2 - 0.1;  // s′ < 0 before the minimum, > 0 after it
+  ASSERT_LT(sd(lo), 0.0);
+  ASSERT_GT(sd(hi), 0.0);
+  for (int i = 0; i < 200; ++i) (sd(0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double t_min = 0.5 * (lo + hi), s_min = s(t_min);
+  const double s_max = std::max(s(t1), s(t2)), t_max = s(t1) > s(t2) ? t1 : t2;  // s falls, then rises
+
+  DampedCut sys(w, zeta, {t1, t2});
+  StepperOptions o;
+  o.rtol = 1e-11;
+  o.atol = 1e-13;
+  auto st = make_stepper(GetParam(), sys, o);
+  FeedWindow feed(t1, t2);
+  if (GetParam() == Method::dopri5) feed.bounded.set_dense_degree(4);
+  DriveOptions d;
+  d.dt_out = 1.0;
+  const double y0[2] = {1.0, 0.0};
+  integrate(*st, sys, 0.0, y0, 8.0, d, feed);
+  ASSERT_EQ(feed.in_bounded.min.size(), 1u);
+  const double tol = GetParam() == Method::dopri5 ? 1e-8 : 1e-6;
+  EXPECT_LT(feed.bounded.min(0), s_min - 0.1);  // the run's minimum is deeper: the window's is its own
+  EXPECT_NEAR(feed.in_bounded.min[0], s_min, tol);
+  EXPECT_NEAR(feed.in_bounded.max[0], s_max, tol);
+  EXPECT_NEAR(feed.in_bounded.t_max[0], t_max, 1e-12);
+  EXPECT_EQ(feed.in_bounded.min[0], feed.in_located.min[0]);
+  EXPECT_EQ(feed.in_bounded.max[0], feed.in_located.max[0]);
+  EXPECT_EQ(feed.in_bounded.t_max[0], feed.in_located.t_max[0]);
+  EXPECT_EQ(feed.bounded.min(0), feed.located.min(0));
+  EXPECT_EQ(feed.bounded.max(0), feed.located.max(0));
+}
+
+// Claim: a window that saw no value reports max −∞, min +∞ and its opening time; a closed
+// window's handle is handed out again.
+TEST(PeakTracker, EmptyWindowAndHandleReuse) {
+  const LinearSignals signal({SparseWeights{{0}, {1.0}}});
+  PeakTracker peaks(1, signal);
+  const int a = peaks.open_window(0.5);
+  EXPECT_EQ(peaks.window(a).max[0], -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(peaks.window(a).min[0], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(peaks.window(a).t_max[0], 0.5);
+  const int b = peaks.open_window(0.7);
+  EXPECT_NE(a, b);
+  peaks.close_window(a);
+  EXPECT_EQ(peaks.open_window(0.9), a);
 }
 
 // Claim: a dense-output degree the tracker has no bound for is refused.
