@@ -543,6 +543,13 @@ Model compile_model(const SpecNode& root, const std::string& source) {
                "expected a model: a map with 'bodies', 'links', 'loads', 'simulation'");
     diag.throw_if_any();
   }
+  // A gear-synthesis spec (its `law`, no bodies) given where a model is expected: say what it is,
+  // not a dozen unknown fields.
+  if (const SpecNode* law = root.find("law"); law && !root.find("bodies")) {
+    diag.error(law->key_loc, "this is a gear-synthesis spec ('law', no 'bodies'), not a model: run "
+                             "`machdyn gears` on it, or name it as a gear-drive's 'gears: FILE' in a model");
+    diag.throw_if_any();
+  }
   FieldReader top(root, "model", diag);
   m.name = top.text("name", std::filesystem::path(source).stem().string()).value_or("");
   m.description = top.text("description", "").value_or("");

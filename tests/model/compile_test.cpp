@@ -78,6 +78,8 @@ const Broken kCatalogue[] = {
     {"NaN", "bodies:\n  A: {inertia: .nan}\n", {"2:16: error: body 'A': field 'inertia': expected a finite number"}},
     {"no mass", "name: empty\nbodies: {}\n", {"2:9: error: the model has no body"}},
     {"no bodies section", "name: empty\n", {"error: the model has no body"}},
+    {"a gear-synthesis spec", "law: walking\na: 60 mm\nb: 100 mm\n",
+     {"1:1: error: this is a gear-synthesis spec ('law', no 'bodies'), not a model: run `machdyn gears`"}},
     {"not yaml", "bodies: [A, {\n", {"error: invalid YAML"}},
     {"unknown top-level key", "bodies:\n  A: {inertia: 1}\nbodys: {}\n", {"3:1: error: model: unknown field 'bodys'"}},
     {"self link", "bodies:\n  A: {inertia: 1}\nlinks:\n  c: {type: spring, between: [A, A], stiffness: 1}\n",
