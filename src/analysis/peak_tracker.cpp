@@ -110,17 +110,11 @@ void PeakTracker::set_dense_degree(int degree) {
 }
 
 bool PeakTracker::inside_extremes(const Stepper& s, int j, double ta, double tb, double v0, double v1) {
-  const Extremes& g = sig_[static_cast<size_t>(j)];
   if (!started_ || signals_.rate_reads_state(j)) return false;  // not affine in the state: no bound
   // The ends alone: the bound below contains them and its margin is at least this one, so an end
   // outside some extremes fails it too — without sampling (a window just opened has none).
   const double end_margin = 1e-6 * std::max(std::abs(v0), std::abs(v1));
-  const double v_hi = std::max(v0, v1) + end_margin, v_lo = std::min(v0, v1) - end_margin;
-  if (!(v_hi <= g.max && v_lo >= g.min)) return false;
-  for (const int w : open_) {
-    const Window& W = windows_[static_cast<size_t>(w)];
-    if (!(v_hi <= W.max[static_cast<size_t>(j)] && v_lo >= W.min[static_cast<size_t>(j)])) return false;
-  }
+  if (!inside_so_far(j, std::min(v0, v1) - end_margin, std::max(v0, v1) + end_margin)) return false;
   const size_t n = y_.size();
   const int D = degree_;
   if (!sampled_) {  // one set of samples serves every signal of the piece
@@ -142,11 +136,15 @@ bool PeakTracker::inside_extremes(const Stepper& s, int j, double ta, double tb,
   }
   // The margin covers the rounding of the samples, of the coefficients and of a located value.
   const double margin = 1e-6 * scale;
-  if (!(hi + margin <= g.max && lo - margin >= g.min)) return false;
+  return inside_so_far(j, lo - margin, hi + margin);
+}
+
+bool PeakTracker::inside_so_far(int j, double lo, double hi) const {
+  const auto i = static_cast<size_t>(j);
+  if (!(hi <= sig_[i].max && lo >= sig_[i].min)) return false;
   for (const int w : open_) {
     const Window& W = windows_[static_cast<size_t>(w)];
-    const auto i = static_cast<size_t>(j);
-    if (!(hi + margin <= W.max[i] && lo - margin >= W.min[i])) return false;
+    if (!(hi <= W.max[i] && lo >= W.min[i])) return false;
   }
   return true;
 }

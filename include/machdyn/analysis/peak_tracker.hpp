@@ -121,6 +121,8 @@ class PeakTracker {
   /// so far, and inside those of every open window, by a margin: then its interior extremum need
   /// not be located (it could change nothing the tracker reports).
   bool inside_extremes(const Stepper& s, int j, double ta, double tb, double v0, double v1);
+  /// Whether [lo, hi] lies inside signal j's extremes so far and inside every open window's.
+  [[nodiscard]] bool inside_so_far(int j, double lo, double hi) const;
   const PeakSignals& signals_;
   std::vector<Extremes> sig_;
   bool started_ = false;
