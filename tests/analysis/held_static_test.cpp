@@ -74,18 +74,26 @@ TEST_P(HeldStatic, BrakeHeldDrumHasStaticWeightAndFactorTwo) {
   EXPECT_NEAR(rope.dynamic_factor, 2.0, 1e-6);
 }
 
-const char* kWormHeld = R"(gravity: 9.81 m/s^2
+/// A worm hoist: motor (I_a = 0.05 kg·m²) —worm 40:1 with the fields `worm` (efficiencies, bearing
+/// friction)— wheel (0.5 kg·m²) —shaft 1e5 N·m/rad— drum (I_d = 2 kg·m²) —rope 5 rad/m, 2 MN/m— hook
+/// (500 kg), from rest on an unstretched rope; `rest` follows the links (loads, simulation).
+std::string worm_model(const std::string& worm, const std::string& rest) {
+  return R"(gravity: 9.81 m/s^2
 bodies:
   motor: {type: rotational, inertia: 0.05 kg*m^2}
   wheel: {type: rotational, inertia: 0.5 kg*m^2}
   drum: {type: rotational, inertia: 2 kg*m^2}
   hook: {type: translational, mass: 500 kg, vertical: up}
 links:
-  worm: {type: lossy-gear, between: [motor, wheel], ratio: 40, efficiency: 0.45, efficiency_reverse: 0}
+  worm: {type: lossy-gear, between: [motor, wheel], ratio: 40, )" +
+         worm + R"(}
   shaft: {type: spring, between: [wheel, drum], stiffness: 1e5 N*m/rad}
   rope: {type: rope, between: [drum, hook], ratio: 5 rad/m, stiffness: 2 MN/m}
-simulation: {t_end: 0.1 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
-)";
+)" + rest;
+}
+
+const std::string kWormHeld = worm_model("efficiency: 0.45, efficiency_reverse: 0",
+                                         "simulation: {t_end: 0.1 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}\n");
 
 // Claim: behind a self-locking worm gear (η_mf2 = 0) at rest, the same drop gives the rope the
 // quasi-static load m g and the shaft from the worm wheel to the drum m g / i_rope = m g R
@@ -190,28 +198,12 @@ std::string gear_mode_at(const SimulationResult& r, const std::string& name, dou
   return md;
 }
 
-// A worm hoist: motor (I_a = 0.05 kg·m²) —worm 40:1, η_mf1 = 0.9, η_mf2 = 0.8— wheel (0.5 kg·m²)
-// —shaft 1e5 N·m/rad— drum (I_d = 2 kg·m²) —rope 5 rad/m, 2 MN/m— hook (500 kg), from rest on an
-// unstretched rope; `M` on the motor, bearing friction τ_bf1 = τ_bf2 = `bf` (/tmp/lead/roll.yaml: M = 40
-// N·m, bf = 0).
+// The worm hoist of worm_model with η_mf1 = 0.9, η_mf2 = 0.8, `M` on the motor and bearing friction
+// τ_bf1 = τ_bf2 = `bf`.
 std::string worm_hoist(double M, double bf) {
-  return R"(gravity: 9.81 m/s^2
-bodies:
-  motor: {type: rotational, inertia: 0.05 kg*m^2}
-  wheel: {type: rotational, inertia: 0.5 kg*m^2}
-  drum: {type: rotational, inertia: 2 kg*m^2}
-  hook: {type: translational, mass: 500 kg, vertical: up}
-links:
-  worm: {type: lossy-gear, between: [motor, wheel], ratio: 40, efficiency: 0.9, efficiency_reverse: 0.8,
-         bearing_friction: )" +
-         std::to_string(bf) + R"( N*m}
-  shaft: {type: spring, between: [wheel, drum], stiffness: 1e5 N*m/rad}
-  rope: {type: rope, between: [drum, hook], ratio: 5 rad/m, stiffness: 2 MN/m}
-loads:
-  M: {type: constant, body: motor, value: )" +
-         std::to_string(M) + R"( N*m}
-simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}
-)";
+  return worm_model("efficiency: 0.9, efficiency_reverse: 0.8, bearing_friction: " + std::to_string(bf) + " N*m",
+                    "loads:\n  M: {type: constant, body: motor, value: " + std::to_string(M) +
+                        " N*m}\nsimulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}\n");
 }
 
 // The rigid worm hoist's quasi-static loads in a rolling mode of the worm (elements/lossy_gear.hpp).
