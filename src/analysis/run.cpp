@@ -537,6 +537,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::vector<GearMode> gears;  // the lossy gears' modes: a stuck one is held (held())
     std::vector<double> gear_v;   // their speeds v_a: a rolling one's relation (rolling())
     size_t stage = 0;  // releases applied at its instant: the masses and weights it belongs to
+    // Per link, whether it is off its flank at the instant (an open gap, a slack rope, a one-sided
+    // link off its flank): no coupling of the quasi-static problem (uncoupled()); empty when none.
+    std::vector<char> off;
   };
   void ingredients(double t, const double* y, Extreme& out) {
     out.vals.clear();
@@ -547,6 +550,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
+    out.off.clear();
+    for (int l = 0; l < nl_; ++l)
+      if (!sys_.link(l).transmits(sys_.gap_mode(l))) {
+        out.off.resize(static_cast<size_t>(nl_), 0);
+        out.off[static_cast<size_t>(l)] = 1;
+      }
     out.gears.resize(static_cast<size_t>(ng_));
     out.gear_v.resize(static_cast<size_t>(ng_));
     for (int g = 0; g < ng_; ++g) {
@@ -647,29 +656,51 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return f;
   }
 
+  /// `mm` without the links `off` marks as coupling (stiffness 0): a link off its flank transmits no
+  /// load, so the rigid acceleration and the elastic solution of the quasi-static problem must not
+  /// see it (a slack rope leaves the drum to accelerate with the motor alone; its own load is 0).
+  static Model uncoupled(const Model& mm, const std::vector<char>& off) {
+    Model out = mm;
+    for (size_t l = 0; l < off.size(); ++l)
+      if (off[l]) out.links[l].c = 0.0;
+    return out;
+  }
+
   void summarize_links() {
     // One sparse factorization, one solve per distinct force vector (constant loads: one solve).
     if (nl_ == 0) return;
     // One solver per set of masses (the model's, and after each release an extreme falls behind) and
     // of held elements (constraints, not forces: an extreme's stuck brake holds its drum).
     // A rolling lossy gear keeps its ratio, its reaction follows its mode's efficiency (rolling()).
-    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>>;
+    // A link off its flank at the extreme's instant carries nothing and couples nothing: the problem
+    // is that of the model without it (uncoupled()), one copy per set of such links.
+    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>, std::vector<char>>;
     std::map<Solver, std::unique_ptr<ParticularSolver>> particular;
+    std::map<std::pair<size_t, std::vector<char>>, std::unique_ptr<Model>> uncoupled_models;
+    auto model_of = [&](size_t st, const std::vector<char>& off) -> const Model& {
+      if (off.empty()) return stage(st);
+      auto& mm = uncoupled_models[{st, off}];
+      if (!mm) mm = std::make_unique<Model>(uncoupled(stage(st), off));
+      return *mm;
+    };
     std::map<std::pair<Solver, std::vector<double>>, Eigen::VectorXd> solved;
     auto static_loads = [&](const Extreme& e) -> const Eigen::VectorXd& {
-      Solver which{e.stage, held(e), rolling(e)};
+      Solver which{e.stage, held(e), rolling(e), e.off};
       const auto key = std::make_pair(which, e.vals);
       auto it = solved.find(key);
       if (it == solved.end()) {
-        const auto& [st, h, roll] = which;
+        const auto& [st, h, roll, off] = which;
         auto& p = particular[which];
         if (!p) {
           const auto [G, H] = held_rows(h, roll);
-          p = std::make_unique<ParticularSolver>(stage(st), G, H);
+          p = std::make_unique<ParticularSolver>(model_of(st, off), G, H);
         }
         Eigen::VectorXd f = forces(e.vals, stage(st));
         for (size_t k = 0; k < roll.size(); k += 4) f(sys_.lossy_gear(static_cast<int>(roll[k])).a) += roll[k + 3];
-        it = solved.emplace(key, p->solve(f)).first;
+        Eigen::VectorXd F = p->solve(f);
+        for (size_t l = 0; l < off.size(); ++l)
+          if (off[l]) F(static_cast<Eigen::Index>(l)) = 0.0;  // off its flank: no load, whatever its law
+        it = solved.emplace(key, std::move(F)).first;
       }
       return it->second;
     };

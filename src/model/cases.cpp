@@ -47,9 +47,20 @@ void apply_case(SpecNode& root, const std::string& name) {
       }
       continue;
     }
-    const bool is_sim = section == "simulation";
+    if (section == "crane") {  // the crane analysis of this case: fields replaced one by one, or `none`
+      if (body.is_scalar() && (body.scalar == "none" || body.scalar == "off")) {
+        root.erase("crane");
+        continue;
+      }
+      if (!body.is_map()) {
+        diag.error(body.loc, fmt::format("case '{}': 'crane' expected a map of fields (replaced one by one) or 'none' "
+                                         "(no crane analysis in this case)", name));
+        continue;
+      }
+    }
+    const bool is_sim = section == "simulation" || section == "crane";
     if (!is_sim && std::find(element_sections().begin(), element_sections().end(), section) == element_sections().end()) {
-      diag.error(body.key_loc, fmt::format("case '{}': unknown section '{}'; known: description, remove, {}, simulation",
+      diag.error(body.key_loc, fmt::format("case '{}': unknown section '{}'; known: description, remove, {}, simulation, crane",
                                            name, section, fmt::join(element_sections(), ", ")));
       continue;
     }

@@ -29,6 +29,7 @@
 /// section or a case's model is not what it needs (the hoist drive tied to the ground, a load without
 /// a stop for φ2); SolverError from the runs.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@
 #include "machdyn/model/model.hpp"
 
 namespace machdyn {
+
+/// "No such number" in a CraneFactorRow field (NaN).
+inline constexpr double kCraneNone = std::numeric_limits<double>::quiet_NaN();
 
 /// One line of the crane table.
 struct CraneFactorRow {
@@ -51,10 +55,25 @@ struct CraneFactorRow {
   /// (m g for φ2 and φ3, the quasi-static load at the peak for φ5, the rigid-body peak for φ7).
   /// Empty when the case was not simulated.
   std::vector<double> t, history;
+  // The numbers of the note as fields (NaN where the row has none; crane.json):
+  double extreme = kCraneNone;    ///< the link load's extreme the factor is taken from, N (N·m for φ5)
+  double t_extreme = kCraneNone;  ///< its time, s
+  /// the case's reference the extreme is divided by: m g (φ2, φ3), the quasi-static load at the peak
+  /// (φ5), the rigid-body peak force (φ7)
+  double reference = kCraneNone;
+  double vh = kCraneNone;         ///< φ2: the characteristic hoisting speed the case ran at, m/s
+  double xi_b = kCraneNone;       ///< φ7: the buffer's energy-absorption ratio ξb
+  double stroke = kCraneNone;     ///< φ7: the largest buffer stroke of the run s_max, m (rad)
+  double contact_speed = kCraneNone;  ///< φ7: the rigid-body reference's speed at first contact, m/s (rad/s)
+  double t_contact = kCraneNone;  ///< φ7: the time of first contact with the buffer, s
+  /// A warning about the number: its extreme lies at the end of the run (it may not be the extreme
+  /// of the case: a longer run may find a larger one). Empty when none.
+  std::string warning;
 };
 
 struct CraneReport {
   std::string model;
+  std::string load_case;  ///< the file's load case the analysis ran (Model::load_case), or empty
   std::vector<CraneFactorRow> rows;
 };
 
