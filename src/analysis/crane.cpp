@@ -71,6 +71,19 @@ void set_history(const Model& m, const SimulationResult& res, int k, double refe
 const Body& load_body(const Model& m) { return m.bodies[static_cast<size_t>(m.crane.load)]; }
 double load_weight(const Model& m) { return load_body(m).inertia * m.gravity; }
 
+/// The φ2 case's run `s` (the rope's summary) must lift the load: a rope that never carries its
+/// weight m g before t_end leaves it on the ground, and φ2 is not reached — an input error (located
+/// at the load) instead of a factor below 1 with a "safe" margin. `which` names the case.
+void require_lift_off(const Model& m, const LinkSummary& s, const std::string& which) {
+  const double W = load_weight(m);
+  if (s.max >= W * (1.0 - 1e-9)) return;
+  case_error(m, load_body(m).name,
+             fmt::format("the phi2 case ({}) does not lift the load '{}' off the ground before t_end = {:.6g} s: the "
+                         "rope's largest force {:.6g} N stays below the weight m g = {:.6g} N, so phi2 is not reached; "
+                         "raise simulation.t_end (or check the hoist drive)",
+                         which, load_body(m).name, m.simulation.t_end, s.max, W));
+}
+
 CraneFactorRow phi2_row(const Model& m) {
   using namespace crane;
   const CraneSpec& c = m.crane;
@@ -97,13 +110,8 @@ CraneFactorRow phi2_row(const Model& m) {
   const SimulationResult res = simulate(phi2_case_model(m, vh));
   const LinkSummary& s = res.links[static_cast<size_t>(c.rope)];
   const double W = load_weight(m);
-  if (!(s.max >= W * (1.0 - 1e-9)))
-    case_error(m, load_body(m).name,
-               fmt::format("the phi2 case ({}/{}, {}) does not lift the load '{}' off the ground before t_end = {:.6g} "
-                           "s: the rope's largest force {:.6g} N stays below the weight m g = {:.6g} N, so phi2 is not "
-                           "reached; raise simulation.t_end (or check the hoist drive)", to_string(hc), to_string(hd),
-                           vh > 0.0 ? fmt::format("vh = {:.4g} m/s", vh) : std::string("the model's own drive from rest"),
-                           load_body(m).name, m.simulation.t_end, s.max, W));
+  require_lift_off(m, s, fmt::format("{}/{}, {}", to_string(hc), to_string(hd),
+                                     vh > 0.0 ? fmt::format("vh = {:.4g} m/s", vh) : std::string("the model's own drive")));
   r.simulated = s.max / W;
   r.margin = r.standard_hi - r.simulated;
   r.extreme = s.max, r.t_extreme = s.t_max, r.reference = W;
@@ -454,7 +462,9 @@ std::vector<Phi2Point> phi2_sweep(const Model& m, const std::vector<double>& spe
   for (double vh : speeds) {
     if (!(vh > 0.0)) throw std::invalid_argument(fmt::format("a hoisting speed of the phi2 sweep must be > 0, got {}", vh));
     const SimulationResult res = simulate(phi2_case_model(m, vh));
-    out.push_back({vh, res.links[static_cast<size_t>(m.crane.rope)].max / load_weight(m), crane::phi2(hc, hd, vh)});
+    const LinkSummary& s = res.links[static_cast<size_t>(m.crane.rope)];
+    require_lift_off(m, s, fmt::format("sweep point vh = {:.4g} m/s", vh));
+    out.push_back({vh, s.max / load_weight(m), crane::phi2(hc, hd, vh)});
   }
   return out;
 }

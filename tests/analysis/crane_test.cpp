@@ -545,7 +545,8 @@ std::string with_t_end(const std::string& yaml, const std::string& t_end) {
 // Claim: a φ2 case whose run ends before the load leaves the ground is an error, not a factor. With
 // kHoist (slack 10 mm, vh = 0.5 m/s, c = 1e6 N/m, m g = 9810 N) the rope tightens at 20 ms and
 // carries m g at 20 + 19.62 = 39.62 ms: a run of 30 ms never lifts the load — a located input error
-// that names the weight; so is HD5 with a drive that never moves (the model's own, at rest).
+// that names the weight; so is HD5 with a drive that never moves (the model's own, at rest), and a
+// sweep point whose run ends before its lift-off.
 TEST(CraneChecks, Phi2NeverReachedIsAnError) {
   try {
     (void)crane_analysis(model_of(with_t_end(with_drive_class("HD1"), "0.03 s")));
@@ -557,6 +558,8 @@ TEST(CraneChecks, Phi2NeverReachedIsAnError) {
     EXPECT_NE(s.find("9810"), std::string::npos) << s;
   }
   EXPECT_THROW((void)crane_analysis(model_of(with_drive_class("HD5"))), InputError);
+  // The same for a point of the φ2 sweep (`--phi2-speeds`): 0.1 m/s lifts the load only at 0.198 s.
+  EXPECT_THROW((void)phi2_sweep(model_of(with_t_end(with_drive_class("HD1"), "0.15 s")), {0.5, 0.1}), InputError);
 }
 
 // Claim: a φ2 extreme at the end of the run gets a warning and keeps its number: with t_end = 60 ms
