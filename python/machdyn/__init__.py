@@ -152,7 +152,9 @@ def energy(model: Model, to: str | float | None = None, points: int = 201, delta
 def crane(model: Model, drive_classes=None) -> dict:
     """The crane dynamic factors of a model with a ``crane:`` section, as ``machdyn crane --json``
     (docs/crane-factors.md): ``{"model": NAME, "rows": [{"factor", "case", "simulated",
-    "standard_lo", "standard_hi", "clause", "margin", "note"}, ...]}``, NaN as None.
+    "standard_lo", "standard_hi", "clause", "margin", "note", "extreme", "t_extreme_s", "reference",
+    "vh_m_s", "xi_b", "stroke", "contact_speed", "t_contact_s", "warning"}, ...]}`` (``"load_case"``
+    for a model loaded with a case), NaN as None.
     ``drive_classes``: "all" or a list such as ``["HD1", "HD4"]`` gives one φ2 row per hoist drive
     class (as ``--drive-classes``). Raises InputError for a model without ``crane:`` or a case it
     cannot build, ValueError for an unknown drive class.

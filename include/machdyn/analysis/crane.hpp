@@ -7,9 +7,13 @@
 ///
 /// Cases (each runs only when the section names what it needs):
 ///   φ2  hoisting a grounded load: the load rests on its stop, the rope as the model gives it (slack
-///       or taut); the hoist drive (the free group of bodies behind the rope's first end) starts in
-///       rigid motion with the rope's end at the characteristic speed vh of the drive class
-///       (crane::characteristic_hoisting_speed). Simulated φ2 = max rope force / (m g) of the load.
+///       or taut); the hoist drive (the free group of bodies behind the rope's first end, through
+///       springs, ideal and lossy gears; a body with prescribed motion in it runs at constant speed)
+///       starts in rigid motion with the rope's end at the characteristic speed vh of the drive class
+///       (crane::characteristic_hoisting_speed); HD5 (vh = 0) runs the model's own drive from its own
+///       start. Simulated φ2 = max rope force / (m g) of the load; a run that never lifts the load
+///       (the rope's maximum below m g) is an InputError.
+///   Every case: an extreme at t = t_end gets a warning (CraneFactorRow::warning).
 ///   φ3  sudden release of Δm: the load hangs at rest in static equilibrium (analysis/equilibrium.hpp;
 ///       its ground stop removed, the rope's first body held by a holding brake that never slips, the
 ///       drive's other loads as the model gives them at t = 0); at t = 0 of the case its mass and weight
@@ -19,12 +23,14 @@
 ///       quasi-static load (analysis/simulate.hpp), against the range of the kind of force change.
 ///   φ7  buffers: the model's own run; the peak buffer force over the peak of the rigid-body model (the
 ///       buffer body's free group lumped into one mass M = Σ m_i (r_i/r_b)² at the group's momentum
-///       speed into the same buffer, no other loads). ξb of the buffer from its characteristic
+///       speed at first contact into the same buffer, no other loads); a run that never reaches the
+///       buffer is an InputError. ξb of the buffer from its characteristic
 ///       (linear spring: ∫F dx / (F_max x_max) = 1/2; damping is not counted), φ7 from ξb.
 /// Margin: the standard's value minus the simulated one for φ2, φ5 (upper end of the range) and φ7;
 /// the simulated minus the standard's for φ3 (a lower φ3 is the worse case). Positive: the
 /// standard's value is on the safe side of the simulation.
 ///
+/// Errors of a model loaded with a load case (Model::load_case) name the case.
 /// Throws InputError (located at the `crane:` section's elements) when the model has no `crane:`
 /// section or a case's model is not what it needs (the hoist drive tied to the ground, a load without
 /// a stop for φ2); SolverError from the runs.
