@@ -53,7 +53,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int i = 0; i < n_; ++i)
       if (m.bodies[static_cast<size_t>(i)].machine) machine_bodies_.push_back(i);
     has_events_ = nc_ > 0 || ng_ > 0 || jumps_.count() > 0;
-    for (int l = 0; l < nl_; ++l) has_events_ = has_events_ || sys_.link(l).gap;
+    for (int l = 0; l < nl_; ++l)
+      if (sys_.link(l).gap) flank_links_.push_back(l);
+    has_events_ = has_events_ || !flank_links_.empty();
     for (int d = 0; d < nd_; ++d) has_events_ = has_events_ || sys_.drive(d).has_events();
     on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
       ingredients(t, y, (is_max ? at_max_ : at_min_)[static_cast<size_t>(l)]);
@@ -537,9 +539,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::vector<GearMode> gears;  // the lossy gears' modes: a stuck one is held (held())
     std::vector<double> gear_v;   // their speeds v_a: a rolling one's relation (rolling())
     size_t stage = 0;  // releases applied at its instant: the masses and weights it belongs to
-    // Per link, whether it is off its flank at the instant (an open gap, a slack rope, a one-sided
-    // link off its flank): no coupling of the quasi-static problem (uncoupled()); empty when none.
-    std::vector<char> off;
+    // The links off their flank at the instant (an open gap, a slack rope, a one-sided link off its
+    // flank), ascending: no coupling of the quasi-static problem (uncoupled()). O(links with a gap).
+    std::vector<int> off;
   };
   void ingredients(double t, const double* y, Extreme& out) {
     out.vals.clear();
@@ -551,11 +553,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
     out.off.clear();
-    for (int l = 0; l < nl_; ++l)
-      if (!sys_.link(l).transmits(sys_.gap_mode(l))) {
-        out.off.resize(static_cast<size_t>(nl_), 0);
-        out.off[static_cast<size_t>(l)] = 1;
-      }
+    for (int l : flank_links_)
+      if (!sys_.link(l).transmits(sys_.gap_mode(l))) out.off.push_back(l);
     out.gears.resize(static_cast<size_t>(ng_));
     out.gear_v.resize(static_cast<size_t>(ng_));
     for (int g = 0; g < ng_; ++g) {
@@ -659,10 +658,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// `mm` without the links `off` marks as coupling (stiffness 0): a link off its flank transmits no
   /// load, so the rigid acceleration and the elastic solution of the quasi-static problem must not
   /// see it (a slack rope leaves the drum to accelerate with the motor alone; its own load is 0).
-  static Model uncoupled(const Model& mm, const std::vector<char>& off) {
+  static Model uncoupled(const Model& mm, const std::vector<int>& off) {
     Model out = mm;
-    for (size_t l = 0; l < off.size(); ++l)
-      if (off[l]) out.links[l].c = 0.0;
+    for (int l : off) out.links[static_cast<size_t>(l)].c = 0.0;
     return out;
   }
 
@@ -674,10 +672,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // A rolling lossy gear keeps its ratio, its reaction follows its mode's efficiency (rolling()).
     // A link off its flank at the extreme's instant carries nothing and couples nothing: the problem
     // is that of the model without it (uncoupled()), one copy per set of such links.
-    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>, std::vector<char>>;
+    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>, std::vector<int>>;
     std::map<Solver, std::unique_ptr<ParticularSolver>> particular;
-    std::map<std::pair<size_t, std::vector<char>>, std::unique_ptr<Model>> uncoupled_models;
-    auto model_of = [&](size_t st, const std::vector<char>& off) -> const Model& {
+    std::map<std::pair<size_t, std::vector<int>>, std::unique_ptr<Model>> uncoupled_models;
+    auto model_of = [&](size_t st, const std::vector<int>& off) -> const Model& {
       if (off.empty()) return stage(st);
       auto& mm = uncoupled_models[{st, off}];
       if (!mm) mm = std::make_unique<Model>(uncoupled(stage(st), off));
@@ -698,8 +696,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         Eigen::VectorXd f = forces(e.vals, stage(st));
         for (size_t k = 0; k < roll.size(); k += 4) f(sys_.lossy_gear(static_cast<int>(roll[k])).a) += roll[k + 3];
         Eigen::VectorXd F = p->solve(f);
-        for (size_t l = 0; l < off.size(); ++l)
-          if (off[l]) F(static_cast<Eigen::Index>(l)) = 0.0;  // off its flank: no load, whatever its law
+        for (int l : off) F(l) = 0.0;  // off its flank: no load, whatever its law
         it = solved.emplace(key, std::move(F)).first;
       }
       return it->second;
@@ -1118,6 +1115,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> loads_;                // the link loads of an output row
   std::vector<double*> col_;                 // the columns' data (point_columns)
   std::vector<int> gap_links_, rope_links_;  // links with a gap-mode column, ropes with fall columns
+  std::vector<int> flank_links_;  // links with flanks (LinkLaw::gap: gaps, ropes, one-sided links, buffers)
   std::vector<size_t> drive_cols_;           // per element with states: its own output columns
   std::vector<double> drive_vals_;           // their values at an output row
   std::vector<int> open_phase_;
