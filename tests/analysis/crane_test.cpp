@@ -614,6 +614,25 @@ TEST(CraneChecks, CreepSpeedChecks) {
   }
 }
 
+// Claim: a load case's `crane:` is checked with the model: a bad field value in it (HD9) is located
+// at the case's line, and `crane:` neither a map nor `none` is refused with what it expects.
+TEST(CraneChecks, CaseCraneSectionIsChecked) {
+  const std::string base = with_drive_class("HD1");
+  try {
+    (void)model_of(base + "cases:\n  slow:\n    crane: {drive_class: HD9}\n");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crane.yaml:13:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("HD9"), std::string::npos) << e.what();
+  }
+  try {
+    (void)model_of(base + "cases:\n  odd:\n    crane: [HD2]\n");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'crane' expected a map of fields"), std::string::npos) << e.what();
+  }
+}
+
 // A rigid drive with prescribed motion lifting the kHoist load.
 const char* kPrescribedHoist = R"(
 gravity: 9.81 m/s^2
