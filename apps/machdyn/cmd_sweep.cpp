@@ -122,6 +122,14 @@ int run_sweep_command(const SweepArgs& a) {
   std::cout << fmt::format("sweep: {} runs, {} ok, {} error(s); {} computed in {:.3g} s ({:.4g} runs/s, {} thread(s) × {} rank(s))\n",
                            r.total, r.ok, r.errors, r.computed, r.wall_s, rate, r.threads, r.ranks);
   std::cout << fmt::format("wrote {}\n", r.table_path);
+  // Every run refused on its input (what `simulate` refuses with exit 2, e.g. a model with no
+  // equilibrium): the sweep as a whole is an input error. The table stays, with its error rows.
+  if (r.ok == 0 && r.computed_here > 0 && r.input_errors == r.computed_here) {
+    std::cerr << fmt::format("machdyn: every run of the sweep failed on its input; the table ({}) has only error "
+                             "rows. The first, run {}:\n{}\n",
+                             r.table_path, r.first_input_error, r.first_input_message);
+    return 2;
+  }
   if (plot) {
     std::string name = plot->output;
     for (const auto& x : plot->inputs) name += "-vs-" + x;

@@ -27,8 +27,20 @@ class OutputError : public std::runtime_error {
 /// Receives the file's bytes in pieces, in order.
 using ChunkSink = std::function<void(std::string_view)>;
 
+/// Why `path` must not be written, or "" when it may: a result goes only to a new path or over a
+/// regular file that is not an input of this process (io/input_file.hpp: the model, a gear spec, a
+/// signal file, also under another name or through a link). A device, FIFO, folder or symbolic link
+/// there is refused: the rename would replace the node itself (as root, `-o /dev/null` would
+/// replace /dev/null).
+std::string output_target_problem(const std::filesystem::path& path);
+
+/// Removes the temporary files `NAME.tmp.PID` in `dir` whose process PID is gone (a SIGKILLed
+/// run's leftovers; a live process's are kept). Returns how many were removed. Called by whoever
+/// holds the folder's lock (io/folder_lock.hpp).
+std::size_t remove_stale_temp_files(const std::filesystem::path& dir);
+
 /// Writes `content` to `path` atomically (see the file comment); creates parent folders.
-/// Throws OutputError.
+/// Throws OutputError, also when output_target_problem(path) says the path must not be written.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
 /// The same for content produced in pieces by `produce(sink)` (a large CSV is never held whole in
