@@ -133,6 +133,9 @@ int run_sweep_command(const SweepArgs& a) {
   if (plot) {
     std::string name = plot->output;
     for (const auto& x : plot->inputs) name += "-vs-" + x;
+    // Column names hold element names, which may hold '/': the file name stays in the folder.
+    for (char& ch : name)
+      if (ch == '/' || ch == '\\' || static_cast<unsigned char>(ch) < 0x20) ch = '_';
     const auto dir = std::filesystem::path(r.table_path).parent_path();
     const auto data = (dir / ("plot-" + name + ".csv")).string();
     const std::string csv = sweep_plot_csv(r.table_path, *plot);

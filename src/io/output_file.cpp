@@ -118,8 +118,8 @@ std::string output_target_problem(const std::filesystem::path& path) {
     return fmt::format("it is {}{}; machdyn writes only to a new path or over a regular file", kind_of(st.st_mode), to);
   }
   if (const std::string input = input_file_at(path.string()); !input.empty())
-    return fmt::format("it is the input file {} of this run (the same file{}); choose another output", input,
-                       input == path.string() ? "" : " under another name");
+    return fmt::format("it is the input file {} of this run{}; choose another output", input,
+                       input == path.string() ? "" : " (the same file under another name)");
   return {};
 }
 

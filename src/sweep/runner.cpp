@@ -43,8 +43,11 @@ class ThreadPool {
     for (int t = 0; t < threads; ++t) threads_.emplace_back([this] { work_loop(); });
   }
   ~ThreadPool() {
+    abandon();  // an exception on the writing thread (a full disk): no new run, join at once
     for (auto& t : threads_) t.join();
   }
+  /// No worker starts another run.
+  void abandon() { abandoned_ = true; }
   ThreadPool(const ThreadPool&) = delete;
   ThreadPool& operator=(const ThreadPool&) = delete;
 
@@ -62,7 +65,7 @@ class ThreadPool {
  private:
   void work_loop() {
     for (;;) {
-      if (stop_ && stop_->load()) break;
+      if ((stop_ && stop_->load()) || abandoned_) break;
       const size_t i = next_.fetch_add(1);
       if (i >= work_.size()) break;
       const long idx = work_[i];
@@ -87,6 +90,7 @@ class ThreadPool {
   const std::vector<long> work_;
   const std::atomic<bool>* stop_;
   std::atomic<size_t> next_{0};
+  std::atomic<bool> abandoned_{false};
   std::mutex mutex_;
   std::condition_variable cv_;
   std::vector<FinishedRow> queue_;

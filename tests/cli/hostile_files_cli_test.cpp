@@ -173,7 +173,8 @@ TEST(HostileFiles, ReportNeverWritesOverItsInputOrAFifo) {
   for (const Case& c : {Case{"model.yaml", "it is the input file model.yaml of this run"},
                         Case{"./sub/../model.yaml", "it is the input file model.yaml of this run (the same file "
                                                     "under another name)"},
-                        Case{"hard.html", "(the same file under another name)"},
+                        Case{"hard.html", "it is the input file model.yaml of this run (the same file under "
+                                          "another name)"},
                         Case{"link.html", "it is a symbolic link to " + (work / "model.yaml").string() +
                                               ", the input file model.yaml of this run"},
                         Case{"fifo.html", "it is a FIFO (named pipe)"}}) {
@@ -357,10 +358,21 @@ TEST(HostileFiles, ALockedOutputFolderIsRefusedNamingItsHolder) {
 // its own rows (its stiffness values, in order).
 TEST(HostileFiles, TwoSweepsInOneFolderDoNotMix) {
   const auto work = scratch("two-sweeps");
-  std::ofstream(work / "model.yaml") << model_with_case("'one'");
+  // Stick-slip under a sine load: ~0.06 s a run, event-driven.
+  std::ofstream(work / "model.yaml") << R"Y(bodies:
+  A: {inertia: 1}
+  B: {inertia: 2}
+links:
+  c: {type: spring-damper, between: [A, B], stiffness: 1e4, damping: 1}
+loads:
+  M: {type: expression, body: A, expression: "15*sin(2*pi*t)"}
+contacts:
+  f: {between: [B, ground], static: 10 N*m, kinetic: 8 N*m}
+simulation: {t_end: 20 s}
+)Y";
   // The first: 40 runs on one thread (a few seconds); the second starts once the first holds the lock.
   const auto r = run_bash(R"(
-"$M" sweep model.yaml --vary c.stiffness=1e4:5e4:40 --set simulation.t_end=2 -o sw --jobs 1 >first.out 2>first.err &
+"$M" sweep model.yaml --vary c.stiffness=1e4:5e4:40 -o sw --jobs 1 >first.out 2>first.err &
 first=$!
 for i in $(seq 1 600); do [ -s sw/.machdyn.lock ] && break; sleep 0.05; done
 "$M" sweep model.yaml --vary c.stiffness=7e4,8e4 -o sw --jobs 1
