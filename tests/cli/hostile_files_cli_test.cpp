@@ -54,7 +54,7 @@ std::vector<std::string> temp_files(const fs::path& dir) {
 /// ignored on the way (unlike a shell `trap`), so the command meets SIGXFSZ as a user's would.
 test::CliResult run_bash(const std::string& script, const fs::path& cwd) {
   static int counter = 0;
-  const auto base = test::temp_dir() / ("bash-" + std::to_string(++counter));
+  const auto base = test::temp_dir() / (std::string("bash-") + std::to_string(++counter));
   std::ofstream(base.string() + ".sh") << "M='" << MACHDYN_CLI << "'\ncd '" << cwd.string() << "' || exit 99\n"
                                         << script << "\n";
   const std::string cmd = "bash '" + base.string() + ".sh' >'" + base.string() + ".out' 2>'" + base.string() +
@@ -267,6 +267,34 @@ simulation: {t_end: 0.1 s}
   EXPECT_NE(r.err.find("torque.csv"), std::string::npos) << r.err;
 }
 
+// Claim: a FIFO or a link named sweep.journal in the output folder is refused (exit 2, no hang on
+// the FIFO), and stays what it was.
+TEST(HostileFiles, SweepJournalThatIsAFifoOrALinkIsRefused) {
+  const auto work = scratch("journal-fifo");
+  std::ofstream(work / "model.yaml") << model_with_case("'one'");
+  const std::string model_text = test::slurp(work / "model.yaml");
+  fs::create_directories(work / "fifo");
+  ASSERT_EQ(::mkfifo((work / "fifo" / "sweep.journal").c_str(), 0644), 0);
+  fs::create_directories(work / "link");
+  fs::create_symlink(work / "model.yaml", work / "link" / "sweep.journal");
+  for (const char* dir : {"fifo", "link"}) {
+    for (const char* resume : {"", " --resume"}) {
+      SCOPED_TRACE(std::string(dir) + resume);
+      const auto r = run_bash("timeout 60 \"$M\" sweep model.yaml --vary c.stiffness=1e4,2e4 --jobs 1 -o " +
+                                  std::string(dir) + resume,
+                              work);
+      EXPECT_EQ(r.exit_code, 2) << r.err;
+      EXPECT_NE(r.err.find(std::string(dir) + "/sweep.journal: error: this is not a regular file"), std::string::npos)
+          << r.err;
+    }
+  }
+  struct stat st {};
+  ASSERT_EQ(::lstat((work / "fifo" / "sweep.journal").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  EXPECT_TRUE(fs::is_symlink(work / "link" / "sweep.journal"));
+  EXPECT_EQ(test::slurp(work / "model.yaml"), model_text);
+}
+
 // Claim: under a file-size limit (`ulimit -f`, SIGXFSZ not ignored by the caller) `simulate` and
 // `sweep` end with exit 1 and a message naming the file ("File too large", the limit named), not
 // killed by SIGXFSZ, and leave no temporary file.
@@ -282,7 +310,10 @@ TEST(HostileFiles, FileSizeLimitIsAnOutputErrorWithNoTemporaryFileLeft) {
       << r.err;
   // The sweep: the journal's rows of 200 runs (~150 bytes each) are more than 4 kB.
   std::string values = "10000";
-  for (int k = 1; k < 200; ++k) values += "," + std::to_string(10000 + k);
+  for (int k = 1; k < 200; ++k) {
+    values += ',';
+    values += std::to_string(10000 + k);
+  }
   r = run_bash("ulimit -f 4; \"$M\" sweep model.yaml --vary c.stiffness=" + values + " -o sw --jobs 1", work);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
@@ -305,8 +336,8 @@ TEST(HostileFiles, StaleTemporaryFilesOfDeadProcessesAreRemoved) {
   const auto work = scratch("stale-tmp");
   std::ofstream(work / "model.yaml") << model_with_case("'one'");
   fs::create_directories(work / "sw");
-  const auto stale = work / "sw" / ("sweep.journal.tmp." + std::to_string(dead_pid()));
-  const auto live = work / "sw" / ("sweep.csv.tmp." + std::to_string(::getpid()));
+  const auto stale = work / "sw" / (std::string("sweep.journal.tmp.") + std::to_string(dead_pid()));
+  const auto live = work / "sw" / (std::string("sweep.csv.tmp.") + std::to_string(::getpid()));
   std::ofstream(stale) << "torn";
   std::ofstream(live) << "being written";
   const auto r = run_bash("\"$M\" sweep model.yaml --vary c.stiffness=1e4,2e4 -o sw --jobs 1", work);
@@ -327,7 +358,7 @@ TEST(HostileFiles, ALockedOutputFolderIsRefusedNamingItsHolder) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string table = test::slurp(work / "sw" / "sweep.csv"), journal = test::slurp(work / "sw" / "sweep.journal");
   auto held = std::make_unique<FolderLock>(work / "sw");
-  const std::string pid = "pid " + std::to_string(::getpid()) + ":";
+  const std::string pid = std::string("pid ") + std::to_string(::getpid()) + ":";
   for (const char* cmd : {"sweep model.yaml --vary c.stiffness=3e4,4e4 -o sw --jobs 1",
                           "sweep model.yaml --vary c.stiffness=1e4,2e4 -o sw --jobs 1 --resume"}) {
     SCOPED_TRACE(cmd);
