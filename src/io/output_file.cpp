@@ -1,6 +1,8 @@
 #include "machdyn/io/output_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <iterator>
 #include <cmath>
 #include <cstring>
 #include <csignal>
@@ -81,6 +83,9 @@ void make_parent(const std::filesystem::path& path) {
   if (ec) throw OutputError(fmt::format("cannot create the folder {}: {}", path.parent_path().string(), ec.message()));
 }
 
+/// The endings of the files machdyn writes (results, journal, figures, report, drawings).
+constexpr const char* kResultExtensions[] = {".csv", ".json", ".journal", ".svg", ".png", ".html", ".dxf"};
+
 const char* kind_of(mode_t mode) {
   if (S_ISDIR(mode)) return "a folder";
   if (S_ISLNK(mode)) return "a symbolic link";
@@ -91,10 +96,15 @@ const char* kind_of(mode_t mode) {
   return "not a regular file";
 }
 
-/// True for the name of a temporary file of write_file_atomic whose process is gone.
+/// True for the name of a temporary file of write_file_atomic whose process is gone: RESULT.tmp.PID
+/// with RESULT of a kind machdyn writes (so that no other file of the folder is ever touched).
 bool stale_temp_name(const std::string& name) {
   const auto dot = name.rfind(".tmp.");
   if (dot == std::string::npos || dot == 0 || dot + 5 >= name.size()) return false;
+  const std::string result = name.substr(0, dot);
+  const bool ours = std::any_of(std::begin(kResultExtensions), std::end(kResultExtensions),
+                                [&](const char* ext) { return result.ends_with(ext); });
+  if (!ours) return false;
   const std::string digits = name.substr(dot + 5);
   if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
   const long pid = std::stol(digits);

@@ -67,6 +67,14 @@ test::CliResult run_bash(const std::string& script, const fs::path& cwd) {
   return r;
 }
 
+/// 'text' (built by appending: GCC 12 at -O3 warns falsely, -Wrestrict, on "'" + a temporary).
+std::string single_quoted(const std::string& text) {
+  std::string q(1, '\'');
+  q += text;
+  q += '\'';
+  return q;
+}
+
 // A two-mass model; the case below it (line 9) gets the name under test.
 std::string model_with_case(const std::string& yaml_key) {
   return R"(name: named cases
@@ -97,14 +105,14 @@ TEST(HostileFiles, CaseNamesThatArePathsAreLocatedErrorsAndWriteNothing) {
   };
   const std::vector<Name> names = {
       {"'../../escaped'", "'../../escaped'"},
-      {"'" + abs_target.string() + "'", "'" + abs_target.string() + "'"},
+      {single_quoted(abs_target.string()), single_quoted(abs_target.string())},
       {"'.'", "."},
       {"'..'", ".."},
       {"'sub/dir'", "sub/dir"},
       {"'back\\slash'", "'back\\slash'"},
       {"\"nul\\0byte\"", ""},
       {"\"new\\nline\"", "$'new\\nline'"},
-      {"'" + std::string(129, 'x') + "'", std::string(129, 'x')},
+      {single_quoted(std::string(129, 'x')), std::string(129, 'x')},
   };
   for (const auto& n : names) {
     SCOPED_TRACE(n.key);
@@ -331,19 +339,23 @@ pid_t dead_pid() {
 }
 
 // Claim: the temporary files of a killed writer (`sweep.journal.tmp.PID` of a dead PID) are removed
-// by the next run into the folder; a live process's temporary file is kept.
+// by the next run into the folder; a live process's temporary file is kept, and so is a file that
+// only looks like one but is no kind of result machdyn writes.
 TEST(HostileFiles, StaleTemporaryFilesOfDeadProcessesAreRemoved) {
   const auto work = scratch("stale-tmp");
   std::ofstream(work / "model.yaml") << model_with_case("'one'");
   fs::create_directories(work / "sw");
   const auto stale = work / "sw" / (std::string("sweep.journal.tmp.") + std::to_string(dead_pid()));
   const auto live = work / "sw" / (std::string("sweep.csv.tmp.") + std::to_string(::getpid()));
+  const auto other = work / "sw" / (std::string("notes.txt.tmp.") + std::to_string(dead_pid()));
   std::ofstream(stale) << "torn";
   std::ofstream(live) << "being written";
+  std::ofstream(other) << "not a result of machdyn";
   const auto r = run_bash("\"$M\" sweep model.yaml --vary c.stiffness=1e4,2e4 -o sw --jobs 1", work);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(other));
   EXPECT_TRUE(fs::exists(work / "sw" / "sweep.csv"));
 }
 

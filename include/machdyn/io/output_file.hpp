@@ -5,6 +5,8 @@
 /// `PATH.tmp.PID` in the same folder, are flushed to the disk (fdatasync), and only then renamed
 /// over PATH. On any failure (disk full, file-size limit, no permission) the temporary file is
 /// removed, an earlier PATH stays as it was, and an OutputError names the file and the cause.
+/// (The CLI ignores SIGXFSZ, so past `ulimit -f` the write fails with EFBIG instead of the process
+/// being killed with its temporary file left behind.)
 
 #include <cstdint>
 #include <filesystem>
@@ -35,7 +37,8 @@ using ChunkSink = std::function<void(std::string_view)>;
 std::string output_target_problem(const std::filesystem::path& path);
 
 /// Removes the temporary files `NAME.tmp.PID` in `dir` whose process PID is gone (a SIGKILLed
-/// run's leftovers; a live process's are kept). Returns how many were removed. Called by whoever
+/// run's leftovers; a live process's are kept), NAME ending as machdyn's results do (.csv, .json,
+/// .journal, .svg, .png, .html, .dxf). Returns how many were removed. Called by whoever
 /// holds the folder's lock (io/folder_lock.hpp).
 std::size_t remove_stale_temp_files(const std::filesystem::path& dir);
 
