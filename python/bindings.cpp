@@ -37,6 +37,8 @@
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/io/input_file.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/sweep/runner.hpp"
@@ -51,7 +53,7 @@ namespace {
 struct PyModel {
   std::string source;       ///< file path, or the name given to a string ("<string>")
   bool from_file = false;
-  std::string text;         ///< the YAML text (strings only; a sweep parses it again)
+  std::string text;         ///< the YAML text as loaded (a sweep parses it again, never the file)
   SpecNode file_spec;       ///< the file as read, before case and overrides
   std::vector<std::string> sets;  ///< NAME.FIELD=VALUE, in order
   std::string load_case;
@@ -243,7 +245,10 @@ PYBIND11_MODULE(_machdyn, mod) {
       });
 
   mod.def("load_file", [](const std::string& path, const std::vector<std::string>& sets, const std::string& c) {
-    return compile(read_yaml_file(path), path, true, "", sets, c);
+    // The text is kept: a sweep of this model sweeps what was loaded, not the file as it is later.
+    std::string text = read_input_file(path, kMaxModelFileBytes, "file");
+    SpecNode spec = parse_yaml_string(text, path);
+    return compile(std::move(spec), path, true, std::move(text), sets, c);
   });
   mod.def("load_text", [](const std::string& text, const std::string& source, const std::vector<std::string>& sets,
                           const std::string& c) {
@@ -354,13 +359,21 @@ PYBIND11_MODULE(_machdyn, mod) {
     });
   });
 
+  // A result file as every machdyn writer writes it (io/output_file.hpp): atomically, and never over
+  // an input file of this process (the model, also through a link) nor over a device or FIFO.
+  mod.def("write_result_file", [](const std::string& path, const std::string& text) {
+    if (const std::string problem = output_target_problem(path); !problem.empty())
+      throw InputError(Location{path, 0, 0}, "refusing to write here: " + problem);
+    nogil([&] { write_file_atomic(path, std::string_view(text)); });
+  });
+
   // A sweep as `machdyn sweep` runs it (sweep/plan.hpp, sweep/runner.hpp): same designs, same table.
   mod.def("sweep", [](const PyModel& p, const std::vector<std::string>& vary, const std::string& method, int samples,
                       std::uint64_t seed, const std::vector<std::string>& cases, const std::string& out_dir, int jobs,
                       bool resume) {
     SweepRequest req;
     req.model_path = p.source;
-    if (!p.from_file) req.model_text = p.text;
+    req.model_text = p.text;  // the loaded model, never the file again (it may have changed since)
     req.sets = p.sets;
     req.vary = vary;
     if (method != "grid" && method != "lhs" && method != "random")

@@ -78,6 +78,11 @@ int run_report(const ReportArgs& a) {
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
                            {}, {}, std::nullopt, {}, {}, {}, std::nullopt});
+  // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
+  // Never over an input file or a device (io/output_file.hpp): said now, not after the runs.
+  const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
+  if (const std::string problem = output_target_problem(out); !problem.empty())
+    throw InputError(Location{a.out.empty() ? out : "-o " + out, 0, 0}, "refusing to write the report here: " + problem);
   // The report embeds every series: the same size limit as simulate's time series, before any run.
   if (!a.large_output) {
     std::uint64_t total = 0;
@@ -113,8 +118,6 @@ int run_report(const ReportArgs& a) {
     cases.push_back(c);
   }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
-  // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
-  const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
                            static_cast<double>(html.size()) / 1e3,

@@ -2,6 +2,7 @@
 // [--set NAME.FIELD=VALUE ...]` (`modes`: cmd_modes.cpp).
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <iostream>
 #include <fmt/format.h>
 
@@ -11,6 +12,7 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/io/folder_lock.hpp"
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/extra_outputs.hpp"
@@ -116,6 +118,11 @@ int run_all_cases(const SimulateArgs& a) {
   // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
   std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",
                                   "link", "max", "min", "peak", "t_peak [s]", "static", "dyn.factor", "events", "", "unit");
+  // OUT and each OUT/CASE are this run's while it writes (a `--case NAME` run writes to OUT/NAME):
+  // two runs never mix their files (io/folder_lock.hpp).
+  std::vector<std::unique_ptr<FolderLock>> locks;
+  locks.push_back(std::make_unique<FolderLock>(out_dir, kFolderLockWriteWait_s));
+  for (const auto& name : names) locks.push_back(std::make_unique<FolderLock>(out_dir / name, kFolderLockWriteWait_s));
   // A failure while writing (disk full) removes what this run wrote, so no half set is left.
   std::vector<std::filesystem::path> written;
   try {
@@ -168,6 +175,8 @@ int run_simulate(const SimulateArgs& a) {
   const SimulationResult r = simulate(m, options, output_selection(a.outputs));
   bar.clear();
   const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
+  // One run at a time writes this folder's files; another writer is waited for (io/folder_lock.hpp).
+  const FolderLock lock(out_dir, kFolderLockWriteWait_s);
   const auto summary = simulation_summary(m, r);
   std::vector<std::string> figures;
   FigureOptions fig_options;

@@ -243,20 +243,12 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
 def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:
     """Simulates, computes the modes and writes the self-contained HTML report to ``path``, as
     ``machdyn report``. Returns the path. Written through a temporary file, so a failed run leaves
-    no partial file."""
+    no partial file; a path that is the model file (also through a link) or not a regular file
+    raises InputError."""
     m = model.with_case(case) if case else model
     command = f"machdyn.report({_os.path.basename(m.source)!r}" + (f", case={case!r}" if case else "") + ")"
-    html = _machdyn.report_html(m._core, command)
     path = _os.fspath(path)
-    folder = _os.path.dirname(_os.path.abspath(path))
-    _os.makedirs(folder, exist_ok=True)
-    fd, tmp = _tempfile.mkstemp(dir=folder, prefix=".report-", suffix=".tmp")
-    try:
-        with _os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(html)
-        _os.replace(tmp, path)
-    except BaseException:
-        if _os.path.exists(tmp):
-            _os.unlink(tmp)
-        raise
+    html = _machdyn.report_html(m._core, command)
+    # Through a temporary file and a rename, never over the model file or a device (InputError).
+    _machdyn.write_result_file(path, html)
     return path

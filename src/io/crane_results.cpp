@@ -5,17 +5,14 @@
 #include <stdexcept>
 #include <vector>
 #include <fmt/format.h>
+#include "machdyn/common/csv.hpp"
 
 namespace machdyn {
 namespace {
 
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 std::string csv_number(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : ""; }
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
+std::string quoted(const std::string& s) { return csv_field(s, true); }
 std::string standard_text(const CraneFactorRow& r) {
   if (!std::isfinite(r.standard_lo)) return "-";  // not defined (e.g. HD2 without its creep speed)
   return r.standard_lo == r.standard_hi ? fmt::format("{:.4g}", r.standard_lo)
@@ -53,7 +50,7 @@ nlohmann::json crane_json(const CraneReport& r) {
 std::string crane_csv(const CraneReport& r) {
   std::string s = "factor,case,simulated,standard_lo,standard_hi,clause,margin,note\n";
   for (const auto& x : r.rows)
-    s += fmt::format("{},{},{},{},{},{},{},{}\n", x.factor, quoted(x.case_name), csv_number(x.simulated),
+    s += fmt::format("{},{},{},{},{},{},{},{}\n", csv_field(x.factor), quoted(x.case_name), csv_number(x.simulated),
                      csv_number(x.standard_lo), csv_number(x.standard_hi), quoted(x.clause), csv_number(x.margin),
                      quoted(x.note));
   return s;
