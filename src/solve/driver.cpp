@@ -31,6 +31,10 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   const auto ne = static_cast<size_t>(sys.event_count());
   std::vector<double> y(y0, y0 + n), ytmp(n);
   std::vector<double> g_prev(ne), g_new(ne), g_tmp(ne), g_mid(ne), g_a(ne);
+  // Per function the value it fires below: 0, or −∞ while the system's own decision keeps it below
+  // 0 (settle below) until it is ≥ 0 at a step end.
+  std::vector<double> off(ne, 0.0);
+  bool any_off = false;
   const std::vector<double> bps = sys.breakpoints(t0, t_end);
   const long n_out = std::max(1L, std::lround(std::ceil((t_end - t0) / opt.dt_out - 1e-9)));
   // Local copies: no call in the loop below can change them, so they stay in registers.
@@ -68,6 +72,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       fired.clear();
       for (size_t k = 0; k < ne; ++k)
         if (!(g_prev[k] >= 0.0)) fired.push_back(static_cast<int>(k));
+      std::fill(off.begin(), off.end(), 0.0);
       if (fired.empty()) return;
       if (round == kMaxRedecisions)
         throw SolverError("event function " + std::to_string(fired.front()), t,
@@ -76,12 +81,14 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       const bool changed = sys.handle_events(t, ys, fired);
       obs.on_event(t, ys, fired);
       if (!changed) {
-        // The system decides the same again (an element's own rule at its switching point, its
-        // function a rounding error below 0): the function is armed from 0, so it fires at the next
-        // step end where it is still < 0 — located just past t and decided again there.
+        // The system decides exactly the same again: its decision is its last word. Contacts,
+        // flanks and ropes never get here (a function handed back changes their mode or state);
+        // a lossy gear decided with friction on its bodies (analysis/gear_lock.hpp, gear_clutch.hpp)
+        // still can — its margins are not yet formed by its decision's computation. Such a function
+        // is armed again only once it is ≥ 0 at a step end (the rule of old, kept for them alone).
         sys.event_functions(t, ys, g_prev.data());
         for (size_t k = 0; k < ne; ++k)
-          if (!(g_prev[k] >= 0.0)) g_prev[k] = 0.0;
+          if (!(g_prev[k] >= 0.0)) off[k] = -std::numeric_limits<double>::infinity(), any_off = true;
         return;
       }
     }
@@ -107,18 +114,19 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
                           g_new.data());
       // A function may leave ≥ 0 and come back within one step, unseen by the error control (a
-      // stuck body's state is constant while a sine load rises past the limit and falls back): the
-      // output times inside the step are checked too, so no excursion longer than dt_out is missed.
-      // The crossing is then looked for in [a, b], the first stretch between checks that has one.
+      // stuck body's state is constant while a sine load rises past the limit and falls back): in a
+      // step longer than 2 dt_out the output times inside it are checked too, so no excursion
+      // longer than 2 dt_out is missed. The crossing is then looked for in [a, b], the first
+      // stretch between checks that has one.
       double a = ta, b = t1;
       const double *gp = g_prev.data(), *gn = g_new.data();
       while (k_sample <= n_out && out_time(k_sample) <= ta) ++k_sample;
-      for (long ks = k_sample; ks <= n_out && out_time(ks) < t1; ++ks) {
+      for (long ks = k_sample; t1 - ta > 2.0 * dt_out && ks <= n_out && out_time(ks) < t1; ++ks) {
         const double s = out_time(ks);
         st.interpolate(s, ytmp.data());
         sys.event_functions(s, ytmp.data(), g_mid.data());
         bool crossed = false;
-        for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= 0.0 && g_mid[k] < 0.0);
+        for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g_mid[k] < off[k]);
         if (crossed) {
           b = s, gn = g_mid.data();
           break;
@@ -127,25 +135,32 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       }
       // Most steps cross nothing: a tight scan first (the loop below keeps k in memory for its lambda).
       bool crossed = false;
-      for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= 0.0 && gn[k] < 0.0);
+      for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && gn[k] < off[k]);
       for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
-        if (!(gp[k] >= 0.0 && gn[k] < 0.0)) continue;
+        if (!(gp[k] >= off[k] && gn[k] < off[k])) continue;
         const Bracket br = illinois(
             [&](double tm) {
               st.interpolate(tm, ytmp.data());
               sys.event_functions(tm, ytmp.data(), g_tmp.data());
-              return g_tmp[k];
+              return g_tmp[k] - off[k];
             },
             // 400 iterates: on a kink (a taut rope or gap without a damper: −c (δ − δ₊) beyond the
             // flank) the Illinois halvings do not outlast the bisection of every 8th iterate, so the
             // bracket halves once per 8 — some 45 bisections from a step of 0.1 s down to 1e-13 s.
-            a, gp[k], b, gn[k], opt.event_tol * std::max(1.0, std::abs(b)), 400);
+            a, gp[k] - off[k], b, gn[k] - off[k], opt.event_tol * std::max(1.0, std::abs(b)), 400);
         if (br.hi < te) te = br.hi, first = static_cast<int>(k);
       }
     }
     if (first < 0) {
       segment(ta, t1);
       g_prev.swap(g_new);
+      if (any_off) {  // a function armed below 0 that is ≥ 0 again is armed from 0
+        any_off = false;
+        for (size_t k = 0; k < ne; ++k) {
+          if (g_prev[k] >= 0.0) off[k] = 0.0;
+          any_off = any_off || off[k] != 0.0;
+        }
+      }
       t = t1;
       if (at_bp) {  // loads may jump here: the system looks at its modes, the stepper restarts
         std::copy(st.y(), st.y() + n, y.begin());
@@ -164,7 +179,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     sys.event_functions(te, y.data(), g_tmp.data());
     fired.assign(1, first);
     for (size_t k = 0; k < ne; ++k)
-      if (static_cast<int>(k) != first && g_prev[k] >= 0.0 && g_tmp[k] < 0.0) fired.push_back(static_cast<int>(k));
+      if (static_cast<int>(k) != first && g_prev[k] >= off[k] && g_tmp[k] < off[k]) fired.push_back(static_cast<int>(k));
     ++stats.events;
     sys.handle_events(te, y.data(), fired);
     obs.on_event(te, y.data(), fired);

@@ -168,5 +168,140 @@ simulation: {t_end: 1, dt_out: 0.0005, rtol: 1.0e-10, atol: 1.0e-12}
   EXPECT_NEAR(at(r, "b0.velocity_m_s", 1.0), 3.5, 1e-8);
 }
 
+// Claim: a gap link that starts on its negative flank (gap_start 0) across a clutch closes exactly
+// when the clutch slips: while the clutch holds, b3 and b4 move together (δ = x_b3 − x_b4 stays 0,
+// on the flank), and the clutch's slip is the first relative motion, towards the flank. An open gap
+// never has δ outside [0, Δ]. (On dopri5 the open gap's function read −0.27 N at the slip restart,
+// was never armed, and b3 slid 0.85 m through the flank.)
+TEST_P(MissedEvents, AGapOnItsFlankClosesWhenTheClutchSlips) {
+  const Model m = model_of(R"(
+bodies:
+  b3: {type: translational, mass: 989.16}
+  b4: {type: translational, mass: 450.0}
+links:
+  l3: {type: spring-damper, between: [b3, b4], stiffness: 1e7, damping: 20000.0, gap: 0.002, gap_start: 0.0}
+loads:
+  P0: {type: ramp, value: -16000.0, start: 0.06, end: 0.2, body: b3}
+contacts:
+  Cb4: {between: [b4, ground], normal_force: 48000.0, mu_s: 0.16, mu_k: 0.1}
+clutches:
+  Q:
+    between: [b3, b4]
+    normal_force: {type: pulse, high: 2000.0, low: 600.0, period: 0.1, width: 0.03, start: 0.04}
+    mu_s: 4.52105
+    mu_k: 3.0
+simulation: {t_end: 0.5, dt_out: 0.00025, rtol: 1.0e-10, atol: 1.0e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  const auto q = events_of(r, "Q", "slip");
+  const auto closed = events_of(r, "l3", "gap_closed");
+  ASSERT_GE(q.size(), 1u);
+  ASSERT_GE(closed.size(), 1u);
+  // Closed exactly at the slip, or before it by rounding at rest on the flank (load 0 until then).
+  EXPECT_LE(closed[0].t, q[0].t + 1e-12);
+  const auto &x3 = series(r, "b3.position_m"), &x4 = series(r, "b4.position_m"), &md = series(r, "l3.gap_mode");
+  for (size_t i = 0; i < x3.size(); ++i)
+    if (md[i] == 0.0) {
+      EXPECT_GE(x3[i] - x4[i], -1e-9) << i;
+      EXPECT_LE(x3[i] - x4[i], 0.002 + 1e-9) << i;
+    }
+}
+
+// Claim: a closed flank only presses: on the negative flank the link load F ≤ 0, on the positive one
+// F ≥ 0, on every output row (it opens where F reaches 0). (On bdf l3 closed on its negative flank
+// by rounding at rest and then pulled with +543 N: its function was negative at a restart.)
+TEST_P(MissedEvents, AClosedFlankNeverPulls) {
+  const Model m = model_of(R"(
+bodies:
+  b2: {type: translational, mass: 30}
+  b3: {type: translational, mass: 70}
+  b4: {type: translational, mass: 42.1466}
+links:
+  l3: {type: spring-damper, between: [b3, b4], stiffness: 300000, damping: 2100, gap: 0.003, gap_start: 0}
+loads:
+  P1: {type: table, points: [[0, 400], [0.5, -900], [0.51, -2000], [0.7, 2000], [1, -4000]], body: b4}
+contacts:
+  Cb2: {between: [b2, ground], static: 1200, kinetic: 1000}
+  Cb2b4: {between: [b2, b4], normal_force: 39071.3, mu_s: 0.038, mu_k: 0.03}
+simulation: {t_end: 1.5, dt_out: 0.00075, rtol: 1.0e-10, atol: 1.0e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  const auto &F = series(r, "l3.load_N"), &md = series(r, "l3.gap_mode");
+  int closed_rows = 0;
+  for (size_t i = 0; i < F.size(); ++i) {
+    if (md[i] < 0) {
+      EXPECT_LE(F[i], 1e-9) << i;
+      ++closed_rows;
+    } else if (md[i] > 0) {
+      EXPECT_GE(F[i], -1e-9) << i;
+      ++closed_rows;
+    } else {
+      EXPECT_EQ(F[i], 0.0) << i;
+    }
+  }
+  EXPECT_GT(closed_rows, 0);
+}
+
+// Claim: a rope never pushes: the hook lands on the floor (an end stop) with the rope taut, the
+// impact stops the hook, and the rope, now carrying F < 0 by its damper, opens at once; on every
+// output row rope.load_N ≥ 0. (It used to stay taut pushing the hook with −64 kN: its closed-flank
+// function was negative at the impact's restart and never armed.)
+TEST_P(MissedEvents, ARopeNeverPushesAfterTheHookLands) {
+  const Model m = model_of(R"(
+bodies:
+  motor: {type: rotational, inertia: 1.1}
+  drum: {type: rotational, inertia: 30.0}
+  hook: {type: translational, mass: 2400.0, vertical: up}
+links:
+  shaft: {type: spring-damper, between: [motor, drum], ratio: 32.0, stiffness: 4e7, damping: 500.0}
+  rope:
+    type: rope
+    between: [drum, hook]
+    ratio: 2.3
+    stiffness: 4e7
+    slack: 0.04
+    damping: 40000.0
+    flank_law: elasto-backlash
+loads:
+  M: {type: table, points: [[0.0, 57.0], [0.9, -30.0], [0.9, 200.0]], body: motor}
+stops:
+  floor: {body: hook, min: 0.0}
+simulation: {t_end: 1.0, dt_out: 0.0005, rtol: 1.0e-10, atol: 1.0e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  ASSERT_GE(events_of(r, "floor", "stick").size(), 1u);  // the hook lands and rests
+  for (double F : series(r, "rope.load_N")) EXPECT_GE(F, -1e-6);
+}
+
+// Claim: paper 001's travel start-up with other numbers (issue 27's campaign): no contact is stuck
+// beyond its static limit on any output row, and the ground resistance W breaks away exactly where
+// the link load reaches its limit F_s,W = 1141.514639 N — mk and m2 are stuck to the ground then,
+// so W alone carries the link load. (The adhesion contact used to stay stuck up to 1.09 F_s on
+// dopri5 and 1.73 F_s on bdf; W up to 9.5 F_s,W, its function left negative by a restart.)
+TEST_P(MissedEvents, TravelStartUpNeverStuckBeyondTheLimit) {
+  const double Fs_adhesion = 55e3 * 0.19740983374545454, Fs_W = 1141.514639;
+  const Model m = model_of(R"(
+bodies:
+  m1: {type: translational, mass: 1651.673569 kg}
+  mk: {type: translational, mass: 410.447606 kg}
+  m2: {type: translational, mass: 11824.159691 kg}
+links:
+  c: {type: spring, between: [m1, mk], stiffness: 4972383.757867 N/m, gap: 4.288 mm, gap_start: 0 mm}
+contacts:
+  adhesion: {between: [mk, m2], normal_force: 55 kN, mu_s: 0.19740983374545454, mu_k: 0.1380379698181818}
+  W: {between: [m2, ground], static: 1141.514639 N, kinetic: 1141.514639 N}
+loads:
+  P: {type: constant, body: m1, value: 5031.00112 N}
+simulation: {t_end: 0.8 s, dt_out: 0.1 ms, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  EXPECT_LE(stuck_overload(r, "adhesion", Fs_adhesion), 1.0 + 1e-9);
+  EXPECT_LE(stuck_overload(r, "W", Fs_W), 1.0 + 1e-9);
+  ASSERT_FALSE(r.hybrid.slip_phases.empty());
+  const SlipPhase& w = r.hybrid.slip_phases.front();
+  ASSERT_EQ(w.contact, "W");
+  EXPECT_NEAR(w.link_start[0], Fs_W, 1e-6 * Fs_W);
+}
+
 }  // namespace
 }  // namespace machdyn
