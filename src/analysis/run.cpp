@@ -144,6 +144,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
     // there mean no consistent mode exists — an error naming the element, never a disarmed event.
     if (t == decided_at_ && !fired.empty()) {
+      // Contacts, end stops, flanks and ropes are decided again. Speed drives, lossy gears and
+      // stepwise gears keep their decision: their functions wait until they are ≥ 0 at a step end
+      // (a speed drive leaving its limit with the command exactly at M_max; a lossy gear with
+      // friction on its bodies) — their decisions are not yet formed from their events' computation.
+      if (std::all_of(fired.begin(), fired.end(), [&](int f) {
+            return f >= sys_.event_slots() || sys_.slot_is_drive(f) || sys_.slot_is_gear(f);
+          }))
+        return false;
       if (++redecisions_ > kMaxRedecisions)
         throw SolverError(slot_name(fired.front()), t,
                           fmt::format("no consistent mode: its event function stays negative after {} decisions at "

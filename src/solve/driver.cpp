@@ -81,11 +81,9 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       const bool changed = sys.handle_events(t, ys, fired);
       obs.on_event(t, ys, fired);
       if (!changed) {
-        // The system decides exactly the same again: its decision is its last word. Contacts,
-        // flanks and ropes never get here (a function handed back changes their mode or state);
-        // a lossy gear decided with friction on its bodies (analysis/gear_lock.hpp, gear_clutch.hpp)
-        // still can — its margins are not yet formed by its decision's computation. Such a function
-        // is armed again only once it is ≥ 0 at a step end (the rule of old, kept for them alone).
+        // The system keeps its decision (it reports nothing changed): its last word. Such a
+        // function is armed again only once it is ≥ 0 at a step end (the rule of old; the hybrid
+        // run keeps it for speed drives and lossy gears alone, docs/hybrid.md "The restart rule").
         sys.event_functions(t, ys, g_prev.data());
         for (size_t k = 0; k < ne; ++k)
           if (!(g_prev[k] >= 0.0)) off[k] = -std::numeric_limits<double>::infinity(), any_off = true;
