@@ -142,6 +142,26 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
+    // The driver hands back every event function a decision left negative and asks again at the
+    // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
+    // there mean no consistent mode exists — an error naming the element, never a disarmed event.
+    if (t == decided_at_ && !fired.empty()) {
+      // Contacts, end stops, flanks and ropes are decided again. Speed drives, lossy gears and
+      // stepwise gears keep their decision: their functions wait until they are ≥ 0 at a step end
+      // (a speed drive leaving its limit with the command exactly at M_max; a lossy gear with
+      // friction on its bodies) — their decisions are not yet formed from their events' computation.
+      if (std::all_of(fired.begin(), fired.end(), [&](int f) {
+            return f >= sys_.event_slots() || sys_.slot_is_drive(f) || sys_.slot_is_gear(f);
+          }))
+        return false;
+      if (++redecisions_ > kMaxRedecisions)
+        throw SolverError(slot_name(fired.front()), t,
+                          fmt::format("no consistent mode: its event function stays negative after {} decisions at "
+                                      "this instant",
+                                      kMaxRedecisions));
+    } else {
+      decided_at_ = t, redecisions_ = 0;
+    }
     std::copy(y, y + N_, y_.begin());
     apply_releases(t);  // at its breakpoint, or at an event located on it
     // Prescribed speeds exactly on their signals (the integrated slope's error off): a kinematic
@@ -165,10 +185,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       else if (jump < 0) jump = f - sys_.event_slots();  // one jump at a time: the earliest
     }
     if (jump >= 0) jumps_.jump(t, y_.data(), jump);
+    // A re-decision (the driver hands back functions this instant's decision left negative) reports
+    // whether it changed anything: the same modes and state again are the decision's last word.
+    const bool again = redecisions_ > 0;
+    if (again) remember_decision(y);
     if (fired.empty()) time_event(t);
     else if (!own.empty()) handle_event(t, own);
     std::copy(y_.begin(), y_.end(), y);
-    return true;
+    return !again || !same_decision(y);
   }
 
   // ---- the link loads as the peak tracker's signals (elements/link.hpp, in the current modes) ----
@@ -731,7 +755,37 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     opt_.progress(p);
   }
 
+  // ---- re-decisions at one instant ----
+  /// The modes of every element and the state, before a re-decision.
+  void remember_decision(const double* y) {
+    decision_modes_ = decision_signature();
+    decision_y_.assign(y, y + N_);
+  }
+  /// Whether the re-decision left modes and state as remember_decision saw them.
+  bool same_decision(const double* y) const {
+    return decision_signature() == decision_modes_ && std::equal(decision_y_.begin(), decision_y_.end(), y);
+  }
+  std::vector<int> decision_signature() const {
+    std::vector<int> s;
+    for (ContactMode md : sys_.contact_modes()) s.push_back(static_cast<int>(md));
+    for (int l = 0; l < nl_; ++l) s.push_back(static_cast<int>(sys_.gap_mode(l)));
+    for (int d = 0; d < nd_; ++d) s.push_back(sys_.drive_mode(d));
+    for (int g = 0; g < ng_; ++g) s.push_back(static_cast<int>(sys_.gear_mode(g)));
+    return s;
+  }
+  std::vector<int> decision_modes_;
+  std::vector<double> decision_y_;
+
   // ---- events and slip phases ----
+  /// The element of event function `slot` (the drive system's slots, then the stepwise gears' jumps).
+  std::string slot_name(int slot) const {
+    if (slot >= sys_.event_slots()) return "stepwise gear jump " + std::to_string(slot - sys_.event_slots());
+    const int e = sys_.slot_element(slot);
+    return element_name(sys_.slot_is_link(slot)    ? e
+                        : sys_.slot_is_gear(slot)  ? nl_ + nc_ + nd_ + e
+                        : sys_.slot_is_drive(slot) ? nl_ + nc_ + e
+                                                   : nl_ + e);
+  }
   /// Element e of the events: links, then contacts, then drives, then lossy gears.
   const std::string& element_name(int e) const {
     return e < nl_               ? m_.links[static_cast<size_t>(e)].name
@@ -972,6 +1026,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::vector<int>& Z = Z_;  // kept: no allocation per event
     Z.clear();
     strict_.clear();
+    rested_.clear();
     const double V_before = sys_.elastic_energy(y_.data());
     bool gap_changed = false;
     for (int slot : fired) {
@@ -990,7 +1045,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         gap_changed = true;
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
       } else if (sys_.contact(e).stop && sys_.contact_mode(e) != ContactMode::stuck) {
-        if (impact(e, t)) Z.push_back(e);  // at rest on the stop: decided with the others
+        if (impact(e, t)) Z.push_back(e), rested_.push_back(e);  // at rest on the stop: decided with the others
       } else if (sys_.contact_mode(e) != ContactMode::stuck) {
         Z.push_back(e);  // sliding speed reached zero
       } else {
@@ -1010,10 +1065,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // or reverses, then starts on its event function's zero, not past it).
     for (int k : Z)
       if (old[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
+    at_rest_together(t, Z);
     std::vector<ContactMode>& now = new_modes_;  // kept, as old_modes_
     decide_contacts(sys_, t, y_.data(), Z, strict_, now);
     strict_.clear();
     apply_contact_modes(t, old, now, false);
+    // An impact that brought its body to rest is an event even when the stop does not hold it (the
+    // loads pull it off at once): the stuck ones are listed as their stick.
+    for (int k : rested_)
+      if (now[static_cast<size_t>(k)] != ContactMode::stuck)
+        record(t, "impact", nl_ + k, to_string(old[static_cast<size_t>(k)]), to_string(now[static_cast<size_t>(k)]));
   }
 
   /// The elastic energy of link l at the run's state y_ in its current mode (elements/link.hpp), J.
@@ -1076,7 +1137,21 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (decided_at_event(k, t)) Z.push_back(k);
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
+    at_rest_together(t, Z);
     apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);
+  }
+
+  /// Every contact of Z is at zero sliding speed at t: the velocities are projected onto u = 0 for
+  /// all of them at once (with the stuck ones), so that each starts its new mode exactly on u = 0 —
+  /// a slide from rest on its event function's zero, not at ±1e-20 beside it where the projection
+  /// of a stuck neighbour alone would leave it (its event function negative at the restart).
+  void at_rest_together(double t, const std::vector<int>& Z) {
+    if (sys_.has_coupled_gears()) return;  // their contacts are settled with the gears
+    std::vector<ContactMode>& rest = rest_modes_;  // kept: no allocation per event
+    rest = sys_.contact_modes();
+    for (int k : Z) rest[static_cast<size_t>(k)] = ContactMode::stuck;
+    if (rest != sys_.contact_modes()) sys_.set_contact_modes(rest);
+    sys_.project_velocities(t, y_.data());
   }
 
   const Model& m_;
@@ -1122,11 +1197,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
   std::vector<int> phase_window_;  // per contact: its open slip phase's window in peaks_
   std::vector<std::vector<double>> switches_;
+  static constexpr int kMaxRedecisions = 8;  // handle_events: decisions at one instant before giving up
+  double decided_at_ = std::numeric_limits<double>::quiet_NaN();  // the instant of the last decision
+  int redecisions_ = 0;                                             // and how often it was decided again
+  std::vector<int> rested_;  // handle_contact_event: end stops an impact brought to rest
   std::vector<int> strict_;  // stuck contacts whose limit event fired
   std::vector<int> own_;     // handle_events: the fired slots of the drive system
   std::vector<int> Z_;       // handle_contact_event: the contacts decided
   std::vector<int> broke_;   // handle_event: the stuck contacts whose breakaway fired
-  std::vector<ContactMode> old_modes_, new_modes_;  // handle_contact_event: their modes before and after
+  std::vector<ContactMode> old_modes_, new_modes_, rest_modes_;  // handle_contact_event: their modes before and after
   std::chrono::steady_clock::time_point start_;
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
