@@ -18,6 +18,7 @@ namespace machdyn {
 AuditError::AuditError(std::string element, double t, std::string invariant, const std::string& values)
     : SolverError(element, t, fmt::format("invariant {} violated: {}", invariant, values)),
       invariant_(std::move(invariant)),
+      values_(values),
       message_(fmt::format("invariant {} violated by '{}' at t = {:.17g} s: {}", invariant_, this->element(), t, values)) {}
 
 bool audit_requested_by_environment() {
@@ -45,7 +46,7 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
   if (law.stop && x.mode != ContactMode::stuck) {
     // Off its stop the body is free: it stays on its side of the stop, −lock (q − q_stop) ≥ 0.
     const double d = -static_cast<double>(law.lock) * (x.q - law.stop_position);
-    if (d < -1e-12 * std::max(1.0, std::abs(law.stop_position)))
+    if (d < -(1e-12 * std::max(1.0, std::abs(law.stop_position)) + x.position_resolution))
       fail(name, t, "stop.position",
            fmt::format("the body is at q = {:.17g}, {:.3g} beyond its stop at {:.17g} (lock {:+d}), mode {}", x.q, -d,
                        law.stop_position, law.lock, mode_name(x.mode)));
@@ -89,7 +90,7 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
                      mode_name(x.mode), x.u, x.F, expected, r, level));
   if (released) return;  // its kept direction follows the bodies beside it: no event of its own
   // Its direction is its motion's: s u ≥ 0 (u ≠ 0 against it is a missed stick or reversal).
-  if (s * x.u < -1e-12 * x.speed_scale)
+  if (s * x.u < -(1e-12 * x.speed_scale + x.resolution))
     fail(name, t, "contact.sliding_direction",
          fmt::format("mode {} but the sliding velocity is u = {:.17g}: the friction force {:.17g} drives the motion",
                      mode_name(x.mode), x.u, x.F));
@@ -104,13 +105,20 @@ void check_link(const LinkLaw& law, const std::string& name, double t, const Lin
   };
   const double Fv = law.d * x.rate + law.kh * x.rate * std::abs(x.rate);
   const bool one_sided = std::isinf(law.lo);
+  // The rounding of the law's sum, and the force of a deflection and a rate within the integrator's
+  // resolution (a flank reached to atol is reached).
+  auto tolerance = [&](double e, double Fe) {
+    const double dv = std::abs(x.rate) + x.resolution;
+    return 1e-12 * (std::abs(Fe) + std::abs(Fv)) + std::abs(spring(e + x.resolution) - Fe) +
+           law.d * x.resolution + law.kh * (dv * dv - x.rate * x.rate);
+  };
   switch (x.mode) {
     case GapMode::closed_pos:
     case GapMode::closed_neg: {
       const double flank = x.mode == GapMode::closed_pos ? law.hi : law.lo;
       const double Fe = spring(x.delta - flank);
       const double sgn = x.mode == GapMode::closed_pos ? 1.0 : -1.0;
-      if (sgn * x.F < -1e-12 * (std::abs(Fe) + std::abs(Fv)))
+      if (sgn * x.F < -tolerance(x.delta - flank, Fe))
         fail(name, t, one_sided ? "rope.never_pushes" : "gap.flank_sign",
              fmt::format("closed on its {} flank with F = {:.17g} (δ = {:.17g}, flank {:.17g}, δ̇ = {:.17g}): a closed "
                          "flank {}",
@@ -121,17 +129,18 @@ void check_link(const LinkLaw& law, const std::string& name, double t, const Lin
     case GapMode::open: {
       // Inside the gap it carries no load; beyond a flank the law's pressing force must not press
       // into that flank (else it passed the flank without closing).
-      if (x.delta > law.hi) {
+      // Beyond a flank by more than the integrator's resolution (at the flank to atol is at it).
+      if (x.delta - law.hi > x.resolution + 1e-12 * std::abs(law.hi)) {
         const double Fe = spring(x.delta - law.hi);
-        if (Fe + Fv > 1e-12 * (std::abs(Fe) + std::abs(Fv)))
+        if (Fe + Fv > tolerance(x.delta - law.hi, Fe))
           fail(name, t, "gap.inside",
                fmt::format("open at δ = {:.17g} beyond its positive flank {:.17g}, pressing with c e + d δ̇ = {:.17g}: it "
                            "passed the flank without closing",
                            x.delta, law.hi, Fe + Fv));
       }
-      if (!one_sided && x.delta < law.lo) {
+      if (!one_sided && law.lo - x.delta > x.resolution + 1e-12 * std::abs(law.lo)) {
         const double Fe = spring(x.delta - law.lo);
-        if (Fe + Fv < -1e-12 * (std::abs(Fe) + std::abs(Fv)))
+        if (Fe + Fv < -tolerance(x.delta - law.lo, Fe))
           fail(name, t, "gap.inside",
                fmt::format("open at δ = {:.17g} beyond its negative flank {:.17g}, pressing with c e + d δ̇ = {:.17g}: it "
                            "passed the flank without closing",
@@ -142,9 +151,11 @@ void check_link(const LinkLaw& law, const std::string& name, double t, const Lin
   }
 }
 
-void check_gear_loss(const std::string& name, double t, double X, double Y, double va) {
+void check_gear_loss(const std::string& name, double t, double X, double Y, double va, double force_scale,
+                     double resolution) {
   const double P = (X - Y) * va;  // the heat of the mesh and bearing friction (elements/lossy_gear.hpp)
-  if (P < -1e-12 * (std::abs(X) + std::abs(Y)) * std::abs(va))
+  const double T = std::abs(X) + std::abs(Y);
+  if (P < -(1e-12 * (T + force_scale) * std::abs(va) + T * resolution))
     fail(name, t, "lossy_gear.loss",
          fmt::format("loss power (X − Y) v_a = {:.17g} W < 0 (X = {:.17g}, Y = {:.17g}, v_a = {:.17g}): the gear "
                      "delivers power",
@@ -234,7 +245,9 @@ void Audit::piece_end(double tb, bool step_end, const double* y) {
 }
 
 void Audit::after_event(double t, const double* y, bool located) {
-  if (pending_ && located && pending_->time() == t) pending_.reset();  // the event's own crossing
+  // The event's own crossing: a failure inside its location bracket, before the decision.
+  if (pending_ && located && pending_->time() <= t && t - pending_->time() <= 2e-13 * std::max(1.0, std::abs(t)))
+    pending_.reset();
   settle();
   check(t, t, y);
 }
@@ -247,21 +260,33 @@ void Audit::settle() {
 }
 
 void Audit::check(double t_law, double t, const double* y) {
+  try {
+    check_at(t_law, y);
+  } catch (const AuditError& e) {
+    if (t_law == t) throw;
+    throw AuditError(e.element(), t, e.invariant(), e.values());  // reported at t, the law taken at t⁻
+  }
+}
+
+void Audit::check_at(double t, const double* y) {
   const int n = sys_.dof();
   const double* v = y + n;
   // Contacts: the engine's loads in the current modes (λ while stuck, the kinetic force sliding).
   const int nc = static_cast<int>(m_.contacts.size());
   if (nc > 0) {
-    sys_.contact_forces(t_law, y, fc_.data());
+    sys_.contact_forces(t, y, fc_.data());
     for (int k = 0; k < nc; ++k) {
       const ContactLaw& law = sys_.contact(k);
       audit::ContactValues x;
       x.mode = sys_.contact_mode(k);
       x.F = fc_[static_cast<size_t>(k)];
-      x.u = law.sliding_velocity(t_law, v);
+      x.u = law.sliding_velocity(t, v);
       for (int j = 0; j < law.row.terms; ++j) x.speed_scale += std::abs(law.row.w[j] * v[law.row.body[j]]);
-      if (law.grounded) x.speed_scale += std::abs(law.surface_velocity(t_law));
+      if (law.grounded) x.speed_scale += std::abs(law.surface_velocity(t));
       x.q = law.a >= 0 ? y[law.a] : 0.0;
+      // The integrator's error control: each state to atol + rtol |state|.
+      x.resolution = m_.simulation.atol + m_.simulation.rtol * x.speed_scale;
+      x.position_resolution = m_.simulation.atol + m_.simulation.rtol * std::abs(x.q);
       audit::check_contact(law, m_.contacts[static_cast<size_t>(k)].name, t, x);
     }
   }
@@ -274,12 +299,26 @@ void Audit::check(double t_law, double t, const double* y) {
     x.mode = sys_.gap_mode(l);
     x.delta = s.delta, x.rate = s.rate, x.qa = law.drum(y);
     x.F = sys_.link_load(l, y);
+    const double qs = (law.a >= 0 ? std::abs(y[law.a] * law.inv_ratio) : 0.0) + (law.b >= 0 ? std::abs(y[law.b]) : 0.0);
+    x.resolution = m_.simulation.atol + m_.simulation.rtol * qs;
     audit::check_link(law, m_.links[static_cast<size_t>(l)].name, t, x);
   }
   // Lossy gears: the torques the engine solves in their modes.
   for (int g = 0; g < sys_.gear_count(); ++g) {
-    const LossyGearLaw::Torques T = sys_.gear_torques(g, t_law, y);
-    audit::check_gear_loss(m_.lossy_gears[static_cast<size_t>(g)].name, t, T.X, T.Y, v[sys_.lossy_gear(g).a]);
+    const LossyGearLaw::Torques T = sys_.gear_torques(g, t, y);
+    double Fa = 0.0, Fb = 0.0;
+    sys_.gear_loads(g, t, y, &Fa, &Fb);
+    const LossyGearLaw& k = sys_.lossy_gear(g);
+    // v_a's resolution: the integrator's, and a prescribed side's speed within 1e-9 of its signal's
+    // scale (it is the integral of the signal's slope; elements/prescribed_motion.hpp).
+    double res = m_.simulation.atol + m_.simulation.rtol * std::abs(v[k.a]);
+    for (int j = 0; j < sys_.motion_count(); ++j) {
+      const PrescribedMotionLaw& mo = sys_.motion(j);
+      if (mo.body == k.a) res += 1e-9 * mo.speed_scale;
+      if (mo.body == k.b) res += 1e-9 * std::abs(k.i) * mo.speed_scale;
+    }
+    audit::check_gear_loss(m_.lossy_gears[static_cast<size_t>(g)].name, t, T.X, T.Y, v[k.a],
+                           std::abs(Fa) + std::abs(Fb), res);
   }
   // The energy books.
   if (sys_.energy_books()) {

@@ -130,6 +130,12 @@ TEST(AuditChecks, SlidingContactKineticLawAndDirection) {
                    "u = -0.29999999999999999");
   x.mode = ContactMode::slip_neg, x.F = -6.0;
   EXPECT_NO_THROW(audit::check_contact(law, "k", 1.0, x));
+  // Within the integrator's velocity resolution (atol 1e-10 m/s) the direction is only a label; a
+  // body sliding back at 1e-9 m/s is not.
+  x.mode = ContactMode::slip_pos, x.F = 6.0, x.resolution = 1e-10, x.speed_scale = 2e-20, x.u = -2e-20;
+  EXPECT_NO_THROW(audit::check_contact(law, "k", 1.0, x));
+  x.u = -1e-9, x.speed_scale = 1e-9;
+  expect_violation([&] { audit::check_contact(law, "k", 1.0, x); }, "contact.sliding_direction", "k", 1.0, "u = -1");
 }
 
 // Claim: a freewheel (lock +1) holds only while λ ≥ 0 (allowance 1e-9 N) and slides only in its

@@ -12,16 +12,22 @@
 ///   contact.static_limit     stuck friction contact, brake, clutch:  |λ| ≤ F_s(t) + 1e-12 F_s0
 ///                            (F_s = r(t) F_s0; the stick rule's own allowance, elements/contact.hpp)
 ///   contact.kinetic_law      sliding:  F = s r(t) F_k0(|u|)  to 1e-9 (r F_k0 + F_s0)
-///   contact.sliding_direction sliding in s:  s u ≥ −1e-12 (|v_a| + |v_b| + |w|)  (F then opposes u
-///                            on body a: a's load is −F)
+///   contact.sliding_direction sliding in s:  s u ≥ −(1e-12 S + atol + rtol S), S = |v_a| + |v_b| + |w|
+///                            (F then opposes u on body a: a's load is −F; atol + rtol S the
+///                            integrator's resolution of the speeds, simulation.atol and rtol)
 ///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −1e-9 (its hold rule's
 ///                            allowance); sliding only in its free direction −lock
-///   stop.position            end stop:  −lock (q − q_stop) ≥ −1e-12 max(1, |q_stop|)  (within its stop)
+///   stop.position            end stop:  −lock (q − q_stop) ≥ −(1e-12 max(1, |q_stop|) + atol + rtol |q|)
 ///   gap.flank_sign           closed on the positive flank F ≥ 0, on the negative one F ≤ 0, to
-///                            1e-12 (|c e| + |F_damper|) — a rope (one-sided link) never pushes
-///   gap.inside               open:  beyond a flank the law's pressing force c e + d δ̇ does not press
-///                            into it (the link passed its flank without closing), same rounding
-///   lossy_gear.loss          loss power (X − Y) v_a ≥ −1e-12 (|X| + |Y|) |v_a|
+///                            1e-12 (|F_e| + |F_v|) + |F_e(e + atol) − F_e(e)| + d atol (the force of
+///                            a deflection and rate within the integrator's resolution atol) — a
+///                            rope (one-sided link) never pushes
+///   gap.inside               open:  beyond a flank by more than atol + rtol (|q_a/i| + |q_b|), the law's
+///                            pressing force c e + d δ̇ does not press into it (the link passed its
+///                            flank without closing), same rounding
+///   lossy_gear.loss          loss power (X − Y) v_a ≥ −[1e-12 (|X| + |Y| + |F_a| + |F_b|) |v_a|
+///                            + (|X| + |Y|) r_v]  (X, Y solved from the forces F_a, F_b on its bodies;
+///                            r_v = atol + rtol |v_a| + 1e-9 × a prescribed side's speed scale)
 ///   energy.balance           W − (ΔT + ΔV + friction + damping + release + impact + released parts)
 ///                            ≤ tol · E_max + 1e-9 J, E_max the largest of |W|, T, V and each loss
 ///                            so far, tol = max(1e-6, 1e3 rtol) (the books are quadrature states of the
@@ -58,11 +64,12 @@ class AuditError : public SolverError {
  public:
   AuditError(std::string element, double t, std::string invariant, const std::string& values);
   [[nodiscard]] const std::string& invariant() const { return invariant_; }
+  [[nodiscard]] const std::string& values() const { return values_; }
   /// "invariant NAME violated by 'ELEMENT' at t = T s: VALUES".
   [[nodiscard]] const char* what() const noexcept override { return message_.c_str(); }
 
  private:
-  std::string invariant_, message_;
+  std::string invariant_, values_, message_;
 };
 
 /// Whether the environment asks every run to be audited (MACHDYN_CHECK set and not "0" or empty).
@@ -77,6 +84,9 @@ struct ContactValues {
   double F = 0.0, u = 0.0;
   double speed_scale = 0.0;  ///< |v_a| + |v_b| + |w|
   double q = 0.0;            ///< the position of body a (end stops)
+  /// The integrator's resolution of u and of q (its error control: atol + rtol |state|, SI): a
+  /// direction or a side within it is within the solution's own accuracy.
+  double resolution = 0.0, position_resolution = 0.0;
 };
 /// Checks contact `law` named `name` at t (limits at t: the caller passes t⁻ in a mode).
 void check_contact(const ContactLaw& law, const std::string& name, double t, const ContactValues& x);
@@ -85,12 +95,17 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
 struct LinkValues {
   GapMode mode = GapMode::open;
   double delta = 0.0, rate = 0.0, F = 0.0, qa = 0.0;
+  double resolution = 0.0;  ///< of δ (and δ̇): atol + rtol (|q_a/i| + |q_b|)
 };
 /// Checks link `law` (with a gap or one-sided) named `name` at t.
 void check_link(const LinkLaw& law, const std::string& name, double t, const LinkValues& x);
 
-/// Checks a lossy gear's torques X, Y at body a's speed v_a: its loss power is never negative.
-void check_gear_loss(const std::string& name, double t, double X, double Y, double va);
+/// Checks a lossy gear's torques X, Y at body a's speed v_a: its loss power is never negative, to
+/// 1e-12 (|X| + |Y| + |F_a| + |F_b|) |v_a| + (|X| + |Y|) atol — X and Y are solved from the forces
+/// F_a, F_b on its two bodies (their rounding), and a speed within the integrator's resolution
+/// `resolution` (atol) is rest.
+void check_gear_loss(const std::string& name, double t, double X, double Y, double va, double force_scale = 0.0,
+                     double resolution = 0.0);
 
 /// The energy books at t: the source work and what it went into.
 struct EnergyValues {
@@ -118,7 +133,8 @@ void check_event_list(const Model& m, const SimulationResult& r);
 /// breakpoint, `settle` after each step and at the end. A check in a mode that fails at the instant
 /// a located event then truncates the piece at is no violation (the event function has just crossed
 /// 0 there, by the location bracket, and the event decides it): such a failure waits for the next
-/// call and is thrown unless a located event at its very instant follows.
+/// call and is thrown unless a located event follows within the location bracket after it
+/// (2e-13 max(1, t) s: the driver's bracket is 1e-13 max(1, t)).
 class Audit {
  public:
   /// `E` the run's energy books (their start values and the discrete losses as the run adds them),
@@ -136,6 +152,7 @@ class Audit {
  private:
   void in_mode(double t, const double* y);
   void check(double t_law, double t, const double* y);
+  void check_at(double t, const double* y);
   const Model& m_;
   DriveSystem& sys_;
   const EnergyBalance& E_;
