@@ -15,13 +15,14 @@
 ///   contact.sliding_direction sliding in s:  s u ≥ −(1e-12 S + atol + rtol S), S = |v_a| + |v_b| + |w|
 ///                            (F then opposes u on body a: a's load is −F; atol + rtol S the
 ///                            integrator's resolution of the speeds, simulation.atol and rtol)
+///   contact.kinematic_load   stuck between prescribed motions: λ = 0 (its bodies are held by them)
 ///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −1e-9 (its hold rule's
 ///                            allowance); sliding only in its free direction −lock
 ///   stop.position            end stop:  −lock (q − q_stop) ≥ −(1e-12 max(1, |q_stop|) + atol + rtol |q|)
 ///   gap.flank_sign           closed on the positive flank F ≥ 0, on the negative one F ≤ 0, to
-///                            1e-12 (|F_e| + |F_v|) + |F_e(e + atol) − F_e(e)| + d atol (the force of
-///                            a deflection and rate within the integrator's resolution atol) — a
-///                            rope (one-sided link) never pushes
+///                            1e-12 (|F_e| + |F_v|) + |F_e(e + r) − F_e(e)| + d r (the force of a
+///                            deflection and rate within the integrator's resolution of δ,
+///                            r = atol + rtol (|q_a/i| + |q_b|)) — a rope (one-sided link) never pushes
 ///   gap.inside               open:  beyond a flank by more than atol + rtol (|q_a/i| + |q_b|), the law's
 ///                            pressing force c e + d δ̇ does not press into it (the link passed its
 ///                            flank without closing), same rounding
