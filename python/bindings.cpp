@@ -18,6 +18,7 @@
 #include <pybind11/numpy.h>
 
 #include "machdyn/model/element.hpp"
+#include "machdyn/analysis/audit.hpp"
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
@@ -213,6 +214,9 @@ PYBIND11_MODULE(_machdyn, mod) {
       py::object exc = py::reinterpret_borrow<py::object>(solver_error.ptr())(py::str(e.what()));
       exc.attr("element") = e.element();
       exc.attr("time") = e.time();
+      // A violation of the invariant audit (check=True) names its invariant; other failures: None.
+      const auto* audit = dynamic_cast<const AuditError*>(&e);
+      exc.attr("invariant") = audit ? py::object(py::str(audit->invariant())) : py::object(py::none());
       PyErr_SetObject(solver_error.ptr(), exc.ptr());
     }
   });
@@ -272,13 +276,15 @@ PYBIND11_MODULE(_machdyn, mod) {
       .def_property_readonly("method_reason", [](const PyResult& r) { return r.result.method_reason; })
       .def_property_readonly("wall_time_s", [](const PyResult& r) { return r.result.stats.wall_time_s; });
 
-  mod.def("simulate", [](const PyModel& p, const std::vector<std::string>& outputs) {
+  mod.def("simulate", [](const PyModel& p, const std::vector<std::string>& outputs, bool check) {
     auto r = std::make_shared<PyResult>();
     r->model = p.model;
     const OutputSelection extra = output_selection(outputs);  // the groups of `--outputs`
-    r->result = nogil([&] { return simulate(*p.model, SimulateOptions{}, extra); });
+    SimulateOptions options;
+    options.check = check;  // the invariant audit, as `--check`
+    r->result = nogil([&] { return simulate(*p.model, options, extra); });
     return r;
-  }, pybind11::arg("model"), pybind11::arg("outputs") = std::vector<std::string>{});
+  }, pybind11::arg("model"), pybind11::arg("outputs") = std::vector<std::string>{}, pybind11::arg("check") = false);
 
   // For bench/python_bench.py: the median wall time of `repeats` calls of simulate() timed in C++,
   // the reference for the Python call's overhead.

@@ -36,6 +36,7 @@ struct ReportArgs {
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: embed series above the size limit
+  bool check = false;         ///< --check: the invariant audit (analysis/audit.hpp)
   std::string command_line;
 };
 
@@ -98,6 +99,7 @@ int run_report(const ReportArgs& a) {
     SimulateOptions options;
     options.progress = bar.callback();
     options.event_driven = a.all_cases;  // every case alike, as `simulate --all-cases`
+    options.check = a.check;
     run.result = simulate(run.model, options);
     bar.clear();
     run.modes = compute_modes(run.model);
@@ -138,6 +140,8 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
   cmd->add_flag("--all-cases", args->all_cases,
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
+  cmd->add_flag("--check", args->check,
+                "Audit every run against the documented laws, as `simulate --check` (exit 3 on a violation)");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {

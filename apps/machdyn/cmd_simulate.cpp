@@ -38,6 +38,7 @@ struct SimulateArgs {
   bool large_output = false;  ///< --large-output: write a time series above the size limit
   bool rpm = false;           ///< --rpm: angular speeds of the figures in rpm
   std::vector<std::string> outputs;  ///< --outputs: extra column groups (analysis/extra_outputs.hpp)
+  bool check = false;  ///< --check: the invariant audit (analysis/audit.hpp)
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -107,6 +108,7 @@ int run_all_cases(const SimulateArgs& a) {
     try {
       SimulateOptions every_case;
       every_case.event_driven = true;  // event-driven for every case, smooth or not
+      every_case.check = a.check;
       results.push_back(simulate(models[c], every_case, output_selection(a.outputs)));
     } catch (const SolverError&) {
       std::cerr << fmt::format("machdyn: case '{}' ({} of {}) failed; no result of this run was written\n", names[c],
@@ -172,6 +174,7 @@ int run_simulate(const SimulateArgs& a) {
   ProgressBar bar(a.quiet);
   SimulateOptions options;
   options.progress = bar.callback();
+  options.check = a.check;
   const SimulationResult r = simulate(m, options, output_selection(a.outputs));
   bar.clear();
   const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
@@ -228,6 +231,10 @@ void register_simulate(CLI::App& app, int& exit_code) {
       ->delimiter(',');
   cmd->add_flag("--large-output", args->large_output,
                 "Write the time series even when it would exceed 1 GB (simulation.t_end/dt_out rows)");
+  cmd->add_flag("--check", args->check,
+                "Audit the run against the documented laws at every step, event and output row (static limits, "
+                "kinetic laws, freewheels, gaps, ropes, end stops, lossy gears, energy books, event list); a "
+                "violation names the element, time, values and invariant and exits 3 (docs/hybrid.md)");
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
       if (args->all_cases && !args->load_case.empty())

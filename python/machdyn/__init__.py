@@ -99,7 +99,7 @@ def from_dict(spec: Mapping, set: Mapping[str, object] | Iterable[str] | None = 
     return loads(_json.dumps(spec, indent=1, allow_nan=False), set=set, case=case, source=source)
 
 
-def simulate(model: Model, case: str | None = None, outputs: list[str] | None = None) -> Result:
+def simulate(model: Model, case: str | None = None, outputs: list[str] | None = None, check: bool = False) -> Result:
     """Simulates the model with its ``simulation:`` settings, as ``machdyn simulate`` does.
 
     case: run this load case of the model's file instead (as ``--case NAME``).
@@ -107,10 +107,13 @@ def simulate(model: Model, case: str | None = None, outputs: list[str] | None = 
              ``"power"``, ``"heat"`` or ``"all"`` (docs/model-files.md, "Outputs").
     Returns a :class:`Result`: ``r.t`` (s), ``r["c1.load"]`` (N*m or N), every series as a numpy
     array, ``r.summary`` (the summary.json dict), ``r.events`` (mode events of an event-driven run).
+    check: audit the run against the documented laws, as ``--check`` (docs/hybrid.md, "The
+           invariant audit"); a violation raises SolverError naming the invariant, the element,
+           the time and the values. Also on with the environment variable MACHDYN_CHECK=1.
     Raises SolverError (element, time) on a numerical failure. The GIL is released during the run.
     """
     m = model.with_case(case) if case else model
-    return Result(_machdyn.simulate(m._core, list(outputs or [])), m)
+    return Result(_machdyn.simulate(m._core, list(outputs or []), bool(check)), m)
 
 
 def modes(model: Model, topology: str | None = None) -> Modes:

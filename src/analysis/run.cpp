@@ -16,6 +16,7 @@
 #include <utility>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/audit.hpp"
 #include "machdyn/analysis/contact_decision.hpp"
 #include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/gear_clutch.hpp"
@@ -81,6 +82,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       E.kinetic_start = sys_.kinetic_energy(y_.data()) + E.released_kinetic;
       E.elastic_start = sys_.elastic_energy(y_.data());
     }
+    // The invariant audit (analysis/audit.hpp): an observer only when asked for.
+    if (opt_.check || audit_requested_by_environment()) {
+      audit_ = std::make_unique<Audit>(m_, sys_, E, release_loss_);
+      audit_->after_event(0.0, y_.data(), false);
+    }
     StepperOptions so;
     so.rtol = s.rtol;
     so.atol = s.atol;
@@ -99,6 +105,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out_.stats = integrate(st, *this, 0.0, y_.data(), s.t_end, drive, *this);
     if (opt_.record_series)
       for (auto& col : out_.columns) col.resize(row_);
+    if (audit_) {
+      audit_->settle();
+      audit::check_event_list(m_, out_);
+    }
     std::copy(st.y(), st.y() + N_, y_.begin());
     // Close the books.
     for (int k = 0; k < nc_; ++k) close_phase(k, s.t_end);
@@ -209,6 +219,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
+    if (audit_) [[unlikely]] audit_->settle();
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
@@ -217,14 +228,20 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (tb >= opt_.extremes_from)
       peaks_.on_segment(st, std::max(ta, opt_.extremes_from), tb, on_new_max_);
     jumps_.on_segment(st, ta, tb);
+    // A step's end in its mode (a piece an event truncates is checked after the event's decision).
+    if (audit_) [[unlikely]] audit_->piece_end(tb, tb == st.t(), st.y());
   }
   void on_output(double t, const double* y) override {
     const size_t row = next_row();
     if (plain_rows_) output_head(row, t, y);
     else if (contact_rows_) output_contacts(row, t, y);
     else output(row, t, y);
+    if (audit_) [[unlikely]] audit_->row(t, y);
   }
-  void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
+  void on_event(double t, const double* y, const std::vector<int>& fired) override {
+    peaks_.restart();
+    if (audit_) [[unlikely]] audit_->after_event(t, y, !fired.empty());
+  }
 
  private:
   // ---- output ----
@@ -1214,6 +1231,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<std::unique_ptr<Model>> stages_;  // the model after 1, 2, … releases
   std::vector<int> released_bodies_ = released_bodies(m_);  // their mass columns
   std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
+  std::unique_ptr<Audit> audit_;  // the invariant audit, when SimulateOptions::check (else none)
 };
 
 }  // namespace
