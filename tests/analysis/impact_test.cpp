@@ -118,7 +118,7 @@ simulation: {t_end: 0.5, dt_out: 0.001, rtol: 1e-11, atol: 1e-12}
 
 // Claim: a backstop with drag D = 10 N ([ground, b]: b moves forward only) on a body at rest under a
 // rising forward push P = 20 t N: the drag is the static limit of its free direction, so b stays at
-// rest (the backstop carrying −P: pushed forward, neither locked nor overrunning was consistent and
+// rest (the backstop carrying P: pushed forward, neither locked nor overrunning was consistent and
 // the run stopped with "no consistent stick/slip modes") until P = D at t = 0.5 s; then it overruns
 // with m v' = 20 t − 10: v = 10 (t − 0.5)², x = (10/3)(t − 0.5)³.
 TEST_P(Impact, BackstopWithDragStaysAtRestUntilThePushReachesTheDrag) {
@@ -137,7 +137,8 @@ simulation: {t_end: 1, dt_out: 0.01, rtol: 1e-11, atol: 1e-12}
   EXPECT_LT(test::max_error(r, "b.velocity_m_s", [](double t) { return t < 0.5 ? 0.0 : 10 * (t - 0.5) * (t - 0.5); }),
             1e-8);
   EXPECT_NEAR(test::at(r, "b.position_m", 1.0), 10.0 / 3.0 * 0.125, 1e-9);
-  EXPECT_NEAR(test::at(r, "F.force_N", 0.3), -6.0, 1e-9);  // carries the push: F on b is +λ = −P
+  // It carries the push: stored as (b, ground), its load λ acts on b with −λ, so λ = P = 6 N at 0.3 s.
+  EXPECT_NEAR(test::at(r, "F.force_N", 0.3), 6.0, 1e-9);
   EXPECT_LT(std::abs(r.hybrid.energy.residual()), 1e-8);
 }
 
