@@ -110,6 +110,8 @@ int run_all_cases(const SimulateArgs& a) {
       every_case.event_driven = true;  // event-driven for every case, smooth or not
       every_case.check = a.check;
       results.push_back(simulate(models[c], every_case, output_selection(a.outputs)));
+      for (const std::string& w : results.back().hybrid.warnings)
+        std::cerr << fmt::format("machdyn: warning: case '{}': {}\n", names[c], w);
     } catch (const SolverError&) {
       std::cerr << fmt::format("machdyn: case '{}' ({} of {}) failed; no result of this run was written\n", names[c],
                                c + 1, names.size());
@@ -176,6 +178,7 @@ int run_simulate(const SimulateArgs& a) {
   options.progress = bar.callback();
   options.check = a.check;
   const SimulationResult r = simulate(m, options, output_selection(a.outputs));
+  for (const std::string& w : r.hybrid.warnings) std::cerr << "machdyn: warning: " << w << "\n";
   bar.clear();
   const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
   // One run at a time writes this folder's files; another writer is waited for (io/folder_lock.hpp).

@@ -134,6 +134,11 @@ class Result:
         """Mode events (gap closed/opened, stick, slip, reversal) in time order; empty for a smooth run."""
         return self._core.events
 
+    @property
+    def warnings(self) -> list[str]:
+        """What the run decided on its own (an end stop's accumulating bounces ended at rest), one sentence each."""
+        return list(self.summary.get("warnings", []))
+
     def to_csv(self) -> str:
         """The time series as the CLI's timeseries.csv (17 significant digits)."""
         return self._core.timeseries_csv()

@@ -256,3 +256,21 @@ def test_check_true_audits_the_run_and_changes_no_number(monkeypatch, tmp):
     checked = cli_json("simulate", "--check", "--json", "-q", "-o", tmp / "on", example("travel-start.yaml"))
     plain = cli_json("simulate", "--json", "-q", "-o", tmp / "off", example("travel-start.yaml"))
     assert checked["links"] == plain["links"] and checked["events"] == plain["events"]
+
+
+# A ball dropped from h = 1 m onto a floor with restitution e = 0.5: the flights 2 v_k / g shrink by
+# e and sum to the rest time t1 (1 + e)/(1 − e), t1 = √(2h/g). The bounces accumulate there (Zeno):
+# the ball rests on the floor and the run says so in r.warnings (and summary.json "warnings").
+def test_bouncing_ball_rests_at_the_accumulation_point_with_a_warning():
+    m = machdyn.from_dict({
+        "bodies": {"ball": {"type": "translational", "mass": 2, "position": 1}},
+        "stops": {"floor": {"body": "ball", "min": 0, "restitution": 0.5}},
+        "loads": {"G": {"type": "constant", "body": "ball", "value": -19.62}},
+        "simulation": {"t_end": 2, "dt_out": 0.01, "rtol": 1e-11, "atol": 1e-12, "integrator": "dopri5"},
+    })
+    r = machdyn.simulate(m)
+    t1 = math.sqrt(2 / 9.81)
+    rest = [e for e in r.events if e["kind"] == "stick"]
+    assert len(rest) == 1 and abs(rest[0]["t_s"] - 3 * t1) < 1e-9
+    assert len(r.warnings) == 1 and "accumulate" in r.warnings[0]
+    assert r.warnings == r.summary["warnings"]

@@ -96,6 +96,23 @@ void decide_contacts(DriveSystem& sys, double t, const double* y, const std::vec
   Decision d(sys, t, y, strict);
   const Model& m = sys.model();
   modes = sys.contact_modes();
+  // A released brake or clutch is never stuck (elements/contact.hpp released()): labelled by its
+  // sliding velocity (by its acceleration at u = 0), decided apart from the others.
+  if (std::any_of(Z.begin(), Z.end(), [&](int k) { return sys.contact(k).released(t); })) {
+    std::vector<int> rest;
+    d.evaluate(modes);
+    for (int k : Z) {
+      if (!sys.contact(k).released(t)) {
+        rest.push_back(k);
+        continue;
+      }
+      const double u = sys.sliding_velocity(k, t, y), du = d.sliding_acceleration(k);
+      modes[static_cast<size_t>(k)] = (u != 0.0 ? u : du) >= 0.0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+    }
+    sys.set_contact_modes(modes);
+    if (!rest.empty()) decide_contacts(sys, t, y, rest, strict, modes);
+    return;
+  }
   // Kinematic contacts (between prescribed motions, elements/contact.hpp) change no acceleration:
   // their modes follow the motions, decided first and apart from the others.
   std::vector<int> kin;

@@ -25,6 +25,7 @@
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
 #include "analysis/heat.hpp"
+#include "analysis/impact.hpp"
 #include "analysis/machine_jumps.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
@@ -47,6 +48,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     phase_window_.assign(static_cast<size_t>(nc_), -1);
     for (int k = 0; k < nc_; ++k) was_released_.push_back(m_.contacts[static_cast<size_t>(k)].released(0.0));
     switches_.resize(static_cast<size_t>(nl_ + nc_ + nd_ + ng_));
+    impact_times_.resize(static_cast<size_t>(nc_));
+    for (int k = 0; k < nc_; ++k) impact_ties_.push_back(!gear_owned(k));
     at_max_.resize(static_cast<size_t>(nl_));
     at_min_.resize(static_cast<size_t>(nl_));
     for (size_t k = 0; k < m.loads.size(); ++k)
@@ -886,12 +889,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   void record(double t, const char* kind, int element, const char* from, const char* to) {
     out_.hybrid.events.push_back({t, kind, element_name(element), from, to});
-    // Impacts are not mode switches: a bouncing body's impacts are bounded by the rest rule of
-    // impact(), not by the chatter guard.
-    if (std::string_view(kind) == "initial" || std::string_view(kind) == "impact") return;
+    if (std::string_view(kind) == "initial") return;
     if (static_cast<long>(out_.hybrid.events.size()) > opt_.max_events)
       throw SolverError(element_name(element), t,
                         fmt::format("more than {} mode events; raise max_events or check the model", opt_.max_events));
+    // Impacts are not mode switches: a bouncing body's impacts are bounded by the accumulation rule of
+    // impact(), not by the chatter guard.
+    if (std::string_view(kind) == "impact") return;
     auto& sw = switches_[static_cast<size_t>(element)];
     sw.push_back(t);
     const size_t K = static_cast<size_t>(opt_.chatter_count);
@@ -946,6 +950,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (sys_.contact_modes() != modes) sys_.set_contact_modes(modes);
     for (int k = 0; k < nc_; ++k) {
       const ContactMode a = old_modes[static_cast<size_t>(k)], b = modes[static_cast<size_t>(k)];
+      if (!applied_at_rest_.empty() && applied_at_rest_[static_cast<size_t>(k)] != 0) {
+        applied_at_rest_[static_cast<size_t>(k)] = 0;
+        if (b != ContactMode::stuck) {
+          record(t, "applied", nl_ + k, "released", to_string(b));
+          open_phase(k, t, b);
+        }
+        continue;
+      }
       if (!initial && a == b) continue;
       // A released element transmits nothing: the mode it is kept in (stuck at zero load, or the
       // direction it would slide) follows the bodies beside it and is no event of its own. Its
@@ -962,23 +974,82 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.project_velocities(t, y_.data());
   }
 
-  /// The impact of end stop k's body at t, by the stop's law (elements/contact.hpp: rebound, rests):
-  /// on the stop exactly, then either the rebound or rest (true: the stop is then decided like a
-  /// contact at zero speed). The kinetic energy lost goes to the impact books.
+  /// The impact of end stop k's body at t, by the stop's law (elements/contact.hpp: rebound, landing):
+  /// on the stop exactly, then the velocity jump of the body and of everything tied to it
+  /// (analysis/impact.hpp) to the rebound, or to rest (true: the stop is then decided like a contact
+  /// at zero speed). Bounces that accumulate (Zeno: by the stop's law, or `chatter_count` impacts
+  /// within the chatter window) end at rest with a warning. The kinetic energy lost, of every body
+  /// the jump changes, goes to the impact books.
   bool impact(int k, double t) {
     const ContactLaw& c = sys_.contact(k);
     const auto ia = static_cast<size_t>(c.a);
     const double T0 = sys_.kinetic_energy(y_.data());
     y_[ia] = c.stop_position;
-    const double v_out = c.rebound(y_[static_cast<size_t>(n_) + ia]);
+    double v_out = c.rebound(sys_.sliding_velocity(k, t, y_.data()));
     sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
-    const bool rest = c.rests(v_out, c.lock * acc_[ia], t);  // lock·a > 0: back towards the stop
-    y_[static_cast<size_t>(n_) + ia] = rest ? 0.0 : v_out;
+    const double back = c.lock * acc_[ia];  // > 0: back towards the stop
+    ContactLaw::Landing how = c.landing(v_out, back, t);
+    if (how == ContactLaw::Landing::rebound && impacts_accumulate(k, t)) how = ContactLaw::Landing::accumulation;
+    if (how == ContactLaw::Landing::accumulation)
+      out_.hybrid.warnings.push_back(fmt::format(
+          "end stop '{}': its impacts accumulate (Zeno) at t = {:.12g} s; the body rests on the stop from the "
+          "impact at t = {:.12g} s",
+          m_.contacts[static_cast<size_t>(k)].name, c.accumulation_time(v_out, back, t), t));
+    if (how != ContactLaw::Landing::rebound) v_out = 0.0;
+    detail::impact_jump(sys_, k, v_out, t, y_.data(), impact_ties_);
     const double loss = T0 - sys_.kinetic_energy(y_.data());
     out_.hybrid.energy.impact_loss += loss;
     heat_.add_impact(k, loss);  // the stop's heat
-    if (!rest) record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));
-    return rest;
+    if (how == ContactLaw::Landing::rebound)
+      record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));
+    return how != ContactLaw::Landing::rebound;
+  }
+  /// Whether stop k's impacts accumulate beyond what its law foresees (a varying acceleration towards
+  /// the stop): this one is the `chatter_count`-th within 1e-9·max(1, t) s — flights of 2e-11 s, some
+  /// 200 times the events' location tolerance.
+  bool impacts_accumulate(int k, double t) {
+    auto& sw = impact_times_[static_cast<size_t>(k)];
+    sw.push_back(t);
+    const size_t K = static_cast<size_t>(std::max(2, opt_.chatter_count));
+    if (sw.size() > 4 * K) sw.erase(sw.begin(), sw.end() - static_cast<long>(K));
+    return sw.size() >= K && t - sw[sw.size() - K] < 1e-9 * std::max(1.0, t);
+  }
+  /// After an impact every mode is decided again with the velocities after the jump (the stop's own
+  /// mode was set by impact()): a closed flank the jump left pulling opens (its natural mode), an
+  /// element with states of its own takes its natural mode, and every contact the jump set sliding
+  /// (a friction contact carries no impulse, a freewheel's partner overruns) takes the direction of
+  /// its sliding velocity — one sliding before keeps its mode only if u keeps its sign. Those at
+  /// exactly u = 0 are decided with the others (decided_at_event).
+  void redecide_after_impact(double t) {
+    for (int d = 0; d < nd_; ++d)
+      if (sys_.drive(d).has_events()) set_drive_mode(d, t, sys_.natural_drive_mode(d, t, y_.data()), false);
+    std::vector<double> g(static_cast<size_t>(sys_.event_slots()));
+    sys_.event_functions(t, y_.data(), g.data());
+    for (int l = 0; l < nl_; ++l) {
+      const GapMode old = sys_.gap_mode(l);
+      if (!sys_.link(l).gap || old == GapMode::open || (g[2 * static_cast<size_t>(l)] >= 0.0 && g[2 * static_cast<size_t>(l) + 1] >= 0.0))
+        continue;
+      const GapMode now = sys_.natural_gap_mode(l, y_.data());
+      if (now == old) continue;
+      const double V_old = link_elastic_energy(l), V_all = sys_.elastic_energy(y_.data());
+      sys_.set_gap_mode(l, now);
+      heat_.add_release(l, V_old - link_elastic_energy(l));
+      release_loss_ += V_all - sys_.elastic_energy(y_.data());
+      record(t, now == GapMode::open ? "gap_opened" : "gap_closed", l, to_string(old), to_string(now));
+    }
+    std::vector<ContactMode> modes = sys_.contact_modes();
+    bool changed = false;
+    for (int k = 0; k < nc_; ++k) {
+      const ContactLaw& c = sys_.contact(k);
+      ContactMode& md = modes[static_cast<size_t>(k)];
+      if (c.joint || c.kinematic || gear_owned(k) || (c.stop && md != ContactMode::stuck)) continue;
+      const double u = sys_.sliding_velocity(k, t, y_.data());
+      const ContactMode now = u > 0.0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+      if (u == 0.0 || now == md || !c.can_slide(now)) continue;
+      md = now;
+      changed = true;
+    }
+    if (changed) sys_.set_contact_modes(modes);
   }
 
   void initial_modes() {
@@ -1045,7 +1116,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     strict_.clear();
     rested_.clear();
     const double V_before = sys_.elastic_energy(y_.data());
-    bool gap_changed = false;
+    bool gap_changed = false, impacted = false;
+    std::vector<ContactMode>& before = old_modes_;  // kept: no allocation per event
+    before = sys_.contact_modes();
     for (int slot : fired) {
       const int e = sys_.slot_element(slot);
       if (sys_.slot_is_gear(slot)) continue;
@@ -1063,6 +1136,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
       } else if (sys_.contact(e).stop && sys_.contact_mode(e) != ContactMode::stuck) {
         if (impact(e, t)) Z.push_back(e), rested_.push_back(e);  // at rest on the stop: decided with the others
+        impacted = true;
       } else if (sys_.contact_mode(e) != ContactMode::stuck) {
         Z.push_back(e);  // sliding speed reached zero
       } else {
@@ -1070,28 +1144,30 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       }
     }
     if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
+    if (impacted) redecide_after_impact(t);
     for (int k = 0; k < nc_; ++k)
       if (decided_at_event(k, t)) Z.push_back(k);
     std::sort(Z.begin(), Z.end());
     Z.erase(std::unique(Z.begin(), Z.end()), Z.end());
-    if (Z.empty()) return;
-    std::vector<ContactMode>& old = old_modes_;  // kept: no allocation per event
-    old = sys_.contact_modes();
+    if (Z.empty()) {
+      if (impacted) apply_contact_modes(t, before, sys_.contact_modes(), false);  // the slides the jump started
+      return;
+    }
     // A contact whose sliding speed reached zero is decided at zero speed: the located time lies a
     // rounding error past the crossing, so its u is set to exactly 0 first (a slide that goes on,
     // or reverses, then starts on its event function's zero, not past it).
     for (int k : Z)
-      if (old[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
+      if (before[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
     at_rest_together(t, Z);
     std::vector<ContactMode>& now = new_modes_;  // kept, as old_modes_
     decide_contacts(sys_, t, y_.data(), Z, strict_, now);
     strict_.clear();
-    apply_contact_modes(t, old, now, false);
+    apply_contact_modes(t, before, now, false);
     // An impact that brought its body to rest is an event even when the stop does not hold it (the
     // loads pull it off at once): the stuck ones are listed as their stick.
     for (int k : rested_)
       if (now[static_cast<size_t>(k)] != ContactMode::stuck)
-        record(t, "impact", nl_ + k, to_string(old[static_cast<size_t>(k)]), to_string(now[static_cast<size_t>(k)]));
+        record(t, "impact", nl_ + k, to_string(before[static_cast<size_t>(k)]), to_string(now[static_cast<size_t>(k)]));
   }
 
   /// The elastic energy of link l at the run's state y_ in its current mode (elements/link.hpp), J.
@@ -1142,8 +1218,21 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         continue;
       }
       if (!now && open_phase_[static_cast<size_t>(k)] < 0) {
-        record(t, "applied", nl_ + k, "released", to_string(md));
-        open_phase(k, t, md);
+        // Applied while it slides: its label (no events while released) takes the direction of u; at
+        // u = 0 it is decided with the others below.
+        const double u = sys_.sliding_velocity(k, t, y_.data());
+        const ContactMode dir = u > 0.0 ? ContactMode::slip_pos : ContactMode::slip_neg;
+        if (u != 0.0 && dir != md) {
+          std::vector<ContactMode> modes = sys_.contact_modes();
+          modes[static_cast<size_t>(k)] = dir;
+          sys_.set_contact_modes(modes);
+        }
+        if (u == 0.0) {  // decided below: stuck silently (as it rested), or "applied" into a slide
+          applied_at_rest_[static_cast<size_t>(k)] = 1;
+          continue;
+        }
+        record(t, "applied", nl_ + k, "released", to_string(dir));
+        open_phase(k, t, dir);
       } else if (now) {
         record(t, "released", nl_ + k, to_string(md), "released");
         close_phase(k, t);
@@ -1211,6 +1300,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<size_t> drive_cols_;           // per element with states: its own output columns
   std::vector<double> drive_vals_;           // their values at an output row
   std::vector<int> open_phase_;
+  std::vector<char> applied_at_rest_ = std::vector<char>(static_cast<size_t>(nc_), 0);  // per contact: applied at u = 0 now
   std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
   std::vector<int> phase_window_;  // per contact: its open slip phase's window in peaks_
   std::vector<std::vector<double>> switches_;
@@ -1218,6 +1308,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   double decided_at_ = std::numeric_limits<double>::quiet_NaN();  // the instant of the last decision
   int redecisions_ = 0;                                             // and how often it was decided again
   std::vector<int> rested_;  // handle_contact_event: end stops an impact brought to rest
+  std::vector<std::vector<double>> impact_times_;  // per contact: the last impacts of a stop (impacts_accumulate)
+  std::vector<char> impact_ties_;                  // per contact: may carry an impact's impulse (not a gear's)
   std::vector<int> strict_;  // stuck contacts whose limit event fired
   std::vector<int> own_;     // handle_events: the fired slots of the drive system
   std::vector<int> Z_;       // handle_contact_event: the contacts decided

@@ -58,6 +58,7 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
   for (const auto& e : h.events)
     ev.push_back({{"t", e.t}, {"kind", e.kind}, {"element", e.element}, {"from", e.from}, {"to", e.to}});
   j["events"] = ev;
+  if (!h.warnings.empty()) j["warnings"] = h.warnings;  // absent without warnings
   nlohmann::json phases = nlohmann::json::array();
   for (const auto& p : h.slip_phases) {
     nlohmann::json peaks = nlohmann::json::object();

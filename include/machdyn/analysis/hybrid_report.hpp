@@ -55,6 +55,9 @@ struct HybridReport {
   std::vector<SlipPhase> slip_phases; ///< in order of start
   EnergyBalance energy;
   std::vector<double> breakpoints;    ///< times where a load, brake or surface table has a kink, s
+  /// What the run decided on its own and the user should know (an end stop's bounces that
+  /// accumulate and end at rest), one sentence each, in time order.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace machdyn

@@ -15,9 +15,12 @@
 /// holds; the stick rule is exactly "both stuck events ≥ 0" (one limit, holding_limit). A contact
 /// whose own limit event just fired (or was left negative by a decision) is judged strictly
 /// (|λ| ≤ F_s): it does not hold.
-/// A freewheel (lock = ±1) holds while lock·λ ≥ 0, has no upper limit, and slides only in its free
-/// direction −lock with its drag as kinetic level; its stuck event is its hold rule, lock·λ + 1e-9
-/// (the allowance: one held unloaded at λ = −1e-15 starts armed). An end stop is such a
+/// A freewheel (lock = ±1) holds while lock·λ ≥ −F_d, has no upper limit, and slides only in its
+/// free direction −lock with its drag as kinetic level. F_d = F_k0(0), its drag at zero speed, is the
+/// static limit of its free direction: a backstop with drag at rest stays at rest until the push in
+/// its free direction exceeds the drag (without it neither stuck nor overrunning would be consistent
+/// there). Its stuck event is its hold rule, lock·λ + F_d + 1e-9 (the allowance: one held unloaded
+/// at λ = −1e-15 starts armed). An end stop (no drag: F_d = 0) is such a
 /// lock to the ground that engages by position: while free its event is the distance to the stop.
 /// A general row (model/model.hpp VelocityRow: a joint, or a contact on a planetary gear's member
 /// without inertia) has u = Σ_j w_j v_j (− w(t) to the ground) and puts −w_j F on body j: the
@@ -114,14 +117,20 @@ struct ContactLaw {
   /// a load exactly at the limit holds. The stick rule and the stuck events both read this one value.
   [[nodiscard]] double holding_limit(double t) const { return static_limit(t) + 1e-12 * spec->static_limit; }
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
-  /// A freewheel holds while lock·λ ≥ 0 (allowance 1e-9 N or N·m: an unloaded freewheel holds).
+  /// A freewheel holds while lock·λ ≥ −F_d (allowance 1e-9 N or N·m: an unloaded freewheel holds).
   /// Not strict, it is exactly "both stuck events are ≥ 0" (events()): a contact the decision keeps
   /// stuck starts armed.
   [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
     if (joint) return true;
-    if (lock != 0) return strict ? lock * lambda >= 0.0 : lock * lambda + 1e-9 >= 0.0;
+    if (lock != 0) return strict ? lock * lambda >= -free_limit() : lock * lambda + free_limit() + 1e-9 >= 0.0;
     const double F = std::abs(lambda);
     return strict ? F <= static_limit(t) : F <= holding_limit(t);
+  }
+  /// A freewheel's static limit in its free direction: its drag at zero speed F_k0(0), N or N·m (0
+  /// without drag, and for an end stop).
+  [[nodiscard]] double free_limit() const {
+    if (stop) return 0.0;
+    return kinetic_table ? spec->kinetic_level(0.0) : kinetic0;
   }
   /// Whether sliding mode md can exist at all (a freewheel slides in its free direction only).
   [[nodiscard]] bool can_slide(ContactMode md) const {
@@ -132,7 +141,10 @@ struct ContactLaw {
   /// loaded against its lock): the mode decision releases the largest first.
   [[nodiscard]] double overload(double lambda, double t) const {
     if (joint) return 0.0;
-    if (lock != 0) return lock * lambda < 0.0 ? HUGE_VAL : 0.0;
+    if (lock != 0) {
+      const double Fd = free_limit();
+      return lock * lambda >= -Fd ? 0.0 : Fd > 0.0 ? -lock * lambda / Fd : HUGE_VAL;
+    }
     const double Fs = static_limit(t);
     return Fs > 0 ? std::abs(lambda) / Fs : HUGE_VAL;
   }
@@ -144,11 +156,27 @@ struct ContactLaw {
   }
   /// An end stop's impact law: the velocity just after an impact at velocity v⁻, v⁺ = −e v⁻.
   [[nodiscard]] double rebound(double v_in) const { return -restitution * v_in; }
-  /// Whether a body leaving an end stop with v⁺ comes to rest there instead: always for e = 0, and
-  /// when an acceleration `back` > 0 towards the stop would bring it back within the event time
-  /// resolution (flight 2|v⁺|/back ≤ 1e-12·max(1, t) s), so the bounces end after finitely many.
-  [[nodiscard]] bool rests(double v_out, double back, double t) const {
-    return v_out == 0.0 || (back > 0.0 && 2.0 * std::abs(v_out) <= 1e-12 * std::max(1.0, t) * back);
+  /// How an impact ends: the body rebounds, rests (v⁺ = 0: e = 0), or its bounces accumulate.
+  enum class Landing { rebound, rest, accumulation };
+  /// The end of an impact with v⁺ under an acceleration `back` towards the stop (> 0: it comes
+  /// back). Under a constant `back` the flights 2|v⁺|/back shrink by e each, so the bounces
+  /// accumulate at t + 2|v⁺|/(back (1 − e)) (Zeno): they are taken as over (the body rests on the
+  /// stop from this impact, `accumulation`) once that remaining time is below 1e-10·max(1, t) s, or
+  /// the flight's apex height v⁺²/(2 back) below 1e-12 of the stop's position |x_s| — there the
+  /// position, hence the stop's distance, no longer resolves the flight (a stop at 0.01 m: heights
+  /// below its last bits of ~2e-18 m; the impacts then came 1e-9 s apart with no end).
+  [[nodiscard]] Landing landing(double v_out, double back, double t) const {
+    if (v_out == 0.0) return Landing::rest;
+    if (!(back > 0.0)) return Landing::rebound;
+    const double flight = 2.0 * std::abs(v_out) / back;
+    const double remaining = restitution < 1.0 ? flight / (1.0 - restitution) : flight;
+    const bool over = remaining <= 1e-10 * std::max(1.0, t) || 0.25 * std::abs(v_out) * flight <= 1e-12 * std::abs(stop_position);
+    return over ? Landing::accumulation : Landing::rebound;
+  }
+  /// The time the bounces starting with v⁺ under `back` accumulate at, from the impact at t
+  /// (constant `back`: t + 2|v⁺|/(back (1 − e))), s.
+  [[nodiscard]] double accumulation_time(double v_out, double back, double t) const {
+    return back > 0.0 && restitution < 1.0 ? t + 2.0 * std::abs(v_out) / (back * (1.0 - restitution)) : t;
   }
   /// The distance of an end stop's body from the stop, ≥ 0 while off it (q: the body's position).
   [[nodiscard]] double stop_distance(double q) const { return -lock * (q - stop_position); }
@@ -168,19 +196,24 @@ struct ContactLaw {
       // The load turns against the lock: it overruns (a stop: the body leaves it). The event is the
       // hold rule, allowance included, so one held unloaded at λ = −1e-15 (beside a clutch that just
       // broke away) starts armed.
-      ev[0] = lock * lambda + 1e-9;
+      ev[0] = lock * lambda + free_limit() + 1e-9;
       ev[1] = 1.0;
     } else if (md == ContactMode::stuck) {
       const double Fs = holding_limit(t);  // the stick rule's own limit (holds)
       ev[0] = Fs - lambda;
       ev[1] = Fs + lambda;
+    } else if (applied && released(t)) {
+      ev[0] = ev[1] = 1.0;  // transmits nothing whatever u does: its mode is a label (released())
     } else {
       ev[0] = static_cast<double>(static_cast<int>(md)) * u;
       ev[1] = 1.0;
     }
   }
   /// A brake or clutch whose application is 0 at t and does not rise just after is released (open):
-  /// it acts with no force and has no slip phases.
+  /// it acts with no force and has no slip phases. It is never stuck (no row of the stuck set: a
+  /// limit of 0 holds no load, and stuck it took a share of the load its body's neighbours carry):
+  /// its mode is the direction of its sliding velocity, a label with no events while it is released
+  /// (decided again from u when it is applied).
   [[nodiscard]] bool released(double t) const { return applied && spec->released(t); }
   /// Adds the generalized forces of load F to f: −F on a, +F on b (a general row: −w_j F on body j).
   void apply(double F, double* f) const {
