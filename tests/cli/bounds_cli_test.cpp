@@ -34,7 +34,7 @@ const char* kOverflowingGears =
 TEST(BoundsCli, OverflowingGearChainsAreRefusedByEveryCommand) {
   const std::string model = test::write_temp("gears-1e85.yaml", kOverflowingGears);
   const fs::path out = test::temp_dir() / "gears-out";
-  for (const std::string cmd : {"simulate " + quoted(model) + " -o " + quoted(out.string()),
+  for (const std::string& cmd : {"simulate " + quoted(model) + " -o " + quoted(out.string()),
                                 "modes " + quoted(model),
                                 "report " + quoted(model) + " -o " + quoted(out.string()),
                                 "sweep " + quoted(model) + " --vary c1.stiffness=1:2:2 -o " + quoted(out.string())}) {
@@ -53,7 +53,7 @@ TEST(BoundsCli, AnUnfollowableSineIsRefusedBySimulateAndModes) {
       "bodies:\n  I1: {type: rotational, inertia: 1 kg*m^2}\nlinks:\n"
       "  c1: {type: spring, between: [I1, ground], stiffness: 100 N*m/rad}\nloads:\n"
       "  L: {type: sine, body: I1, amplitude: 1 N*m, frequency: 1e300 Hz}\nsimulation: {t_end: 1 s}\n");
-  for (const std::string cmd : {"simulate " + quoted(model) + " -o sine-out", "modes " + quoted(model)}) {
+  for (const std::string& cmd : {"simulate " + quoted(model) + " -o sine-out", "modes " + quoted(model)}) {
     const auto r = test::run_cli(cmd);
     EXPECT_EQ(r.exit_code, 2) << cmd << "\n" << r.err;
     EXPECT_NE(r.err.find(model + ":6:"), std::string::npos) << cmd << "\n" << r.err;
