@@ -2,6 +2,7 @@
 InputErrors — NaN and infinity in a dict, a dict nested deeper than a model file may be, a
 subnormal inertia, a heat capacity whose temperature leaves the doubles (a SolverError naming the
 brake) — never a bare ValueError, a RecursionError or `inf` in the results."""
+import copy
 import math
 
 import pytest
@@ -16,7 +17,7 @@ BASE = {
 
 
 def with_inertia(value):
-    d = {k: dict(v) for k, v in BASE.items()}
+    d = copy.deepcopy(BASE)
     d["bodies"] = {"I1": {"type": "rotational", "inertia": value}}
     return d
 
@@ -88,7 +89,7 @@ def test_a_temperature_beyond_the_doubles_names_the_brake():
 
 
 def test_without_a_simulation_section_the_defaults_and_overrides_hold():
-    d = {k: v for k, v in BASE.items() if k != "simulation"}
+    d = {k: copy.deepcopy(v) for k, v in BASE.items() if k != "simulation"}
     m = machdyn.from_dict(d, set={"simulation.t_end": 2.0})
     r = machdyn.simulate(m)
     assert len(r.t) == 1001
