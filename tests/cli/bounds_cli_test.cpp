@@ -79,6 +79,18 @@ TEST(BoundsCli, EnergyScansAreBounded) {
   EXPECT_NE(near.out.find("5.56776436283"), std::string::npos) << near.out;  // √31 = 5.567764362830022
 }
 
+// Claim: a sweep of more than 10^6 runs is refused before its plan is built (10^8 were allowed and
+// ran out of memory listing them: some 230 bytes a run), as a grid and as --samples, exit 2.
+TEST(BoundsCli, SweepsAreBoundedInRuns) {
+  const std::string model = quoted(test::example("hoist-3mass.yaml"));
+  const auto grid = test::run_cli("sweep " + model + " --vary c1.stiffness=1e4:2e4:1000001 -o big-grid");
+  EXPECT_EQ(grid.exit_code, 2) << grid.err;
+  EXPECT_NE(grid.err.find("more than 1000000 runs"), std::string::npos) << grid.err;
+  const auto lhs = test::run_cli("sweep " + model + " --vary c1.stiffness=1e4:2e4 --method lhs --samples 1000001 -o big-lhs");
+  EXPECT_EQ(lhs.exit_code, 2) << lhs.err;
+  EXPECT_FALSE(fs::exists(test::temp_dir() / "big-grid" / "sweep.csv"));
+}
+
 const char* kNoSimulation =
     "bodies:\n  I1: {type: rotational, inertia: 1 kg*m^2}\nlinks:\n"
     "  c1: {type: spring, between: [I1, ground], stiffness: 100 N*m/rad}\n"
