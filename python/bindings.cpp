@@ -192,6 +192,7 @@ auto nogil(F&& f) {
 PYBIND11_MODULE(_machdyn, mod) {
   mod.doc() = "machdyn C++ core (use the `machdyn` package, not this module)";
   mod.attr("__version__") = MACHDYN_VERSION;
+  mod.attr("spec_max_depth") = kSpecMaxDepth;  // io/yaml_reader.hpp (from_dict checks a dict's depth)
 
   // Errors: InputError carries every diagnostic (file, line, column, message); SolverError the
   // element and the time. Both derive from the Python exceptions a user would expect.

@@ -20,6 +20,7 @@ Every quantity is SI (rad, m, s, kg, N, N*m); column and key names carry the uni
 from __future__ import annotations
 
 import json as _json
+import math as _math
 import os as _os
 import tempfile as _tempfile
 from typing import Iterable, Mapping
@@ -95,8 +96,36 @@ def from_dict(spec: Mapping, set: Mapping[str, object] | Iterable[str] | None = 
     Values may be numbers (SI) or strings with units. See :func:`load`."""
     if not isinstance(spec, Mapping):
         raise TypeError(f"from_dict: expected a dict, not {type(spec).__name__}")
+    _check_dict(spec, source)
     # JSON is YAML: the dict goes through the same reader as a file.
     return loads(_json.dumps(spec, indent=1, allow_nan=False), set=set, case=case, source=source)
+
+
+def _input_error(where: str, message: str) -> InputError:
+    """An InputError as the C++ core raises it: one diagnostic at ``where`` (no line in a file)."""
+    e = InputError(f"{where}: error: {message}")
+    e.diagnostics = [(where, 0, 0, message)]
+    return e
+
+
+def _check_dict(spec: Mapping, source: str) -> None:
+    """What the JSON text of a dict cannot carry, as located InputErrors (``<dict> bodies.I1.inertia``):
+    NaN and infinity (JSON has no such numbers), and nesting deeper than the model reader's limit
+    (``_machdyn.spec_max_depth``; a deep or self-containing dict would otherwise exhaust Python's
+    recursion). Walked without recursion."""
+    limit = _machdyn.spec_max_depth
+    todo = [(spec, "", 1)]
+    while todo:
+        node, path, depth = todo.pop()
+        where = f"{source} {path}" if path else source
+        if depth > limit:
+            raise _input_error(where, f"nested more than {limit} levels deep (the limit of a model file)")
+        if isinstance(node, Mapping):
+            todo.extend((v, f"{path}.{k}" if path else str(k), depth + 1) for k, v in node.items())
+        elif isinstance(node, (list, tuple)):
+            todo.extend((v, f"{path}[{i}]", depth + 1) for i, v in enumerate(node))
+        elif isinstance(node, float) and not _math.isfinite(node):
+            raise _input_error(where, f"{node!r} is not a finite number")
 
 
 def simulate(model: Model, case: str | None = None, outputs: list[str] | None = None, check: bool = False) -> Result:

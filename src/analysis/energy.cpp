@@ -248,6 +248,19 @@ EnergyResult energy_analysis(const Model& m, const EnergyOptions& opt) {
       throw InputError(Location{"--to", 0, 0},
                        fmt::format("the scan must go from {} = {:.6g} in the direction of motion ({})", r.s_name, s0,
                                    r.direction > 0 ? "increasing" : "decreasing"));
+    // Bounds: a range with an end (the wheel's β < π) ends there; an open one is scanned over at
+    // most kMaxScanPeriods periods (or turns of 2π rad): beyond, even 10^6 rows (--points) would
+    // skip whole periods, and the coordinate loses the digits that tell its phase.
+    constexpr double kMaxScanPeriods = 1e6;
+    const double unit = period > 0 ? period : 2 * std::numbers::pi;
+    if (mach && mach->s_end() && s_hi >= *mach->s_end())
+      throw InputError(Location{"--to", 0, 0},
+                       fmt::format("the range of {} ends at {:.6g}; give --to below it", r.s_name, *mach->s_end()));
+    if (std::abs(s_hi - s0) > kMaxScanPeriods * unit)
+      throw InputError(Location{"--to", 0, 0},
+                       fmt::format("{} = {:.6g} is {:.3g} {} from the start, more than {:.0e}: the table could not "
+                                   "resolve them; scan a nearer range", r.s_name, s_hi, std::abs(s_hi - s0) / unit,
+                                   period > 0 ? "periods" : "turns of 2 pi rad", kMaxScanPeriods));
   } else if (mach && mach->s_end() && r.direction > 0) {
     open_end = *mach->s_end();
     s_hi = *open_end - 1e-3 * (*open_end - s0);

@@ -1,7 +1,9 @@
 #include "analysis/heat.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <fmt/format.h>
 
 namespace machdyn::detail {
 
@@ -73,6 +75,14 @@ void Heat::integrate(const Stepper& st, double ta, double tb, double* heat, doub
     for (size_t j = 0; j < thermal_.size(); ++j)
       temperature[j] += law_[j].rise(half * kW[q] * p[static_cast<size_t>(thermal_[j])], tb - tq);
   }
+  // A temperature beyond the doubles (a heat capacity of 1e-307 J/K heated by a few joules) is no
+  // result: stop the run naming the element, instead of writing `inf`.
+  for (size_t j = 0; j < thermal_.size(); ++j)
+    if (!std::isfinite(temperature[j]))
+      throw SolverError(names_[static_cast<size_t>(thermal_[j])], tb,
+                        fmt::format("its temperature overflows: the friction heat over the heat capacity "
+                                    "{:.3g} J/K is beyond any temperature (thermal: heat_capacity is too small)",
+                                    law_[j].C));
 }
 
 void Heat::close_piece(const Stepper& st, double ta, double tb) {

@@ -138,14 +138,28 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   // ---- the event system the driver integrates: the drive system in its current modes ----
   [[nodiscard]] int size() const override { return sys_.size(); }
-  void rhs(double t, const double* y, double* dydt) override { sys_.rhs(t, y, dydt); }
+  void rhs(double t, const double* y, double* dydt) override {
+    last_t_ = t, last_y_ = y;  // the integrator's own buffer: where a failure was met (state_name)
+    sys_.rhs(t, y, dydt);
+  }
   [[nodiscard]] bool has_jacobian() const override { return sys_.has_jacobian(); }
   void jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J) override { sys_.jacobian(t, y, J); }
   [[nodiscard]] bool has_sparse_jacobian() const override { return sys_.has_sparse_jacobian(); }
   void sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override {
     sys_.sparse_jacobian(t, y, J);
   }
-  [[nodiscard]] std::string state_name(int i) const override { return sys_.state_name(i); }
+  /// What failed: a body's acceleration that is not finite at the integrator's last evaluation is
+  /// the fault of the load whose law is not finite there (an expression dividing by zero), so that
+  /// load is named; otherwise the state itself (a drive's current, a body's velocity).
+  [[nodiscard]] std::string state_name(int i) const override {
+    if (last_y_ && i >= n_ && i < 2 * n_) {
+      const int b = i - n_;
+      for (const Load& ld : m_.loads)
+        if ((ld.body == b || ld.body2 == b) && !std::isfinite(ld.at(last_t_, last_y_, last_y_ + n_)))
+          return fmt::format("load '{}'", ld.name);
+    }
+    return sys_.state_name(i);
+  }
   /// None when no element has an event function (a chain of springs and loads): the driver then
   /// evaluates none.
   [[nodiscard]] int event_count() const override { return has_events_ ? sys_.event_slots() + jumps_.count() : 0; }
@@ -226,6 +240,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
+    if (!winding_links_.empty()) check_rope_ends(st, ta, tb);
     if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
     // The extremes over [extremes_from, t_end] (SimulateOptions): the part of the piece from there.
     if (tb >= opt_.extremes_from)
@@ -234,6 +249,33 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // A step's end in its mode (a piece an event truncates is checked after the event's decision).
     if (audit_) [[unlikely]] audit_->piece_end(tb, tb == st.t(), st.y());
   }
+  /// A rope wound on its drum until one fall is shorter than L_min = 1e-3 L_f0 (elements/link.hpp): the
+  /// hook has reached the drum (two-blocking), where the model ends — the law would hold L_f at L_min
+  /// and let the hook rise on. The run stops there (the first such time in the piece, by bisection on
+  /// the dense output) naming the rope.
+  void check_rope_ends(const Stepper& st, double ta, double tb) {
+    auto short_at = [&](int l, double t) {
+      st.interpolate(t, rope_q_.data());
+      const LinkLaw& k = sys_.link(l);
+      return k.at_min_length(k.drum(rope_q_.data()));
+    };
+    rope_q_.resize(static_cast<size_t>(N_));
+    for (const int l : winding_links_) {
+      if (!short_at(l, tb)) continue;
+      double lo = ta, hi = tb;  // long at lo (the previous piece ended long), short at hi
+      for (int it = 0; it < 60 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (short_at(l, mid) ? hi : lo) = mid;
+      }
+      const LinkLaw& k = sys_.link(l);
+      throw SolverError(m_.links[static_cast<size_t>(l)].name, hi,
+                        fmt::format("the rope is wound in to its end: one fall is {:.3g} m long, 1/1000 of its "
+                                    "free length {:.6g} m (the hook at the drum); the model ends there: "
+                                    "shorten t_end or give the rope a longer 'length'",
+                                    1e-3 * k.L0, k.L0));
+    }
+  }
+
   void on_output(double t, const double* y) override {
     const size_t row = next_row();
     if (plain_rows_) output_head(row, t, y);
@@ -300,6 +342,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
       rope_links_.push_back(k);
     }
+    for (int k = 0; k < nl_; ++k)
+      if (sys_.link(k).winding) winding_links_.push_back(k);
     // Bodies slaved by ideal gears (model.hpp: RigidSlave): q = ρ q_master, v = ρ v_master.
     for (const auto& sl : m_.slaves) {
       names.push_back(sl.name + ".position_" + unit_suffix(position_unit(sl.kind)));
@@ -1297,6 +1341,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double*> col_;                 // the columns' data (point_columns)
   std::vector<int> gap_links_, rope_links_;  // links with a gap-mode column, ropes with fall columns
   std::vector<int> flank_links_;  // links with flanks (LinkLaw::gap: gaps, ropes, one-sided links, buffers)
+  std::vector<int> winding_links_;             // ropes wound on a drum (check_rope_ends)
+  double last_t_ = 0.0;                        // the last rhs evaluation (state_name)
+  const double* last_y_ = nullptr;
+  std::vector<double> rope_q_;                 // scratch of check_rope_ends
   std::vector<size_t> drive_cols_;           // per element with states: its own output columns
   std::vector<double> drive_vals_;           // their values at an output row
   std::vector<int> open_phase_;

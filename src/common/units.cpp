@@ -230,6 +230,13 @@ std::optional<Quantity> parse_quantity(std::string_view text, std::string* error
     if (error) *error = fmt::format("expected a finite number, got '{}'", text);
     return std::nullopt;
   }
+  // A subnormal (5e-324) has lost its precision, and 1/x of it overflows: out of range like 1e400.
+  auto out_of_range = [&] {
+    if (error) *error = fmt::format("'{}' is out of range in SI units (beyond ±{:g} or below {:g})", text,
+                                    std::numeric_limits<double>::max(), std::numeric_limits<double>::min());
+    return std::nullopt;
+  };
+  if (v != 0.0 && std::abs(v) < std::numeric_limits<double>::min()) return out_of_range();
   UnitParser p(text, static_cast<size_t>(end - begin));
   p.skip_ws();
   if (p.pos() == text.size()) return Quantity{v, dim::none};
@@ -244,11 +251,9 @@ std::optional<Quantity> parse_quantity(std::string_view text, std::string* error
   // `5 km^400`, `1e308 kN`, `0 (km/m)^400`: a value that does not survive scaling is an input error,
   // not an infinity or NaN that fails later in a run.
   const double scaled = v * u->value;
-  if (!std::isfinite(u->value) || u->value == 0.0 || !std::isfinite(scaled) || (v != 0.0 && scaled == 0.0)) {
-    if (error) *error = fmt::format("'{}' is out of range in SI units (beyond ±{:g} or below {:g})", text,
-                                    std::numeric_limits<double>::max(), std::numeric_limits<double>::min());
-    return std::nullopt;
-  }
+  if (!std::isfinite(u->value) || u->value == 0.0 || !std::isfinite(scaled) ||
+      (v != 0.0 && std::abs(scaled) < std::numeric_limits<double>::min()))
+    return out_of_range();
   return Quantity{scaled, u->dim, true, u->hertz};
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "machdyn/io/signal_files.hpp"
@@ -11,6 +13,9 @@
 
 namespace machdyn {
 namespace {
+
+/// Errors listed one by one before the rest are counted (compile_model_case).
+constexpr size_t kMaxListedErrors = 100;
 
 void resolve_in_bodies(SpecNode* bodies, Diagnostics& diag) {
   if (!bodies || !bodies->is_map()) return;
@@ -76,14 +81,22 @@ Model compile_model_case(SpecNode root, const std::string& source, const std::ve
   try {
     m = compile_model(root, source);
   } catch (const InputError& e) {
+    std::set<std::tuple<std::string, int, int>> seen;  // a set: a file may have 10^6 bad values
+    for (const Diagnostic& r : diag.list()) seen.emplace(r.where.file, r.where.line, r.where.column);
+    const bool read_errors = !diag.empty();
     for (const Diagnostic& d : e.diagnostics()) {
-      const bool seen = std::any_of(diag.list().begin(), diag.list().end(), [&](const Diagnostic& r) {
-        return r.where.file == d.where.file && r.where.line == d.where.line && r.where.column == d.where.column;
-      });
       // A signal file that could not be read is reported above, at its `path`, not again as unread.
-      const bool unread_file = !diag.empty() && d.message.find("'file' signal is read when") != std::string::npos;
-      if (!seen && !unread_file) diag.error(d.where, d.message);
+      const bool unread_file = read_errors && d.message.find("'file' signal is read when") != std::string::npos;
+      if (seen.emplace(d.where.file, d.where.line, d.where.column).second && !unread_file) diag.error(d.where, d.message);
     }
+  }
+  // Every problem, but not a flood: a table of 10^6 decreasing times is the first kMaxListedErrors
+  // and a count of the rest.
+  if (diag.list().size() > kMaxListedErrors) {
+    Diagnostics first;
+    for (size_t i = 0; i < kMaxListedErrors; ++i) first.error(diag.list()[i].where, diag.list()[i].message);
+    first.error(Location{source, 0, 0}, fmt::format("... and {} more errors", diag.list().size() - kMaxListedErrors));
+    first.throw_if_any();
   }
   diag.throw_if_any();
   if (!case_name.empty()) {

@@ -240,10 +240,11 @@ void apply_set(SpecNode& root, std::string_view assignment) {
         }
       }
     }
-    throw InputError(cli, fmt::format("no element named '{}'; the model has: {}", name,
-                                      fmt::join(names, ", ")));
+    // `simulation:` exists implicitly (a model without it runs with the defaults): created below.
+    if (name != "simulation" || !root.is_map())
+      throw InputError(cli, fmt::format("no element named '{}'; the model has: {}", name, fmt::join(names, ", ")));
   }
-  // A top-level scalar with a dotted path: create the map.
+  // A top-level scalar with a dotted path, or the implicit `simulation:`: create the map.
   SpecNode m;
   m.kind = SpecNode::Kind::Map;
   m.loc = value.loc;

@@ -492,9 +492,13 @@ void check_breakpoints(const Model& m, Diagnostics& diag) {
   }
 }
 
+/// The `simulation:` section; without one, every field has its default (the output grid too).
 void compile_simulation(const SpecNode* section, Model& m, Diagnostics& diag) {
   SimulationSettings& s = m.simulation;
-  if (!section) return;
+  if (!section) {
+    s.dt_out = s.t_end / 1000.0;
+    return;
+  }
   FieldReader f(*section, "simulation", diag);
   s.t_end = f.positive("t_end", dim::time, s.t_end).value_or(s.t_end);
   s.dt_out = f.positive("dt_out", dim::time, 0.0, true).value_or(0.0);
@@ -596,6 +600,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   top.node("cases");  // load cases: model/cases.hpp
   compile_simulation(top.node("simulation"), m, diag);
   check_breakpoints(m, diag);
+  detail::check_sine_periods(root, m.simulation.t_end, m.simulation.max_steps, diag);
   if (diag.empty()) detail::finish_applications(m);
   top.finish();
   // A velocity jump of a stepwise gear drive does not re-decide stuck contacts or re-check gaps yet

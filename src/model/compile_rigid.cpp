@@ -94,6 +94,16 @@ bool initial_values_agree(double x, double y) {
 
 namespace {
 
+/// ρ² (and 1/ρ², as a link on a slave is reduced by i/ρ) must be a normal double, with room for the
+/// inertias, stiffnesses and loads it multiplies: |ρ| in [1e-100, 1e100]. A chain of gears beyond
+/// that is a mistake in the ratios (a machine's overall ratio is far inside it), and its reduced
+/// inertia would overflow to inf or vanish into a subnormal (NaN frequencies, a crash downstream).
+constexpr double kMinRatioSquare = 1e-200;
+bool ratio_product_representable(double rho) {
+  const double r2 = rho * rho;
+  return std::isfinite(r2) && r2 >= kMinRatioSquare && r2 <= 1.0 / kMinRatioSquare;
+}
+
 const char* kind_word(BodyKind k) { return k == BodyKind::rotational ? "rotational" : "translational"; }
 
 /// Fills m.merged_gears (model.hpp: MergedGear) from the groups (master, ρ per body in the file's
@@ -166,6 +176,7 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
     for (size_t s = 0; s < n; ++s) {  // the group's first body in the file is its master
       if (master[s] >= 0 || adj[s].empty()) continue;
       master[s] = static_cast<int>(s);
+      bool overflow_told = false;  // one error per group
       std::vector<size_t> todo{s};
       while (!todo.empty()) {
         const size_t u = todo.back();
@@ -181,6 +192,16 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
             master[w] = static_cast<int>(s);
             rho[w] = want;
             todo.push_back(w);
+            if (!ratio_product_representable(want) && !overflow_told) {
+              overflow_told = true;
+              diag.error(g.ratio_where,
+                         fmt::format("ideal gear '{}': the product of the ideal gears' ratios from '{}' to '{}' is "
+                                     "{:.3g}; its square (which reduces inertias, loads and stiffnesses to '{}') "
+                                     "must lie between {:.0e} and {:.0e} to be computed in double precision: check "
+                                     "the ratios' units and direction (q_a = ratio · q_b)", g.name,
+                                     m.bodies[s].name, m.bodies[w].name, want, m.bodies[s].name, kMinRatioSquare,
+                                     1.0 / kMinRatioSquare));
+            }
           } else if (std::abs(rho[w] - want) > 1e-12 * std::abs(rho[w])) {  // a loop
             diag.error(g.ratio_where,
                        fmt::format("ideal gear '{}': closes a loop of ideal gears whose ratios disagree: the other "
@@ -205,8 +226,18 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
       }
       if (given > static_cast<int>(s)) {
         const double r = rho[static_cast<size_t>(given)];
-        for (size_t u = s; u < n; ++u)
-          if (master[u] == static_cast<int>(s)) master[u] = given, rho[u] /= r;
+        for (size_t u = s; u < n; ++u) {
+          if (master[u] != static_cast<int>(s)) continue;
+          master[u] = given, rho[u] /= r;
+          if (!ratio_product_representable(rho[u]) && !overflow_told) {
+            overflow_told = true;
+            diag.error(m.where(m.bodies[u].name),
+                       fmt::format("body '{}': the product of the ideal gears' ratios from the prescribed body '{}' "
+                                   "is {:.3g}; its square must lie between {:.0e} and {:.0e}", m.bodies[u].name,
+                                   m.bodies[static_cast<size_t>(given)].name, rho[u], kMinRatioSquare,
+                                   1.0 / kMinRatioSquare));
+          }
+        }
       }
     }
   }
@@ -246,6 +277,11 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
   for (size_t s = 0; s < n; ++s)
     if (master[s] >= 0 && master[s] != static_cast<int>(s))
       m.bodies[static_cast<size_t>(master[s])].inertia += rho[s] * rho[s] * m.bodies[s].inertia;
+  for (size_t s = 0; s < n; ++s)
+    if (master[s] == static_cast<int>(s) && !std::isfinite(m.bodies[s].inertia) && diag.empty())
+      diag.error(m.where(m.bodies[s].name),
+                 fmt::format("body '{}': the inertia of its group of ideal gears, reduced to it (I + Σ ρ² I_s), "
+                             "overflows; check the ratios and inertias of the group", m.bodies[s].name));
   for (size_t s = 0; s < n; ++s) {
     const Body& b = m.bodies[s];
     if (b.machine || b.inertia > 0.0 || (master[s] >= 0 && master[s] != static_cast<int>(s))) continue;

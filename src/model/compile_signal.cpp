@@ -19,6 +19,16 @@ std::optional<Signal> compile_signal_at(const SpecNode& node, const Dim& d, cons
 
 /// ω in rad/s from a `frequency` field: Hz (or 1/s, or a plain number) are cycles per second,
 /// a unit with rad or rev (rad/s, rpm, rps) is an angular speed already.
+/// ω (rad/s) of a sine's `frequency` value; nullopt (and `err`) if it is not a positive frequency.
+std::optional<double> angular_frequency(const SpecNode& n, std::string* err) {
+  auto q = n.is_scalar() ? parse_quantity(n.scalar, err) : std::nullopt;
+  if (!q || (q->has_unit && q->dim != Dim{0, 0, -1}) || !(q->value > 0.0)) return std::nullopt;
+  const std::string& s = n.scalar;
+  const bool angular = s.find("rad") != std::string::npos || s.find("rev") != std::string::npos ||
+                       s.find("rpm") != std::string::npos || s.find("rps") != std::string::npos;
+  return angular ? q->value : 2.0 * std::numbers::pi * q->value;
+}
+
 std::optional<double> read_frequency(FieldReader& f) {
   const SpecNode* n = f.node("frequency");
   if (!n) {
@@ -26,16 +36,11 @@ std::optional<double> read_frequency(FieldReader& f) {
     return std::nullopt;
   }
   std::string err;
-  auto q = n->is_scalar() ? parse_quantity(n->scalar, &err) : std::nullopt;
-  if (!q || (q->has_unit && q->dim != Dim{0, 0, -1}) || !(q->value > 0.0)) {
+  auto omega = angular_frequency(*n, &err);
+  if (!omega)
     f.diagnostics().error(n->loc, fmt::format("{}: field 'frequency' expected a positive frequency (Hz) or angular "
                                               "speed (rad/s, rpm){}", f.what(), err.empty() ? "" : ": " + err));
-    return std::nullopt;
-  }
-  const std::string& s = n->scalar;
-  const bool angular = s.find("rad") != std::string::npos || s.find("rev") != std::string::npos ||
-                       s.find("rpm") != std::string::npos || s.find("rps") != std::string::npos;
-  return angular ? q->value : 2.0 * std::numbers::pi * q->value;
+  return omega;
 }
 
 /// A pulse width: a time, or a percentage (any dimensionless quantity) of the period.
@@ -99,6 +104,12 @@ std::optional<Signal> read_table(FieldReader& f, const Dim& xd, const Dim& yd, b
   }
   if (!pts->is_seq() || pts->items.empty()) {
     diag.error(pts->loc, fmt::format("{}: 'points' expected a list of [x, value] pairs", f.what()));
+    return std::nullopt;
+  }
+  if (pts->items.size() > kMaxTablePoints) {
+    diag.error(pts->loc, fmt::format("{}: a table of {} points, more than {}: its spec takes some 400 bytes a point "
+                                     "while compiling, and every run of a sweep copies and compiles it again; "
+                                     "thin the table", f.what(), pts->items.size(), kMaxTablePoints));
     return std::nullopt;
   }
   std::vector<double> x, y;
@@ -278,6 +289,30 @@ std::optional<Signal> compile_signal_at(const SpecNode& node, const Dim& d, cons
 
 std::optional<Signal> compile_signal(const SpecNode& node, const Dim& d, const std::string& what, Diagnostics& diag) {
   return compile_signal_at(node, d, what, diag, 0);
+}
+
+void check_sine_periods(const SpecNode& root, double t_end, long max_steps, Diagnostics& diag) {
+  const double max_periods = static_cast<double>(max_steps) / kMinStepsPerPeriod;
+  std::vector<const SpecNode*> todo{&root};
+  while (!todo.empty()) {  // without recursion: a spec may be deep
+    const SpecNode* n = todo.back();
+    todo.pop_back();
+    for (const auto& item : n->items) todo.push_back(&item);
+    for (const auto& [key, field] : n->fields)
+      if (!(n == &root && key == "cases")) todo.push_back(&field);
+    const SpecNode* type = n->is_map() ? n->find("type") : nullptr;
+    const SpecNode* freq = type && type->is_scalar() && type->scalar == "sine" ? n->find("frequency") : nullptr;
+    std::string err;
+    const std::optional<double> omega = freq ? angular_frequency(*freq, &err) : std::nullopt;
+    if (!omega) continue;  // none, or an error the signal's reader reports
+    const double periods = *omega / (2.0 * std::numbers::pi) * t_end;
+    if (periods > max_periods)
+      diag.error(freq->loc, fmt::format("a sine of {:.6g} Hz makes {:.3g} periods before t_end = {:.6g} s; at least "
+                                        "{:g} steps each would take more than max_steps = {} steps, so no run could "
+                                        "end: lower the frequency or t_end (or raise simulation.max_steps)",
+                                        *omega / (2.0 * std::numbers::pi), periods, t_end, kMinStepsPerPeriod,
+                                        max_steps));
+  }
 }
 
 }  // namespace machdyn::detail

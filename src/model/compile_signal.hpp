@@ -15,6 +15,7 @@
 //     expression expression (of t)
 //     sum        terms: [signal, ...]
 //     file       a CSV file: replaced by a table when the model file is read (io/model_file.hpp)
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,7 +40,17 @@ std::optional<Signal> read_signal_fields(FieldReader& f, const std::string& type
 
 /// A piecewise-linear table y(x) from `points` [[x, y], ...] with x in `xd` and y in `yd`; x must
 /// increase strictly unless `jumps` (then two equal x in a row are allowed). Honours `outside`,
-/// `unit` and `time_unit` of the map `f` reads (the last two only if `units`).
+/// `unit` and `time_unit` of the map `f` reads (the last two only if `units`). At most
+/// kMaxTablePoints points (the limit of a CSV signal file's rows, io/signal_files.hpp).
+inline constexpr std::size_t kMaxTablePoints = 1'000'000;
 std::optional<Signal> read_table(FieldReader& f, const Dim& xd, const Dim& yd, bool jumps, bool units);
+
+/// Sines that no run could follow to t_end: a sine of frequency f makes f·t_end periods, and an
+/// integrator needs some kMinStepsPerPeriod steps in each (far more at a usual tolerance), so more
+/// than max_steps / kMinStepsPerPeriod periods would end in the step limit after hours (1e300 Hz).
+/// Walks the spec (every `type: sine` map outside `cases:`, whatever element holds it) and reports
+/// each such sine at its `frequency`.
+inline constexpr double kMinStepsPerPeriod = 4.0;
+void check_sine_periods(const SpecNode& root, double t_end, long max_steps, Diagnostics& diag);
 
 }  // namespace machdyn::detail

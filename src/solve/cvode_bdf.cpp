@@ -129,7 +129,21 @@ void CvodeBdf::reset(double t0, const double* y0) {
 }
 
 void CvodeBdf::step(double t_limit) {
-  if (stats().steps >= opt_.max_steps) throw SolverError("integrator", t_, "the maximum number of steps was reached");
+  if (stats().steps >= opt_.max_steps) {
+    // Name the state with the largest weighted local error of the last step (what holds it short).
+    std::string element = "integrator";
+    N_Vector ele = N_VClone(impl_->y), ewt = N_VClone(impl_->y);
+    if (stats().steps > 0 && CVodeGetEstLocalErrors(impl_->mem, ele) == 0 && CVodeGetErrWeights(impl_->mem, ewt) == 0) {
+      double worst = -1;
+      for (int i = 0; i < sys_.size(); ++i) {
+        const double e = std::abs(NV_Ith_S(ele, i) * NV_Ith_S(ewt, i));
+        if (!(e <= worst)) worst = e, element = sys_.state_name(i);
+      }
+    }
+    N_VDestroy(ele);
+    N_VDestroy(ewt);
+    throw SolverError(element, t_, "the maximum number of steps was reached (held short by this state)");
+  }
   CVodeSetStopTime(impl_->mem, t_limit);
   double tret = t_;
   impl_->bad_component = -1;

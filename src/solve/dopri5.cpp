@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
 #include <memory>
@@ -98,16 +99,23 @@ template <int N>
 void Dopri5<N>::step(double t_limit) {
   const size_t n = static_cast<size_t>(this->n());
   double* y = y_.data();
+  // The component with the largest error of the last attempt: what holds the step size down.
+  auto worst_component = [&] {
+    int worst = -1;
+    double worst_v = -1;
+    for (size_t i = 0; i < n; ++i)
+      if (!(std::abs(err_[i]) <= worst_v)) worst_v = std::abs(err_[i]), worst = static_cast<int>(i);
+    return worst;
+  };
   for (;;) {
-    if (stats_.steps + stats_.rejected >= opt_.max_steps) fail("the maximum number of steps was reached", -1);
-    if (0.1 * std::abs(h_) <= std::abs(t_) * uround || h_ <= 0.0) {
-      // Blame the component with the largest scaled error of the last attempt.
-      int worst = -1;
-      double worst_v = -1;
-      for (size_t i = 0; i < n; ++i)
-        if (!(std::abs(err_[i]) <= worst_v)) worst_v = std::abs(err_[i]), worst = static_cast<int>(i);
-      fail("the step size became too small (the solution is singular or very stiff there)", worst);
+    if (stats_.steps + stats_.rejected >= opt_.max_steps) {
+      // Name the part that held the steps short (a stiff DC motor's current), not "integrator".
+      const int worst = stats_.steps + stats_.rejected > 0 ? worst_component() : -1;
+      fail(fmt::format("the maximum number of steps was reached (step size {:.3g} s, held down by this state; "
+                       "if it is a fast, strongly damped part, try integrator: bdf)", h_).c_str(), worst);
     }
+    if (0.1 * std::abs(h_) <= std::abs(t_) * uround || h_ <= 0.0)
+      fail("the step size became too small (the solution is singular or very stiff there)", worst_component());
     double h = h_;
     bool last = false;
     if (t_ + 1.01 * h >= t_limit) {

@@ -120,14 +120,15 @@ simulation: {{t_end: {}, rtol: 1e-9, atol: 1e-14}}
   EXPECT_LT(r.stats.stepper.steps, 2000);  // an explicit method would need ~ d T / I / 3.3 = 1.5e5
 }
 
-// Claim: a numerical failure names the element (or the integrator) and the time.
+// Claim: a numerical failure names the element and the time: at the step limit, the state with the
+// largest error of the last step (what holds the steps short), here a body's.
 TEST(Simulate, NumericalFailureNamesElementAndTime) {
   const Model m = load_model(test::example("hoist-3mass.yaml"), {"simulation.max_steps=50"});
   try {
     simulate(m);
     FAIL() << "expected SolverError";
   } catch (const SolverError& e) {
-    EXPECT_EQ(e.element(), "integrator");
+    EXPECT_EQ(e.element().rfind("body '", 0), 0u) << e.element();
     EXPECT_GT(e.time(), 0.0);
     EXPECT_LT(e.time(), m.simulation.t_end);
     EXPECT_NE(std::string(e.what()).find("at t = "), std::string::npos);
