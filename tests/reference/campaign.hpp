@@ -10,7 +10,9 @@
 ///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied;
 ///   states: every body's position and velocity at every output row within
 ///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9.
-/// Only the part of the run before the reference's `ambiguous_from` is compared.
+/// Only the part of the run before the reference's `ambiguous_from` is compared. The states are
+/// compared even where the events differ: a state mismatch is a wrong motion, an event mismatch with
+/// every state agreeing ("states agree") a wrong event list.
 
 #include <cstdint>
 #include <string>
@@ -48,6 +50,7 @@ struct CampaignOptions {
   std::string out_dir;                ///< non-empty: write each failure (shrunk) there
   bool shrink = true;
   bool verbose = false;
+  long shard = 0, shards = 1;         ///< run the models i with i % shards == shard (parallel ctest jobs)
 };
 
 /// Prints model `index` of `family` (campaign seed `seed`): its file, the reference's events and

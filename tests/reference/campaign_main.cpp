@@ -1,6 +1,7 @@
 // machdyn_campaign: the random-model campaign of issue 27 — random small models run by the engine on
 // dopri5 and bdf and compared with the brute-force reference simulator (tests/reference).
 //   machdyn_campaign [--models N] [--seed S] [--families a,b,...] [--out DIR] [--no-shrink] [--verbose]
+//                    [--shard I/N]   (only the models i with i % N == I)
 //   machdyn_campaign [--seed S] --show FAMILY:INDEX   (one model: its file, both event lists, the outcome)
 // Exit 0 when every run agrees, 1 when some fail (each written shrunk to DIR), 2 on bad arguments.
 #include <cstdio>
@@ -28,6 +29,13 @@ int main(int argc, char** argv) {
       else if (a == "--seed") o.seed = std::stoull(value());
       else if (a == "--out") o.out_dir = value();
       else if (a == "--no-shrink") o.shrink = false;
+      else if (a == "--shard") {
+        const std::string v = value();
+        const size_t c = v.find('/');
+        if (c == std::string::npos) throw std::invalid_argument(v);
+        o.shard = std::stol(v.substr(0, c)), o.shards = std::stol(v.substr(c + 1));
+        if (o.shards < 1 || o.shard < 0 || o.shard >= o.shards) throw std::invalid_argument(v);
+      }
       else if (a == "--show") {
         const std::string v = value();
         const size_t c = v.find(':');

@@ -129,8 +129,8 @@ struct RefEvent {
 };
 
 struct RefOptions {
-  double omega_h = 0.01;  ///< h ω_max of the fixed step
-  double h_max = 1e-3;    ///< s, upper bound of the step (also for models without springs)
+  double omega_h = 0.02;  ///< h ω_max of the fixed step (its error: ReferenceSimulator.ConvergesWithTheStep…)
+  double h_max = 2e-3;    ///< s, upper bound of the step (also for models without springs)
   long max_events = 20000;
 };
 
