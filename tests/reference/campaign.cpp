@@ -67,14 +67,29 @@ Outcome compare(const RefModel& m, const std::string& integrator, const RefResul
   const double t_cmp = ref.ambiguous_from;
   const double tol_t = kEventTol * std::max(1.0, m.t_end);
   // Events: every reference event before t_cmp matched in order by (element, kind) within tol_t.
+  // The bounces of a stop with restitution end in a Zeno tail; the engine stops it at flights of
+  // 1e-12 s, the reference at 1e-9 s: an impact followed within tol_t by another impact or the rest
+  // of the same stop is not compared (on both sides).
+  auto zeno_tail = [&](const auto& list, size_t i, auto get) {
+    if (get(list[i]).kind != "impact") return false;
+    for (size_t j = i + 1; j < list.size() && get(list[j]).t <= get(list[i]).t + tol_t; ++j)
+      if (get(list[j]).element == get(list[i]).element && (get(list[j]).kind == "impact" || get(list[j]).kind == "stick")) return true;
+    return false;
+  };
   std::vector<const ModeEvent*> eng;
-  for (const auto& e : r.hybrid.events)
-    if (compared_kinds().count(e.kind) != 0 && e.t < t_cmp - tol_t) eng.push_back(&e);
+  for (size_t i = 0; i < r.hybrid.events.size(); ++i) {
+    const auto& e = r.hybrid.events[i];
+    if (compared_kinds().count(e.kind) != 0 && e.t < t_cmp - tol_t &&
+        !zeno_tail(r.hybrid.events, i, [](const ModeEvent& x) -> const ModeEvent& { return x; }))
+      eng.push_back(&e);
+  }
   std::vector<bool> used(eng.size(), false);
   size_t first_free = 0;
   Outcome ev;  // the first event difference (pass if none)
-  for (const auto& re : ref.events) {
+  for (size_t ir = 0; ir < ref.events.size(); ++ir) {
+    const RefEvent& re = ref.events[ir];
     if (compared_kinds().count(re.kind) == 0 || re.t >= t_cmp - tol_t) continue;
+    if (zeno_tail(ref.events, ir, [](const RefEvent& x) -> const RefEvent& { return x; })) continue;
     bool hit = false;
     for (size_t j = first_free; j < eng.size(); ++j) {
       if (used[j]) continue;
@@ -274,7 +289,7 @@ long run_campaign(const CampaignOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!o.out_dir.empty()) std::filesystem::create_directories(o.out_dir);
   for (long i = 0; i < o.models; ++i) {
-    if (i % o.shards != o.shard) continue;
+    if (static_cast<long>(static_cast<size_t>(i) / families.size()) % o.shards != o.shard) continue;  // every family in every shard
     const std::string& fam = families[static_cast<size_t>(i) % families.size()];
     const auto index = static_cast<std::uint64_t>(i) / families.size();
     const RefModel m = random_model(fam, o.seed, index);
