@@ -227,7 +227,29 @@ class Sim {
         cod.setThreshold(1e-12);
         return Eigen::VectorXd(w.asDiagonal() * S.A * (cod.pseudoInverse() * b));
       };
+      // A lock first: where the one-sided elements alone carry every load in their hold directions,
+      // the friction elements beside them carry nothing (a backstop holds, the brake beside it is
+      // not loaded); the documented rule has no share for a lock in its hold direction.
       std::vector<bool> masked(static_cast<size_t>(s), false);
+      bool has_lock = false;
+      for (int r = 0; r < s; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+        masked[static_cast<size_t>(r)] = !fr.one_sided();
+        has_lock = has_lock || fr.one_sided();
+      }
+      if (has_lock) {
+        const Eigen::VectorXd l0 = weighted(masked);
+        bool holds = (S.A * l0 - b).norm() <= 1e-9 * (b.norm() + 1e-300);
+        for (int r = 0; r < s && holds; ++r) {
+          const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+          if (fr.one_sided() && lock(fr) * l0(r) < 0.0) holds = false;
+        }
+        if (holds) {
+          for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = l0(r);
+          goto apply;
+        }
+      }
+      std::fill(masked.begin(), masked.end(), false);
       Eigen::VectorXd lv = weighted(masked);
       bool any = false;
       for (int r = 0; r < s; ++r) {
@@ -240,6 +262,7 @@ class Sim {
       }
       for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
     }
+  apply:
     // a = M⁻¹ (f − Gᵀ λ)
     for (int r = 0; r < s; ++r) {
       const int k = S.rows[static_cast<size_t>(r)];
