@@ -41,7 +41,7 @@ Outcome check(const RefModel& m, const std::string& integrator, const RefOptions
 
 /// Shrinks a failing model while it still fails on `integrator` with the same outcome kind: drops
 /// elements and bodies, rounds numbers to 1–2 digits, shortens the run. At most `budget` trials.
-RefModel shrink(const RefModel& m, const std::string& integrator, Outcome::Kind kind, int budget = 200);
+RefModel shrink(const RefModel& m, const std::string& integrator, Outcome::Kind kind, int budget = 40);
 
 struct CampaignOptions {
   long models = 300;

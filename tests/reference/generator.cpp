@@ -327,7 +327,7 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   section(Friction::Kind::clutch, "clutches");
   section(Friction::Kind::freewheel, "freewheels");
   section(Friction::Kind::stop, "stops");
-  y += "simulation: {t_end: " + num(m.t_end) + " s, dt_out: " + num(m.dt_out) + " s, rtol: 1e-10, atol: 1e-12, max_steps: 2000000, integrator: " +
+  y += "simulation: {t_end: " + num(m.t_end) + " s, dt_out: " + num(m.dt_out) + " s, rtol: 1e-10, atol: 1e-12, max_steps: 500000, integrator: " +
        integrator + "}\n";
   return y;
 }
