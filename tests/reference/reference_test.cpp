@@ -148,6 +148,61 @@ TEST(ReferenceSimulator, GapClosesAtTheFreeFlightTime) {
   }
 }
 
+// Claim: a backstop with drag (F_d = 0.5 N) on a block (m = 2 kg) at rest holds a forward load below
+// its drag — at zero overrun speed the drag is a friction level, λ ≥ −F_d (the reference's rule where
+// the docs' lock·λ ≥ 0 has no consistent mode) — and overruns when a ramp P = t N passes F_d, at
+// t* = 0.5 s; then m v' = P − F_d: v = (t² − t*²)/(2m) − F_d (t − t*)/m.
+TEST(ReferenceSimulator, BackstopWithDragOverrunsWhenTheLoadPassesTheDrag) {
+  RefModel m;
+  m.bodies = {{"block", 2.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 0, P.s.kind = Signal::Kind::ramp, P.s.value = 1.0, P.s.t0 = 0.0, P.s.t1 = 1.0;
+  m.loads = {P};
+  Friction f;
+  f.kind = Friction::Kind::freewheel, f.name = "backstop", f.a = kGround, f.b = 0, f.drag = 0.5;
+  m.frictions = {f};
+  m.t_end = 0.9, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  // The hold rule's allowance of 1e-9 N (docs/hybrid.md, Freewheel) at a load rate of 1 N/s.
+  EXPECT_NEAR(slip[0].t, 0.5, 2e-9);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], v = t <= 0.5 ? 0.0 : (t * t - 0.25) / 4 - 0.25 * (t - 0.5);
+    EXPECT_NEAR(r.v[k][0], v, 1e-9) << t;
+  }
+}
+
+// Claim: a lock carries a redundantly locked load before the friction beside it: a block held by a
+// backstop and a brake (holding 5 N) under a backward load of 20 N stays at rest with the brake
+// unloaded — no brake event, where a split by weights would overload it at once — and when the load
+// turns forward (P = −20 + 40 t N) the backstop takes no share against its lock (docs/hybrid.md), so
+// the brake holds alone until P = 5 N at t = 0.625 s, where the block breaks away forward and the
+// backstop overruns.
+TEST(ReferenceSimulator, ALockCarriesTheLoadBeforeTheBrakeBesideIt) {
+  RefModel m;
+  m.bodies = {{"block", 1.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 0, P.s.kind = Signal::Kind::ramp, P.s.before = -20.0, P.s.value = 20.0, P.s.t0 = 0.0, P.s.t1 = 1.0;
+  m.loads = {P};
+  Friction fw, br;
+  fw.kind = Friction::Kind::freewheel, fw.name = "backstop", fw.a = kGround, fw.b = 0;
+  br.kind = Friction::Kind::brake, br.name = "brake", br.a = 0, br.b = kGround, br.Fs = 5.0, br.Fk = 5.0;
+  m.frictions = {fw, br};
+  m.t_end = 0.8, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(r.events.size(), 2u);
+  for (const auto& e : r.events) {
+    EXPECT_EQ(e.kind, "slip") << e.element;
+    EXPECT_NEAR(e.t, 0.625, 1e-10) << e.element;
+  }
+  EXPECT_NE(r.events[0].element, r.events[1].element);
+  EXPECT_EQ(r.v[static_cast<size_t>(std::lround(0.62 / 0.01))][0], 0.0);
+  EXPECT_GT(r.v.back()[0], 0.0);
+}
+
 // Claim: the reference converges: halving its step changes no event time by more than 1e-9 s (a
 // thousandth of the campaign's event tolerance) and no velocity by more than a hundredth of the
 // campaign's state tolerance, on random models of every family (RK4: the error falls 16-fold).
