@@ -138,7 +138,6 @@ class Sim {
   }
 
   // ---- right-hand side of a mode -----------------------------------------------------------------
-  /// Accelerations a (n) and the stuck loads λ (per friction element, 0 if not stuck) at (t, y).
   struct StuckSet {
     std::vector<int> rows;   // the stuck elements
     Eigen::MatrixXd G, A;    // rows e_a − e_b; A = G M⁻¹ Gᵀ
@@ -169,6 +168,61 @@ class Sim {
     S.full = lu.rank() == s;
     if (S.full) S.Ainv = S.A.inverse();
     return sets_.emplace(mask, std::move(S)).first->second;
+  }
+
+  /// λ of a stuck set whose rows are dependent (two stuck elements lock one motion), into lamv_;
+  /// bv_ holds G M⁻¹ f.
+  void redundant_lambda(const StuckSet& S, double t) {
+    const int s = static_cast<int>(S.rows.size());
+    // Two stuck elements lock one motion: the weighted least-norm λ = W A (A W A)⁺ b, weights the
+    // static limits (a one-sided element: 1 N); a one-sided element whose share would be against
+    // its lock takes none if the others carry every load alone (docs/hybrid.md).
+    const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(bv_.data(), s);
+    auto weighted = [&](const std::vector<bool>& masked) {
+      Eigen::VectorXd w(s);
+      for (int r = 0; r < s; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+        w(r) = masked[static_cast<size_t>(r)] ? 0.0 : fr.one_sided() ? 1.0 : std::max(fr.static_limit(t), 1e-300);
+      }
+      const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
+      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
+      cod.setThreshold(1e-12);
+      return Eigen::VectorXd(w.asDiagonal() * S.A * (cod.pseudoInverse() * b));
+    };
+    // A lock first: where the one-sided elements alone carry every load in their hold directions,
+    // the friction elements beside them carry nothing (a backstop holds, the brake beside it is
+    // not loaded); the documented rule has no share for a lock in its hold direction.
+    std::vector<bool> masked(static_cast<size_t>(s), false);
+    bool has_lock = false;
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      masked[static_cast<size_t>(r)] = !fr.one_sided();
+      has_lock = has_lock || fr.one_sided();
+    }
+    if (has_lock) {
+      const Eigen::VectorXd l0 = weighted(masked);
+      bool holds = (S.A * l0 - b).norm() <= 1e-9 * (b.norm() + 1e-300);
+      for (int r = 0; r < s && holds; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+        if (fr.one_sided() && lock(fr) * l0(r) < 0.0) holds = false;
+      }
+      if (holds) {
+        for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = l0(r);
+        return;
+      }
+    }
+    std::fill(masked.begin(), masked.end(), false);
+    Eigen::VectorXd lv = weighted(masked);
+    bool any = false;
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      if (fr.one_sided() && lock(fr) * lv(r) < 0.0) masked[static_cast<size_t>(r)] = true, any = true;
+    }
+    if (any) {
+      const Eigen::VectorXd l2 = weighted(masked);
+      if ((S.A * l2 - b).norm() <= 1e-9 * (b.norm() + 1e-300)) lv = l2;
+    }
+    for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
   }
 
   /// Accelerations a (n) and the stuck loads λ (per friction element, 0 if not stuck) at (t, y).
@@ -212,57 +266,8 @@ class Sim {
       for (int r = 0; r < s; ++r)
         for (int c = 0; c < s; ++c) lamv_[static_cast<size_t>(r)] += S.Ainv(r, c) * bv_[static_cast<size_t>(c)];
     } else {
-      // Two stuck elements lock one motion: the weighted least-norm λ = W A (A W A)⁺ b, weights the
-      // static limits (a one-sided element: 1 N); a one-sided element whose share would be against
-      // its lock takes none if the others carry every load alone (docs/hybrid.md).
-      const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(bv_.data(), s);
-      auto weighted = [&](const std::vector<bool>& masked) {
-        Eigen::VectorXd w(s);
-        for (int r = 0; r < s; ++r) {
-          const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-          w(r) = masked[static_cast<size_t>(r)] ? 0.0 : fr.one_sided() ? 1.0 : std::max(fr.static_limit(t), 1e-300);
-        }
-        const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
-        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
-        cod.setThreshold(1e-12);
-        return Eigen::VectorXd(w.asDiagonal() * S.A * (cod.pseudoInverse() * b));
-      };
-      // A lock first: where the one-sided elements alone carry every load in their hold directions,
-      // the friction elements beside them carry nothing (a backstop holds, the brake beside it is
-      // not loaded); the documented rule has no share for a lock in its hold direction.
-      std::vector<bool> masked(static_cast<size_t>(s), false);
-      bool has_lock = false;
-      for (int r = 0; r < s; ++r) {
-        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-        masked[static_cast<size_t>(r)] = !fr.one_sided();
-        has_lock = has_lock || fr.one_sided();
-      }
-      if (has_lock) {
-        const Eigen::VectorXd l0 = weighted(masked);
-        bool holds = (S.A * l0 - b).norm() <= 1e-9 * (b.norm() + 1e-300);
-        for (int r = 0; r < s && holds; ++r) {
-          const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-          if (fr.one_sided() && lock(fr) * l0(r) < 0.0) holds = false;
-        }
-        if (holds) {
-          for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = l0(r);
-          goto apply;
-        }
-      }
-      std::fill(masked.begin(), masked.end(), false);
-      Eigen::VectorXd lv = weighted(masked);
-      bool any = false;
-      for (int r = 0; r < s; ++r) {
-        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-        if (fr.one_sided() && lock(fr) * lv(r) < 0.0) masked[static_cast<size_t>(r)] = true, any = true;
-      }
-      if (any) {
-        const Eigen::VectorXd l2 = weighted(masked);
-        if ((S.A * l2 - b).norm() <= 1e-9 * (b.norm() + 1e-300)) lv = l2;
-      }
-      for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
+      redundant_lambda(S, t);
     }
-  apply:
     // a = M⁻¹ (f − Gᵀ λ)
     for (int r = 0; r < s; ++r) {
       const int k = S.rows[static_cast<size_t>(r)];
@@ -651,10 +656,8 @@ RefResult Sim::run() {
       }
       if (static_cast<long>(res_.events.size()) > o_.max_events) throw std::runtime_error("too many events");
       std::vector<int> fired_fr;
-      bool mode_event = false;
       for (size_t i = 0; i < ge.size() && i < g0.size(); ++i) {
         if (!fires(g0[i], ge[i]) || ge[i].kink) continue;
-        mode_event = true;
         if (ge[i].gap >= 0) {
           const size_t k = static_cast<size_t>(ge[i].gap);
           const Link& L = m_.links[k];
@@ -703,7 +706,6 @@ RefResult Sim::run() {
           }
         }
       }
-      (void)mode_event;
       decide(t, y, fired_fr);
       restart(t, y, g0), g0_valid = true;
     } else {
