@@ -33,8 +33,9 @@
 ///   consistent ones give different accelerations the run says so (`ambiguous_from`): the physics
 ///   is not unique there and a comparison after it is not meaningful.
 ///
-/// Limits (what the generator respects): translational bodies, link ratio 1, no gears, prescribed
-/// motions or releases; end stops only on bodies without friction to another body (an impact through
+/// Limits (what the generator respects): translational bodies, link ratio 1, no gears (ideal, lossy,
+/// planetary), prescribed motions, releases, buffers, drives or machines; signals constant, step,
+/// ramp and sine only; constant friction levels (no tables, Stribeck or moving surfaces); end stops only on bodies without friction to another body (an impact through
 /// a stuck contact would need an impulsive friction law); brakes and clutches are applied, never
 /// released again; a freewheel is the only friction element on its pair of bodies.
 
