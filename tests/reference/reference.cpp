@@ -548,6 +548,21 @@ class Sim {
     project(y, st);
   }
 
+  /// The gaps after a velocity jump: each whose switching function is now negative toggles.
+  void settle_gaps(double t, const std::vector<double>& y) {
+    for (size_t k = 0; k < m_.links.size(); ++k) {
+      const Link& L = m_.links[k];
+      if (!L.has_flanks()) continue;
+      const double dl = qa(y.data(), L.a) - qa(y.data(), L.b), ddl = va(y.data(), L.a) - va(y.data(), L.b);
+      const double gp = L.c * (dl - L.hi()) + L.d * ddl, gn = L.c * (dl - L.lo()) + L.d * ddl;
+      const GMode md = md_.gap[k];
+      if (md == GMode::closed_pos && gp < 0.0) md_.gap[k] = GMode::open, record(t, "gap_opened", L.name);
+      else if (md == GMode::closed_neg && gn > 0.0) md_.gap[k] = GMode::open, record(t, "gap_opened", L.name);
+      else if (md == GMode::open && dl > L.hi() && gp > 0.0) md_.gap[k] = GMode::closed_pos, record(t, "gap_closed", L.name);
+      else if (md == GMode::open && dl < L.lo() && gn < 0.0) md_.gap[k] = GMode::closed_neg, record(t, "gap_closed", L.name);
+    }
+  }
+
   /// Engagement changes of brakes and clutches at t (a breakpoint or the start).
   void engage(double t, const std::vector<double>& y, bool initial) {
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
@@ -692,6 +707,10 @@ RefResult Sim::run() {
             } else {
               record(t, "impact", f.name);
             }
+            // The velocity jump changes δ̇ of the links on the body: a closed damped flank whose
+            // c e + d δ̇ turns negative opens at the impact, an open one past its flank whose force
+            // turns positive closes (the flanks are decided again, as the friction below).
+            settle_gaps(t, y);
             // Friction on the body slides the other way now, or is decided at zero speed.
             for (size_t j = 0; j < m_.frictions.size(); ++j) {
               if (!sliding(md_.fr[j])) continue;

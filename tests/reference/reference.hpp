@@ -18,7 +18,8 @@
 ///   friction: F_s − |λ|; one-sided holds: lock·λ; sliding: s u; stops: the distance; the kink of the
 ///   elasto-backlash law) and the first crossing is bisected on a fresh RK4 step from the step's start
 ///   to 1e-13·max(1, t) s; the run continues just past the root;
-/// - at an event the gaps that fired toggle, a stop that is reached takes its impact (v⁺ = −e v⁻, rest
+/// - at an event the gaps that fired toggle, a stop that is reached takes its impact (its velocity
+///   jump decides the flanks on the body again: a damped closed flank may open at once) (v⁺ = −e v⁻, rest
 ///   when e = 0, when the rebound's flight 2|v⁺|/|a| is below 1e-9·max(1, t) s — the engine's
 ///   1e-12 is below what a fixed-step run can resolve: the rounding of the position at the stop pumps
 ///   the bounces at ~1e-9 m/s — or when the rebound's height is a few ulps of the position), and the
