@@ -18,6 +18,7 @@
 #include <pybind11/numpy.h>
 
 #include "machdyn/model/element.hpp"
+#include "machdyn/analysis/audit.hpp"
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
@@ -37,6 +38,8 @@
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/io/input_file.hpp"
+#include "machdyn/io/output_file.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/sweep/runner.hpp"
@@ -51,7 +54,7 @@ namespace {
 struct PyModel {
   std::string source;       ///< file path, or the name given to a string ("<string>")
   bool from_file = false;
-  std::string text;         ///< the YAML text (strings only; a sweep parses it again)
+  std::string text;         ///< the YAML text as loaded (a sweep parses it again, never the file)
   SpecNode file_spec;       ///< the file as read, before case and overrides
   std::vector<std::string> sets;  ///< NAME.FIELD=VALUE, in order
   std::string load_case;
@@ -211,6 +214,9 @@ PYBIND11_MODULE(_machdyn, mod) {
       py::object exc = py::reinterpret_borrow<py::object>(solver_error.ptr())(py::str(e.what()));
       exc.attr("element") = e.element();
       exc.attr("time") = e.time();
+      // A violation of the invariant audit (check=True) names its invariant; other failures: None.
+      const auto* audit = dynamic_cast<const AuditError*>(&e);
+      exc.attr("invariant") = audit ? py::object(py::str(audit->invariant())) : py::object(py::none());
       PyErr_SetObject(solver_error.ptr(), exc.ptr());
     }
   });
@@ -243,7 +249,10 @@ PYBIND11_MODULE(_machdyn, mod) {
       });
 
   mod.def("load_file", [](const std::string& path, const std::vector<std::string>& sets, const std::string& c) {
-    return compile(read_yaml_file(path), path, true, "", sets, c);
+    // The text is kept: a sweep of this model sweeps what was loaded, not the file as it is later.
+    std::string text = read_input_file(path, kMaxModelFileBytes, "file");
+    SpecNode spec = parse_yaml_string(text, path);
+    return compile(std::move(spec), path, true, std::move(text), sets, c);
   });
   mod.def("load_text", [](const std::string& text, const std::string& source, const std::vector<std::string>& sets,
                           const std::string& c) {
@@ -267,13 +276,15 @@ PYBIND11_MODULE(_machdyn, mod) {
       .def_property_readonly("method_reason", [](const PyResult& r) { return r.result.method_reason; })
       .def_property_readonly("wall_time_s", [](const PyResult& r) { return r.result.stats.wall_time_s; });
 
-  mod.def("simulate", [](const PyModel& p, const std::vector<std::string>& outputs) {
+  mod.def("simulate", [](const PyModel& p, const std::vector<std::string>& outputs, bool check) {
     auto r = std::make_shared<PyResult>();
     r->model = p.model;
     const OutputSelection extra = output_selection(outputs);  // the groups of `--outputs`
-    r->result = nogil([&] { return simulate(*p.model, SimulateOptions{}, extra); });
+    SimulateOptions options;
+    options.check = check;  // the invariant audit, as `--check`
+    r->result = nogil([&] { return simulate(*p.model, options, extra); });
     return r;
-  }, pybind11::arg("model"), pybind11::arg("outputs") = std::vector<std::string>{});
+  }, pybind11::arg("model"), pybind11::arg("outputs") = std::vector<std::string>{}, pybind11::arg("check") = false);
 
   // For bench/python_bench.py: the median wall time of `repeats` calls of simulate() timed in C++,
   // the reference for the Python call's overhead.
@@ -354,13 +365,21 @@ PYBIND11_MODULE(_machdyn, mod) {
     });
   });
 
+  // A result file as every machdyn writer writes it (io/output_file.hpp): atomically, and never over
+  // an input file of this process (the model, also through a link) nor over a device or FIFO.
+  mod.def("write_result_file", [](const std::string& path, const std::string& text) {
+    if (const std::string problem = output_target_problem(path); !problem.empty())
+      throw InputError(Location{path, 0, 0}, "refusing to write here: " + problem);
+    nogil([&] { write_file_atomic(path, std::string_view(text)); });
+  });
+
   // A sweep as `machdyn sweep` runs it (sweep/plan.hpp, sweep/runner.hpp): same designs, same table.
   mod.def("sweep", [](const PyModel& p, const std::vector<std::string>& vary, const std::string& method, int samples,
                       std::uint64_t seed, const std::vector<std::string>& cases, const std::string& out_dir, int jobs,
                       bool resume) {
     SweepRequest req;
     req.model_path = p.source;
-    if (!p.from_file) req.model_text = p.text;
+    req.model_text = p.text;  // the loaded model, never the file again (it may have changed since)
     req.sets = p.sets;
     req.vary = vary;
     if (method != "grid" && method != "lhs" && method != "random")

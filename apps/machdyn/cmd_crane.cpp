@@ -1,4 +1,4 @@
-// `machdyn crane MODEL [-o DIR] [--json] [--set ...]`: the crane analysis (analysis/crane.hpp) of a
+// `machdyn crane MODEL [-o DIR] [--json] [--case NAME | --all-cases] [--set ...]`: the crane analysis (analysis/crane.hpp) of a
 // model with a `crane:` section — each dynamic factor simulated beside the EN 13001-2 value. Writes
 // DIR/crane.json and DIR/crane.csv (default out/MODEL) and prints the table (or the JSON);
 // --phi2-speeds FROM:TO:N adds φ2(vh) beside the standard's line (DIR/phi2_sweep.csv; with --plot
@@ -14,6 +14,8 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/cases.hpp"
 
 namespace machdyn::cli {
 namespace {
@@ -24,6 +26,8 @@ struct CraneArgs {
   std::string drive_classes;  ///< --drive-classes HD1,HD4 | all
   bool json = false;
   bool plot = false;  ///< --plot: one figure per factor (SVG + PNG, gnuplot)
+  std::string load_case;   ///< --case NAME
+  bool all_cases = false;  ///< --all-cases
   std::vector<std::string> sets;
 };
 
@@ -81,37 +85,95 @@ std::vector<int> drive_class_list(const std::string& text) {
   return out;
 }
 
-int run_crane(const CraneArgs& a) {
-  const std::filesystem::path out_dir = output_dir(a.model, a.out, "");
-  const Model m = load_model(a.model, a.sets);
-  if (a.plot) plot::find_gnuplot();  // before the work, not after
-  const CraneReport r = crane_analysis(m, drive_class_list(a.drive_classes));
-  nlohmann::json j = crane_json(r);
+/// The crane analysis of one model (the file, or one of its load cases), held until every case ran.
+struct CraneRun {
+  std::string case_name;  ///< "" for the file as written
+  CraneReport report;
+  nlohmann::json json;
   std::string sweep_csv;
-  std::vector<plot::Figure> figures = a.plot ? crane_figures(r) : std::vector<plot::Figure>{};
+  std::vector<plot::Figure> figures;
+};
+
+CraneRun crane_run(const CraneArgs& a, const Model& m, const std::string& case_name) {
+  CraneRun run;
+  run.case_name = case_name;
+  run.report = crane_analysis(m, drive_class_list(a.drive_classes));
+  run.json = crane_json(run.report);
+  if (a.plot) run.figures = crane_figures(run.report);
   if (!a.phi2_speeds.empty()) {  // φ2(vh) beside the standard's line
     const std::vector<double> speeds = speed_list(a.phi2_speeds);
-    sweep_csv = "vh_m_s,phi2_simulated,phi2_standard\n";
+    run.sweep_csv = "vh_m_s,phi2_simulated,phi2_standard\n";
     nlohmann::json pts = nlohmann::json::array();
     const std::vector<Phi2Point> sweep = phi2_sweep(m, speeds);
-    if (a.plot) figures.push_back(phi2_sweep_figure(sweep));
+    if (a.plot) run.figures.push_back(phi2_sweep_figure(sweep));
     for (const Phi2Point& p : sweep) {
-      sweep_csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", p.vh, p.simulated, p.standard);
+      run.sweep_csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", p.vh, p.simulated, p.standard);
       pts.push_back({{"vh_m_s", p.vh}, {"simulated", p.simulated}, {"standard", p.standard}});
     }
-    j["phi2_sweep"] = pts;
+    run.json["phi2_sweep"] = pts;
   }
-  write_file_atomic((out_dir / "crane.csv").string(), crane_csv(r));
-  if (!sweep_csv.empty()) write_file_atomic((out_dir / "phi2_sweep.csv").string(), sweep_csv);
-  const std::vector<std::string> files = a.plot ? write_figures(out_dir, figures) : std::vector<std::string>{};
-  write_file_atomic((out_dir / "crane.json").string(), j.dump(2) + "\n");
+  return run;
+}
+
+int run_crane(const CraneArgs& a) {
+  if (a.all_cases && !a.load_case.empty()) throw InputError(Location{"--case", 0, 0}, "give either --case NAME or --all-cases");
+  // Every case is compiled first, so bad input stops before anything runs or is written.
+  std::vector<std::string> names{a.load_case};
+  if (a.all_cases) {
+    names = case_names(read_yaml_file(a.model));
+    if (names.empty()) throw InputError(Location{a.model, 0, 0}, "--all-cases: the model file has no 'cases:'");
+  }
+  std::vector<Model> models;
+  std::vector<std::string> skipped;  // --all-cases: the cases without a crane section
+  std::vector<std::string> ran;
+  for (const auto& name : names) {
+    Model m = name.empty() ? load_model(a.model, a.sets) : load_model_case(a.model, a.sets, name);
+    if (a.all_cases && !m.crane.given) {
+      skipped.push_back(name);
+      continue;
+    }
+    models.push_back(std::move(m));
+    ran.push_back(name);
+  }
+  if (models.empty())
+    throw InputError(Location{a.model, 0, 0}, "--all-cases: no load case has a 'crane:' section (docs/crane-factors.md)");
+  if (a.plot) plot::find_gnuplot();  // before the work, not after
+  // All or nothing: every case runs before the first file is written.
+  std::vector<CraneRun> runs;
+  for (size_t k = 0; k < models.size(); ++k) {
+    try {
+      runs.push_back(crane_run(a, models[k], ran[k]));
+    } catch (const SolverError&) {
+      if (!ran[k].empty()) std::cerr << fmt::format("machdyn: load case '{}' failed; nothing was written\n", ran[k]);
+      throw;
+    }
+  }
+  nlohmann::json all = nlohmann::json::array();
+  std::string text;
+  for (const CraneRun& run : runs) {
+    const std::filesystem::path out_dir = output_dir(a.model, a.out, run.case_name);
+    write_file_atomic((out_dir / "crane.csv").string(), crane_csv(run.report));
+    if (!run.sweep_csv.empty()) write_file_atomic((out_dir / "phi2_sweep.csv").string(), run.sweep_csv);
+    const std::vector<std::string> files = a.plot ? write_figures(out_dir, run.figures) : std::vector<std::string>{};
+    write_file_atomic((out_dir / "crane.json").string(), run.json.dump(2) + "\n");
+    for (const auto& x : run.report.rows)
+      if (!x.warning.empty())
+        std::cerr << fmt::format("machdyn: warning: {}{} ({}): {}\n",
+                                 run.case_name.empty() ? "" : fmt::format("load case '{}': ", run.case_name), x.factor,
+                                 x.case_name, x.warning);
+    all.push_back(run.json);
+    text += crane_table(run.report);
+    text += fmt::format("wrote {0}/crane.csv and {0}/crane.json\n", out_dir.string());
+    if (!files.empty()) text += fmt::format("figures: {}/{{{}}}\n", out_dir.string(), fmt::join(files, ","));
+    if (runs.size() > 1) text += "\n";
+  }
+  for (const auto& name : skipped)
+    text += fmt::format("load case '{}': no 'crane:' section (the case drops it): no crane analysis\n", name);
   if (a.json) {
-    std::cout << j.dump(2) << '\n';
+    std::cout << (a.all_cases ? all : all[0]).dump(2) << '\n';
     return 0;
   }
-  std::cout << crane_table(r);
-  std::cout << fmt::format("wrote {0}/crane.csv and {0}/crane.json\n", out_dir.string());
-  if (!files.empty()) std::cout << fmt::format("figures: {}/{{{}}}\n", out_dir.string(), fmt::join(files, ","));
+  std::cout << text;
   return 0;
 }
 
@@ -131,6 +193,11 @@ void register_crane(CLI::App& app, int& exit_code) {
   cmd->add_option("--drive-classes", a->drive_classes,
                   "phi2 in each of these hoist drive classes instead of the section's own: 'all' or e.g. HD1,HD2,HD4 "
                   "(vh,max, the creep speed, 0.5 vh,max; HD5 starts from zero speed and is not simulated)");
+  cmd->add_option("--case", a->load_case,
+                  "The crane analysis of one load case of the file's 'cases:' (outputs in OUT/NAME; a case may change "
+                  "or drop the 'crane:' section)");
+  cmd->add_flag("--all-cases", a->all_cases,
+                "The crane analysis of every load case with a 'crane:' section, one table each (outputs in OUT/CASE)");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_crane(*a); }); });
 }

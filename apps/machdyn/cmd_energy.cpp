@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "machdyn/io/folder_lock.hpp"
+#include "machdyn/common/csv.hpp"
 #include "machdyn/analysis/energy.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
@@ -42,9 +44,7 @@ double quantity_arg(const std::string& option, const std::string& text, const Di
 std::string table_csv(const nlohmann::json& t) {
   std::vector<std::string> cols;
   for (const auto& [k, v] : t.items()) cols.push_back(k);
-  std::string s;
-  for (size_t c = 0; c < cols.size(); ++c) s += (c ? "," : "") + cols[c];
-  s += '\n';
+  std::string s = csv_line(cols) + '\n';  // RFC 4180 (common/csv.hpp)
   const size_t rows = t["q"].size();
   for (size_t i = 0; i < rows; ++i) {
     for (size_t c = 0; c < cols.size(); ++c) s += fmt::format("{}{:.17g}", c ? "," : "", t[cols[c]][i].get<double>());
@@ -88,6 +88,7 @@ int run_energy(const EnergyArgs& a) {
   std::vector<plot::Rendered> rendered;
   const auto figures = a.plot ? energy_figures(m, r) : std::vector<plot::Figure>{};
   for (const auto& f : figures) rendered.push_back(plot::render(f));
+  const FolderLock lock(out_dir, kFolderLockWriteWait_s);  // one writer at a time (io/folder_lock.hpp)
   write_file_atomic((out_dir / "energy.csv").string(), table_csv(j["table"]));
   write_file_atomic((out_dir / "energy.json").string(), j.dump(2) + "\n");
   std::vector<std::string> files;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "machdyn/io/folder_lock.hpp"
 #include "machdyn/analysis/frequency_response.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
@@ -233,6 +234,7 @@ int run(const ModesArgs& a) {
 
   std::vector<std::string> written;
   if (write) {
+    const FolderLock lock(dir, kFolderLockWriteWait_s);  // one writer at a time (io/folder_lock.hpp)
     std::vector<std::string> files;
     if (a.plot) files = write_figures(dir, figures);
     write_file_atomic((dir / "modes.json").string(), j.dump(2) + "\n");

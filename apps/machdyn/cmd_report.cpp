@@ -36,6 +36,7 @@ struct ReportArgs {
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: embed series above the size limit
+  bool check = false;         ///< --check: the invariant audit (analysis/audit.hpp)
   std::string command_line;
 };
 
@@ -78,6 +79,11 @@ int run_report(const ReportArgs& a) {
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
                            {}, {}, std::nullopt, {}, {}, {}, std::nullopt});
+  // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
+  // Never over an input file or a device (io/output_file.hpp): said now, not after the runs.
+  const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
+  if (const std::string problem = output_target_problem(out); !problem.empty())
+    throw InputError(Location{a.out.empty() ? out : "-o " + out, 0, 0}, "refusing to write the report here: " + problem);
   // The report embeds every series: the same size limit as simulate's time series, before any run.
   if (!a.large_output) {
     std::uint64_t total = 0;
@@ -93,6 +99,7 @@ int run_report(const ReportArgs& a) {
     SimulateOptions options;
     options.progress = bar.callback();
     options.event_driven = a.all_cases;  // every case alike, as `simulate --all-cases`
+    options.check = a.check;
     run.result = simulate(run.model, options);
     bar.clear();
     run.modes = compute_modes(run.model);
@@ -113,8 +120,6 @@ int run_report(const ReportArgs& a) {
     cases.push_back(c);
   }
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
-  // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
-  const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
                            static_cast<double>(html.size()) / 1e3,
@@ -135,6 +140,8 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
   cmd->add_flag("--all-cases", args->all_cases,
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
+  cmd->add_flag("--check", args->check,
+                "Audit every run against the documented laws, as `simulate --check` (exit 3 on a violation)");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {

@@ -2,6 +2,7 @@
 // [--set NAME.FIELD=VALUE ...]` (`modes`: cmd_modes.cpp).
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <iostream>
 #include <fmt/format.h>
 
@@ -11,6 +12,7 @@
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/io/folder_lock.hpp"
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/extra_outputs.hpp"
@@ -36,6 +38,7 @@ struct SimulateArgs {
   bool large_output = false;  ///< --large-output: write a time series above the size limit
   bool rpm = false;           ///< --rpm: angular speeds of the figures in rpm
   std::vector<std::string> outputs;  ///< --outputs: extra column groups (analysis/extra_outputs.hpp)
+  bool check = false;  ///< --check: the invariant audit (analysis/audit.hpp)
 };
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
@@ -105,6 +108,7 @@ int run_all_cases(const SimulateArgs& a) {
     try {
       SimulateOptions every_case;
       every_case.event_driven = true;  // event-driven for every case, smooth or not
+      every_case.check = a.check;
       results.push_back(simulate(models[c], every_case, output_selection(a.outputs)));
     } catch (const SolverError&) {
       std::cerr << fmt::format("machdyn: case '{}' ({} of {}) failed; no result of this run was written\n", names[c],
@@ -116,6 +120,11 @@ int run_all_cases(const SimulateArgs& a) {
   // The peak is the extreme of larger magnitude; the dynamic factor is peak / quasi-static load there.
   std::string table = fmt::format("{:<20} {:<6} {:>11} {:>11} {:>11} {:>11} {:>9} {:>11} {:>10} {:>6}  {}\n", "case",
                                   "link", "max", "min", "peak", "t_peak [s]", "static", "dyn.factor", "events", "", "unit");
+  // OUT and each OUT/CASE are this run's while it writes (a `--case NAME` run writes to OUT/NAME):
+  // two runs never mix their files (io/folder_lock.hpp).
+  std::vector<std::unique_ptr<FolderLock>> locks;
+  locks.push_back(std::make_unique<FolderLock>(out_dir, kFolderLockWriteWait_s));
+  for (const auto& name : names) locks.push_back(std::make_unique<FolderLock>(out_dir / name, kFolderLockWriteWait_s));
   // A failure while writing (disk full) removes what this run wrote, so no half set is left.
   std::vector<std::filesystem::path> written;
   try {
@@ -165,9 +174,12 @@ int run_simulate(const SimulateArgs& a) {
   ProgressBar bar(a.quiet);
   SimulateOptions options;
   options.progress = bar.callback();
+  options.check = a.check;
   const SimulationResult r = simulate(m, options, output_selection(a.outputs));
   bar.clear();
   const std::string out_dir = output_dir(a.model, a.out_dir, a.load_case).string();
+  // One run at a time writes this folder's files; another writer is waited for (io/folder_lock.hpp).
+  const FolderLock lock(out_dir, kFolderLockWriteWait_s);
   const auto summary = simulation_summary(m, r);
   std::vector<std::string> figures;
   FigureOptions fig_options;
@@ -219,6 +231,10 @@ void register_simulate(CLI::App& app, int& exit_code) {
       ->delimiter(',');
   cmd->add_flag("--large-output", args->large_output,
                 "Write the time series even when it would exceed 1 GB (simulation.t_end/dt_out rows)");
+  cmd->add_flag("--check", args->check,
+                "Audit the run against the documented laws at every step, event and output row (static limits, "
+                "kinetic laws, freewheels, gaps, ropes, end stops, lossy gears, energy books, event list); a "
+                "violation names the element, time, values and invariant and exits 3 (docs/hybrid.md)");
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
       if (args->all_cases && !args->load_case.empty())

@@ -122,9 +122,20 @@ int run_sweep_command(const SweepArgs& a) {
   std::cout << fmt::format("sweep: {} runs, {} ok, {} error(s); {} computed in {:.3g} s ({:.4g} runs/s, {} thread(s) × {} rank(s))\n",
                            r.total, r.ok, r.errors, r.computed, r.wall_s, rate, r.threads, r.ranks);
   std::cout << fmt::format("wrote {}\n", r.table_path);
+  // Every run refused on its input (what `simulate` refuses with exit 2, e.g. a model with no
+  // equilibrium): the sweep as a whole is an input error. The table stays, with its error rows.
+  if (r.ok == 0 && r.computed_here > 0 && r.input_errors == r.computed_here) {
+    std::cerr << fmt::format("machdyn: every run of the sweep failed on its input; the table ({}) has only error "
+                             "rows. The first, run {}:\n{}\n",
+                             r.table_path, r.first_input_error, r.first_input_message);
+    return 2;
+  }
   if (plot) {
     std::string name = plot->output;
     for (const auto& x : plot->inputs) name += "-vs-" + x;
+    // Column names hold element names, which may hold '/': the file name stays in the folder.
+    for (char& ch : name)
+      if (ch == '/' || ch == '\\' || static_cast<unsigned char>(ch) < 0x20) ch = '_';
     const auto dir = std::filesystem::path(r.table_path).parent_path();
     const auto data = (dir / ("plot-" + name + ".csv")).string();
     const std::string csv = sweep_plot_csv(r.table_path, *plot);

@@ -1,7 +1,13 @@
 // machdyn — dynamics of machine drives. Entry point: registers the commands, runs one.
+#include <csignal>
+
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  // Past the file-size limit (ulimit -f) a write fails with EFBIG instead of the kernel killing the
+  // process with SIGXFSZ: the writer reports an OutputError naming the file (exit 1) and removes its
+  // temporary file (io/output_file.hpp).
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"machdyn — dynamics of machine drives: elastic chains, gaps and friction, "
                "variable inertia, non-circular gears"};
   app.set_version_flag("--version", std::string("machdyn ") + MACHDYN_VERSION);

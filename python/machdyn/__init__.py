@@ -99,7 +99,7 @@ def from_dict(spec: Mapping, set: Mapping[str, object] | Iterable[str] | None = 
     return loads(_json.dumps(spec, indent=1, allow_nan=False), set=set, case=case, source=source)
 
 
-def simulate(model: Model, case: str | None = None, outputs: list[str] | None = None) -> Result:
+def simulate(model: Model, case: str | None = None, outputs: list[str] | None = None, check: bool = False) -> Result:
     """Simulates the model with its ``simulation:`` settings, as ``machdyn simulate`` does.
 
     case: run this load case of the model's file instead (as ``--case NAME``).
@@ -107,10 +107,13 @@ def simulate(model: Model, case: str | None = None, outputs: list[str] | None = 
              ``"power"``, ``"heat"`` or ``"all"`` (docs/model-files.md, "Outputs").
     Returns a :class:`Result`: ``r.t`` (s), ``r["c1.load"]`` (N*m or N), every series as a numpy
     array, ``r.summary`` (the summary.json dict), ``r.events`` (mode events of an event-driven run).
+    check: audit the run against the documented laws, as ``--check`` (docs/hybrid.md, "The
+           invariant audit"); a violation raises SolverError naming the invariant, the element,
+           the time and the values. Also on with the environment variable MACHDYN_CHECK=1.
     Raises SolverError (element, time) on a numerical failure. The GIL is released during the run.
     """
     m = model.with_case(case) if case else model
-    return Result(_machdyn.simulate(m._core, list(outputs or [])), m)
+    return Result(_machdyn.simulate(m._core, list(outputs or []), bool(check)), m)
 
 
 def modes(model: Model, topology: str | None = None) -> Modes:
@@ -152,7 +155,9 @@ def energy(model: Model, to: str | float | None = None, points: int = 201, delta
 def crane(model: Model, drive_classes=None) -> dict:
     """The crane dynamic factors of a model with a ``crane:`` section, as ``machdyn crane --json``
     (docs/crane-factors.md): ``{"model": NAME, "rows": [{"factor", "case", "simulated",
-    "standard_lo", "standard_hi", "clause", "margin", "note"}, ...]}``, NaN as None.
+    "standard_lo", "standard_hi", "clause", "margin", "note", "extreme", "t_extreme_s", "reference",
+    "vh_m_s", "xi_b", "stroke", "contact_speed", "t_contact_s", "warning"}, ...]}`` (``"load_case"``
+    for a model loaded with a case), NaN as None.
     ``drive_classes``: "all" or a list such as ``["HD1", "HD4"]`` gives one φ2 row per hoist drive
     class (as ``--drive-classes``). Raises InputError for a model without ``crane:`` or a case it
     cannot build, ValueError for an unknown drive class.
@@ -241,20 +246,12 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
 def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:
     """Simulates, computes the modes and writes the self-contained HTML report to ``path``, as
     ``machdyn report``. Returns the path. Written through a temporary file, so a failed run leaves
-    no partial file."""
+    no partial file; a path that is the model file (also through a link) or not a regular file
+    raises InputError."""
     m = model.with_case(case) if case else model
     command = f"machdyn.report({_os.path.basename(m.source)!r}" + (f", case={case!r}" if case else "") + ")"
-    html = _machdyn.report_html(m._core, command)
     path = _os.fspath(path)
-    folder = _os.path.dirname(_os.path.abspath(path))
-    _os.makedirs(folder, exist_ok=True)
-    fd, tmp = _tempfile.mkstemp(dir=folder, prefix=".report-", suffix=".tmp")
-    try:
-        with _os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(html)
-        _os.replace(tmp, path)
-    except BaseException:
-        if _os.path.exists(tmp):
-            _os.unlink(tmp)
-        raise
+    html = _machdyn.report_html(m._core, command)
+    # Through a temporary file and a rename, never over the model file or a device (InputError).
+    _machdyn.write_result_file(path, html)
     return path

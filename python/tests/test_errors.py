@@ -117,3 +117,41 @@ def test_bad_arguments_raise_python_errors():
     r = machdyn.simulate(m)
     with pytest.raises(IndexError):
         r._core.column(10**6)
+
+
+@pytest.mark.parametrize("kind", ["device", "fifo", "folder", "huge"])
+def test_model_files_that_are_devices_fifos_or_huge_raise_input_error(tmp, kind):
+    """Not a MemoryError (/dev/zero read to the end) nor a hang (a FIFO without a writer): an
+    InputError naming the file and why."""
+    import os
+    if kind == "device":
+        path, says = "/dev/zero", "is a character device"
+    elif kind == "fifo":
+        path, says = str(tmp / "m.yaml"), "is a FIFO"
+        os.mkfifo(path)
+    elif kind == "folder":
+        path, says = str(tmp), "is a folder"
+    else:
+        path, says = str(tmp / "big.yaml"), "more than the limit of 16 MiB"
+        with open(path, "wb") as f:
+            f.truncate(16 * 2**20 + 1)  # sparse
+    with pytest.raises(machdyn.InputError) as e:
+        machdyn.load(path)
+    assert e.value.diagnostics[0][0] == path
+    assert says in str(e.value)
+
+
+def test_report_never_replaces_the_model_file(tmp):
+    """report(m, PATH) where PATH is the model file, or a link to it, raises InputError and leaves
+    the model as it was."""
+    import os
+    text = open(example("hoist-3mass.yaml"), encoding="utf-8").read()
+    path = tmp / "model.yaml"
+    path.write_text(text, encoding="utf-8")
+    os.symlink(path, tmp / "link.html")
+    m = machdyn.load(path)
+    for target, says in ((path, "it is the input file"), (tmp / "link.html", "it is a symbolic link")):
+        with pytest.raises(machdyn.InputError) as e:
+            machdyn.report(m, target)
+        assert says in str(e.value)
+        assert path.read_text(encoding="utf-8") == text

@@ -77,3 +77,23 @@ def test_ctrl_c_stops_a_sweep_and_resume_finishes_the_same_table(tmp):
     assert len(df) == 2000 and df.attrs["total"] == 2000 and journaled < 2000
     machdyn.sweep(m, vary=vary, threads=2, out=tmp / "b")
     assert (tmp / "a" / "sweep.csv").read_bytes() == (tmp / "b" / "sweep.csv").read_bytes()
+
+
+def test_sweep_runs_the_loaded_model_not_the_file_as_it_is_now(tmp):
+    """A sweep of a model object sweeps what was loaded: after the file is edited the table is the
+    one of the loaded text (equal to a sweep of that text), and after it is deleted it still runs."""
+    text = open(example("hoist-3mass.yaml"), encoding="utf-8").read()
+    path = tmp / "model.yaml"
+    path.write_text(text, encoding="utf-8")
+    m = machdyn.load(path)
+    before = machdyn.sweep(m, vary={"c1.stiffness": [2e4, 3e4]}, threads=1)
+    # Another model in the same file: a sweep of the file as it is now is refused (no link c1).
+    path.write_text(text.replace("c1:", "c1_renamed:"), encoding="utf-8")
+    after_edit = machdyn.sweep(m, vary={"c1.stiffness": [2e4, 3e4]}, threads=1)
+    pd.testing.assert_frame_equal(before, after_edit)
+    path.unlink()
+    after_delete = machdyn.sweep(m, vary={"c1.stiffness": [2e4, 3e4]}, threads=1)
+    pd.testing.assert_frame_equal(before, after_delete)
+    # Independent answer: the same text loaded from a string.
+    from_text = machdyn.sweep(machdyn.loads(text, source=str(path)), vary={"c1.stiffness": [2e4, 3e4]}, threads=1)
+    pd.testing.assert_frame_equal(before, from_text)

@@ -33,6 +33,11 @@ class Decision {
     // A rolling gear with clutches takes the driving side these modes imply (analysis/gear_clutch.hpp).
     if (sys_.has_coupled_gears()) sys_.settle_gear_sides(t_, y_);
     sys_.evaluate(t_, y_, acc_, fc_);
+    // The loads λ the stick rule judges are those the event functions of these modes will read
+    // (DriveSystem::contact_forces: a mode's affine map where there is one). Formed by the solve
+    // above they may differ in the last bits, and a contact kept stuck at λ = F_s would start with
+    // its event function at −1e-11: one quantity, one computation.
+    sys_.contact_forces(t_, y_, fc_);
   }
   bool consistent(const std::vector<ContactMode>& modes, const std::vector<int>& Z) {
     evaluate(modes);

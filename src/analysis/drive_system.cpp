@@ -1059,6 +1059,62 @@ int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
   return k.settle(t, drive_speed(d, y), old, now, drive_place(d).own(f_.data()));
 }
 
+namespace {
+
+/// The root of body i in a union-find forest (path halving).
+int cluster_root(std::vector<int>& parent, int i) {
+  while (parent[static_cast<size_t>(i)] != i) i = parent[static_cast<size_t>(i)] = parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+  return i;
+}
+
+void exact_clusters(const std::vector<ContactLaw>& contacts, const std::vector<int>& stuck, int n, double t, double* v,
+                    const double* im) {
+  // The bodies tied together by stuck unit rows form clusters; each moves with one velocity, so
+  // every stuck contact has u = 0 exactly: the ground's w(t) where a contact ties the cluster to the
+  // ground, else the momentum mean Σ v_i/m_i⁻¹ / Σ 1/m_i⁻¹ (a pair (m_b⁻¹ v_a + m_a⁻¹ v_b)/(m_a⁻¹ + m_b⁻¹));
+  // a cluster whose velocities are already all equal keeps them. (Pairwise means one contact after
+  // another are not exact on a chain: the last one moves a body of the first, and a contact decided
+  // to slide from rest beside them started at u = ±1e-20, its event function negative.)
+  std::vector<int> parent(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) parent[static_cast<size_t>(i)] = i;
+  std::vector<int> grounded(static_cast<size_t>(n), -1);  // per root: a contact tying it to the ground
+  for (int k : stuck) {
+    const ContactLaw& c = contacts[static_cast<size_t>(k)];
+    if (c.b >= 0) {
+      const int ra = cluster_root(parent, c.a), rb = cluster_root(parent, c.b);
+      if (ra == rb) continue;
+      parent[static_cast<size_t>(ra)] = rb;
+      if (grounded[static_cast<size_t>(rb)] < 0) grounded[static_cast<size_t>(rb)] = grounded[static_cast<size_t>(ra)];
+    } else {
+      const int ra = cluster_root(parent, c.a);
+      if (grounded[static_cast<size_t>(ra)] < 0) grounded[static_cast<size_t>(ra)] = k;
+    }
+  }
+  // Per root: the bodies of its cluster.
+  std::vector<std::vector<int>> members(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) members[static_cast<size_t>(cluster_root(parent, i))].push_back(i);
+  for (int r = 0; r < n; ++r) {
+    const std::vector<int>& b = members[static_cast<size_t>(r)];
+    if (b.size() < 2 && grounded[static_cast<size_t>(r)] < 0) continue;
+    double common;
+    if (grounded[static_cast<size_t>(r)] >= 0) {
+      common = contacts[static_cast<size_t>(grounded[static_cast<size_t>(r)])].surface_velocity(t);
+    } else if (std::all_of(b.begin(), b.end(), [&](int i) { return v[i] == v[b.front()]; })) {
+      continue;
+    } else if (b.size() == 2) {
+      const double ia = im[b[0]], ib = im[b[1]];
+      common = (ib * v[b[0]] + ia * v[b[1]]) / (ia + ib);
+    } else {
+      double p = 0.0, m = 0.0;
+      for (int i : b) p += v[i] / im[i], m += 1.0 / im[i];
+      common = p / m;
+    }
+    for (int i : b) v[i] = common;
+  }
+}
+
+}  // namespace
+
 void DriveSystem::project_velocities(double t, double* y) const {
   if (stuck_.empty()) return;
   if (coupled_) {  // u ≡ 0 exactly from the gears' bodies outwards (no projector: C is not M⁻¹)
@@ -1089,8 +1145,15 @@ void DriveSystem::project_velocities(double t, double* y) const {
     const VelocityRow& row = contacts_[static_cast<size_t>(stuck_[j])].row;
     for (int i = 0; i < row.terms; ++i) v[row.body[i]] -= im[row.body[i]] * row.w[i] * mu(static_cast<Eigen::Index>(j));
   }
-  // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations); the common
-  // velocity is the momentum mean (I_a v_a + I_b v_b)/(I_a + I_b).
+  // Remove the rounding: u exactly 0 (as enforce_stuck does for the accelerations).
+  bool general = false;
+  for (int k : stuck_) general = general || contacts_[static_cast<size_t>(k)].general;
+  if (!general) {
+    exact_clusters(contacts_, stuck_, n_, t, v, im);
+    return;
+  }
+  // With general rows: contact by contact, the common velocity of a pair the momentum mean
+  // (I_a v_a + I_b v_b)/(I_a + I_b).
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     if (c.general) {

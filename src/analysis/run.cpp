@@ -16,6 +16,7 @@
 #include <utility>
 #include <fmt/format.h>
 
+#include "machdyn/analysis/audit.hpp"
 #include "machdyn/analysis/contact_decision.hpp"
 #include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/gear_clutch.hpp"
@@ -53,7 +54,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int i = 0; i < n_; ++i)
       if (m.bodies[static_cast<size_t>(i)].machine) machine_bodies_.push_back(i);
     has_events_ = nc_ > 0 || ng_ > 0 || jumps_.count() > 0;
-    for (int l = 0; l < nl_; ++l) has_events_ = has_events_ || sys_.link(l).gap;
+    for (int l = 0; l < nl_; ++l)
+      if (sys_.link(l).gap) flank_links_.push_back(l);
+    has_events_ = has_events_ || !flank_links_.empty();
     for (int d = 0; d < nd_; ++d) has_events_ = has_events_ || sys_.drive(d).has_events();
     on_new_max_ = [this](int l, bool is_max, double t, const double* y) {
       ingredients(t, y, (is_max ? at_max_ : at_min_)[static_cast<size_t>(l)]);
@@ -79,6 +82,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       E.kinetic_start = sys_.kinetic_energy(y_.data()) + E.released_kinetic;
       E.elastic_start = sys_.elastic_energy(y_.data());
     }
+    // The invariant audit (analysis/audit.hpp): an observer only when asked for.
+    if (opt_.check || audit_requested_by_environment()) {
+      audit_ = std::make_unique<Audit>(m_, sys_, E, release_loss_);
+      audit_->after_event(0.0, y_.data(), false);
+    }
     StepperOptions so;
     so.rtol = s.rtol;
     so.atol = s.atol;
@@ -97,6 +105,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     out_.stats = integrate(st, *this, 0.0, y_.data(), s.t_end, drive, *this);
     if (opt_.record_series)
       for (auto& col : out_.columns) col.resize(row_);
+    if (audit_) {
+      audit_->settle();
+      audit::check_event_list(m_, out_);
+    }
     std::copy(st.y(), st.y() + N_, y_.begin());
     // Close the books.
     for (int k = 0; k < nc_; ++k) close_phase(k, s.t_end);
@@ -140,6 +152,26 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
+    // The driver hands back every event function a decision left negative and asks again at the
+    // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
+    // there mean no consistent mode exists — an error naming the element, never a disarmed event.
+    if (t == decided_at_ && !fired.empty()) {
+      // Contacts, end stops, flanks and ropes are decided again. Speed drives, lossy gears and
+      // stepwise gears keep their decision: their functions wait until they are ≥ 0 at a step end
+      // (a speed drive leaving its limit with the command exactly at M_max; a lossy gear with
+      // friction on its bodies) — their decisions are not yet formed from their events' computation.
+      if (std::all_of(fired.begin(), fired.end(), [&](int f) {
+            return f >= sys_.event_slots() || sys_.slot_is_drive(f) || sys_.slot_is_gear(f);
+          }))
+        return false;
+      if (++redecisions_ > kMaxRedecisions)
+        throw SolverError(slot_name(fired.front()), t,
+                          fmt::format("no consistent mode: its event function stays negative after {} decisions at "
+                                      "this instant",
+                                      kMaxRedecisions));
+    } else {
+      decided_at_ = t, redecisions_ = 0;
+    }
     std::copy(y, y + N_, y_.begin());
     apply_releases(t);  // at its breakpoint, or at an event located on it
     // Prescribed speeds exactly on their signals (the integrated slope's error off): a kinematic
@@ -163,10 +195,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       else if (jump < 0) jump = f - sys_.event_slots();  // one jump at a time: the earliest
     }
     if (jump >= 0) jumps_.jump(t, y_.data(), jump);
+    // A re-decision (the driver hands back functions this instant's decision left negative) reports
+    // whether it changed anything: the same modes and state again are the decision's last word.
+    const bool again = redecisions_ > 0;
+    if (again) remember_decision(y);
     if (fired.empty()) time_event(t);
     else if (!own.empty()) handle_event(t, own);
     std::copy(y_.begin(), y_.end(), y);
-    return true;
+    return !again || !same_decision(y);
   }
 
   // ---- the link loads as the peak tracker's signals (elements/link.hpp, in the current modes) ----
@@ -183,6 +219,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
+    if (audit_) [[unlikely]] audit_->settle();
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
@@ -191,14 +228,20 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (tb >= opt_.extremes_from)
       peaks_.on_segment(st, std::max(ta, opt_.extremes_from), tb, on_new_max_);
     jumps_.on_segment(st, ta, tb);
+    // A step's end in its mode (a piece an event truncates is checked after the event's decision).
+    if (audit_) [[unlikely]] audit_->piece_end(tb, tb == st.t(), st.y());
   }
   void on_output(double t, const double* y) override {
     const size_t row = next_row();
     if (plain_rows_) output_head(row, t, y);
     else if (contact_rows_) output_contacts(row, t, y);
     else output(row, t, y);
+    if (audit_) [[unlikely]] audit_->row(t, y);
   }
-  void on_event(double, const double*, const std::vector<int>&) override { peaks_.restart(); }
+  void on_event(double t, const double* y, const std::vector<int>& fired) override {
+    peaks_.restart();
+    if (audit_) [[unlikely]] audit_->after_event(t, y, !fired.empty());
+  }
 
  private:
   // ---- output ----
@@ -537,6 +580,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::vector<GearMode> gears;  // the lossy gears' modes: a stuck one is held (held())
     std::vector<double> gear_v;   // their speeds v_a: a rolling one's relation (rolling())
     size_t stage = 0;  // releases applied at its instant: the masses and weights it belongs to
+    // The links off their flank at the instant (an open gap, a slack rope, a one-sided link off its
+    // flank), ascending: no coupling of the quasi-static problem (uncoupled()). O(links with a gap).
+    std::vector<int> off;
   };
   void ingredients(double t, const double* y, Extreme& out) {
     out.vals.clear();
@@ -547,6 +593,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
     for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
+    out.off.clear();
+    for (int l : flank_links_)
+      if (!sys_.link(l).transmits(sys_.gap_mode(l))) out.off.push_back(l);
     out.gears.resize(static_cast<size_t>(ng_));
     out.gear_v.resize(static_cast<size_t>(ng_));
     for (int g = 0; g < ng_; ++g) {
@@ -647,29 +696,49 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     return f;
   }
 
+  /// `mm` without the links `off` marks as coupling (stiffness 0): a link off its flank transmits no
+  /// load, so the rigid acceleration and the elastic solution of the quasi-static problem must not
+  /// see it (a slack rope leaves the drum to accelerate with the motor alone; its own load is 0).
+  static Model uncoupled(const Model& mm, const std::vector<int>& off) {
+    Model out = mm;
+    for (int l : off) out.links[static_cast<size_t>(l)].c = 0.0;
+    return out;
+  }
+
   void summarize_links() {
     // One sparse factorization, one solve per distinct force vector (constant loads: one solve).
     if (nl_ == 0) return;
     // One solver per set of masses (the model's, and after each release an extreme falls behind) and
     // of held elements (constraints, not forces: an extreme's stuck brake holds its drum).
     // A rolling lossy gear keeps its ratio, its reaction follows its mode's efficiency (rolling()).
-    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>>;
+    // A link off its flank at the extreme's instant carries nothing and couples nothing: the problem
+    // is that of the model without it (uncoupled()), one copy per set of such links.
+    using Solver = std::tuple<size_t, std::vector<char>, std::vector<double>, std::vector<int>>;
     std::map<Solver, std::unique_ptr<ParticularSolver>> particular;
+    std::map<std::pair<size_t, std::vector<int>>, std::unique_ptr<Model>> uncoupled_models;
+    auto model_of = [&](size_t st, const std::vector<int>& off) -> const Model& {
+      if (off.empty()) return stage(st);
+      auto& mm = uncoupled_models[{st, off}];
+      if (!mm) mm = std::make_unique<Model>(uncoupled(stage(st), off));
+      return *mm;
+    };
     std::map<std::pair<Solver, std::vector<double>>, Eigen::VectorXd> solved;
     auto static_loads = [&](const Extreme& e) -> const Eigen::VectorXd& {
-      Solver which{e.stage, held(e), rolling(e)};
+      Solver which{e.stage, held(e), rolling(e), e.off};
       const auto key = std::make_pair(which, e.vals);
       auto it = solved.find(key);
       if (it == solved.end()) {
-        const auto& [st, h, roll] = which;
+        const auto& [st, h, roll, off] = which;
         auto& p = particular[which];
         if (!p) {
           const auto [G, H] = held_rows(h, roll);
-          p = std::make_unique<ParticularSolver>(stage(st), G, H);
+          p = std::make_unique<ParticularSolver>(model_of(st, off), G, H);
         }
         Eigen::VectorXd f = forces(e.vals, stage(st));
         for (size_t k = 0; k < roll.size(); k += 4) f(sys_.lossy_gear(static_cast<int>(roll[k])).a) += roll[k + 3];
-        it = solved.emplace(key, p->solve(f)).first;
+        Eigen::VectorXd F = p->solve(f);
+        for (int l : off) F(l) = 0.0;  // off its flank: no load, whatever its law
+        it = solved.emplace(key, std::move(F)).first;
       }
       return it->second;
     };
@@ -703,7 +772,37 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     opt_.progress(p);
   }
 
+  // ---- re-decisions at one instant ----
+  /// The modes of every element and the state, before a re-decision.
+  void remember_decision(const double* y) {
+    decision_modes_ = decision_signature();
+    decision_y_.assign(y, y + N_);
+  }
+  /// Whether the re-decision left modes and state as remember_decision saw them.
+  bool same_decision(const double* y) const {
+    return decision_signature() == decision_modes_ && std::equal(decision_y_.begin(), decision_y_.end(), y);
+  }
+  std::vector<int> decision_signature() const {
+    std::vector<int> s;
+    for (ContactMode md : sys_.contact_modes()) s.push_back(static_cast<int>(md));
+    for (int l = 0; l < nl_; ++l) s.push_back(static_cast<int>(sys_.gap_mode(l)));
+    for (int d = 0; d < nd_; ++d) s.push_back(sys_.drive_mode(d));
+    for (int g = 0; g < ng_; ++g) s.push_back(static_cast<int>(sys_.gear_mode(g)));
+    return s;
+  }
+  std::vector<int> decision_modes_;
+  std::vector<double> decision_y_;
+
   // ---- events and slip phases ----
+  /// The element of event function `slot` (the drive system's slots, then the stepwise gears' jumps).
+  std::string slot_name(int slot) const {
+    if (slot >= sys_.event_slots()) return "stepwise gear jump " + std::to_string(slot - sys_.event_slots());
+    const int e = sys_.slot_element(slot);
+    return element_name(sys_.slot_is_link(slot)    ? e
+                        : sys_.slot_is_gear(slot)  ? nl_ + nc_ + nd_ + e
+                        : sys_.slot_is_drive(slot) ? nl_ + nc_ + e
+                                                   : nl_ + e);
+  }
   /// Element e of the events: links, then contacts, then drives, then lossy gears.
   const std::string& element_name(int e) const {
     return e < nl_               ? m_.links[static_cast<size_t>(e)].name
@@ -944,6 +1043,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     std::vector<int>& Z = Z_;  // kept: no allocation per event
     Z.clear();
     strict_.clear();
+    rested_.clear();
     const double V_before = sys_.elastic_energy(y_.data());
     bool gap_changed = false;
     for (int slot : fired) {
@@ -962,7 +1062,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         gap_changed = true;
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
       } else if (sys_.contact(e).stop && sys_.contact_mode(e) != ContactMode::stuck) {
-        if (impact(e, t)) Z.push_back(e);  // at rest on the stop: decided with the others
+        if (impact(e, t)) Z.push_back(e), rested_.push_back(e);  // at rest on the stop: decided with the others
       } else if (sys_.contact_mode(e) != ContactMode::stuck) {
         Z.push_back(e);  // sliding speed reached zero
       } else {
@@ -982,10 +1082,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // or reverses, then starts on its event function's zero, not past it).
     for (int k : Z)
       if (old[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
+    at_rest_together(t, Z);
     std::vector<ContactMode>& now = new_modes_;  // kept, as old_modes_
     decide_contacts(sys_, t, y_.data(), Z, strict_, now);
     strict_.clear();
     apply_contact_modes(t, old, now, false);
+    // An impact that brought its body to rest is an event even when the stop does not hold it (the
+    // loads pull it off at once): the stuck ones are listed as their stick.
+    for (int k : rested_)
+      if (now[static_cast<size_t>(k)] != ContactMode::stuck)
+        record(t, "impact", nl_ + k, to_string(old[static_cast<size_t>(k)]), to_string(now[static_cast<size_t>(k)]));
   }
 
   /// The elastic energy of link l at the run's state y_ in its current mode (elements/link.hpp), J.
@@ -1048,7 +1154,21 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (decided_at_event(k, t)) Z.push_back(k);
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
+    at_rest_together(t, Z);
     apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);
+  }
+
+  /// Every contact of Z is at zero sliding speed at t: the velocities are projected onto u = 0 for
+  /// all of them at once (with the stuck ones), so that each starts its new mode exactly on u = 0 —
+  /// a slide from rest on its event function's zero, not at ±1e-20 beside it where the projection
+  /// of a stuck neighbour alone would leave it (its event function negative at the restart).
+  void at_rest_together(double t, const std::vector<int>& Z) {
+    if (sys_.has_coupled_gears()) return;  // their contacts are settled with the gears
+    std::vector<ContactMode>& rest = rest_modes_;  // kept: no allocation per event
+    rest = sys_.contact_modes();
+    for (int k : Z) rest[static_cast<size_t>(k)] = ContactMode::stuck;
+    if (rest != sys_.contact_modes()) sys_.set_contact_modes(rest);
+    sys_.project_velocities(t, y_.data());
   }
 
   const Model& m_;
@@ -1087,17 +1207,22 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> loads_;                // the link loads of an output row
   std::vector<double*> col_;                 // the columns' data (point_columns)
   std::vector<int> gap_links_, rope_links_;  // links with a gap-mode column, ropes with fall columns
+  std::vector<int> flank_links_;  // links with flanks (LinkLaw::gap: gaps, ropes, one-sided links, buffers)
   std::vector<size_t> drive_cols_;           // per element with states: its own output columns
   std::vector<double> drive_vals_;           // their values at an output row
   std::vector<int> open_phase_;
   std::vector<char> was_released_;  // per contact: released at the last time event (or t = 0)
   std::vector<int> phase_window_;  // per contact: its open slip phase's window in peaks_
   std::vector<std::vector<double>> switches_;
+  static constexpr int kMaxRedecisions = 8;  // handle_events: decisions at one instant before giving up
+  double decided_at_ = std::numeric_limits<double>::quiet_NaN();  // the instant of the last decision
+  int redecisions_ = 0;                                             // and how often it was decided again
+  std::vector<int> rested_;  // handle_contact_event: end stops an impact brought to rest
   std::vector<int> strict_;  // stuck contacts whose limit event fired
   std::vector<int> own_;     // handle_events: the fired slots of the drive system
   std::vector<int> Z_;       // handle_contact_event: the contacts decided
   std::vector<int> broke_;   // handle_event: the stuck contacts whose breakaway fired
-  std::vector<ContactMode> old_modes_, new_modes_;  // handle_contact_event: their modes before and after
+  std::vector<ContactMode> old_modes_, new_modes_, rest_modes_;  // handle_contact_event: their modes before and after
   std::chrono::steady_clock::time_point start_;
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
@@ -1106,6 +1231,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<std::unique_ptr<Model>> stages_;  // the model after 1, 2, … releases
   std::vector<int> released_bodies_ = released_bodies(m_);  // their mass columns
   std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
+  std::unique_ptr<Audit> audit_;  // the invariant audit, when SimulateOptions::check (else none)
 };
 
 }  // namespace

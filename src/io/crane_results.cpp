@@ -5,18 +5,16 @@
 #include <stdexcept>
 #include <vector>
 #include <fmt/format.h>
+#include "machdyn/common/csv.hpp"
 
 namespace machdyn {
 namespace {
 
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 std::string csv_number(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : ""; }
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
+std::string quoted(const std::string& s) { return csv_field(s, true); }
 std::string standard_text(const CraneFactorRow& r) {
+  if (!std::isfinite(r.standard_lo)) return "-";  // not defined (e.g. HD2 without its creep speed)
   return r.standard_lo == r.standard_hi ? fmt::format("{:.4g}", r.standard_lo)
                                         : fmt::format("{:.4g}-{:.4g}", r.standard_lo, r.standard_hi);
 }
@@ -34,14 +32,25 @@ nlohmann::json crane_json(const CraneReport& r) {
                     {"standard_hi", number(x.standard_hi)},
                     {"clause", x.clause},
                     {"margin", number(x.margin)},
-                    {"note", x.note}});
-  return {{"model", r.model}, {"rows", rows}};
+                    {"note", x.note},
+                    {"extreme", number(x.extreme)},
+                    {"t_extreme_s", number(x.t_extreme)},
+                    {"reference", number(x.reference)},
+                    {"vh_m_s", number(x.vh)},
+                    {"xi_b", number(x.xi_b)},
+                    {"stroke", number(x.stroke)},
+                    {"contact_speed", number(x.contact_speed)},
+                    {"t_contact_s", number(x.t_contact)},
+                    {"warning", x.warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(x.warning)}});
+  nlohmann::json j = {{"model", r.model}, {"rows", rows}};
+  if (!r.load_case.empty()) j["load_case"] = r.load_case;
+  return j;
 }
 
 std::string crane_csv(const CraneReport& r) {
   std::string s = "factor,case,simulated,standard_lo,standard_hi,clause,margin,note\n";
   for (const auto& x : r.rows)
-    s += fmt::format("{},{},{},{},{},{},{},{}\n", x.factor, quoted(x.case_name), csv_number(x.simulated),
+    s += fmt::format("{},{},{},{},{},{},{},{}\n", csv_field(x.factor), quoted(x.case_name), csv_number(x.simulated),
                      csv_number(x.standard_lo), csv_number(x.standard_hi), quoted(x.clause), csv_number(x.margin),
                      quoted(x.note));
   return s;
@@ -54,7 +63,10 @@ std::string crane_table(const CraneReport& r) {
   std::vector<size_t> width(cells[0].size(), 0);
   for (const auto& row : cells)
     for (size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
-  std::string s = fmt::format("crane factors of {}\n", r.model);
+  std::string s = fmt::format("crane factors of {}{}\n", r.model,
+                              r.load_case.empty() || r.model.find("[" + r.load_case + "]") != std::string::npos
+                                  ? std::string()
+                                  : fmt::format(" (load case {})", r.load_case));
   for (size_t k = 0; k < cells.size(); ++k) {
     for (size_t c = 0; c < cells[k].size(); ++c)
       s += c + 1 < cells[k].size() ? fmt::format("{:<{}}  ", cells[k][c], width[c]) : cells[k][c];
@@ -65,6 +77,8 @@ std::string crane_table(const CraneReport& r) {
     }
   }
   for (const auto& x : r.rows) s += fmt::format("{} ({}): {}\n", x.factor, x.case_name, x.note);
+  for (const auto& x : r.rows)
+    if (!x.warning.empty()) s += fmt::format("warning: {} ({}): {}\n", x.factor, x.case_name, x.warning);
   return s;
 }
 

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include <fmt/format.h>
+#include "machdyn/common/csv.hpp"
 
 namespace machdyn {
 
@@ -87,7 +88,7 @@ nlohmann::json linear_modes_json(const Model& m, const std::vector<TopologyModes
 std::string linear_modes_csv(const std::vector<TopologyModes>& list) {
   std::string s = "topology,mode,omega_rad_s,f_Hz,zeta,omega_d_rad_s\n";
   for (const auto& t : list) {
-    const std::string label = "\"" + t.label + "\"";
+    const std::string label = csv_field(t.label, true);
     for (Eigen::Index k = 0; k < t.modes.omega.size(); ++k) {
       double zeta = std::numeric_limits<double>::quiet_NaN(), wd = zeta;
       // The damped mode nearest in ω_n (oscillatory modes only).
@@ -107,8 +108,9 @@ std::string linear_modes_csv(const std::vector<TopologyModes>& list) {
 std::string frequency_response_csv(const FrequencyResponse& r) {
   std::string s = "omega_rad_s,f_Hz";
   for (const auto& o : r.outputs)
-    s += fmt::format(",{}.mag_{}_per_{},{}.phase_deg", o.name, unit_suffix(o.unit.c_str()),
-                     unit_suffix(r.input.unit.c_str()), o.name);
+    s += "," + csv_line({fmt::format("{}.mag_{}_per_{}", o.name, unit_suffix(o.unit.c_str()),
+                                     unit_suffix(r.input.unit.c_str())),
+                         o.name + ".phase_deg"});
   s += '\n';
   const Eigen::MatrixXd mag = r.magnitude(), ph = r.phase_deg();
   for (Eigen::Index f = 0; f < r.omega.size(); ++f) {
@@ -181,7 +183,8 @@ plot::Figure bode_phase_figure(const Model& m, const FrequencyResponse& r, const
 
 std::string position_frequencies_csv(const Model& m, const PositionFrequencies& p) {
   const int b = m.body_index(p.body);
-  std::string s = fmt::format("{}.position_{}", p.body, unit_suffix(position_unit(m.bodies[static_cast<size_t>(b)].kind)));
+  std::string s = csv_field(
+      fmt::format("{}.position_{}", p.body, unit_suffix(position_unit(m.bodies[static_cast<size_t>(b)].kind))));
   for (Eigen::Index k = 0; k < p.omega.cols(); ++k) s += fmt::format(",omega_{}_rad_s", k + 1);
   s += '\n';
   for (Eigen::Index i = 0; i < p.positions.size(); ++i) {

@@ -1,13 +1,18 @@
 #include "machdyn/io/output_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <iterator>
 #include <cmath>
 #include <cstring>
+#include <csignal>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/input_file.hpp"
 
 namespace machdyn {
 namespace {
@@ -18,7 +23,10 @@ class TempFile {
   TempFile(std::filesystem::path target) : target_(std::move(target)) {
     tmp_ = target_;
     tmp_ += fmt::format(".tmp.{}", ::getpid());
-    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    // A file of that name is a leftover of an earlier process with this pid: never write through it
+    // (O_EXCL | O_NOFOLLOW: not through a link planted there either).
+    (void)::unlink(tmp_.c_str());
+    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd_ < 0) fail(errno);
   }
   ~TempFile() {
@@ -75,13 +83,74 @@ void make_parent(const std::filesystem::path& path) {
   if (ec) throw OutputError(fmt::format("cannot create the folder {}: {}", path.parent_path().string(), ec.message()));
 }
 
+/// The endings of the files machdyn writes (results, journal, figures, report, drawings).
+constexpr const char* kResultExtensions[] = {".csv", ".json", ".journal", ".svg", ".png", ".html", ".dxf"};
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  return "not a regular file";
+}
+
+/// True for the name of a temporary file of write_file_atomic whose process is gone: RESULT.tmp.PID
+/// with RESULT of a kind machdyn writes (so that no other file of the folder is ever touched).
+bool stale_temp_name(const std::string& name) {
+  const auto dot = name.rfind(".tmp.");
+  if (dot == std::string::npos || dot == 0 || dot + 5 >= name.size()) return false;
+  const std::string result = name.substr(0, dot);
+  const bool ours = std::any_of(std::begin(kResultExtensions), std::end(kResultExtensions),
+                                [&](const char* ext) { return result.ends_with(ext); });
+  if (!ours) return false;
+  const std::string digits = name.substr(dot + 5);
+  if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
+  const long pid = std::stol(digits);
+  return pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
 }  // namespace
+
+std::string output_target_problem(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return {};  // a new path (or one the write will report)
+  if (!S_ISREG(st.st_mode)) {
+    std::string to;
+    if (S_ISLNK(st.st_mode)) {
+      std::error_code ec;
+      const auto target = std::filesystem::read_symlink(path, ec);
+      if (!ec) to = fmt::format(" to {}", target.string());
+      if (const std::string input = input_file_at(path.string()); !input.empty())
+        to += fmt::format(", the input file {} of this run", input);
+    }
+    return fmt::format("it is {}{}; machdyn writes only to a new path or over a regular file", kind_of(st.st_mode), to);
+  }
+  if (const std::string input = input_file_at(path.string()); !input.empty())
+    return fmt::format("it is the input file {} of this run{}; choose another output", input,
+                       input == path.string() ? "" : " (the same file under another name)");
+  return {};
+}
+
+std::size_t remove_stale_temp_files(const std::filesystem::path& dir) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!stale_temp_name(it->path().filename().string())) continue;
+    std::error_code rm;
+    if (it->is_regular_file(rm) && std::filesystem::remove(it->path(), rm)) ++removed;
+  }
+  return removed;
+}
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
   write_file_atomic(path, [&](const ChunkSink& sink) { sink(content); });
 }
 
 void write_file_atomic(const std::filesystem::path& path, const std::function<void(const ChunkSink&)>& produce) {
+  if (const std::string problem = output_target_problem(path); !problem.empty())
+    throw OutputError(fmt::format("refusing to write {}: {}", path.string(), problem));
   make_parent(path);
   TempFile f(path);
   produce([&](std::string_view d) { f.write(d); });

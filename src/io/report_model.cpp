@@ -312,10 +312,13 @@ Section crane_section(const CraneReport& cr, const std::string& case_name) {
   auto num = [](double x) { return std::isfinite(x) ? fmt::format("{:.4f}", x) : std::string("–"); };
   for (const auto& x : cr.rows)
     t.rows.push_back({x.factor, x.case_name, num(x.simulated),
-                      x.standard_lo == x.standard_hi ? fmt::format("{:.4g}", x.standard_lo)
+                      !std::isfinite(x.standard_lo)    ? std::string("–")
+                      : x.standard_lo == x.standard_hi ? fmt::format("{:.4g}", x.standard_lo)
                                                      : fmt::format("{:.4g}–{:.4g}", x.standard_lo, x.standard_hi),
                       num(x.margin), x.clause, x.note});
   s.tables.push_back(std::move(t));
+  for (const auto& x : cr.rows)
+    if (!x.warning.empty()) s.paragraphs.push_back(fmt::format("Warning — {} ({}): {}", x.factor, x.case_name, x.warning));
   s.figures = crane_figures(cr);
   return s;
 }

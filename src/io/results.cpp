@@ -1,6 +1,7 @@
 #include "machdyn/io/results.hpp"
 
 #include "machdyn/analysis/hybrid_stats.hpp"
+#include "machdyn/common/csv.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -9,12 +10,7 @@
 namespace machdyn {
 
 void timeseries_csv(const SimulationResult& r, const ChunkSink& sink) {
-  std::string s;
-  for (size_t c = 0; c < r.column_names.size(); ++c) {
-    if (c) s += ',';
-    s += r.column_names[c];
-  }
-  s += '\n';
+  std::string s = csv_line(r.column_names) + '\n';  // names quoted as RFC 4180 needs (common/csv.hpp)
   const size_t rows = r.columns.empty() ? 0 : r.columns[0].size();
   // About 1 MB at a time: a long run's CSV is never held whole in memory.
   constexpr size_t chunk = size_t{1} << 20;

@@ -14,6 +14,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "machdyn/io/input_file.hpp"
+
 namespace machdyn {
 namespace {
 
@@ -94,15 +96,15 @@ class FileSignal {
                                   what_, p->scalar, ec ? 0 : bytes, kMaxSignalFileBytes >> 20));
       return;
     }
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (!in && !in.eof()) {
-      diag_.error(at, fmt::format("{}: cannot read the signal file '{}'", what_, path.string()));
+    std::string text;
+    try {
+      text = read_input_file(path.string(), kMaxSignalFileBytes, "signal file");
+    } catch (const InputError& e) {  // vanished, unreadable or grown since the checks above
+      diag_.error(at, fmt::format("{}: {}", what_, e.diagnostics().front().str()));
       return;
     }
     file_ = std::make_shared<const std::string>(path.string());
-    read(ss.str());
+    read(text);
   }
 
  private:

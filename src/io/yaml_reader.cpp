@@ -1,5 +1,7 @@
 #include "machdyn/io/yaml_reader.hpp"
 
+#include "machdyn/io/input_file.hpp"
+
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
@@ -169,11 +171,7 @@ SpecNode parse_yaml_string(const std::string& text, const std::string& source) {
 }
 
 SpecNode read_yaml_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(Location{path, 0, 0}, "cannot open the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_yaml_string(ss.str(), path);
+  return parse_yaml_string(read_input_file(path, kMaxModelFileBytes, "file"), path);
 }
 
 namespace {

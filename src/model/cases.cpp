@@ -7,6 +7,19 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
+namespace {
+
+/// The name as it may be printed on one line: control characters as \xNN, at most 80 bytes.
+std::string printable(const std::string& name) {
+  std::string out;
+  for (const char ch : name.substr(0, 80)) {
+    const auto u = static_cast<unsigned char>(ch);
+    out += u < 0x20 || u == 0x7f ? fmt::format("\\x{:02x}", u) : std::string(1, ch);
+  }
+  return name.size() > 80 ? out + "..." : out;
+}
+
+}  // namespace
 
 std::vector<std::string> case_names(const SpecNode& root) {
   std::vector<std::string> out;
@@ -16,6 +29,17 @@ std::vector<std::string> case_names(const SpecNode& root) {
   return out;
 }
 
+std::string case_name_problem(const std::string& name) {
+  if (name.empty()) return "is empty";
+  if (name == "." || name == "..") return fmt::format("is '{}', a folder of its own", name);
+  if (name.size() > kMaxCaseNameBytes) return fmt::format("has {} bytes, more than {}", name.size(), kMaxCaseNameBytes);
+  for (const char ch : name) {
+    if (ch == '/' || ch == '\\') return fmt::format("contains '{}', a path separator", ch);
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) return "contains a control character (newline, tab, NUL, ...)";
+  }
+  return {};
+}
+
 void apply_case(SpecNode& root, const std::string& name) {
   const Location cli{fmt::format("--case {}", name), 0, 0};
   SpecNode* cases = root.is_map() ? root.find("cases") : nullptr;
@@ -23,6 +47,12 @@ void apply_case(SpecNode& root, const std::string& name) {
   const SpecNode* c = cases->find(name);
   if (!c)
     throw InputError(cli, fmt::format("no case named '{}'; the file has: {}", name, fmt::join(case_names(root), ", ")));
+  // The name becomes a folder (OUT/NAME) and a table cell: it must be one plain name.
+  if (const std::string problem = case_name_problem(name); !problem.empty())
+    throw InputError(Location(c->key_loc), fmt::format("case '{}': the name {}; a case name becomes the folder OUT/NAME of its "
+                                             "results, so it must be a plain name (no '/', '\\', control characters, "
+                                             "not '.' or '..', at most {} bytes)",
+                                             printable(name), problem, kMaxCaseNameBytes));
   const SpecNode patch = *c;  // copy: root is edited below
   Diagnostics diag;
   if (!patch.is_map()) {
@@ -47,9 +77,20 @@ void apply_case(SpecNode& root, const std::string& name) {
       }
       continue;
     }
-    const bool is_sim = section == "simulation";
+    if (section == "crane") {  // the crane analysis of this case: fields replaced one by one, or `none`
+      if (body.is_scalar() && (body.scalar == "none" || body.scalar == "off")) {
+        root.erase("crane");
+        continue;
+      }
+      if (!body.is_map()) {
+        diag.error(body.loc, fmt::format("case '{}': 'crane' expected a map of fields (replaced one by one) or 'none' "
+                                         "(no crane analysis in this case)", name));
+        continue;
+      }
+    }
+    const bool is_sim = section == "simulation" || section == "crane";
     if (!is_sim && std::find(element_sections().begin(), element_sections().end(), section) == element_sections().end()) {
-      diag.error(body.key_loc, fmt::format("case '{}': unknown section '{}'; known: description, remove, {}, simulation",
+      diag.error(body.key_loc, fmt::format("case '{}': unknown section '{}'; known: description, remove, {}, simulation, crane",
                                            name, section, fmt::join(element_sections(), ", ")));
       continue;
     }

@@ -73,6 +73,10 @@ void check_names(const SpecNode& root, Model& m, Diagnostics& diag) {
       if (name.find('.') != std::string::npos)
         diag.error(spec.key_loc, fmt::format("{} name '{}' contains '.', which separates NAME.FIELD in --set; "
                                              "expected a name without '.'", section, name));
+      // A name is a column of CSV tables, one line each (a sweep's journal is read line by line).
+      if (std::any_of(name.begin(), name.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+        diag.error(spec.key_loc, fmt::format("{} name contains a control character (newline, tab, ...); expected a "
+                                             "name on one line", section));
       m.element_where.try_emplace(name, Location(spec.key_loc));
       auto [it, fresh] = seen.try_emplace(name, section, &spec);
       if (!fresh)

@@ -38,7 +38,9 @@ std::vector<int> link_list(FieldReader& f, const char* key, const Model& m, bool
     else
       out.push_back(k);
   }
-  if (items.empty()) f.diagnostics().error(n->loc, fmt::format("crane: '{}' expected a link name or a list of them", key));
+  // An empty list `[]` names none (a load case may switch a case off this way).
+  if (items.empty() && !n->is_seq())
+    f.diagnostics().error(n->loc, fmt::format("crane: '{}' expected a link name or a list of them", key));
   return out;
 }
 
@@ -189,6 +191,10 @@ void compile_crane(const SpecNode* crane, Model& m, Diagnostics& diag) {
   if (hd) c.drive_class = (*hd)[2] - '0';
   c.hoist_speed = f.positive("hoist_speed", dim::velocity, 0.0, true).value_or(0.0);
   c.creep_speed = f.positive("creep_speed", dim::velocity, 0.0, true).value_or(0.0);
+  if (c.creep_speed > 0.0 && c.hoist_speed > 0.0 && c.creep_speed > c.hoist_speed)
+    f.error_at("creep_speed", fmt::format("crane: the creep speed {:.6g} m/s exceeds the hoisting speed 'hoist_speed' "
+                                          "{:.6g} m/s; the creep speed is the slow speed the load is taken up with",
+                                          c.creep_speed, c.hoist_speed));
   if ((c.drive_class == 2 || c.drive_class == 3) && !crane->find("creep_speed"))
     f.error_at("drive_class", fmt::format("crane: drive class HD{} hoists at the creep speed: give 'creep_speed'",
                                           c.drive_class));

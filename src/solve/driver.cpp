@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "machdyn/common/diagnostics.hpp"
 #include "machdyn/solve/roots.hpp"
 
 namespace machdyn {
@@ -15,6 +16,11 @@ StepperStats minus(StepperStats a, const StepperStats& b) {
   return a;
 }
 
+/// Rounds of re-decision at one instant before the driver gives up: each round hands back the
+/// functions the last decision left negative, and every element changes its mode at most a few
+/// times at one instant (a contact stuck → sliding, a flank open ↔ closed).
+constexpr int kMaxRedecisions = 16;
+
 }  // namespace
 
 RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, double t_end,
@@ -24,7 +30,11 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   const auto n = static_cast<size_t>(st.size());
   const auto ne = static_cast<size_t>(sys.event_count());
   std::vector<double> y(y0, y0 + n), ytmp(n);
-  std::vector<double> g_prev(ne), g_new(ne), g_tmp(ne);
+  std::vector<double> g_prev(ne), g_new(ne), g_tmp(ne), g_mid(ne), g_a(ne);
+  // Per function the value it fires below: 0, or −∞ while the system's own decision keeps it below
+  // 0 (settle below) until it is ≥ 0 at a step end.
+  std::vector<double> off(ne, 0.0);
+  bool any_off = false;
   const std::vector<double> bps = sys.breakpoints(t0, t_end);
   const long n_out = std::max(1L, std::lround(std::ceil((t_end - t0) / opt.dt_out - 1e-9)));
   // Local copies: no call in the loop below can change them, so they stay in registers.
@@ -32,6 +42,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   const bool outputs = opt.outputs;
   auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * dt_out; };
   long k_out = 1;
+  long k_sample = 1;  // the first output time not yet checked for event crossings
   // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
   auto segment = [&](double ta, double tb) {
     const double ts = st.t();  // the step's end (the stepper's own state: exact there)
@@ -47,12 +58,44 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     obs.on_segment(st, ta, tb);
   };
   RunStats stats;
+  std::vector<int> fired;
+  // The modes the system decided at t (the start, an event, a breakpoint) must have every event
+  // function ≥ 0 at the state there: a function that is negative at a restart could never cross
+  // from ≥ 0 to < 0 again and would stay disarmed for good. Such a function is a decision the event
+  // functions contradict (one quantity formed by two computations that differ in their last bits,
+  // a flank the state has already passed): it is handed back to the system as fired at t and
+  // decided again, until every function is ≥ 0 or the system's decision no longer changes.
+  // Leaves g_prev at t.
+  auto settle = [&](double t, double* ys) {
+    for (int round = 0;; ++round) {
+      sys.event_functions(t, ys, g_prev.data());
+      fired.clear();
+      for (size_t k = 0; k < ne; ++k)
+        if (!(g_prev[k] >= 0.0)) fired.push_back(static_cast<int>(k));
+      std::fill(off.begin(), off.end(), 0.0);
+      if (fired.empty()) return;
+      if (round == kMaxRedecisions)
+        throw SolverError("event function " + std::to_string(fired.front()), t,
+                          "no consistent mode: the function stays negative after " + std::to_string(kMaxRedecisions) +
+                              " decisions at this instant");
+      const bool changed = sys.handle_events(t, ys, fired);
+      obs.on_event(t, ys, fired);
+      if (!changed) {
+        // The system keeps its decision (it reports nothing changed): its last word. Such a
+        // function is armed again only once it is ≥ 0 at a step end (the rule of old; the hybrid
+        // run keeps it for speed drives and lossy gears alone, docs/hybrid.md "The restart rule").
+        sys.event_functions(t, ys, g_prev.data());
+        for (size_t k = 0; k < ne; ++k)
+          if (!(g_prev[k] >= 0.0)) off[k] = -std::numeric_limits<double>::infinity(), any_off = true;
+        return;
+      }
+    }
+  };
+  if (ne) settle(t0, y.data());
   st.reset(t0, y.data());
-  if (ne) sys.event_functions(t0, y.data(), g_prev.data());
   if (opt.outputs) obs.on_output(t0, y.data());
   double t = t0;
   size_t next_bp = 0;
-  std::vector<int> fired;
   while (t < t_end) {
     while (next_bp < bps.size() && bps[next_bp] <= t) ++next_bp;
     const bool to_bp = next_bp < bps.size() && bps[next_bp] < t_end;
@@ -68,36 +111,62 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     if (ne) {
       sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
                           g_new.data());
-      // Most steps cross nothing: a tight scan first (the loop below keeps k in memory for its lambda).
+      // A function may leave ≥ 0 and come back within one step, unseen by the error control (a
+      // stuck body's state is constant while a sine load rises past the limit and falls back): in a
+      // step longer than 2 dt_out the output times inside it are checked too, so no excursion
+      // longer than 2 dt_out is missed. The crossing is then looked for in [a, b], the first
+      // stretch between checks that has one.
+      double a = ta, b = t1;
       const double *gp = g_prev.data(), *gn = g_new.data();
+      while (k_sample <= n_out && out_time(k_sample) <= ta) ++k_sample;
+      for (long ks = k_sample; t1 - ta > 2.0 * dt_out && ks <= n_out && out_time(ks) < t1; ++ks) {
+        const double s = out_time(ks);
+        st.interpolate(s, ytmp.data());
+        sys.event_functions(s, ytmp.data(), g_mid.data());
+        bool crossed = false;
+        for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g_mid[k] < off[k]);
+        if (crossed) {
+          b = s, gn = g_mid.data();
+          break;
+        }
+        g_a = g_mid, gp = g_a.data(), a = s;
+      }
+      // Most steps cross nothing: a tight scan first (the loop below keeps k in memory for its lambda).
       bool crossed = false;
-      for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= 0.0 && gn[k] < 0.0);
+      for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && gn[k] < off[k]);
       for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
-        if (!(gp[k] >= 0.0 && gn[k] < 0.0)) continue;
+        if (!(gp[k] >= off[k] && gn[k] < off[k])) continue;
         const Bracket br = illinois(
             [&](double tm) {
               st.interpolate(tm, ytmp.data());
               sys.event_functions(tm, ytmp.data(), g_tmp.data());
-              return g_tmp[k];
+              return g_tmp[k] - off[k];
             },
             // 400 iterates: on a kink (a taut rope or gap without a damper: −c (δ − δ₊) beyond the
             // flank) the Illinois halvings do not outlast the bisection of every 8th iterate, so the
             // bracket halves once per 8 — some 45 bisections from a step of 0.1 s down to 1e-13 s.
-            ta, g_prev[k], t1, g_new[k], opt.event_tol * std::max(1.0, std::abs(t1)), 400);
+            a, gp[k] - off[k], b, gn[k] - off[k], opt.event_tol * std::max(1.0, std::abs(b)), 400);
         if (br.hi < te) te = br.hi, first = static_cast<int>(k);
       }
     }
     if (first < 0) {
       segment(ta, t1);
       g_prev.swap(g_new);
+      if (any_off) {  // a function armed below 0 that is ≥ 0 again is armed from 0
+        any_off = false;
+        for (size_t k = 0; k < ne; ++k) {
+          if (g_prev[k] >= 0.0) off[k] = 0.0;
+          any_off = any_off || off[k] != 0.0;
+        }
+      }
       t = t1;
       if (at_bp) {  // loads may jump here: the system looks at its modes, the stepper restarts
         std::copy(st.y(), st.y() + n, y.begin());
         fired.clear();
         sys.handle_events(t1, y.data(), fired);
         obs.on_event(t1, y.data(), fired);
+        if (ne) settle(t1, y.data());
         st.reset(t1, y.data());
-        if (ne) sys.event_functions(t1, y.data(), g_prev.data());
       }
       continue;
     }
@@ -108,12 +177,12 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     sys.event_functions(te, y.data(), g_tmp.data());
     fired.assign(1, first);
     for (size_t k = 0; k < ne; ++k)
-      if (static_cast<int>(k) != first && g_prev[k] >= 0.0 && g_tmp[k] < 0.0) fired.push_back(static_cast<int>(k));
+      if (static_cast<int>(k) != first && g_prev[k] >= off[k] && g_tmp[k] < off[k]) fired.push_back(static_cast<int>(k));
     ++stats.events;
     sys.handle_events(te, y.data(), fired);
     obs.on_event(te, y.data(), fired);
+    settle(te, y.data());
     st.reset(te, y.data());
-    sys.event_functions(te, y.data(), g_prev.data());
     t = te;
   }
   stats.stepper = minus(st.stats(), before);

@@ -90,6 +90,10 @@ SweepJournal::SweepJournal(std::string path, const std::string& fingerprint, lon
   const Location where{path_, 0, 0};
   const std::string expected_header = header_text(fingerprint, runs, header);
 
+  // A FIFO there would block the read below, a device or a link be replaced by the rewrite.
+  if (std::error_code ec; fs::exists(fs::symlink_status(p, ec)) && !fs::is_regular_file(fs::symlink_status(p, ec)))
+    throw InputError(where, "this is not a regular file (a link, FIFO, device or folder), so not a sweep journal; "
+                            "remove it or choose another -o");
   if (fs::exists(p)) {
     std::ifstream in(p, std::ios::binary);
     std::stringstream ss;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "machdyn/io/input_file.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
@@ -80,13 +81,6 @@ void probe_axis(const SweepPlan& plan, const VaryAxis& axis, Diagnostics& diag) 
   }
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 SweepPlan make_sweep_plan(const SweepRequest& request) {
@@ -94,8 +88,11 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   plan.request = request;
 
   // The base: file and --set; it must compile on its own.
-  const SpecNode file = request.model_text.empty() ? read_yaml_file(request.model_path)
-                                                   : parse_yaml_string(request.model_text, request.model_path);
+  // The file is read once: the spec and the fingerprint are of the same text.
+  const std::string text = request.model_text.empty()
+                               ? read_input_file(request.model_path, kMaxModelFileBytes, "file")
+                               : request.model_text;
+  const SpecNode file = parse_yaml_string(text, request.model_path);
   plan.base = file;
   for (const auto& o : request.sets) apply_set(plan.base, o);
   resolve_gear_includes(plan.base);  // `gears: FILE` is read once here, not per run
@@ -212,7 +209,7 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   // Fingerprint: what decides the table (model text, options), so --resume refuses another sweep.
   std::uint64_t h = fnv1a("machdyn-sweep-v1");
   auto add = [&](std::string_view s) { h = fnv1a(s, fnv1a("\x1f", h)); };
-  add(request.model_text.empty() ? read_text(request.model_path) : request.model_text);
+  add(text);
   for (const auto& s : request.sets) add(s);
   add("vary");
   for (const auto& v : request.vary) add(v);

@@ -1,5 +1,6 @@
 #include "machdyn/sweep/runner.hpp"
 
+#include "machdyn/io/folder_lock.hpp"
 #include "machdyn/io/output_file.hpp"
 
 #include <algorithm>
@@ -29,6 +30,7 @@ using Clock = std::chrono::steady_clock;
 struct FinishedRow {
   long index = 0;
   std::string row;
+  bool input_error = false;  ///< the run failed on its input (execute_run)
 };
 
 /// Worker threads computing the rows of `work` (run indices), next run from a shared counter.
@@ -41,8 +43,11 @@ class ThreadPool {
     for (int t = 0; t < threads; ++t) threads_.emplace_back([this] { work_loop(); });
   }
   ~ThreadPool() {
+    abandon();  // an exception on the writing thread (a full disk): no new run, join at once
     for (auto& t : threads_) t.join();
   }
+  /// No worker starts another run.
+  void abandon() { abandoned_ = true; }
   ThreadPool(const ThreadPool&) = delete;
   ThreadPool& operator=(const ThreadPool&) = delete;
 
@@ -60,14 +65,15 @@ class ThreadPool {
  private:
   void work_loop() {
     for (;;) {
-      if (stop_ && stop_->load()) break;
+      if ((stop_ && stop_->load()) || abandoned_) break;
       const size_t i = next_.fetch_add(1);
       if (i >= work_.size()) break;
       const long idx = work_[i];
-      std::string row = execute_run(plan_, plan_.runs[static_cast<size_t>(idx)], columns_, names_);
+      bool input_error = false;
+      std::string row = execute_run(plan_, plan_.runs[static_cast<size_t>(idx)], columns_, names_, &input_error);
       {
         std::lock_guard lock(mutex_);
-        queue_.push_back({idx, std::move(row)});
+        queue_.push_back({idx, std::move(row), input_error});
       }
       cv_.notify_one();
     }
@@ -84,6 +90,7 @@ class ThreadPool {
   const std::vector<long> work_;
   const std::atomic<bool>* stop_;
   std::atomic<size_t> next_{0};
+  std::atomic<bool> abandoned_{false};
   std::mutex mutex_;
   std::condition_variable cv_;
   std::vector<FinishedRow> queue_;
@@ -142,10 +149,12 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
 
   // Rank 0 opens the journal; every rank learns which runs are finished.
   std::unique_ptr<SweepJournal> journal;
+  std::unique_ptr<FolderLock> lock;  // one sweep at a time in out_dir (io/folder_lock.hpp)
   std::vector<char> finished(static_cast<size_t>(total), 0);
   int ready = 1;
   if (rank == 0) {
     try {
+      lock = std::make_unique<FolderLock>(options.out_dir.empty() ? fs::path(".") : fs::path(options.out_dir));
       journal = std::make_unique<SweepJournal>(out.journal_path, plan.fingerprint, total, header, options.resume);
     } catch (...) {
       ready = 0;
@@ -189,8 +198,15 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
     while (true) {
       auto rows = pool.take(std::chrono::milliseconds(50), pool_idle);
       if (rank == 0) {
-        for (auto& r : rows) journal->append(r.index, r.row);
+        for (auto& r : rows) {
+          journal->append(r.index, r.row);
+          if (r.input_error) {
+            ++out.input_errors;
+            if (out.first_input_error < 0 || r.index < out.first_input_error) out.first_input_error = r.index;
+          }
+        }
         out.computed += static_cast<long>(rows.size());
+        out.computed_here += static_cast<long>(rows.size());
         if (ranks > 1) {
           // Rows from the other ranks: journal records, validated like the file.
           incoming.clear();
@@ -231,6 +247,8 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options) {
 
   write_table(out.table_path, header, journal->rows());
   for (const auto& r : journal->rows()) (r.ends_with(",ok,") ? out.ok : out.errors)++;
+  if (out.first_input_error >= 0)
+    out.first_input_message = split_csv_line(journal->rows()[static_cast<size_t>(out.first_input_error)]).back();
   out.complete = true;
   return out;
 }

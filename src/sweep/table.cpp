@@ -20,6 +20,14 @@ std::string number(double v) {
   return fmt::format("{}", v);  // shortest text that reads back to the same double
 }
 
+/// A field of the table: RFC 4180 (common/csv.hpp) on one line, line breaks as spaces, since the
+/// journal holds one row per line.
+std::string one_line_field(std::string text) {
+  for (auto& ch : text)
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  return csv_field(text);
+}
+
 }  // namespace
 
 std::vector<SummaryColumns> standard_summary_columns() {
@@ -120,20 +128,6 @@ std::vector<std::vector<std::string>> summary_column_names(const SweepPlan& plan
   return out;
 }
 
-std::string csv_field(const std::string& text) {
-  std::string t = text;
-  for (auto& ch : t)
-    if (ch == '\n' || ch == '\r') ch = ' ';
-  const bool quote = t.find_first_of(",\"") != std::string::npos || (!t.empty() && (t.front() == ' ' || t.back() == ' '));
-  if (!quote) return t;
-  std::string q = "\"";
-  for (char ch : t) {
-    if (ch == '"') q += '"';
-    q += ch;
-  }
-  return q + '"';
-}
-
 std::vector<std::string> split_csv_line(const std::string& line) {
   std::vector<std::string> out(1);
   bool quoted = false;
@@ -164,12 +158,12 @@ std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns
   if (!plan.request.cases.empty()) h += ",case";
   for (const auto& a : plan.axes) {
     h += ',';
-    h += csv_field(a.target);
+    h += one_line_field(a.target);
   }
   for (const auto& names : summary_column_names(plan, columns))
     for (const auto& name : names) {
       h += ',';
-      h += csv_field(name);
+      h += one_line_field(name);
     }
   return h + ",status,message";
 }
@@ -179,16 +173,17 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
 }
 
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns,
-                        const std::vector<std::vector<std::string>>& names) {
+                        const std::vector<std::vector<std::string>>& names, bool* input_error) {
+  if (input_error) *input_error = false;
   // The run's key: index, case, varied values.
   std::string row = std::to_string(run.index);
   if (run.case_index >= 0) {
     row += ',';
-    row += csv_field(plan.request.cases[static_cast<size_t>(run.case_index)]);
+    row += one_line_field(plan.request.cases[static_cast<size_t>(run.case_index)]);
   }
   for (const auto& v : run.values) {
     row += ',';
-    row += std::isnan(v.si) ? csv_field(v.text) : number(v.si);
+    row += std::isnan(v.si) ? one_line_field(v.text) : number(v.si);
   }
 
   size_t n_summary = 0;
@@ -232,6 +227,7 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     }
     return row + ",ok,";
   } catch (const InputError& e) {
+    if (input_error) *input_error = true;
     for (const auto& d : e.diagnostics()) {
       if (!message.empty()) message += "; ";
       message += d.str();
@@ -241,7 +237,7 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
   }
   row += std::string(n_summary, ',');
   row += ",error,";
-  row += csv_field(message);
+  row += one_line_field(message);
   return row;
 }
 

@@ -73,10 +73,9 @@ TEST_P(Crane, Phi2MatchesTheClosedFormForEachDriveClass) {
     EXPECT_DOUBLE_EQ(x.standard_lo, 1.10 + 0.34 * vh) << hd;
     EXPECT_DOUBLE_EQ(x.margin, x.standard_lo - x.simulated) << hd;
   }
-  // HD5 starts from zero speed: no dynamic lift-off to simulate, the standard's 1.05 alone.
-  const CraneReport r5 = crane_analysis(model_of(with_drive_class("HD5")));
-  EXPECT_TRUE(std::isnan(row(r5, "phi2").simulated));
-  EXPECT_EQ(row(r5, "phi2").standard_lo, 1.05);
+  // HD5 (the drive starts from zero speed) runs the model's own drive: this one never moves, so the
+  // load is never lifted — an error (CraneChecks.Phi2NeverReachedIsAnError); a drive that starts
+  // from rest: Crane.PrescribedDriveHoistsInHD1AndItsOwnRampInHD5.
 }
 
 // Claim: φ2(vh) of the rigid drive follows the closed form 1 + vh ω / g at every speed of the sweep
@@ -374,8 +373,15 @@ TEST(CraneOutput, Phi2SweepFigureDrawsBothLines) {
 TEST(CraneOutput, JsonCsvAndTableAgree) {
   CraneReport r;
   r.model = "m";
-  r.rows.push_back({"phi2", "a, \"b\"", 1.25, 1.27, 1.27, "EN 13001-2", 0.02, "n", {}, {}});
-  r.rows.push_back({"phi5", "c", std::nan(""), 1.0, 1.5, "EN 13001-2 phi5", std::nan(""), "", {}, {}});
+  auto add = [&](const char* factor, const char* name, double sim, double lo, double hi, const char* clause,
+                 double margin, const char* note) {
+    CraneFactorRow x;
+    x.factor = factor, x.case_name = name, x.simulated = sim, x.standard_lo = lo, x.standard_hi = hi;
+    x.clause = clause, x.margin = margin, x.note = note;
+    r.rows.push_back(x);
+  };
+  add("phi2", "a, \"b\"", 1.25, 1.27, 1.27, "EN 13001-2", 0.02, "n");
+  add("phi5", "c", std::nan(""), 1.0, 1.5, "EN 13001-2 phi5", std::nan(""), "");
   const auto j = crane_json(r);
   EXPECT_EQ(j["rows"][0]["simulated"].get<double>(), 1.25);
   EXPECT_TRUE(j["rows"][1]["simulated"].is_null());
@@ -447,24 +453,21 @@ crane: {hoist_speed: 0.5 m/s, load: load, rope: rope}
 // Claim (`--drive-classes`): one φ2 row per class, in the order asked. The rigid drive of kHoist
 // lifts the load with φ2 = 1 + vh ω/g, ω = √(c/m) (to 1e-9), at the class's characteristic speed:
 // HD1 vh,max = 0.5, HD2 and HD3 the creep speed 0.1, HD4 0.5 vh,max = 0.25 m/s; HD5 starts from zero
-// speed and is not simulated. The standard's value is φ2,min + β2 vh with HC2's β2 = 0.34 s/m and
+// speed with the model's own drive (here one at rest: Crane.PrescribedDriveHoistsInHD1AndItsOwnRampInHD5
+// has one that starts). The standard's value is φ2,min + β2 vh with HC2's β2 = 0.34 s/m and
 // φ2,min = 1.10 for HD1, HD2, HD4 and 1.05 for HD3, HD5 (crane-standards.md, the φ2 table).
 TEST(CraneDriveClasses, Phi2InEveryDriveClassMatchesTheClosedFormAndTheTable) {
   const Model m = model_of(with_drive_class("HD1"));
-  const CraneReport r = crane_analysis(m, {1, 2, 3, 4, 5});
-  ASSERT_EQ(r.rows.size(), 5u);
+  const CraneReport r = crane_analysis(m, {1, 2, 3, 4});
+  ASSERT_EQ(r.rows.size(), 4u);
   const double w = std::sqrt(1e6 / 1000.0), g = 9.81;
-  const double vh[] = {0.5, 0.1, 0.1, 0.25, 0.0};
-  const double phi2_min[] = {1.10, 1.10, 1.05, 1.10, 1.05};
-  for (int k = 0; k < 5; ++k) {
+  const double vh[] = {0.5, 0.1, 0.1, 0.25};
+  const double phi2_min[] = {1.10, 1.10, 1.05, 1.10};
+  for (int k = 0; k < 4; ++k) {
     const CraneFactorRow& x = r.rows[static_cast<size_t>(k)];
     EXPECT_EQ(x.factor, "phi2");
     EXPECT_NE(x.case_name.find("HD" + std::to_string(k + 1)), std::string::npos) << x.case_name;
     EXPECT_NEAR(x.standard_lo, phi2_min[k] + 0.34 * vh[k], 1e-12) << "HD" << k + 1;
-    if (k == 4) {
-      EXPECT_TRUE(std::isnan(x.simulated));
-      continue;
-    }
     const double expected = 1.0 + vh[k] * w / g;
     EXPECT_NEAR(x.simulated, expected, 1e-9 * expected) << "HD" << k + 1;
   }
@@ -483,6 +486,41 @@ TEST(CraneDriveClasses, CreepSpeedClassWithoutCreepSpeedSaysSo) {
   EXPECT_NE(r.rows[0].note.find("creep_speed"), std::string::npos) << r.rows[0].note;
 }
 
+// Claim (issue 27): the φ2 case runs the hoist drive through a lossy gearbox as through an ideal one:
+// the gear keeps its ratio v_a = i v_b in every mode, so the whole group — motor, gearbox, drum —
+// starts at the class's speed: the motor at ω = vh · i_rope · i_gear. A rigid drive (1e15 kg·m² on
+// both sides of the gear) then gives the closed form φ2 = 1 + vh ω/g, ω = √(c/m), in each class's
+// row at its own speed (HD1 vh,max 0.5 m/s, HD2 the creep speed 0.1 m/s), beside φ2,min + β2 vh.
+// (Before, the motor's side stayed at rest: the rows did not run at the class's speed.)
+TEST_P(Crane, Phi2ThroughALossyGearboxRunsAtTheClassSpeed) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 1e15 kg*m^2}
+  drum: {inertia: 1e15 kg*m^2}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links:
+  gearbox: {type: lossy-gear, between: [motor, drum], ratio: 10, efficiency: 0.9}
+  rope: {type: rope, between: [drum, load], ratio: 4 rad/m, stiffness: 1e6 N/m, slack: 10 mm}
+stops: {ground: {body: load, min: 0 m}}
+simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+crane: {hoisting_class: HC2, drive_class: HD1, hoist_speed: 0.5 m/s, creep_speed: 0.1 m/s, load: load, rope: rope}
+)");
+  m.simulation.integrator = GetParam();
+  const Model c = phi2_case_model(m, 0.1);
+  EXPECT_NEAR(c.bodies[static_cast<size_t>(c.body_index("motor"))].v0, 0.1 * 4 * 10, 1e-12);
+  EXPECT_NEAR(c.bodies[static_cast<size_t>(c.body_index("drum"))].v0, 0.1 * 4, 1e-12);
+  const CraneReport r = crane_analysis(m, {1, 2});
+  ASSERT_EQ(r.rows.size(), 2u);
+  const double w = std::sqrt(1e6 / 1000.0), g = 9.81;
+  const double vh[] = {0.5, 0.1};
+  for (size_t k = 0; k < 2; ++k) {
+    const double expected = 1.0 + vh[k] * w / g;
+    EXPECT_NEAR(r.rows[k].simulated, expected, 1e-9 * expected) << "HD" << k + 1;
+    EXPECT_NEAR(r.rows[k].standard_lo, 1.10 + 0.34 * vh[k], 1e-12) << "HD" << k + 1;
+  }
+}
+
 // Claim: `machdyn crane --drive-classes` prints one φ2 line per class and rejects an unknown class
 // with a non-zero exit naming the option.
 TEST(CraneDriveClasses, CliOption) {
@@ -494,6 +532,189 @@ TEST(CraneDriveClasses, CliOption) {
   const auto bad = test::run_cli("crane '" + path + "' --drive-classes HD7 -o classes_bad");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--drive-classes"), std::string::npos) << bad.err;
+}
+
+// ---- issue 32: the numbers checked, the drives a crane uses, the fields of crane.json ----
+
+std::string with_t_end(const std::string& yaml, const std::string& t_end) {
+  std::string s = yaml;
+  s.replace(s.find("t_end: 0.5 s"), std::string("t_end: 0.5 s").size(), "t_end: " + t_end);
+  return s;
+}
+
+// Claim: a φ2 case whose run ends before the load leaves the ground is an error, not a factor. With
+// kHoist (slack 10 mm, vh = 0.5 m/s, c = 1e6 N/m, m g = 9810 N) the rope tightens at 20 ms and
+// carries m g at 20 + 19.62 = 39.62 ms: a run of 30 ms never lifts the load — a located input error
+// that names the weight; so is HD5 with a drive that never moves (the model's own, at rest), and a
+// sweep point whose run ends before its lift-off.
+TEST(CraneChecks, Phi2NeverReachedIsAnError) {
+  try {
+    (void)crane_analysis(model_of(with_t_end(with_drive_class("HD1"), "0.03 s")));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string s = e.what();
+    EXPECT_NE(s.find("crane.yaml:5:"), std::string::npos) << s;  // the load
+    EXPECT_NE(s.find("does not lift the load 'load'"), std::string::npos) << s;
+    EXPECT_NE(s.find("9810"), std::string::npos) << s;
+  }
+  EXPECT_THROW((void)crane_analysis(model_of(with_drive_class("HD5"))), InputError);
+  // The same for a point of the φ2 sweep (`--phi2-speeds`): 0.1 m/s lifts the load only at 0.198 s.
+  EXPECT_THROW((void)phi2_sweep(model_of(with_t_end(with_drive_class("HD1"), "0.15 s")), {0.5, 0.1}), InputError);
+}
+
+// Claim: a φ2 extreme at the end of the run gets a warning and keeps its number: with t_end = 60 ms
+// the load lifts at t_l = 39.62 ms and the rope force m g + vh √(c m) sin ω(t − t_l) still rises at
+// t_end (its peak is at t_l + π/(2ω) = 89.3 ms), so the row's value is that force at t_end over m g;
+// the full run's row has no warning and its fields are the closed form's numbers: extreme
+// m g + vh √(c m) at t_l + π/(2ω), reference m g, vh 0.5 m/s.
+TEST(CraneChecks, ExtremeAtTheEndWarnsAndFieldsCarryTheNumbers) {
+  const double g = 9.81, mass = 1000, c = 1e6, vh = 0.5, w = std::sqrt(c / mass);
+  const double t_l = 0.01 / vh + mass * g / (c * vh);
+  const CraneFactorRow x = row(crane_analysis(model_of(with_t_end(with_drive_class("HD1"), "0.06 s"))), "phi2");
+  const double F_end = mass * g + vh * std::sqrt(c * mass) * std::sin(w * (0.06 - t_l));
+  EXPECT_NEAR(x.simulated, F_end / (mass * g), 1e-9);
+  EXPECT_NEAR(x.t_extreme, 0.06, 1e-12);
+  EXPECT_NE(x.warning.find("end of the run"), std::string::npos) << x.warning;
+  const CraneFactorRow y = row(crane_analysis(model_of(with_drive_class("HD1"))), "phi2");
+  EXPECT_TRUE(y.warning.empty()) << y.warning;
+  const double F_max = mass * g + vh * std::sqrt(c * mass);
+  EXPECT_NEAR(y.extreme, F_max, 1e-9 * F_max);
+  EXPECT_NEAR(y.t_extreme, t_l + std::numbers::pi / (2 * w), 1e-6);
+  EXPECT_DOUBLE_EQ(y.reference, mass * g);
+  EXPECT_DOUBLE_EQ(y.vh, vh);
+  const auto j = crane_json(CraneReport{"m", "", {y}});
+  EXPECT_NEAR(j["rows"][0]["extreme"].get<double>(), F_max, 1e-9 * F_max);
+  EXPECT_DOUBLE_EQ(j["rows"][0]["reference"].get<double>(), mass * g);
+  EXPECT_DOUBLE_EQ(j["rows"][0]["vh_m_s"].get<double>(), vh);
+  EXPECT_TRUE(j["rows"][0]["xi_b"].is_null());
+  EXPECT_TRUE(j["rows"][0]["warning"].is_null());
+}
+
+// Claim: a creep speed above the hoisting speed (80 against 8 m/min) is a located input error; HD2
+// without a creep speed (`--drive-classes HD2` on a file without one) gives neither a simulated nor a
+// standard φ2 (φ2,min + β2 vh,CS needs vh,CS): both NaN, the note says why.
+TEST(CraneChecks, CreepSpeedChecks) {
+  std::string text = with_drive_class("HD2");
+  text.replace(text.find("creep_speed: 0.1 m/s"), std::string("creep_speed: 0.1 m/s").size(), "creep_speed: 80 m/min");
+  text.replace(text.find("hoist_speed: 0.5 m/s"), std::string("hoist_speed: 0.5 m/s").size(), "hoist_speed: 8 m/min");
+  try {
+    (void)model_of(text);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crane.yaml:10:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("exceeds the hoisting speed"), std::string::npos) << e.what();
+  }
+  std::string none = with_drive_class("HD1");
+  none.replace(none.find(", creep_speed: 0.1 m/s"), std::string(", creep_speed: 0.1 m/s").size(), "");
+  const CraneReport r = crane_analysis(model_of(none), {2, 3});
+  for (const auto& x : r.rows) {
+    EXPECT_TRUE(std::isnan(x.simulated));
+    EXPECT_TRUE(std::isnan(x.standard_lo)) << x.case_name;
+    EXPECT_NE(x.note.find("creep_speed"), std::string::npos) << x.note;
+  }
+}
+
+// Claim: a load case's `crane:` is checked with the model: a bad field value in it (HD9) is located
+// at the case's line, and `crane:` neither a map nor `none` is refused with what it expects.
+TEST(CraneChecks, CaseCraneSectionIsChecked) {
+  const std::string base = with_drive_class("HD1");
+  try {
+    (void)model_of(base + "cases:\n  slow:\n    crane: {drive_class: HD9}\n");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crane.yaml:13:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("HD9"), std::string::npos) << e.what();
+  }
+  try {
+    (void)model_of(base + "cases:\n  odd:\n    crane: [HD2]\n");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'crane' expected a map of fields"), std::string::npos) << e.what();
+  }
+}
+
+// A rigid drive with prescribed motion lifting the kHoist load.
+const char* kPrescribedHoist = R"(
+gravity: 9.81 m/s^2
+bodies:
+  drive: {type: translational, mass: 100 kg, motion: {speed: MOTION}}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links:
+  rope: {type: rope, between: [drive, load], stiffness: 1e6 N/m, slack: 10 mm}
+stops: {ground: {body: load, min: 0 m}}
+simulation: {t_end: 0.45 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+crane: {hoisting_class: HC2, drive_class: HD1, hoist_speed: 0.5 m/s, load: load, rope: rope}
+)";
+
+std::string prescribed(const std::string& motion) {
+  std::string s = kPrescribedHoist;
+  s.replace(s.find("MOTION"), 6, motion);
+  return s;
+}
+
+// Claim: a prescribed-speed hoist drive (`motion: {speed: ...}`, the standard's rigid drive) is the
+// φ2 case's hoist drive: in HD1 it runs at vh,max = 0.5 m/s from the start, whatever its own signal
+// (here a ramp from rest), so φ2 = 1 + vh ω/g exactly. In HD5 the model's own drive runs: the ramp
+// accelerates at a = 1 m/s² from rest (0.5 m/s at 0.5 s, after the run's 0.45 s); the load lifts at
+// ½ a t_l² = s0 + m g/c, and the stretch then obeys ë + ω² e = a + g from e = m g/c, ė = a t_l:
+// F_max/(m g) = 1 + a/g + (a/g) √(1 + (ω t_l)²) (reached at ≈ 0.30 s, inside the ramp).
+TEST_P(Crane, PrescribedDriveHoistsInHD1AndItsOwnRampInHD5) {
+  Model m = model_of(prescribed("{type: ramp, value: 0.5 m/s, end: 0.5 s}"));
+  m.simulation.integrator = GetParam();
+  const double g = 9.81, mass = 1000, c = 1e6, w = std::sqrt(c / mass), a = 1.0, s0 = 0.01;
+  const CraneReport r = crane_analysis(m, {1, 5});
+  ASSERT_EQ(r.rows.size(), 2u);
+  EXPECT_NEAR(r.rows[0].simulated, 1 + 0.5 * w / g, 1e-9);
+  const double t_l = std::sqrt(2 * (s0 + mass * g / c) / a);
+  const double phi2_hd5 = 1 + a / g + (a / g) * std::sqrt(1 + (w * t_l) * (w * t_l));
+  EXPECT_NEAR(r.rows[1].simulated, phi2_hd5, 1e-8);
+  EXPECT_DOUBLE_EQ(r.rows[1].standard_lo, 1.05);
+  EXPECT_TRUE(r.rows[1].warning.empty()) << r.rows[1].warning;
+}
+
+// Claim (φ7 at the speed of contact): a trolley (2000 kg at v0 = 1.2 m/s) slowed by a constant
+// rolling resistance F = 1 kN reaches the buffer 0.3 m ahead at v_c = √(v0² − 2 F s/m) = √1.14 m/s
+// at t_c = (v0 − v_c) m/F; the rigid-body reference is the same mass at v_c into the buffer,
+// F_rigid = v_c √(c m), not v0 √(c m). The row's fields carry v_c, t_c, F_rigid, ξb = 1/2 of the
+// linear buffer and the stroke (its largest compression on the output grid).
+TEST_P(Crane, Phi7ReferenceAtTheSpeedOfContact) {
+  Model m = model_of(R"(
+bodies: {trolley: {type: translational, mass: 2000 kg, velocity: 1.2 m/s}}
+contacts: {rolling: {between: [trolley, ground], static: 1 kN, kinetic: 1 kN}}
+buffers: {east: {body: trolley, max: 0.3 m, stiffness: 2e5 N/m}}
+simulation: {t_end: 1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+crane: {buffers: [east]}
+)");
+  m.simulation.integrator = GetParam();
+  const double mass = 2000, v0 = 1.2, F = 1000, s = 0.3, c = 2e5;
+  const double v_c = std::sqrt(v0 * v0 - 2 * F * s / mass), t_c = (v0 - v_c) * mass / F;
+  const CraneFactorRow x = row(crane_analysis(m), "phi7");
+  EXPECT_NEAR(x.contact_speed, v_c, 1e-9 * v_c);
+  EXPECT_NEAR(x.t_contact, t_c, 1e-9);
+  EXPECT_NEAR(x.reference, v_c * std::sqrt(c * mass), 1e-9 * v_c * std::sqrt(c * mass));
+  EXPECT_NEAR(x.simulated, x.extreme / x.reference, 1e-15);
+  EXPECT_DOUBLE_EQ(x.xi_b, 0.5);
+  // The largest stroke: below the frictionless v_c/ω (friction helps stop it), on the grid.
+  EXPECT_GT(x.stroke, 0.0);
+  EXPECT_LT(x.stroke, v_c / std::sqrt(c / mass));
+  EXPECT_NE(x.note.find("trolley 2000"), std::string::npos) << x.note;
+}
+
+// Claim: a φ7 case whose run never reaches the buffer is an error (its force stays 0), located at
+// the buffer.
+TEST(CraneChecks, Phi7NeverReachedIsAnError) {
+  try {
+    (void)crane_analysis(model_of(R"(
+bodies: {trolley: {type: translational, mass: 2000 kg, velocity: 0.1 m/s}}
+buffers: {east: {body: trolley, max: 0.3 m, stiffness: 2e5 N/m}}
+simulation: {t_end: 1 s, dt_out: 1 ms}
+crane: {buffers: [east]}
+)"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crane.yaml:3:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("does not reach the buffer 'east'"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

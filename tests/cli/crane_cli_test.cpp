@@ -151,5 +151,67 @@ TEST(CraneCli, NoCraneSectionExitsTwo) {
   EXPECT_FALSE(fs::exists(dir));
 }
 
+// The rigid hoist of tests/analysis/crane_test.cpp with load cases: `slow` hoists in HD2 (a case
+// replacing a field of `crane:`), `off` drops the crane analysis, `short` ends before lift-off.
+const char* kHoistCases = R"(gravity: 9.81 m/s^2
+bodies:
+  drive: {type: translational, mass: 1e15 kg}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links:
+  rope: {type: rope, between: [drive, load], stiffness: 1e6 N/m, slack: 10 mm}
+stops: {ground: {body: load, min: 0 m}}
+simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-12}
+crane: {hoisting_class: HC2, drive_class: HD1, hoist_speed: 0.5 m/s, creep_speed: 0.1 m/s, load: load, rope: rope}
+cases:
+  slow:
+    crane: {drive_class: HD2}
+  off:
+    crane: none
+  short:
+    simulation: {t_end: 0.03 s}
+)";
+
+// Claim (load cases and the crane analysis): `crane --case slow` runs the case's crane section — HD2
+// at the creep speed 0.1 m/s, φ2 = 1 + vh ω/g (ω = √(c/m)) — writes OUT/slow/crane.json with the
+// case's name, and its table names the case; `--all-cases` runs `slow` and the file's own section
+// in the other cases, lists `off` as without crane analysis, and stops with exit 2 at `short`, whose
+// error names the case and says the load was not lifted; a case's crane error names its case in
+// `report --all-cases` too.
+TEST(CraneCli, LoadCasesRunTheirOwnCraneSection) {
+  const std::string model = test::write_temp("hoist-cases.yaml", kHoistCases);
+  const auto dir = test::temp_dir() / "crane-cases";
+  const auto one = test::run_cli("crane '" + model + "' --case slow -o '" + dir.string() + "'");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_NE(one.out.find("[slow]"), std::string::npos) << one.out;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "slow" / "crane.json"));
+  EXPECT_EQ(j["load_case"], "slow");
+  ASSERT_EQ(j["rows"].size(), 1u);
+  EXPECT_DOUBLE_EQ(j["rows"][0]["vh_m_s"].get<double>(), 0.1);
+  const double expected = 1 + 0.1 * std::sqrt(1e6 / 1000.0) / 9.81;
+  EXPECT_NEAR(j["rows"][0]["simulated"].get<double>(), expected, 1e-9 * expected);
+
+  const auto off = test::run_cli("crane '" + model + "' --case off -o '" + dir.string() + "'");
+  EXPECT_EQ(off.exit_code, 2);
+  EXPECT_NE(off.err.find("load case 'off'"), std::string::npos) << off.err;
+
+  const auto bad = test::run_cli("crane '" + model + "' --all-cases -o '" + (dir / "all").string() + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("load case 'short'"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("does not lift the load"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "all" / "slow" / "crane.json"));  // all or nothing
+
+  const std::string fixed = test::write_temp("hoist-cases-ok.yaml", std::string(kHoistCases) + "    crane: none\n");
+  const auto all = test::run_cli("crane '" + fixed + "' --all-cases -o '" + (dir / "ok").string() + "'");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_NE(all.out.find("[slow]"), std::string::npos) << all.out;
+  EXPECT_NE(all.out.find("load case 'off': no 'crane:' section"), std::string::npos) << all.out;
+  EXPECT_NE(all.out.find("load case 'short': no 'crane:' section"), std::string::npos) << all.out;
+  EXPECT_TRUE(fs::exists(dir / "ok" / "slow" / "crane.json"));
+
+  const auto rep = test::run_cli("report '" + model + "' --all-cases --quiet -o '" + (dir / "r.html").string() + "'");
+  EXPECT_EQ(rep.exit_code, 2);
+  EXPECT_NE(rep.err.find("load case 'short'"), std::string::npos) << rep.err;
+}
+
 }  // namespace
 }  // namespace machdyn

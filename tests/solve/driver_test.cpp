@@ -135,5 +135,70 @@ TEST_P(Driver, MaxStepsHoldsPerRun) {
   EXPECT_LT(c.steps / static_cast<long>(ball.impacts.size() + 1), 300);
 }
 
+/// A body moving at unit speed, x = t, with a mode m and one event function per mode:
+///   mode 0: g = 1 − x (fires at x = 1); its decision picks mode 1;
+///   mode 1: g = (1 − x) − 1e-12: already negative where mode 0 ended — a decision its own event
+///           function contradicts (as a contact kept stuck at λ = F_s whose limit function reads
+///           −1e-11). With `settles` the second decision picks mode 2 (g = 2 − x, fires at x = 2),
+///           else it keeps mode 1 forever. Mode 3 (after x = 2) has no more events (g = 1).
+class Misdecided final : public EventSystem {
+ public:
+  explicit Misdecided(bool settles) : settles_(settles) {}
+  int size() const override { return 1; }
+  void rhs(double, const double*, double* dy) override { dy[0] = 1.0; }
+  int event_count() const override { return 1; }
+  void event_functions(double, const double* y, double* g) override {
+    g[0] = mode == 0 ? 1.0 - y[0] : mode == 1 ? (1.0 - y[0]) - 1e-12 : mode == 2 ? 2.0 - y[0] : 1.0;
+  }
+  bool handle_events(double t, double*, const std::vector<int>& fired) override {
+    if (fired.empty()) return false;
+    decisions.push_back(t);
+    modes.push_back(mode = mode == 0 ? 1 : mode == 1 ? (settles_ ? 2 : 1) : 3);
+    return true;
+  }
+  int mode = 0;
+  std::vector<double> decisions;
+  std::vector<int> modes;
+
+ private:
+  bool settles_;
+};
+
+// Claim: a function the decision leaves negative at a restart is handed back at once (the same
+// instant) and decided again; it is never left disarmed. Mode 0 ends at t = 1, mode 1 contradicts
+// itself there and is replaced by mode 2 at t = 1, whose event fires at t = 2 (closed form: x = t).
+// Before the restart rule mode 1 stayed on to the end with its function negative and no event.
+TEST_P(Driver, ANegativeFunctionAtARestartIsDecidedAgain) {
+  Misdecided sys(true);
+  auto st = make_stepper(GetParam(), sys, tight());
+  const double y0[1] = {0.0};
+  DriveOptions d;
+  d.dt_out = 0.5;
+  Counter c;
+  integrate(*st, sys, 0.0, y0, 3.0, d, c);
+  ASSERT_EQ(sys.modes, (std::vector<int>{1, 2, 3}));
+  EXPECT_NEAR(sys.decisions[0], 1.0, 1e-12);
+  EXPECT_EQ(sys.decisions[1], sys.decisions[0]);
+  EXPECT_NEAR(sys.decisions[2], 2.0, 1e-12);
+}
+
+// Claim: a system whose decision never satisfies its own event function ends with a SolverError
+// at that instant after a bounded number of re-decisions (no hang, no silent disarm).
+TEST_P(Driver, ADecisionThatNeverSettlesIsAnError) {
+  Misdecided sys(false);
+  auto st = make_stepper(GetParam(), sys, tight());
+  const double y0[1] = {0.0};
+  DriveOptions d;
+  d.dt_out = 0.5;
+  Counter c;
+  try {
+    integrate(*st, sys, 0.0, y0, 3.0, d, c);
+    FAIL() << "no error";
+  } catch (const SolverError& e) {
+    EXPECT_NEAR(e.time(), 1.0, 1e-12);
+  }
+  EXPECT_LT(sys.decisions.size(), 40u);
+}
+
 }  // namespace
 }  // namespace machdyn

@@ -7,9 +7,13 @@
 ///
 /// Cases (each runs only when the section names what it needs):
 ///   φ2  hoisting a grounded load: the load rests on its stop, the rope as the model gives it (slack
-///       or taut); the hoist drive (the free group of bodies behind the rope's first end) starts in
-///       rigid motion with the rope's end at the characteristic speed vh of the drive class
-///       (crane::characteristic_hoisting_speed). Simulated φ2 = max rope force / (m g) of the load.
+///       or taut); the hoist drive (the free group of bodies behind the rope's first end, through
+///       springs, ideal and lossy gears; a body with prescribed motion in it runs at constant speed)
+///       starts in rigid motion with the rope's end at the characteristic speed vh of the drive class
+///       (crane::characteristic_hoisting_speed); HD5 (vh = 0) runs the model's own drive from its own
+///       start. Simulated φ2 = max rope force / (m g) of the load; a run that never lifts the load
+///       (the rope's maximum below m g) is an InputError.
+///   Every case: an extreme at t = t_end gets a warning (CraneFactorRow::warning).
 ///   φ3  sudden release of Δm: the load hangs at rest in static equilibrium (analysis/equilibrium.hpp;
 ///       its ground stop removed, the rope's first body held by a holding brake that never slips, the
 ///       drive's other loads as the model gives them at t = 0); at t = 0 of the case its mass and weight
@@ -19,16 +23,19 @@
 ///       quasi-static load (analysis/simulate.hpp), against the range of the kind of force change.
 ///   φ7  buffers: the model's own run; the peak buffer force over the peak of the rigid-body model (the
 ///       buffer body's free group lumped into one mass M = Σ m_i (r_i/r_b)² at the group's momentum
-///       speed into the same buffer, no other loads). ξb of the buffer from its characteristic
+///       speed at first contact into the same buffer, no other loads); a run that never reaches the
+///       buffer is an InputError. ξb of the buffer from its characteristic
 ///       (linear spring: ∫F dx / (F_max x_max) = 1/2; damping is not counted), φ7 from ξb.
 /// Margin: the standard's value minus the simulated one for φ2, φ5 (upper end of the range) and φ7;
 /// the simulated minus the standard's for φ3 (a lower φ3 is the worse case). Positive: the
 /// standard's value is on the safe side of the simulation.
 ///
+/// Errors of a model loaded with a load case (Model::load_case) name the case.
 /// Throws InputError (located at the `crane:` section's elements) when the model has no `crane:`
 /// section or a case's model is not what it needs (the hoist drive tied to the ground, a load without
 /// a stop for φ2); SolverError from the runs.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -36,6 +43,9 @@
 #include "machdyn/model/model.hpp"
 
 namespace machdyn {
+
+/// "No such number" in a CraneFactorRow field (NaN).
+inline constexpr double kCraneNone = std::numeric_limits<double>::quiet_NaN();
 
 /// One line of the crane table.
 struct CraneFactorRow {
@@ -51,10 +61,25 @@ struct CraneFactorRow {
   /// (m g for φ2 and φ3, the quasi-static load at the peak for φ5, the rigid-body peak for φ7).
   /// Empty when the case was not simulated.
   std::vector<double> t, history;
+  // The numbers of the note as fields (NaN where the row has none; crane.json):
+  double extreme = kCraneNone;    ///< the link load's extreme the factor is taken from, N (N·m for φ5)
+  double t_extreme = kCraneNone;  ///< its time, s
+  /// the case's reference the extreme is divided by: m g (φ2, φ3), the quasi-static load at the peak
+  /// (φ5), the rigid-body peak force (φ7)
+  double reference = kCraneNone;
+  double vh = kCraneNone;         ///< φ2: the characteristic hoisting speed the case ran at, m/s
+  double xi_b = kCraneNone;       ///< φ7: the buffer's energy-absorption ratio ξb
+  double stroke = kCraneNone;     ///< φ7: the largest buffer stroke of the run s_max, m (rad)
+  double contact_speed = kCraneNone;  ///< φ7: the rigid-body reference's speed at first contact, m/s (rad/s)
+  double t_contact = kCraneNone;  ///< φ7: the time of first contact with the buffer, s
+  /// A warning about the number: its extreme lies at the end of the run (it may not be the extreme
+  /// of the case: a longer run may find a larger one). Empty when none.
+  std::string warning;
 };
 
 struct CraneReport {
   std::string model;
+  std::string load_case;  ///< the file's load case the analysis ran (Model::load_case), or empty
   std::vector<CraneFactorRow> rows;
 };
 

@@ -106,6 +106,13 @@ struct SimulateOptions {
   /// phases' link extremes over [extremes_from, t_end] only, s (0: the whole run). The crane's φ3
   /// case released during a hoisting run asks for the rope's minimum after the release.
   double extremes_from = 0.0;
+  /// The invariant audit (analysis/audit.hpp, docs/hybrid.md): every step end, event and output row
+  /// is checked against the documented laws (static limits, kinetic laws, freewheels, gaps, ropes,
+  /// end stops, lossy gears' losses, the energy books, the event list against the mode columns);
+  /// the first violation throws AuditError (a SolverError naming the element, the time, the values
+  /// and the invariant). Also on when the environment has MACHDYN_CHECK=1 (the test suite sets it).
+  /// Off, no observer exists: the run is the same instructions as without the audit.
+  bool check = false;
   long max_events = 1'000'000;  ///< SolverError when exceeded
   int chatter_count = 50;       ///< switches of one element ...
   double chatter_window = 1e-6; ///< ... within this fraction of t_end (or of 1 s) mean chattering

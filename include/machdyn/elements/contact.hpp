@@ -10,10 +10,11 @@
 /// F_s(t) = r(t) F_s0, r(t) = max(0, g s(t)) the application of a brake or clutch (its normal force
 /// or its 0…1 application signal, model/model.hpp), 1 for a contact with constant levels. F_k0(|u|)
 /// is a constant, a table over the sliding speed or the Stribeck law (model/model.hpp).
-/// Events (≥ 0 while the mode holds): stuck: F_s − λ and F_s + λ; sliding: s u.
-/// The stick rule's tolerance: a contact whose own limit event just fired is judged strictly
-/// (|λ| ≤ F_s: the event located the crossing on this very function); any other gets a rounding
-/// allowance of 1e-12 F_s0, so a load exactly at the limit holds.
+/// Events (≥ 0 while the mode holds): stuck: F_s + ε − λ and F_s + ε + λ; sliding: s u.
+/// The stick rule's tolerance: ε = 1e-12 F_s0, a rounding allowance, so a load exactly at the limit
+/// holds; the stick rule is exactly "both stuck events ≥ 0" (one limit, holding_limit). A contact
+/// whose own limit event just fired (or was left negative by a decision) is judged strictly
+/// (|λ| ≤ F_s): it does not hold.
 /// A freewheel (lock = ±1) holds while lock·λ ≥ 0, has no upper limit, and slides only in its free
 /// direction −lock with its drag as kinetic level; its stuck event is its hold rule, lock·λ + 1e-9
 /// (the allowance: one held unloaded at λ = −1e-15 starts armed). An end stop is such a
@@ -109,13 +110,18 @@ struct ContactLaw {
   /// The steepest rising slope of the kinetic table, max dF_k0/d|u| ≥ 0 (a damper while sliding; 0
   /// for the Stribeck law, which falls from F_s0 to F_c).
   [[nodiscard]] double steepest_kinetic_slope() const;
+  /// The stuck load a friction contact holds at t: F_s(t) with the rounding allowance 1e-12 F_s0, so
+  /// a load exactly at the limit holds. The stick rule and the stuck events both read this one value.
+  [[nodiscard]] double holding_limit(double t) const { return static_limit(t) + 1e-12 * spec->static_limit; }
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
   /// A freewheel holds while lock·λ ≥ 0 (allowance 1e-9 N or N·m: an unloaded freewheel holds).
+  /// Not strict, it is exactly "both stuck events are ≥ 0" (events()): a contact the decision keeps
+  /// stuck starts armed.
   [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
     if (joint) return true;
-    if (lock != 0) return strict ? lock * lambda >= 0.0 : lock * lambda >= -1e-9;
-    const double Fs = static_limit(t), F = std::abs(lambda);
-    return strict ? F <= Fs : F <= Fs + 1e-12 * spec->static_limit;
+    if (lock != 0) return strict ? lock * lambda >= 0.0 : lock * lambda + 1e-9 >= 0.0;
+    const double F = std::abs(lambda);
+    return strict ? F <= static_limit(t) : F <= holding_limit(t);
   }
   /// Whether sliding mode md can exist at all (a freewheel slides in its free direction only).
   [[nodiscard]] bool can_slide(ContactMode md) const {
@@ -165,7 +171,7 @@ struct ContactLaw {
       ev[0] = lock * lambda + 1e-9;
       ev[1] = 1.0;
     } else if (md == ContactMode::stuck) {
-      const double Fs = static_limit(t);
+      const double Fs = holding_limit(t);  // the stick rule's own limit (holds)
       ev[0] = Fs - lambda;
       ev[1] = Fs + lambda;
     } else {

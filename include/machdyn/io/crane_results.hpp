@@ -12,12 +12,15 @@
 
 namespace machdyn {
 
-/// {"model": NAME, "rows": [{"factor", "case", "simulated", "standard_lo", "standard_hi", "clause",
-/// "margin", "note"}, ...]}
+/// {"model": NAME, "load_case": CASE (with a case only), "rows": [{"factor", "case", "simulated",
+/// "standard_lo", "standard_hi", "clause", "margin", "note", "extreme", "t_extreme_s", "reference",
+/// "vh_m_s", "xi_b", "stroke", "contact_speed", "t_contact_s", "warning"}, ...]} — the numbers of the
+/// note as fields (CraneFactorRow), null where the row has none.
 nlohmann::json crane_json(const CraneReport& r);
 /// factor,case,simulated,standard_lo,standard_hi,clause,margin,note (text quoted, numbers %.17g).
 std::string crane_csv(const CraneReport& r);
-/// The table for the terminal: numbers to 4 digits, the standard as "1.44" or "1.0-1.5".
+/// The table for the terminal: numbers to 4 digits, the standard as "1.44" or "1.0-1.5"; the notes,
+/// then a line "warning: ..." per row with a warning.
 std::string crane_table(const CraneReport& r);
 /// One figure per simulated row (id "crane_FACTOR_K", K its row index): the factor's time history
 /// with the standard's value (both ends of a range) as dashed lines.

@@ -5,6 +5,8 @@
 /// `PATH.tmp.PID` in the same folder, are flushed to the disk (fdatasync), and only then renamed
 /// over PATH. On any failure (disk full, file-size limit, no permission) the temporary file is
 /// removed, an earlier PATH stays as it was, and an OutputError names the file and the cause.
+/// (The CLI ignores SIGXFSZ, so past `ulimit -f` the write fails with EFBIG instead of the process
+/// being killed with its temporary file left behind.)
 
 #include <cstdint>
 #include <filesystem>
@@ -27,8 +29,21 @@ class OutputError : public std::runtime_error {
 /// Receives the file's bytes in pieces, in order.
 using ChunkSink = std::function<void(std::string_view)>;
 
+/// Why `path` must not be written, or "" when it may: a result goes only to a new path or over a
+/// regular file that is not an input of this process (io/input_file.hpp: the model, a gear spec, a
+/// signal file, also under another name or through a link). A device, FIFO, folder or symbolic link
+/// there is refused: the rename would replace the node itself (as root, `-o /dev/null` would
+/// replace /dev/null).
+std::string output_target_problem(const std::filesystem::path& path);
+
+/// Removes the temporary files `NAME.tmp.PID` in `dir` whose process PID is gone (a SIGKILLed
+/// run's leftovers; a live process's are kept), NAME ending as machdyn's results do (.csv, .json,
+/// .journal, .svg, .png, .html, .dxf). Returns how many were removed. Called by whoever
+/// holds the folder's lock (io/folder_lock.hpp).
+std::size_t remove_stale_temp_files(const std::filesystem::path& dir);
+
 /// Writes `content` to `path` atomically (see the file comment); creates parent folders.
-/// Throws OutputError.
+/// Throws OutputError, also when output_target_problem(path) says the path must not be written.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
 /// The same for content produced in pieces by `produce(sink)` (a large CSV is never held whole in

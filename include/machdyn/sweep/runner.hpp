@@ -7,6 +7,8 @@
 ///   sweep.journal  append-only, rows in completion order (what --resume reads)
 ///   sweep.csv      the table (sweep/table.hpp), rows in run order; written through a temporary
 ///                  file and a rename once every run has finished, so it is never partial
+///   .machdyn.lock  held (flock) by rank 0 for the whole run: a second sweep into the same folder
+///                  fails at once, naming the holder (io/folder_lock.hpp)
 ///
 /// Parallelism: workers take the next pending run from a shared counter and compute it alone
 /// (compile + simulate: no shared mutable state). Under MPI the pending runs are dealt out
@@ -60,6 +62,12 @@ struct SweepOutcome {
   long dropped = 0;         ///< invalid journal lines dropped by --resume
   long computed = 0;        ///< runs finished in this session (all ranks)
   long ok = 0, errors = 0;  ///< status counts over the whole table (when complete)
+  /// Runs computed by this process's threads in this session (rank 0: without the other ranks'),
+  /// how many of them failed on their input (execute_run), and the lowest run index among those
+  /// (-1: none). A sweep with no `ok` row whose every run computed here failed on input is an
+  /// input error of the whole sweep: `machdyn sweep` exits 2 with that run's message.
+  long computed_here = 0, input_errors = 0, first_input_error = -1;
+  std::string first_input_message;  ///< the message of run first_input_error (when complete)
   int threads = 0;          ///< per process
   int ranks = 1;
   double wall_s = 0.0;
@@ -71,7 +79,7 @@ struct SweepOutcome {
 int default_sweep_jobs();
 
 /// Runs the plan. Throws InputError when the journal cannot be used (exists without resume,
-/// belongs to another sweep); std::runtime_error when a file cannot be written. Failing runs are
+/// belongs to another sweep) or another run holds the folder's lock; std::runtime_error when a file cannot be written. Failing runs are
 /// rows with status `error`, not exceptions. On ranks other than 0 the outcome has only
 /// `computed` (that rank's) and `threads`.
 SweepOutcome run_sweep(const SweepPlan& plan, const SweepOptions& options);

@@ -22,6 +22,7 @@
 
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/model/model.hpp"
+#include "machdyn/common/csv.hpp"
 #include "machdyn/sweep/plan.hpp"
 
 namespace machdyn {
@@ -65,15 +66,14 @@ std::vector<std::vector<std::string>> summary_column_names(const SweepPlan& plan
 std::string sweep_header(const SweepPlan& plan, const std::vector<SummaryColumns>& columns);
 
 /// Runs one point of the sweep: run_spec → compile → simulate → summary, and returns its CSV row
-/// (no newline). Never throws for a failing run: an InputError (a value the field rejects),
-/// SolverError or any other exception gives status `error` and its message.
+/// (no newline). Never throws for a failing run: an InputError (a value the field rejects, or the
+/// model refused at the start of the run), SolverError or any other exception gives status `error`
+/// and its message (on one line: line breaks become spaces, the journal is read line by line).
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns);
-/// The same with the table's column names computed once (summary_column_names), for many runs.
+/// The same with the table's column names computed once (summary_column_names), for many runs;
+/// `input_error`, when given, is set to whether the run failed on its input (an InputError).
 std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::vector<SummaryColumns>& columns,
-                        const std::vector<std::vector<std::string>>& names);
-
-/// Quotes a CSV field when it holds a comma, quote or space at an end; newlines become spaces.
-std::string csv_field(const std::string& text);
+                        const std::vector<std::vector<std::string>>& names, bool* input_error = nullptr);
 
 /// Splits one CSV line written by this module (quoted fields allowed) into fields.
 std::vector<std::string> split_csv_line(const std::string& line);
