@@ -17,7 +17,7 @@ export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test test-asan fuzz deps deps-browser build-release build-test build-asan bench package clean
+.PHONY: demo test test-asan fuzz verify deps deps-browser build-release build-test build-asan bench package clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -59,6 +59,20 @@ fuzz: build-asan
 	@cd $(BUILD_ASAN) && cmake -DMACHDYN_FUZZ_SECONDS=$(FUZZ_SECONDS) . >/dev/null && \
 	  $(SAN_ENV) ctest --output-on-failure -L fuzz -j $(JOBS); rc=$$?; \
 	  cmake -DMACHDYN_FUZZ_SECONDS=20 . >/dev/null; exit $$rc
+
+# The random-model campaign against the brute-force reference simulator (issue 27, tests/reference,
+# docs/hybrid.md): MODELS random models (1000) from seed SEED (fresh: the clock) on dopri5 and bdf, in
+# JOBS shards; each failing run is shrunk to a minimal model file under build/verify/ (its first lines
+# say what differs). `make test` runs the fixed-seed campaign (ctest ReferenceCampaign.*).
+MODELS ?= 1000
+SEED   ?= $(shell date +%s)
+verify: build-test
+	@mkdir -p build/verify
+	@echo "reference campaign: $(MODELS) models, seed $(SEED), $(JOBS) shards; failures in build/verify/"
+	@rc=0; pids=""; for i in $$(seq 0 $$(($(JOBS) - 1))); do \
+	  $(BUILD_TEST)/tests/machdyn_campaign --models $(MODELS) --seed $(SEED) --out build/verify \
+	    --shard $$i/$(JOBS) > build/verify/shard$$i.log 2>&1 & pids="$$pids $$!"; \
+	done; for p in $$pids; do wait $$p || rc=1; done; cat build/verify/shard*.log; exit $$rc
 
 bench: build-release
 	@bash bench/run.sh $(BUILD_RELEASE)

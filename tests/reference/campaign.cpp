@@ -1,0 +1,349 @@
+// The engine against the reference simulator (campaign.hpp).
+#include "reference/campaign.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "reference/generator.hpp"
+
+#include "machdyn/analysis/simulate.hpp"
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/compile.hpp"
+
+namespace machdyn::reference {
+
+const char* to_string(Outcome::Kind k) {
+  switch (k) {
+    case Outcome::Kind::pass: return "pass";
+    case Outcome::Kind::engine_error: return "engine error";
+    case Outcome::Kind::event_mismatch: return "event mismatch";
+    case Outcome::Kind::state_mismatch: return "state mismatch";
+    case Outcome::Kind::reference_error: return "reference error";
+  }
+  return "?";
+}
+
+namespace {
+
+/// The invariant audit of the run (SimulateOptions::check, issue 27 item 2) where the engine has it.
+template <class O>
+void audit_on(O& o) {
+  if constexpr (requires { o.check = true; }) o.check = true;
+}
+
+const std::set<std::string>& compared_kinds() {
+  static const std::set<std::string> k = {"gap_closed", "gap_opened", "stick", "slip", "reversal", "impact", "applied"};
+  return k;
+}
+
+std::string fmt(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.12g", x);
+  return b;
+}
+
+}  // namespace
+
+Outcome compare(const RefModel& m, const std::string& integrator, const RefResult& ref) {
+  Outcome o;
+  if (!ref.error.empty()) return {Outcome::Kind::reference_error, ref.error, 0.0};
+  SimulationResult r;
+  try {
+    Model model = compile_model(parse_yaml_string(to_yaml(m, integrator), "random.yaml"), "random.yaml");
+    SimulateOptions so;
+    so.max_events = 200'000;  // a runaway run is a failure, not a hang (and max_steps in the file)
+    audit_on(so);
+    r = simulate(model, so);
+  } catch (const std::exception& e) {
+    return {Outcome::Kind::engine_error, e.what(), 0.0};
+  }
+  const double t_cmp = ref.ambiguous_from;
+  const double tol_t = kEventTol * std::max(1.0, m.t_end);
+  // Events: every reference event before t_cmp matched in order by (element, kind) within tol_t.
+  // The bounces of a stop with restitution end in a Zeno tail; the engine stops it at flights of
+  // 1e-12 s, the reference at 1e-9 s: an impact followed within tol_t by another impact or the rest
+  // of the same stop is not compared (on both sides).
+  auto zeno_tail = [&](const auto& list, size_t i, auto get) {
+    if (get(list[i]).kind != "impact") return false;
+    for (size_t j = i + 1; j < list.size() && get(list[j]).t <= get(list[i]).t + tol_t; ++j)
+      if (get(list[j]).element == get(list[i]).element && (get(list[j]).kind == "impact" || get(list[j]).kind == "stick")) return true;
+    return false;
+  };
+  std::vector<const ModeEvent*> eng;
+  for (size_t i = 0; i < r.hybrid.events.size(); ++i) {
+    const auto& e = r.hybrid.events[i];
+    if (compared_kinds().count(e.kind) != 0 && e.t < t_cmp - tol_t &&
+        !zeno_tail(r.hybrid.events, i, [](const ModeEvent& x) -> const ModeEvent& { return x; }))
+      eng.push_back(&e);
+  }
+  std::vector<bool> used(eng.size(), false);
+  size_t first_free = 0;
+  Outcome ev;  // the first event difference (pass if none)
+  for (size_t ir = 0; ir < ref.events.size(); ++ir) {
+    const RefEvent& re = ref.events[ir];
+    if (compared_kinds().count(re.kind) == 0 || re.t >= t_cmp - tol_t) continue;
+    if (zeno_tail(ref.events, ir, [](const RefEvent& x) -> const RefEvent& { return x; })) continue;
+    bool hit = false;
+    for (size_t j = first_free; j < eng.size(); ++j) {
+      if (used[j]) continue;
+      if (eng[j]->t > re.t + tol_t) break;
+      if (eng[j]->element == re.element && eng[j]->kind == re.kind && std::abs(eng[j]->t - re.t) <= tol_t) {
+        used[j] = hit = true;
+        break;
+      }
+    }
+    while (first_free < used.size() && used[first_free]) ++first_free;
+    if (!hit) {
+      // The first unmatched engine event before this one says what the engine did instead.
+      std::string instead = "nothing";
+      for (size_t j = 0; j < eng.size(); ++j)
+        if (!used[j] && eng[j]->t <= re.t + tol_t) {
+          instead = eng[j]->kind + " " + eng[j]->element + " at " + fmt(eng[j]->t);
+          break;
+        }
+      ev = {Outcome::Kind::event_mismatch, "reference " + re.kind + " " + re.element + " at " + fmt(re.t) + ", engine: " + instead, re.t};
+      break;
+    }
+  }
+  if (ev.kind == Outcome::Kind::pass)
+    for (size_t j = 0; j < eng.size(); ++j)
+      if (!used[j]) {
+        ev = {Outcome::Kind::event_mismatch, "engine " + eng[j]->kind + " " + eng[j]->element + " at " + fmt(eng[j]->t) + ", not in the reference",
+              eng[j]->t};
+        break;
+      }
+  // States at the output rows.
+  auto col = [&](const std::string& name) -> const std::vector<double>* {
+    for (size_t c = 0; c < r.column_names.size(); ++c)
+      if (r.column_names[c] == name) return &r.columns[c];
+    return nullptr;
+  };
+  const auto* ts = col("t_s");
+  if (ts == nullptr || ts->size() != ref.t.size())
+    return {Outcome::Kind::state_mismatch, "output rows: engine " + std::to_string(ts ? ts->size() : 0) + ", reference " + std::to_string(ref.t.size()), 0.0};
+  for (size_t i = 0; i < m.bodies.size(); ++i)
+    for (int w = 0; w < 2; ++w) {
+      const std::string name = m.bodies[i].name + (w == 0 ? ".position_m" : ".velocity_m_s");
+      const auto* c = col(name);
+      if (c == nullptr) return {Outcome::Kind::state_mismatch, "no column " + name, 0.0};
+      double scale = 0.0;
+      for (size_t k = 0; k < ref.t.size(); ++k) scale = std::max(scale, std::abs(w == 0 ? ref.q[k][i] : ref.v[k][i]));
+      const double tol = kStateTol * scale + 1e-9;
+      for (size_t k = 0; k < ref.t.size() && ref.t[k] < t_cmp; ++k) {
+        const double rv = w == 0 ? ref.q[k][i] : ref.v[k][i];
+        if (!(std::abs((*c)[k] - rv) <= tol))
+          return {Outcome::Kind::state_mismatch,
+                  name + " at t = " + fmt(ref.t[k]) + ": engine " + fmt((*c)[k]) + ", reference " + fmt(rv) + " (tolerance " + fmt(tol) + ")" +
+                      (ev.kind == Outcome::Kind::pass ? std::string() : "; first event difference: " + ev.detail),
+                  ref.t[k]};
+      }
+    }
+  // The events differ but every state agrees: the event list is wrong, not the motion.
+  if (ev.kind != Outcome::Kind::pass) ev.detail += " (states agree)";
+  return ev.kind != Outcome::Kind::pass ? ev : o;
+}
+
+Outcome check(const RefModel& m, const std::string& integrator, const RefOptions& o) {
+  return compare(m, integrator, simulate_reference(m, o));
+}
+
+namespace {
+
+/// m without body i (and every element on it).
+RefModel without_body(const RefModel& m, int i) {
+  RefModel s = m;
+  auto map = [&](int b) { return b < 0 ? b : b > i ? b - 1 : b; };
+  s.bodies.erase(s.bodies.begin() + i);
+  s.links.clear(), s.loads.clear(), s.frictions.clear();
+  for (auto L : m.links)
+    if (L.a != i && L.b != i && !(L.a < 0 && L.b < 0)) L.a = map(L.a), L.b = map(L.b), s.links.push_back(L);
+  for (auto l : m.loads)
+    if (l.body != i) l.body = map(l.body), s.loads.push_back(l);
+  for (auto f : m.frictions)
+    if (f.a != i && f.b != i) f.a = map(f.a), f.b = map(f.b), s.frictions.push_back(f);
+  return s;
+}
+
+double round_to(double x, int digits) {
+  if (x == 0.0 || !std::isfinite(x)) return x;
+  const double e = std::pow(10.0, digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(x)))));
+  return std::round(x * e) / e;
+}
+
+}  // namespace
+
+RefModel shrink(const RefModel& m0, const std::string& integrator, Outcome::Kind kind, int budget) {
+  RefModel best = m0;
+  int trials = 0;
+  auto still_fails = [&](const RefModel& c) {
+    if (trials >= budget) return false;
+    ++trials;
+    const Outcome o = check(c, integrator);
+    return o.kind == kind;
+  };
+  bool changed = true;
+  while (changed && trials < budget) {
+    changed = false;
+    // Shorter run: just past the first difference.
+    {
+      const Outcome o = check(best, integrator);
+      ++trials;
+      if (o.t > 0 && o.t < 0.8 * best.t_end) {
+        RefModel c = best;
+        c.t_end = round_to(std::min(best.t_end, o.t * 1.25 + 0.01), 2);
+        c.dt_out = c.t_end / 200;
+        if (c.t_end < best.t_end && still_fails(c)) best = c, changed = true;
+      }
+    }
+    for (size_t k = best.frictions.size(); k-- > 0;) {
+      RefModel c = best;
+      c.frictions.erase(c.frictions.begin() + static_cast<long>(k));
+      if (still_fails(c)) best = c, changed = true;
+    }
+    for (size_t k = best.loads.size(); k-- > 0;) {
+      RefModel c = best;
+      c.loads.erase(c.loads.begin() + static_cast<long>(k));
+      if (still_fails(c)) best = c, changed = true;
+    }
+    for (size_t k = best.links.size(); k-- > 0;) {
+      RefModel c = best;
+      c.links.erase(c.links.begin() + static_cast<long>(k));
+      if (still_fails(c)) best = c, changed = true;
+    }
+    for (int i = static_cast<int>(best.bodies.size()); i-- > 0 && best.bodies.size() > 1;) {
+      RefModel c = without_body(best, i);
+      if (still_fails(c)) best = c, changed = true;
+    }
+    // Round numbers, one element at a time, to 2 then 1 digits.
+    for (int d = 2; d >= 1; --d) {
+      for (size_t k = 0; k < best.bodies.size(); ++k) {
+        RefModel c = best;
+        auto& b = c.bodies[k];
+        b.m = round_to(b.m, d), b.v0 = round_to(b.v0, d);
+        if (b.m != best.bodies[k].m || b.v0 != best.bodies[k].v0)
+          if (still_fails(c)) best = c, changed = true;
+      }
+      for (size_t k = 0; k < best.links.size(); ++k) {
+        RefModel c = best;
+        auto& L = c.links[k];
+        L.c = round_to(L.c, d), L.d = round_to(L.d, d), L.gap = round_to(L.gap, d), L.gap_start = round_to(L.gap_start, d);
+        L.flank = round_to(L.flank, d);
+        if (L.gap_start > L.gap) L.gap_start = L.gap;
+        if (still_fails(c)) best = c, changed = true;
+      }
+      for (size_t k = 0; k < best.loads.size(); ++k) {
+        RefModel c = best;
+        auto& s = c.loads[k].s;
+        s.value = round_to(s.value, d), s.before = round_to(s.before, d), s.amplitude = round_to(s.amplitude, d);
+        s.offset = round_to(s.offset, d);
+        if (still_fails(c)) best = c, changed = true;
+      }
+      for (size_t k = 0; k < best.frictions.size(); ++k) {
+        RefModel c = best;
+        auto& f = c.frictions[k];
+        f.Fs = round_to(f.Fs, d), f.Fk = std::min(f.Fs, round_to(f.Fk, d)), f.drag = round_to(f.drag, d);
+        if (still_fails(c)) best = c, changed = true;
+      }
+    }
+  }
+  return best;
+}
+
+void show(const std::string& family, std::uint64_t seed, std::uint64_t index) {
+  const RefModel m = random_model(family, seed, index);
+  std::printf("%s", to_yaml(m, "dopri5").c_str());
+  const RefResult ref = simulate_reference(m);
+  std::printf("reference (%ld steps)%s%s:\n", ref.steps, ref.error.empty() ? "" : ", error: ", ref.error.c_str());
+  for (const auto& e : ref.events) std::printf("  %.15g %s %s\n", e.t, e.kind.c_str(), e.element.c_str());
+  if (std::isfinite(ref.ambiguous_from)) std::printf("  ambiguous from %.15g\n", ref.ambiguous_from);
+  for (const char* w : {"dopri5", "bdf"}) {
+    std::printf("%s:\n", w);
+    try {
+      Model model = compile_model(parse_yaml_string(to_yaml(m, w), "random.yaml"), "random.yaml");
+      const SimulationResult r = simulate(model);
+      for (const auto& e : r.hybrid.events) std::printf("  %.15g %s %s %s -> %s\n", e.t, e.kind.c_str(), e.element.c_str(), e.from.c_str(), e.to.c_str());
+    } catch (const std::exception& e) {
+      std::printf("  error: %s\n", e.what());
+    }
+    const Outcome o = compare(m, w, ref);
+    std::printf("  outcome: %s %s\n", to_string(o.kind), o.detail.c_str());
+  }
+}
+
+long run_campaign(const CampaignOptions& o) {
+  const auto families = o.families.empty() ? all_families() : o.families;
+  const std::vector<std::string> integrators = {"dopri5", "bdf"};
+  struct Count {
+    long models = 0, pass[2] = {0, 0}, fail[2] = {0, 0}, ref_error = 0, ambiguous = 0;
+    std::map<std::string, long> kinds;
+  };
+  std::map<std::string, Count> counts;
+  long failures = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!o.out_dir.empty()) std::filesystem::create_directories(o.out_dir);
+  for (long i = 0; i < o.models; ++i) {
+    if (static_cast<long>(static_cast<size_t>(i) / families.size()) % o.shards != o.shard) continue;  // every family in every shard
+    const std::string& fam = families[static_cast<size_t>(i) % families.size()];
+    const auto index = static_cast<std::uint64_t>(i) / families.size();
+    const RefModel m = random_model(fam, o.seed, index);
+    if (o.verbose) std::printf("%s #%llu\n", fam.c_str(), static_cast<unsigned long long>(index)), std::fflush(stdout);
+    const RefResult ref = simulate_reference(m);
+    Count& c = counts[fam];
+    ++c.models;
+    if (!ref.error.empty()) {
+      ++c.ref_error;
+      if (o.verbose) std::printf("%s seed %llu #%llu: reference error: %s\n", fam.c_str(), static_cast<unsigned long long>(o.seed),
+                                 static_cast<unsigned long long>(index), ref.error.c_str());
+      continue;
+    }
+    if (std::isfinite(ref.ambiguous_from)) ++c.ambiguous;
+    for (size_t w = 0; w < integrators.size(); ++w) {
+      const Outcome out = compare(m, integrators[w], ref);
+      if (!out.failed()) {
+        ++c.pass[w];
+        continue;
+      }
+      ++c.fail[w], ++failures;
+      ++c.kinds[std::string(to_string(out.kind))];
+      std::printf("FAIL %s seed %llu #%llu %s: %s: %s\n", fam.c_str(), static_cast<unsigned long long>(o.seed),
+                  static_cast<unsigned long long>(index), integrators[w].c_str(), to_string(out.kind), out.detail.c_str());
+      std::fflush(stdout);
+      if (!o.out_dir.empty()) {
+        const RefModel s = o.shrink ? shrink(m, integrators[w], out.kind) : m;
+        const Outcome so = check(s, integrators[w]);
+        char name[160];
+        std::snprintf(name, sizeof name, "%s-seed%llu-%llu-%s.yaml", fam.c_str(), static_cast<unsigned long long>(o.seed),
+                      static_cast<unsigned long long>(index), integrators[w].c_str());
+        std::string header = "# " + std::string(to_string(so.kind)) + " on " + integrators[w] + ": " + so.detail + "\n";
+        header += "# family " + fam + ", campaign seed " + std::to_string(o.seed) + ", model " + std::to_string(index) +
+                  " (shrunk from " + std::to_string(m.bodies.size()) + " bodies, " + std::to_string(m.links.size() + m.frictions.size()) +
+                  " elements); reproduce: machdyn simulate FILE, compare with the reference (tests/reference)\n";
+        std::ofstream(std::filesystem::path(o.out_dir) / name) << to_yaml(s, integrators[w], header);
+      }
+    }
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("\n%-16s %7s %10s %10s %10s %10s %9s %9s\n", "family", "models", "dopri5 ok", "dopri5 bad", "bdf ok", "bdf bad", "ambiguous",
+              "ref error");
+  Count total;
+  for (const auto& f : families) {
+    const Count& c = counts[f];
+    std::printf("%-16s %7ld %10ld %10ld %10ld %10ld %9ld %9ld\n", f.c_str(), c.models, c.pass[0], c.fail[0], c.pass[1], c.fail[1],
+                c.ambiguous, c.ref_error);
+    total.models += c.models, total.pass[0] += c.pass[0], total.pass[1] += c.pass[1], total.fail[0] += c.fail[0];
+    total.fail[1] += c.fail[1], total.ambiguous += c.ambiguous, total.ref_error += c.ref_error;
+  }
+  std::printf("%-16s %7ld %10ld %10ld %10ld %10ld %9ld %9ld\n", "total", total.models, total.pass[0], total.fail[0], total.pass[1],
+              total.fail[1], total.ambiguous, total.ref_error);
+  std::printf("seed %llu, shard %ld/%ld, %.1f s\n", static_cast<unsigned long long>(o.seed), o.shard, o.shards, wall);
+  return failures;
+}
+
+}  // namespace machdyn::reference

@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// The engine against the reference simulator on one model, shrinking a failure, and the campaign
+/// over many random models (issue 27). Used by the `machdyn_campaign` executable (make test, make
+/// verify) and by tests/reference/reference_test.cpp.
+///
+/// Stated tolerances of a comparison (the reference's own error, measured against closed forms and
+/// against itself at half the step, is below a tenth of them):
+///   events: the same (element, kind) in the same order, each within kEventTol·max(1, t_end) s;
+///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied;
+///   states: every body's position and velocity at every output row within
+///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9.
+/// Only the part of the run before the reference's `ambiguous_from` is compared. The states are
+/// compared even where the events differ: a state mismatch is a wrong motion, an event mismatch with
+/// every state agreeing ("states agree") a wrong event list.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "reference/reference.hpp"
+
+namespace machdyn::reference {
+
+constexpr double kEventTol = 1e-6;
+constexpr double kStateTol = 1e-5;
+
+struct Outcome {
+  enum class Kind { pass, engine_error, event_mismatch, state_mismatch, reference_error } kind = Kind::pass;
+  std::string detail;  ///< what differs first (or the error)
+  double t = 0.0;      ///< where, s
+  [[nodiscard]] bool failed() const { return kind == Kind::engine_error || kind == Kind::event_mismatch || kind == Kind::state_mismatch; }
+};
+const char* to_string(Outcome::Kind k);
+
+/// Runs the engine on to_yaml(m, integrator) and compares it with the reference result `ref`.
+Outcome compare(const RefModel& m, const std::string& integrator, const RefResult& ref);
+
+/// Runs both on m (the reference once) and compares on `integrator`.
+Outcome check(const RefModel& m, const std::string& integrator, const RefOptions& o = {});
+
+/// Shrinks a failing model while it still fails on `integrator` with the same outcome kind: drops
+/// elements and bodies, rounds numbers to 1–2 digits, shortens the run. At most `budget` trials.
+RefModel shrink(const RefModel& m, const std::string& integrator, Outcome::Kind kind, int budget = 40);
+
+struct CampaignOptions {
+  long models = 300;
+  std::uint64_t seed = 1;
+  std::vector<std::string> families;  ///< empty: all_families()
+  std::string out_dir;                ///< non-empty: write each failure (shrunk) there
+  bool shrink = true;
+  bool verbose = false;
+  long shard = 0, shards = 1;         ///< run the models i with i % shards == shard (parallel ctest jobs)
+};
+
+/// Prints model `index` of `family` (campaign seed `seed`): its file, the reference's events and
+/// each integrator's events and outcome (machdyn_campaign --show FAMILY:INDEX).
+void show(const std::string& family, std::uint64_t seed, std::uint64_t index);
+
+/// Runs the campaign (models spread round-robin over the families, both integrators), prints a
+/// table per family and returns the number of failing (model, integrator) runs.
+long run_campaign(const CampaignOptions& o);
+
+}  // namespace machdyn::reference

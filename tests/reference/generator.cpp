@@ -1,0 +1,335 @@
+// Random small models (generator.hpp) and their model files.
+#include "reference/generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+namespace machdyn::reference {
+
+const std::vector<std::string>& all_families() {
+  static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
+                                             "brake", "clutch", "freewheel", "stop",            "mixed"};
+  return f;
+}
+
+namespace {
+
+/// splitmix64: a small, portable generator (the same models on every platform and library).
+struct Rng {
+  std::uint64_t s;
+  std::uint64_t next() {
+    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double u() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  ///< [0, 1)
+  double u(double a, double b) { return a + (b - a) * u(); }
+  double log_u(double a, double b) { return a * std::pow(b / a, u()); }
+  int i(int a, int b) { return a + static_cast<int>(next() % static_cast<std::uint64_t>(b - a + 1)); }  ///< [a, b]
+  bool p(double prob) { return u() < prob; }
+};
+
+/// x rounded to `d` significant digits (readable files; the reference reads the same double).
+double sig(double x, int d = 3) {
+  if (x == 0.0) return 0.0;
+  const double e = std::pow(10.0, d - 1 - static_cast<int>(std::floor(std::log10(std::abs(x)))));
+  return std::round(x * e) / e;
+}
+
+Signal random_signal(Rng& r, double t_end, double scale) {
+  Signal s;
+  switch (r.i(0, 3)) {
+    case 0: s.kind = Signal::Kind::constant, s.value = sig(r.u(-1, 1) * scale); break;
+    case 1:
+      s.kind = Signal::Kind::step, s.value = sig(r.u(-1, 1) * scale), s.before = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * scale);
+      s.t0 = sig(r.u(0.05, 0.7) * t_end);
+      break;
+    case 2:
+      s.kind = Signal::Kind::ramp, s.value = sig(r.u(-1, 1) * scale), s.before = r.p(0.6) ? 0.0 : sig(r.u(-1, 1) * scale);
+      s.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.5) * t_end);
+      break;
+    default:
+      s.kind = Signal::Kind::sine, s.amplitude = sig(r.u(0.2, 1) * scale), s.frequency_hz = sig(r.u(0.5, 6.0), 2);
+      s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale);
+      s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+  }
+  return s;
+}
+
+/// FNV-1a of a family's name (std::hash differs between libraries).
+std::uint64_t fnv(const std::string& s) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ull;
+  return h;
+}
+
+/// PREFIX + i (appended: GCC 12's -Wrestrict misfires on "b" + std::to_string(i)).
+std::string named(const char* prefix, int i) {
+  std::string s(prefix);
+  s.append(std::to_string(i));
+  return s;
+}
+
+}  // namespace
+
+RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64_t index) {
+  Rng r{seed * 0x2545F4914F6CDD1Dull + index * 0x9E3779B97F4A7C15ull + fnv(family)};
+  for (int k = 0; k < 4; ++k) r.next();
+  RefModel m;
+  const bool mixed = family == "mixed";
+  auto has = [&](const char* f) { return family == f || (mixed && r.p(0.35)); };
+  const int n = r.i(2, 6);
+  m.t_end = sig(r.u(0.4, 1.2), 2);
+  m.dt_out = m.t_end / 200;
+  for (int i = 0; i < n; ++i) m.bodies.push_back({named("b", i), sig(r.log_u(1.0, 20.0)), 0.0, 0.0});
+  // A common initial speed (a drive line running) in some models.
+  if (r.p(0.25)) {
+    const double v = sig(r.u(-0.5, 0.5));
+    for (auto& b : m.bodies) b.v0 = v;
+  }
+  // The chain: b(i−1) — b(i), sometimes one end to the ground.
+  const double force = sig(r.log_u(20.0, 300.0));
+  for (int i = 1; i < n; ++i) {
+    Link L;
+    L.name = named("k", i);
+    L.a = i - 1, L.b = i;
+    L.c = sig(r.log_u(2e3, 1e5));
+    const double mm = std::min(m.bodies[static_cast<size_t>(i - 1)].m, m.bodies[static_cast<size_t>(i)].m);
+    L.d = r.p(0.35) ? 0.0 : sig(r.u(0.0, 0.15) * 2 * std::sqrt(L.c * mm));
+    m.links.push_back(L);
+  }
+  if (r.p(0.35)) {
+    Link L;
+    L.name = "k0";
+    L.a = r.p(0.5) ? 0 : n - 1, L.b = kGround;
+    if (r.p(0.5)) std::swap(L.a, L.b);
+    L.c = sig(r.log_u(2e3, 5e4));
+    L.d = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.1) * 2 * std::sqrt(L.c * m.bodies[0].m));
+    m.links.push_back(L);
+  }
+  // Loads.
+  const int nl = r.i(1, 2);
+  for (int k = 0; k < nl; ++k) m.loads.push_back({named("P", k), r.i(0, n - 1), random_signal(r, m.t_end, force)});
+
+  // Gaps and one-sided links replace chain links.
+  auto pick_link = [&]() -> Link* {
+    std::vector<Link*> plain;
+    for (auto& L : m.links)
+      if (L.kind == Link::Kind::plain) plain.push_back(&L);
+    return plain.empty() ? nullptr : plain[static_cast<size_t>(r.i(0, static_cast<int>(plain.size()) - 1))];
+  };
+  if (has("gap"))
+    for (int k = r.i(1, 2); k > 0; --k)
+      if (Link* L = pick_link()) {
+        L->kind = Link::Kind::gap;
+        L->gap = sig(r.log_u(5e-4, 5e-3));
+        L->gap_start = sig(r.u(0.2, 0.8) * L->gap);
+        L->elasto = L->d > 0 && r.p(0.4);
+      }
+  if (has("one-sided"))
+    for (int k = r.i(1, 2); k > 0; --k)
+      if (Link* L = pick_link()) {
+        if (r.p(0.5) && L->a != kGround) {
+          L->kind = Link::Kind::rope;
+          L->flank = sig(r.log_u(5e-4, 5e-3));
+        } else {
+          L->kind = Link::Kind::one_sided;
+          L->flank = sig((r.p(0.5) ? 1 : -1) * r.log_u(5e-4, 5e-3));
+        }
+        L->elasto = L->d > 0 && r.p(0.3);
+      }
+
+  // Friction elements. Which pairs are used (a freewheel is the only element on its pair; a stop only
+  // on a body without friction to another body).
+  std::set<std::pair<int, int>> pair_used;
+  std::set<int> body_friction_on;
+  auto add = [&](Friction f) { m.frictions.push_back(std::move(f)); };
+  auto levels = [&](Friction& f) {
+    const double Fs = sig(r.log_u(0.2, 2.0) * force);
+    if (f.kind == Friction::Kind::contact && r.p(0.4)) {
+      f.via_mu = true;
+      f.normal = sig(r.log_u(200.0, 3000.0));
+      f.mu_s = Fs / f.normal * (1 + 1e-3 * r.u());  // many digits: the last bits of F_s = N μ_s matter
+      f.mu_k = f.mu_s * (r.p(0.2) ? 1.0 : r.u(0.5, 1.0));
+    } else {
+      f.Fs = Fs;
+      f.Fk = r.p(0.2) ? Fs : sig(Fs * r.u(0.5, 1.0));
+    }
+  };
+  int nf = 0;
+  auto fname = [&](const char* p) { return named(p, nf++); };
+  if (has("ground-friction"))
+    for (int k = r.i(1, 3); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1), f.b = kGround;
+      levels(f);
+      add(f);
+    }
+  if (has("body-friction"))
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1);
+      f.b = (f.a + r.i(1, n - 1)) % n;
+      levels(f);
+      pair_used.insert({std::min(f.a, f.b), std::max(f.a, f.b)});
+      body_friction_on.insert(f.a), body_friction_on.insert(f.b);
+      add(f);
+    }
+  if (has("brake"))
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::brake, f.name = fname("B"), f.a = r.i(0, n - 1), f.b = kGround;
+      f.Fs = sig(r.log_u(0.3, 3.0) * force);
+      f.Fk = r.p(0.3) ? f.Fs : sig(f.Fs * r.u(0.6, 1.0));
+      f.time = r.p(0.3) ? 0.0 : sig(r.u(0.05, 0.6) * m.t_end);
+      f.ramp = r.p(0.4) ? 0.0 : sig(r.u(0.02, 0.3) * m.t_end);
+      add(f);
+    }
+  if (has("clutch"))
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::clutch, f.name = fname("K"), f.a = r.i(0, n - 1);
+      f.b = (f.a + r.i(1, n - 1)) % n;
+      const double fN = sig(r.log_u(200.0, 3000.0));
+      f.mu_s = sig(r.log_u(0.2, 2.0) * force / fN);
+      f.mu_k = r.p(0.2) ? f.mu_s : sig(f.mu_s * r.u(0.5, 1.0));
+      f.fN.value = fN;
+      if (r.p(0.5)) f.fN.kind = Signal::Kind::step, f.fN.t0 = sig(r.u(0.0, 0.5) * m.t_end);
+      else f.fN.kind = Signal::Kind::ramp, f.fN.t0 = sig(r.u(0.0, 0.4) * m.t_end), f.fN.t1 = sig(f.fN.t0 + r.u(0.05, 0.4) * m.t_end);
+      if (f.fN.kind == Signal::Kind::step && f.fN.t0 == 0.0) f.fN.kind = Signal::Kind::constant;
+      pair_used.insert({std::min(f.a, f.b), std::max(f.a, f.b)});
+      body_friction_on.insert(f.a), body_friction_on.insert(f.b);
+      // A clutch closing on a running pair: give one side a speed.
+      if (r.p(0.4)) m.bodies[static_cast<size_t>(f.a)].v0 += sig(r.u(-1, 1));
+      add(f);
+    }
+  if (has("freewheel"))
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::freewheel, f.name = fname("F");
+      if (r.p(0.4)) {
+        f.a = kGround, f.b = r.i(0, n - 1);  // a backstop: b may move forward only
+      } else {
+        f.a = r.i(0, n - 1), f.b = (f.a + r.i(1, n - 1)) % n;
+        if (pair_used.count({std::min(f.a, f.b), std::max(f.a, f.b)}) != 0) continue;
+        pair_used.insert({std::min(f.a, f.b), std::max(f.a, f.b)});
+        body_friction_on.insert(f.a), body_friction_on.insert(f.b);
+      }
+      f.drag = r.p(0.5) ? 0.0 : sig(r.log_u(0.01, 0.2) * force);
+      add(f);
+    }
+  if (has("stop"))
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::stop, f.name = fname("S"), f.a = r.i(0, n - 1), f.b = kGround;
+      if (body_friction_on.count(f.a) != 0) continue;
+      f.stop_max = r.p(0.5);
+      const double off = sig(r.log_u(5e-4, 1e-2));
+      f.stop_pos = f.stop_max ? off : -off;
+      f.e = r.p(0.4) ? 0.0 : sig(r.u(0.1, 0.8), 2);
+      add(f);
+    }
+  // The initial speeds must not turn a freewheel in its locked direction (u = v_a − v_b > 0), nor
+  // move a body into a stop it starts on (none starts on its stop here).
+  for (const auto& f : m.frictions)
+    if (f.kind == Friction::Kind::freewheel) {
+      const double va = f.a >= 0 ? m.bodies[static_cast<size_t>(f.a)].v0 : 0.0;
+      const double vb = f.b >= 0 ? m.bodies[static_cast<size_t>(f.b)].v0 : 0.0;
+      if (va > vb) {
+        for (auto& b : m.bodies) b.v0 = 0.0;
+        break;
+      }
+    }
+  return m;
+}
+
+namespace {
+std::string num(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+std::string end_name(const RefModel& m, int i) { return i < 0 ? "ground" : m.bodies[static_cast<size_t>(i)].name; }
+
+std::string signal_yaml(const Signal& s, const char* unit) {
+  const std::string u = std::string(" ") + unit;
+  switch (s.kind) {
+    case Signal::Kind::constant: return "type: constant, value: " + num(s.value) + u;
+    case Signal::Kind::step:
+      return "type: step, value: " + num(s.value) + u + ", before: " + num(s.before) + u + ", time: " + num(s.t0) + " s";
+    case Signal::Kind::ramp:
+      return "type: ramp, value: " + num(s.value) + u + ", before: " + num(s.before) + u + ", start: " + num(s.t0) +
+             " s, end: " + num(s.t1) + " s";
+    case Signal::Kind::sine:
+      return "type: sine, amplitude: " + num(s.amplitude) + u + ", frequency: " + num(s.frequency_hz) +
+             " Hz, phase: " + num(s.phase) + ", offset: " + num(s.offset) + u + ", start: " + num(s.t0) + " s";
+  }
+  return "";
+}
+}  // namespace
+
+std::string to_yaml(const RefModel& m, const std::string& integrator, const std::string& header) {
+  std::string y = header;
+  y += "name: random reference model\nbodies:\n";
+  for (const auto& b : m.bodies)
+    y += "  " + b.name + ": {type: translational, mass: " + num(b.m) + " kg, position: " + num(b.q0) +
+         " m, velocity: " + num(b.v0) + " m/s}\n";
+  if (!m.links.empty()) y += "links:\n";
+  for (const auto& L : m.links) {
+    const bool rope = L.kind == Link::Kind::rope;
+    y += "  " + L.name + ": {type: " + (rope ? "rope" : L.d > 0 || L.kind != Link::Kind::plain ? "spring-damper" : "spring") +
+         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " N/m";
+    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " N*s/m";
+    if (L.kind == Link::Kind::gap) y += ", gap: " + num(L.gap) + " m, gap_start: " + num(L.gap_start) + " m";
+    if (L.kind == Link::Kind::one_sided) y += ", flank: " + num(L.flank) + " m";
+    if (rope) y += ", slack: " + num(L.flank) + " m";
+    if (L.elasto) y += ", flank_law: elasto-backlash";
+    y += "}\n";
+  }
+  if (!m.loads.empty()) y += "loads:\n";
+  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, "N") + "}\n";
+  auto section = [&](Friction::Kind k, const char* title) {
+    bool first = true;
+    for (const auto& f : m.frictions) {
+      if (f.kind != k) continue;
+      if (first) y += std::string(title) + ":\n", first = false;
+      y += "  " + f.name + ": {";
+      switch (k) {
+        case Friction::Kind::contact:
+          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], ";
+          y += f.via_mu ? "normal_force: " + num(f.normal) + " N, mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k)
+                        : "static: " + num(f.Fs) + " N, kinetic: " + num(f.Fk) + " N";
+          break;
+        case Friction::Kind::brake:
+          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + " N, braking: " + num(f.Fk) + " N, time: " + num(f.time) +
+               " s, ramp: " + num(f.ramp) + " s";
+          break;
+        case Friction::Kind::clutch:
+          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], normal_force: {" + signal_yaml(f.fN, "N") +
+               "}, mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k);
+          break;
+        case Friction::Kind::freewheel:
+          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], drag: " + num(f.drag) + " N";
+          break;
+        case Friction::Kind::stop:
+          y += "body: " + end_name(m, f.a) + (f.stop_max ? ", max: " : ", min: ") + num(f.stop_pos) + " m, restitution: " + num(f.e);
+          break;
+      }
+      y += "}\n";
+    }
+  };
+  section(Friction::Kind::contact, "contacts");
+  section(Friction::Kind::brake, "brakes");
+  section(Friction::Kind::clutch, "clutches");
+  section(Friction::Kind::freewheel, "freewheels");
+  section(Friction::Kind::stop, "stops");
+  y += "simulation: {t_end: " + num(m.t_end) + " s, dt_out: " + num(m.dt_out) + " s, rtol: 1e-10, atol: 1e-12, max_steps: 500000, integrator: " +
+       integrator + "}\n";
+  return y;
+}
+
+}  // namespace machdyn::reference

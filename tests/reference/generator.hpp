@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// Random small models for the reference campaign (issue 27): one description (RefModel) from which
+/// both the engine's model file (to_yaml) and the reference simulator's input are made, so the two
+/// see the very same numbers (every value written with 17 significant digits).
+///
+/// Families (each model has a chain of 2–6 bodies with springs, spring-dampers and 1–2 loads of every
+/// signal kind, plus the family's elements):
+///   chain            springs and dampers only
+///   gap              gap links, both flank laws (linear, elasto-backlash)
+///   one-sided        one-sided links (`flank`) and ropes with slack
+///   ground-friction  friction contacts to the ground (levels or normal force · μ), also in parallel
+///   body-friction    friction contacts between bodies
+///   brake            brakes applied at a time, step or ramp
+///   clutch           clutches with a step or ramp normal force
+///   freewheel        freewheels between bodies and backstops, with and without drag
+///   stop             end stops, plastic and with restitution
+///   mixed            a bit of everything above
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "reference/reference.hpp"
+
+namespace machdyn::reference {
+
+const std::vector<std::string>& all_families();
+
+/// The model number `index` of a campaign with seed `seed` in family `family` (deterministic).
+RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64_t index);
+
+/// The model file of `m` for the engine (translational bodies, SI units), run with `integrator`
+/// (dopri5 or bdf) at rtol 1e-10, atol 1e-12.
+std::string to_yaml(const RefModel& m, const std::string& integrator, const std::string& header = "");
+
+}  // namespace machdyn::reference

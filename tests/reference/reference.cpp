@@ -1,0 +1,761 @@
+// The brute-force reference simulator (reference.hpp): fixed-step RK4, bisected switching functions,
+// modes by enumeration. Independent of the engine: only the docs' laws, written again here.
+#include "reference/reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+namespace machdyn::reference {
+
+double Signal::at(double t) const {
+  switch (kind) {
+    case Kind::constant: return value;
+    case Kind::step: return t < t0 ? before : value;
+    case Kind::ramp:
+      if (t <= t0) return before;
+      if (t >= t1) return value;
+      return before + (value - before) * (t - t0) / (t1 - t0);
+    case Kind::sine:
+      return t < t0 ? offset : offset + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * (t - t0) + phase);
+  }
+  return 0.0;
+}
+
+void Signal::breakpoints(std::vector<double>& out) const {
+  if (kind == Kind::step || kind == Kind::sine) out.push_back(t0);
+  if (kind == Kind::ramp) out.push_back(t0), out.push_back(t1);
+}
+
+namespace {
+double ramp01(double t, double t0, double dt) {
+  if (t < t0) return 0.0;
+  if (dt <= 0.0 || t >= t0 + dt) return 1.0;
+  return (t - t0) / dt;
+}
+}  // namespace
+
+double Friction::static_limit(double t) const {
+  switch (kind) {
+    case Kind::contact: return via_mu ? normal * mu_s : Fs;
+    case Kind::brake: return ramp01(t, time, ramp) * Fs;
+    case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_s;
+    default: return HUGE_VAL;
+  }
+}
+
+double Friction::kinetic_level(double t) const {
+  switch (kind) {
+    case Kind::contact: return via_mu ? normal * mu_k : Fk;
+    case Kind::brake: return ramp01(t, time, ramp) * Fk;
+    case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_k;
+    case Kind::freewheel: return drag;
+    case Kind::stop: return 0.0;
+  }
+  return 0.0;
+}
+
+bool Friction::engaged(double t) const {
+  if (kind == Kind::brake) return t >= time;  // from `time` on the ramp rises (or the step is full)
+  if (kind == Kind::clutch) return fN.at(t) > 0.0 || fN.at(t + 1e-9 * std::max(1.0, t)) > 0.0;
+  return true;
+}
+
+void Friction::breakpoints(std::vector<double>& out) const {
+  if (kind == Kind::brake) out.push_back(time), out.push_back(time + ramp);
+  if (kind == Kind::clutch) fN.breakpoints(out);
+}
+
+namespace {
+
+enum class FMode { released, stuck, slip_pos, slip_neg, off };  // off: a stop not touching its body
+enum class GMode { open, closed_pos, closed_neg };
+
+int sign_of(FMode md) { return md == FMode::slip_pos ? 1 : md == FMode::slip_neg ? -1 : 0; }
+bool sliding(FMode md) { return md == FMode::slip_pos || md == FMode::slip_neg; }
+
+struct Modes {
+  std::vector<GMode> gap;
+  std::vector<FMode> fr;
+};
+
+class Sim {
+ public:
+  Sim(const RefModel& m, const RefOptions& o) : m_(m), o_(o), n_(static_cast<int>(m.bodies.size())) {
+    for (const auto& b : m.bodies) im_.push_back(1.0 / b.m);
+    md_.gap.assign(m.links.size(), GMode::open);
+    md_.fr.assign(m.frictions.size(), FMode::released);
+    // The force scale of the model (the thresholds of the switching functions are relative to it).
+    for (const auto& l : m.loads) fscale_ = std::max({fscale_, std::abs(l.s.value), std::abs(l.s.before),
+                                                      std::abs(l.s.amplitude) + std::abs(l.s.offset)});
+    for (const auto& f : m.frictions)
+      if (!f.one_sided()) fscale_ = std::max(fscale_, f.static_limit(1e300));
+    // The fastest rate: √(c/m) and d/m of every link over its lighter body.
+    double w = 0.0;
+    for (const auto& l : m.links) {
+      double mm = HUGE_VAL;
+      if (l.a >= 0) mm = std::min(mm, m.bodies[l.a].m);
+      if (l.b >= 0) mm = std::min(mm, m.bodies[l.b].m);
+      const double meff = (l.a >= 0 && l.b >= 0) ? mm / 2 : mm;
+      w = std::max({w, std::sqrt(l.c / meff), l.d / meff});
+    }
+    h_ = w > 0 ? std::min(o.h_max, o.omega_h / w) : o.h_max;
+  }
+
+  RefResult run();
+
+ private:
+  const RefModel& m_;
+  const RefOptions& o_;
+  int n_;
+  std::vector<double> im_;
+  Modes md_;
+  double fscale_ = 1.0, h_ = 1e-3;
+  RefResult res_;
+
+  // ---- kinematics --------------------------------------------------------------------------------
+  double qa(const double* y, int i) const { return i < 0 ? 0.0 : y[i]; }
+  double va(const double* y, int i) const { return i < 0 ? 0.0 : y[n_ + i]; }
+  double rel_u(const Friction& f, const double* y) const { return va(y, f.a) - va(y, f.b); }
+  /// The hold rule's sign of a one-sided element: it holds while lock·λ ≥ 0 (λ: the force on b).
+  static int lock(const Friction& f) {
+    if (f.kind == Friction::Kind::freewheel) return 1;
+    return f.stop_max ? 1 : -1;  // a stop is the row e_a (b = ground): it pushes a with −λ
+  }
+  static bool stop_row(const Friction& f) { return f.kind == Friction::Kind::stop; }
+
+  double link_force(const Link& L, GMode gm, double dl, double ddl) const {
+    if (!L.has_flanks()) return L.c * dl + L.d * ddl;
+    if (gm == GMode::open) return 0.0;
+    const double e = dl - (gm == GMode::closed_pos ? L.hi() : L.lo());
+    const double ce = L.c * e, dd = L.d * ddl;
+    if (!L.elasto) return ce + dd;
+    return gm == GMode::closed_pos ? ce + std::min(ce, dd) : ce + std::max(ce, dd);
+  }
+
+  // ---- right-hand side of a mode -----------------------------------------------------------------
+  struct StuckSet {
+    std::vector<int> rows;   // the stuck elements
+    Eigen::MatrixXd G, A;    // rows e_a − e_b; A = G M⁻¹ Gᵀ
+    bool full = false;       // A regular
+    Eigen::MatrixXd Ainv;
+  };
+  std::map<unsigned, StuckSet> sets_;
+  double t_left_ = -1.0;  // the end of the current step (its signals' left limits)
+  std::vector<double> f_, lamv_, bv_;
+
+  const StuckSet& stuck_set(unsigned mask) {
+    auto it = sets_.find(mask);
+    if (it != sets_.end()) return it->second;
+    StuckSet S;
+    for (size_t k = 0; k < m_.frictions.size(); ++k)
+      if ((mask >> k & 1u) != 0) S.rows.push_back(static_cast<int>(k));
+    const int s = static_cast<int>(S.rows.size());
+    S.G = Eigen::MatrixXd::Zero(s, n_);
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      if (fr.a >= 0) S.G(r, fr.a) += 1.0;
+      if (fr.b >= 0) S.G(r, fr.b) -= 1.0;
+    }
+    const Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(im_.data(), n_);
+    S.A = S.G * im.asDiagonal() * S.G.transpose();
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(S.A);
+    lu.setThreshold(1e-12);
+    S.full = lu.rank() == s;
+    if (S.full) S.Ainv = S.A.inverse();
+    return sets_.emplace(mask, std::move(S)).first->second;
+  }
+
+  /// λ of a stuck set whose rows are dependent (two stuck elements lock one motion), into lamv_;
+  /// bv_ holds G M⁻¹ f.
+  void redundant_lambda(const StuckSet& S, double t) {
+    const int s = static_cast<int>(S.rows.size());
+    // Two stuck elements lock one motion: the weighted least-norm λ = W A (A W A)⁺ b, weights the
+    // static limits (a one-sided element: 1 N); a one-sided element whose share would be against
+    // its lock takes none if the others carry every load alone (docs/hybrid.md).
+    const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(bv_.data(), s);
+    auto weighted = [&](const std::vector<bool>& masked) {
+      Eigen::VectorXd w(s);
+      for (int r = 0; r < s; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+        w(r) = masked[static_cast<size_t>(r)] ? 0.0 : fr.one_sided() ? 1.0 : std::max(fr.static_limit(t), 1e-300);
+      }
+      const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
+      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
+      cod.setThreshold(1e-12);
+      return Eigen::VectorXd(w.asDiagonal() * S.A * (cod.pseudoInverse() * b));
+    };
+    // A lock first: where the one-sided elements alone carry every load in their hold directions,
+    // the friction elements beside them carry nothing (a backstop holds, the brake beside it is
+    // not loaded); the documented rule has no share for a lock in its hold direction.
+    std::vector<bool> masked(static_cast<size_t>(s), false);
+    bool has_lock = false;
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      masked[static_cast<size_t>(r)] = !fr.one_sided();
+      has_lock = has_lock || fr.one_sided();
+    }
+    if (has_lock) {
+      const Eigen::VectorXd l0 = weighted(masked);
+      bool holds = (S.A * l0 - b).norm() <= 1e-9 * (b.norm() + 1e-300);
+      for (int r = 0; r < s && holds; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+        if (fr.one_sided() && lock(fr) * l0(r) < 0.0) holds = false;
+      }
+      if (holds) {
+        for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = l0(r);
+        return;
+      }
+    }
+    std::fill(masked.begin(), masked.end(), false);
+    Eigen::VectorXd lv = weighted(masked);
+    bool any = false;
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      if (fr.one_sided() && lock(fr) * lv(r) < 0.0) masked[static_cast<size_t>(r)] = true, any = true;
+    }
+    if (any) {
+      const Eigen::VectorXd l2 = weighted(masked);
+      if ((S.A * l2 - b).norm() <= 1e-9 * (b.norm() + 1e-300)) lv = l2;
+    }
+    for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
+  }
+
+  /// Accelerations a (n) and the stuck loads λ (per friction element, 0 if not stuck) at (t, y).
+  void accel(double t_in, const double* y, const Modes& md, double* a, double* lam) {
+    // A step that ends on a breakpoint sees the signals' left limits there (the next step starts
+    // with the new values), as every step of the engine does.
+    const double t = t_in == t_left_ ? std::nextafter(t_in, -HUGE_VAL) : t_in;
+    f_.assign(static_cast<size_t>(n_), 0.0);
+    auto& f = f_;
+    for (const auto& l : m_.loads) f[static_cast<size_t>(l.body)] += l.s.at(t);
+    for (size_t k = 0; k < m_.links.size(); ++k) {
+      const Link& L = m_.links[k];
+      const double F = link_force(L, md.gap[k], qa(y, L.a) - qa(y, L.b), va(y, L.a) - va(y, L.b));
+      if (L.b >= 0) f[static_cast<size_t>(L.b)] += F;
+      if (L.a >= 0) f[static_cast<size_t>(L.a)] -= F;
+    }
+    unsigned mask = 0;
+    for (size_t k = 0; k < m_.frictions.size(); ++k) {
+      const Friction& fr = m_.frictions[k];
+      lam[k] = 0.0;
+      if (sliding(md.fr[k])) {
+        const double F = sign_of(md.fr[k]) * fr.kinetic_level(t);
+        if (fr.b >= 0) f[static_cast<size_t>(fr.b)] += F;
+        if (fr.a >= 0) f[static_cast<size_t>(fr.a)] -= F;
+      } else if (md.fr[k] == FMode::stuck) {
+        mask |= 1u << k;
+      }
+    }
+    for (int i = 0; i < n_; ++i) a[i] = f[static_cast<size_t>(i)] * im_[static_cast<size_t>(i)];
+    if (mask == 0) return;
+    const StuckSet& S = stuck_set(mask);
+    const int s = static_cast<int>(S.rows.size());
+    // b = G M⁻¹ f (the free accelerations' row differences); G M⁻¹ Gᵀ λ = b.
+    bv_.assign(static_cast<size_t>(s), 0.0);
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      bv_[static_cast<size_t>(r)] = (fr.a >= 0 ? a[fr.a] : 0.0) - (fr.b >= 0 ? a[fr.b] : 0.0);
+    }
+    lamv_.assign(static_cast<size_t>(s), 0.0);
+    if (S.full) {
+      for (int r = 0; r < s; ++r)
+        for (int c = 0; c < s; ++c) lamv_[static_cast<size_t>(r)] += S.Ainv(r, c) * bv_[static_cast<size_t>(c)];
+    } else {
+      redundant_lambda(S, t);
+    }
+    // a = M⁻¹ (f − Gᵀ λ)
+    for (int r = 0; r < s; ++r) {
+      const int k = S.rows[static_cast<size_t>(r)];
+      const Friction& fr = m_.frictions[static_cast<size_t>(k)];
+      const double l = lamv_[static_cast<size_t>(r)];
+      if (fr.a >= 0) a[fr.a] -= im_[static_cast<size_t>(fr.a)] * l;
+      if (fr.b >= 0) a[fr.b] += im_[static_cast<size_t>(fr.b)] * l;
+      lam[k] = l;
+    }
+    // Bodies held together get exactly equal accelerations (a stuck pair's rounding).
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      if (fr.a >= 0 && fr.b < 0) a[fr.a] = 0.0;
+      else if (fr.b >= 0 && fr.a < 0) a[fr.b] = 0.0;
+    }
+  }
+
+  void deriv(double t, const std::vector<double>& y, const Modes& md, std::vector<double>& dy) {
+    lam_d_.resize(m_.frictions.size());
+    for (int i = 0; i < n_; ++i) dy[static_cast<size_t>(i)] = y[static_cast<size_t>(n_ + i)];
+    accel(t, y.data(), md, dy.data() + n_, lam_d_.data());
+  }
+
+  std::vector<double> k1, k2, k3, k4, tmp, lam_d_;
+  std::vector<double> rk4(double t, const std::vector<double>& y, double h) {
+    const size_t N = y.size();
+    k1.resize(N), k2.resize(N), k3.resize(N), k4.resize(N), tmp.resize(N);
+    deriv(t, y, md_, k1);
+    for (size_t i = 0; i < N; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
+    deriv(t + 0.5 * h, tmp, md_, k2);
+    for (size_t i = 0; i < N; ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
+    deriv(t + 0.5 * h, tmp, md_, k3);
+    for (size_t i = 0; i < N; ++i) tmp[i] = y[i] + h * k3[i];
+    deriv(t + h, tmp, md_, k4);
+    std::vector<double> out(N);
+    for (size_t i = 0; i < N; ++i) out[i] = y[i] + h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    return out;
+  }
+
+  // ---- switching functions -----------------------------------------------------------------------
+  struct Fn {
+    double g, eps;
+    int gap = -1, fr = -1;  // which element (kinks: gap ≥ 0 with kink = true)
+    bool kink = false;
+  };
+
+  std::vector<Fn> functions(double t_in, const std::vector<double>& y) {
+    const double t = t_in == t_left_ ? std::nextafter(t_in, -HUGE_VAL) : t_in;
+    std::vector<Fn> out;
+    std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    accel(t_in, y.data(), md_, a.data(), lam.data());
+    const double eps_x = 0.0, eps_v = 1e-12, eps_f = 1e-13 * fscale_;
+    for (size_t k = 0; k < m_.links.size(); ++k) {
+      const Link& L = m_.links[k];
+      if (!L.has_flanks()) continue;
+      const double dl = qa(y.data(), L.a) - qa(y.data(), L.b), ddl = va(y.data(), L.a) - va(y.data(), L.b);
+      const int gi = static_cast<int>(k);
+      const double gp = L.c * (dl - L.hi()) + L.d * ddl;  // the flank's c e + d δ̇ (contact ends at 0)
+      const double gn = L.c * (dl - L.lo()) + L.d * ddl;
+      switch (md_.gap[k]) {
+        case GMode::open:
+          out.push_back({dl <= L.hi() ? L.hi() - dl : -gp, dl <= L.hi() ? eps_x : eps_f, gi});
+          if (L.kind == Link::Kind::gap) out.push_back({dl >= L.lo() ? dl - L.lo() : gn, dl >= L.lo() ? eps_x : eps_f, gi});
+          break;
+        case GMode::closed_pos:
+          out.push_back({gp, eps_f, gi});
+          if (L.elasto) out.push_back({L.c * (dl - L.hi()) - L.d * ddl, eps_f, gi, -1, true});
+          break;
+        case GMode::closed_neg:
+          out.push_back({-gn, eps_f, gi});
+          if (L.elasto) out.push_back({L.d * ddl - L.c * (dl - L.lo()), eps_f, gi, -1, true});
+          break;
+      }
+    }
+    for (size_t k = 0; k < m_.frictions.size(); ++k) {
+      const Friction& f = m_.frictions[k];
+      const int fi = static_cast<int>(k);
+      const FMode md = md_.fr[k];
+      if (md == FMode::released) continue;
+      if (md == FMode::off) {
+        const double x = y[static_cast<size_t>(f.a)];
+        out.push_back({f.stop_max ? f.stop_pos - x : x - f.stop_pos, eps_x, -1, fi});
+      } else if (md == FMode::stuck) {
+        if (f.one_sided()) out.push_back({lock(f) * lam[k] + f.kinetic_level(t) + 1e-9, eps_f, -1, fi});
+        else out.push_back({f.static_limit(t) - std::abs(lam[k]), 1e-13 * f.static_limit(t) + eps_f, -1, fi});
+      } else {
+        out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
+      }
+    }
+    return out;
+  }
+
+  /// A mode function fires going from ≥ −ε to < −ε (armed only while ≥ −ε); a kink on either side.
+  static bool fires(const Fn& f0, const Fn& f1) {
+    if (f0.kink) return (f0.g < 0) != (f1.g < 0);
+    return f0.g >= -f0.eps && f1.g < -f1.eps;
+  }
+  static bool any_fired(const std::vector<Fn>& g0, const std::vector<Fn>& g1) {
+    for (size_t i = 0; i < g1.size() && i < g0.size(); ++i)
+      if (fires(g0[i], g1[i])) return true;
+    return false;
+  }
+
+  // ---- decisions ---------------------------------------------------------------------------------
+  void record(double t, const char* kind, const std::string& el) { res_.events.push_back({t, kind, el}); }
+
+  /// Sets u = 0 exactly for every element in `rows` (friction rows e_a − e_b, stop rows e_a): the
+  /// momentum-keeping projection v ← v − M⁻¹Gᵀ(G M⁻¹ Gᵀ)⁺ G v.
+  void project(std::vector<double>& y, const std::vector<int>& rows) const {
+    if (rows.empty()) return;
+    const int s = static_cast<int>(rows.size());
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(s, n_);
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
+      if (fr.a >= 0) G(r, fr.a) += 1.0;
+      if (fr.b >= 0) G(r, fr.b) -= 1.0;
+    }
+    Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(im_.data(), n_);
+    Eigen::Map<Eigen::VectorXd> v(y.data() + n_, n_);
+    const Eigen::MatrixXd A = G * im.asDiagonal() * G.transpose();
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+    cod.setThreshold(1e-12);
+    const Eigen::VectorXd dv = im.asDiagonal() * (G.transpose() * (cod.pseudoInverse() * (G * v)));
+    v -= dv;
+    // Exactly equal speeds: the mean of each stuck pair (rounding of the projection).
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
+      if (fr.b < 0) v(fr.a) = 0.0;
+      else if (fr.a < 0) v(fr.b) = 0.0;
+    }
+    for (int pass = 0; pass < 3; ++pass)
+      for (int r = 0; r < s; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
+        if (fr.a >= 0 && fr.b >= 0) {
+          const double ma = 1.0 / im_[static_cast<size_t>(fr.a)], mb = 1.0 / im_[static_cast<size_t>(fr.b)];
+          const double vm = (ma * v(fr.a) + mb * v(fr.b)) / (ma + mb);
+          v(fr.a) = v(fr.b) = vm;
+        }
+      }
+  }
+
+  /// Decides the friction elements at zero sliding speed (`zero`: their indices) by enumeration;
+  /// `fired` are those whose switching function fired (judged strictly).
+  void decide(double t, std::vector<double>& y, const std::vector<int>& fired, bool initial = false) {
+    std::vector<int> Z;
+    for (size_t k = 0; k < m_.frictions.size(); ++k) {
+      const Friction& f = m_.frictions[k];
+      const FMode md = md_.fr[k];
+      if (md == FMode::released || md == FMode::off) continue;
+      const bool f_fired = std::find(fired.begin(), fired.end(), static_cast<int>(k)) != fired.end();
+      if (md == FMode::stuck || rel_u(f, y.data()) == 0.0 || (f_fired && sliding(md))) Z.push_back(static_cast<int>(k));
+    }
+    // Stops just come to rest (set by the impact) are in Z as stuck already.
+    project(y, Z);
+    const int z = static_cast<int>(Z.size());
+    if (z == 0) return;
+    auto is_fired = [&](int k) { return std::find(fired.begin(), fired.end(), k) != fired.end(); };
+    std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+
+    // Consistency of a trial (Modes tr): stuck within limits, sliding accelerating its way.
+    auto consistent = [&](const Modes& tr) {
+      accel(t, y.data(), tr, a.data(), lam.data());
+      for (int k : Z) {
+        const Friction& f = m_.frictions[static_cast<size_t>(k)];
+        const FMode md = tr.fr[static_cast<size_t>(k)];
+        const double aa = f.a >= 0 ? a[static_cast<size_t>(f.a)] : 0.0, ab = f.b >= 0 ? a[static_cast<size_t>(f.b)] : 0.0;
+        const double du = aa - ab, tol_a = 1e-12 * (std::abs(aa) + std::abs(ab)) + 1e-14;
+        if (md == FMode::stuck) {
+          if (f.one_sided()) {
+            if (lock(f) * lam[static_cast<size_t>(k)] + f.kinetic_level(t) < -1e-9) return false;
+          } else {
+            const double Fs = f.static_limit(t);
+            const double allow = is_fired(k) ? 0.0 : 1e-14 * (Fs + fscale_);
+            if (std::abs(lam[static_cast<size_t>(k)]) > Fs + allow) return false;
+          }
+        } else if (md == FMode::off) {  // a resting stop left: the body moves off it
+          if ((f.stop_max ? -aa : aa) < -tol_a) return false;
+        } else if (sign_of(md) * du < -tol_a) {
+          return false;
+        }
+      }
+      return true;
+    };
+    auto options = [&](int k) {
+      const Friction& f = m_.frictions[static_cast<size_t>(k)];
+      if (f.kind == Friction::Kind::stop) return std::vector<FMode>{FMode::stuck, FMode::off};
+      if (f.kind == Friction::Kind::freewheel) return std::vector<FMode>{FMode::stuck, FMode::slip_neg};
+      return std::vector<FMode>{FMode::stuck, FMode::slip_pos, FMode::slip_neg};
+    };
+    // Every combination.
+    struct Trial {
+      Modes md;
+      int slides;
+      std::vector<double> a;
+    };
+    std::vector<Trial> ok;
+    std::vector<int> idx(static_cast<size_t>(z), 0);
+    for (;;) {
+      Modes tr = md_;
+      int slides = 0;
+      for (int j = 0; j < z; ++j) {
+        const FMode md = options(Z[static_cast<size_t>(j)])[static_cast<size_t>(idx[static_cast<size_t>(j)])];
+        tr.fr[static_cast<size_t>(Z[static_cast<size_t>(j)])] = md;
+        slides += md != FMode::stuck;
+      }
+      if (consistent(tr)) ok.push_back({tr, slides, a});
+      int j = 0;
+      while (j < z && ++idx[static_cast<size_t>(j)] == static_cast<int>(options(Z[static_cast<size_t>(j)]).size()))
+        idx[static_cast<size_t>(j)] = 0, ++j;
+      if (j == z) break;
+    }
+    if (ok.empty()) throw std::runtime_error("no consistent mode combination at t = " + std::to_string(t));
+    // The documented rule: all stuck; else release the most overloaded one after the other; else
+    // fewest sliding first.
+    Modes chosen = md_;
+    for (int k : Z) chosen.fr[static_cast<size_t>(k)] = FMode::stuck;
+    bool found = consistent(chosen);
+    for (int guard = 0; !found && guard <= z; ++guard) {
+      accel(t, y.data(), chosen, a.data(), lam.data());
+      int worst = -1;
+      double worst_r = 0.0;
+      for (int k : Z) {
+        if (chosen.fr[static_cast<size_t>(k)] != FMode::stuck) continue;
+        const Friction& f = m_.frictions[static_cast<size_t>(k)];
+        const double l = lam[static_cast<size_t>(k)];
+        double r = 0.0;
+        if (f.one_sided()) {
+          r = lock(f) * l + f.kinetic_level(t) < -1e-9 ? HUGE_VAL : 0.0;
+        } else {
+          const double Fs = f.static_limit(t), allow = is_fired(k) ? 0.0 : 1e-14 * (Fs + fscale_);
+          r = std::abs(l) > Fs + allow ? (Fs > 0 ? std::abs(l) / Fs : HUGE_VAL) : 0.0;
+        }
+        if (r > worst_r) worst_r = r, worst = k;
+      }
+      if (worst < 0) break;
+      const Friction& f = m_.frictions[static_cast<size_t>(worst)];
+      chosen.fr[static_cast<size_t>(worst)] = f.kind == Friction::Kind::stop        ? FMode::off
+                                              : f.kind == Friction::Kind::freewheel ? FMode::slip_neg
+                                              : lam[static_cast<size_t>(worst)] > 0 ? FMode::slip_pos
+                                                                                    : FMode::slip_neg;
+      found = consistent(chosen);
+    }
+    int min_slides = z + 1;
+    for (const auto& tr : ok) min_slides = std::min(min_slides, tr.slides);
+    if (!found) {
+      for (const auto& tr : ok)
+        if (tr.slides == min_slides) {
+          chosen = tr.md;
+          break;
+        }
+    }
+    // Ambiguity: a consistent combination with the fewest slides that moves otherwise.
+    accel(t, y.data(), chosen, a.data(), lam.data());
+    double amax = 1e-12;
+    for (double x : a) amax = std::max(amax, std::abs(x));
+    for (const auto& tr : ok) {
+      if (tr.slides != min_slides) continue;
+      for (int i = 0; i < n_; ++i)
+        if (std::abs(tr.a[static_cast<size_t>(i)] - a[static_cast<size_t>(i)]) > 1e-9 * amax) {
+          res_.ambiguous_from = std::min(res_.ambiguous_from, t);
+          break;
+        }
+    }
+    // Log the changes and set the modes.
+    for (int k : Z) {
+      const FMode was = md_.fr[static_cast<size_t>(k)], now = chosen.fr[static_cast<size_t>(k)];
+      const std::string& name = m_.frictions[static_cast<size_t>(k)].name;
+      if (was == now || initial) continue;
+      if (now == FMode::stuck) record(t, "stick", name);
+      else if (was == FMode::stuck) record(t, "slip", name);
+      else if (sliding(was) && sliding(now)) record(t, "reversal", name);
+    }
+    md_ = chosen;
+    // Stuck ones: exactly equal speeds.
+    std::vector<int> st;
+    for (size_t k = 0; k < m_.frictions.size(); ++k)
+      if (md_.fr[k] == FMode::stuck) st.push_back(static_cast<int>(k));
+    project(y, st);
+  }
+
+  /// The gaps after a velocity jump: each whose switching function is now negative toggles.
+  void settle_gaps(double t, const std::vector<double>& y) {
+    for (size_t k = 0; k < m_.links.size(); ++k) {
+      const Link& L = m_.links[k];
+      if (!L.has_flanks()) continue;
+      const double dl = qa(y.data(), L.a) - qa(y.data(), L.b), ddl = va(y.data(), L.a) - va(y.data(), L.b);
+      const double gp = L.c * (dl - L.hi()) + L.d * ddl, gn = L.c * (dl - L.lo()) + L.d * ddl;
+      const GMode md = md_.gap[k];
+      if (md == GMode::closed_pos && gp < 0.0) md_.gap[k] = GMode::open, record(t, "gap_opened", L.name);
+      else if (md == GMode::closed_neg && gn > 0.0) md_.gap[k] = GMode::open, record(t, "gap_opened", L.name);
+      else if (md == GMode::open && dl > L.hi() && gp > 0.0) md_.gap[k] = GMode::closed_pos, record(t, "gap_closed", L.name);
+      else if (md == GMode::open && dl < L.lo() && gn < 0.0) md_.gap[k] = GMode::closed_neg, record(t, "gap_closed", L.name);
+    }
+  }
+
+  /// Engagement changes of brakes and clutches at t (a breakpoint or the start).
+  void engage(double t, const std::vector<double>& y, bool initial) {
+    for (size_t k = 0; k < m_.frictions.size(); ++k) {
+      const Friction& f = m_.frictions[k];
+      const bool on = f.engaged(t);
+      if (md_.fr[k] == FMode::released && on) {
+        const double u = rel_u(f, y.data());
+        md_.fr[k] = u > 0 ? FMode::slip_pos : u < 0 ? FMode::slip_neg : FMode::stuck;
+        // An `applied` event where it is applied while its bodies move (docs/hybrid.md); applied at
+        // rest it simply holds (or slips: decided with the rest).
+        if (!initial && u != 0.0) record(t, "applied", f.name);
+      } else if (md_.fr[k] != FMode::released && !on) {
+        md_.fr[k] = FMode::released;
+        if (!initial) record(t, "released", f.name);
+      }
+    }
+  }
+
+  /// The switching functions at a restart: every one must hold (≥ −ε) in the modes just decided —
+  /// a negative one would never be armed, so a decision that leaves one is an error, not a disarm.
+  void restart(double t, const std::vector<double>& y, std::vector<Fn>& g) {
+    g = functions(t, y);
+    for (const auto& f : g)
+      if (!f.kink && f.g < -f.eps)
+        throw std::runtime_error("the decision at t = " + std::to_string(t) + " leaves a switching function negative (" +
+                                 (f.gap >= 0 ? m_.links[static_cast<size_t>(f.gap)].name : m_.frictions[static_cast<size_t>(f.fr)].name) +
+                                 ": " + std::to_string(f.g) + ")");
+  }
+
+  void project_stuck(std::vector<double>& y) const {
+    std::vector<int> st;
+    for (size_t k = 0; k < m_.frictions.size(); ++k)
+      if (md_.fr[k] == FMode::stuck) st.push_back(static_cast<int>(k));
+    project(y, st);
+  }
+};
+
+RefResult Sim::run() {
+  std::vector<double> y(static_cast<size_t>(2 * n_));
+  for (int i = 0; i < n_; ++i) y[static_cast<size_t>(i)] = m_.bodies[static_cast<size_t>(i)].q0, y[static_cast<size_t>(n_ + i)] = m_.bodies[static_cast<size_t>(i)].v0;
+  // Initial modes: gaps by δ(0), stops off unless on the stop, friction by u(0) (zero: decided).
+  for (size_t k = 0; k < m_.links.size(); ++k) {
+    const Link& L = m_.links[k];
+    if (!L.has_flanks()) continue;
+    const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
+    md_.gap[k] = dl > L.hi() ? GMode::closed_pos : dl < L.lo() ? GMode::closed_neg : GMode::open;
+  }
+  for (size_t k = 0; k < m_.frictions.size(); ++k) {
+    const Friction& f = m_.frictions[k];
+    if (f.kind == Friction::Kind::stop) {
+      const double x = y[static_cast<size_t>(f.a)];
+      md_.fr[k] = x == f.stop_pos ? FMode::stuck : FMode::off;
+    }
+  }
+  engage(0.0, y, true);
+  decide(0.0, y, {}, true);
+  std::vector<Fn> g0;
+  restart(0.0, y, g0);
+  bool g0_valid = true;
+
+  std::vector<double> bps;
+  for (const auto& l : m_.loads) l.s.breakpoints(bps);
+  for (const auto& f : m_.frictions) f.breakpoints(bps);
+  std::sort(bps.begin(), bps.end());
+  bps.erase(std::remove_if(bps.begin(), bps.end(), [&](double b) { return !(b > 0.0 && b < m_.t_end); }), bps.end());
+  bps.erase(std::unique(bps.begin(), bps.end()), bps.end());
+  size_t ib = 0;
+  const long rows = std::lround(m_.t_end / m_.dt_out);
+  long next_row = 0;
+  auto row = [&](double t) {
+    res_.t.push_back(t);
+    res_.q.emplace_back(y.begin(), y.begin() + n_);
+    res_.v.emplace_back(y.begin() + n_, y.end());
+  };
+  double t = 0.0;
+  row(0.0), next_row = 1;
+  long events_here = 0;
+  double last_event_t = -1.0;
+  while (next_row <= rows) {
+    const double t_row = next_row == rows ? m_.t_end : static_cast<double>(next_row) * m_.dt_out;
+    double t_to = std::min(t + h_, t_row);
+    if (ib < bps.size()) t_to = std::min(t_to, bps[ib]);
+    const double dt = t_to - t;
+    if (!g0_valid) g0 = functions(t, y), g0_valid = true;
+    t_left_ = t_to;
+    auto y1 = rk4(t, y, dt);
+    ++res_.steps;
+    auto g1 = functions(t_to, y1);
+    if (any_fired(g0, g1)) {
+      double lo = 0.0, hi = dt;
+      const double res = 1e-13 * std::max(1.0, t);
+      while (hi - lo > res) {
+        const double mid = 0.5 * (lo + hi);
+        if (any_fired(g0, functions(t + mid, rk4(t, y, mid)))) hi = mid;
+        else lo = mid;
+      }
+      const double te = t + hi;
+      y = rk4(t, y, hi);
+      const auto ge = functions(te, y);
+      t = te;
+      t_left_ = -1.0;
+      if (t - last_event_t < 1e-9 * std::max(1.0, t)) {
+        if (++events_here > 200) throw std::runtime_error("chattering at t = " + std::to_string(t));
+      } else {
+        events_here = 0, last_event_t = t;
+      }
+      if (static_cast<long>(res_.events.size()) > o_.max_events) throw std::runtime_error("too many events");
+      std::vector<int> fired_fr;
+      for (size_t i = 0; i < ge.size() && i < g0.size(); ++i) {
+        if (!fires(g0[i], ge[i]) || ge[i].kink) continue;
+        if (ge[i].gap >= 0) {
+          const size_t k = static_cast<size_t>(ge[i].gap);
+          const Link& L = m_.links[k];
+          const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
+          if (md_.gap[k] == GMode::open) {
+            md_.gap[k] = std::abs(dl - L.hi()) <= std::abs(dl - L.lo()) ? GMode::closed_pos : GMode::closed_neg;
+            record(t, "gap_closed", L.name);
+          } else {
+            md_.gap[k] = GMode::open;
+            record(t, "gap_opened", L.name);
+          }
+        } else if (ge[i].fr >= 0) {
+          const size_t k = static_cast<size_t>(ge[i].fr);
+          const Friction& f = m_.frictions[k];
+          if (md_.fr[k] == FMode::off) {
+            // The impact: v⁺ = −e v⁻ at the stop; rest for e = 0 or a flight below the resolution.
+            const size_t b = static_cast<size_t>(f.a);
+            y[b] = f.stop_pos;
+            const double vp = -f.e * y[static_cast<size_t>(n_) + b];
+            y[static_cast<size_t>(n_) + b] = vp;
+            std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+            accel(t, y.data(), md_, a.data(), lam.data());
+            const double back = f.stop_max ? a[b] : -a[b];
+            // Rest: e = 0, or a flight 2|v⁺|/|a| below 1e-9·max(1, t) s, or a rebound height v⁺²/(2|a|)
+            // of a few ulps of the position (below that the bounces only pump rounding).
+            const bool rest = vp == 0.0 || (back > 0.0 && (2.0 * std::abs(vp) <= 1e-9 * std::max(1.0, t) * back ||
+                                                          vp * vp <= 2.0 * back * 16.0 * (std::nextafter(std::abs(f.stop_pos), HUGE_VAL) - std::abs(f.stop_pos))));
+            if (rest) {
+              y[static_cast<size_t>(n_) + b] = 0.0;
+              md_.fr[k] = FMode::stuck;
+              record(t, "stick", f.name);
+            } else {
+              record(t, "impact", f.name);
+            }
+            // The velocity jump changes δ̇ of the links on the body: a closed damped flank whose
+            // c e + d δ̇ turns negative opens at the impact, an open one past its flank whose force
+            // turns positive closes (the flanks are decided again, as the friction below).
+            settle_gaps(t, y);
+            // Friction on the body slides the other way now, or is decided at zero speed.
+            for (size_t j = 0; j < m_.frictions.size(); ++j) {
+              if (!sliding(md_.fr[j])) continue;
+              const double u = rel_u(m_.frictions[j], y.data());
+              if (u != 0.0 && (u > 0) != (md_.fr[j] == FMode::slip_pos)) {
+                md_.fr[j] = u > 0 ? FMode::slip_pos : FMode::slip_neg;
+                record(t, "reversal", m_.frictions[j].name);
+              }
+            }
+          } else {
+            fired_fr.push_back(static_cast<int>(k));
+          }
+        }
+      }
+      decide(t, y, fired_fr);
+      restart(t, y, g0), g0_valid = true;
+    } else {
+      y = std::move(y1);
+      t = t_to;
+      t_left_ = -1.0;
+      g0 = std::move(g1);
+      if (ib < bps.size() && t == bps[ib]) {
+        ++ib;
+        engage(t, y, false);
+        decide(t, y, {});
+        restart(t, y, g0);
+      }
+      project_stuck(y);
+      if (t == t_row) row(t), ++next_row;
+    }
+  }
+  return std::move(res_);
+}
+
+}  // namespace
+
+RefResult simulate_reference(const RefModel& m, const RefOptions& o) {
+  try {
+    Sim s(m, o);
+    return s.run();
+  } catch (const std::exception& e) {
+    RefResult r;
+    r.error = e.what();
+    return r;
+  }
+}
+
+}  // namespace machdyn::reference

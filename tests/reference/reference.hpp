@@ -1,0 +1,156 @@
+#pragma once
+/// @file
+/// A brute-force reference simulator of small translational drive lines (tests only, issue 27): the
+/// independent answer the random campaign compares the engine with. Written from docs/model-files.md
+/// and docs/hybrid.md alone; it calls none of the engine's element laws, decision code, steppers or
+/// compile. Deliberately simple and slow:
+///
+/// - state y = [q; v] of n ≤ 8 bodies (SI: m, m/s, kg, N); in a mode
+///     M a = f(t, q, v) − Σ_sliding r_k s_k F_k(t) − Gᵀ λ,   G a = 0,
+///   r_k = e_A − e_B the element's row (the ground left out), G the rows of the stuck elements;
+///   λ = (G M⁻¹ Gᵀ)⁻¹ G M⁻¹ f̃; where two stuck elements lock one motion the one-sided ones (locks)
+///   carry it alone if they can in their hold directions, else the weighted least norm (weights
+///   F_s,k: docs/hybrid.md, the locked load shared in proportion to the static limits; a lock
+///   loaded against its hold direction takes no share);
+/// - classical fixed-step RK4 with h = `omega_h`/ω_max (ω_max: the fastest spring or damper rate),
+///   every step ending on the breakpoints of the signals and on the output rows;
+/// - after every step every switching function is evaluated (gaps: distance or flank force; stuck
+///   friction: F_s − |λ|; one-sided holds: lock·λ; sliding: s u; stops: the distance; the kink of the
+///   elasto-backlash law) and the first crossing is bisected on a fresh RK4 step from the step's start
+///   to 1e-13·max(1, t) s; the run continues just past the root;
+/// - at an event the gaps that fired toggle, a stop that is reached takes its impact (its velocity
+///   jump decides the flanks on the body again: a damped closed flank may open at once) (v⁺ = −e v⁻, rest
+///   when e = 0, when the rebound's flight 2|v⁺|/|a| is below 1e-9·max(1, t) s — the engine's
+///   1e-12 is below what a fixed-step run can resolve: the rounding of the position at the stop pumps
+///   the bounces at ~1e-9 m/s — or when the rebound's height is a few ulps of the position), and the
+///   modes of the friction elements at zero sliding speed are chosen by ENUMERATING every
+///   combination (stuck / slip+ / slip−, a freewheel stuck / overrunning, a resting stop stuck /
+///   leaving) and keeping the consistent ones: stuck within the limit (one-sided ones pressing, a
+///   freewheel holding while λ ≥ −F_drag: at zero overrun speed its drag is a friction level, without
+///   which a backward load below the drag has no consistent mode at all), sliding ones accelerating in
+///   their direction. A decision that leaves a switching function negative is an error (it would
+///   never be armed). Where several are consistent the documented rule picks (all stuck if that holds,
+///   else release the most overloaded one after the other, else fewest sliding first); where the
+///   consistent ones give different accelerations the run says so (`ambiguous_from`): the physics
+///   is not unique there and a comparison after it is not meaningful.
+///
+/// Limits (what the generator respects): translational bodies, link ratio 1, no gears (ideal, lossy,
+/// planetary), prescribed motions, releases, buffers, drives or machines; signals constant, step,
+/// ramp and sine only; constant friction levels (no tables, Stribeck or moving surfaces); end stops only on bodies without friction to another body (an impact through
+/// a stuck contact would need an impulsive friction law); brakes and clutches are applied, never
+/// released again; a freewheel is the only friction element on its pair of bodies.
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace machdyn::reference {
+
+/// A signal of time: the load and normal-force kinds of docs/model-files.md the generator uses.
+struct Signal {
+  enum class Kind { constant, step, ramp, sine } kind = Kind::constant;
+  double value = 0.0;   ///< constant, step's and ramp's final value
+  double before = 0.0;  ///< step and ramp: the value before
+  double t0 = 0.0;      ///< step's time, ramp's start, sine's start
+  double t1 = 0.0;      ///< ramp's end
+  double amplitude = 0.0, frequency_hz = 0.0, phase = 0.0, offset = 0.0;  ///< sine
+  [[nodiscard]] double at(double t) const;
+  /// The times where the signal jumps or kinks (the stepper ends a step there).
+  void breakpoints(std::vector<double>& out) const;
+};
+
+constexpr int kGround = -1;
+
+struct Body {
+  std::string name;
+  double m = 1.0, q0 = 0.0, v0 = 0.0;  ///< kg, m, m/s
+};
+
+/// A spring-damper link between bodies a and b (either may be kGround): δ = q_a − q_b, the load F
+/// acts on b with +F and on a with −F (docs/model-files.md, Links).
+struct Link {
+  enum class Kind { plain, gap, one_sided, rope } kind = Kind::plain;
+  std::string name;
+  int a = 0, b = 1;
+  double c = 0.0, d = 0.0;     ///< N/m, N·s/m
+  double gap = 0.0, gap_start = 0.0;  ///< gap: Δ and the position inside it at δ = 0
+  double flank = 0.0;          ///< one_sided: δ₊ (any sign); rope: the slack (≥ 0)
+  bool elasto = false;         ///< flank_law: elasto-backlash
+  [[nodiscard]] bool has_flanks() const { return kind != Kind::plain; }
+  [[nodiscard]] double hi() const { return kind == Kind::gap ? gap - gap_start : flank; }  ///< δ₊
+  [[nodiscard]] double lo() const {  ///< δ₋ (−∞ for a one-sided link or rope)
+    return kind == Kind::gap ? -gap_start : -std::numeric_limits<double>::infinity();
+  }
+};
+
+struct Load {
+  std::string name;
+  int body = 0;
+  Signal s;
+};
+
+/// A friction element. Sliding velocity u = v_a − v_b (v of kGround = 0); while sliding in s = sign u
+/// it loads b with +s F_k and a with −s F_k; stuck, with +λ and −λ.
+struct Friction {
+  enum class Kind { contact, brake, clutch, freewheel, stop } kind = Kind::contact;
+  std::string name;
+  int a = 0, b = kGround;
+  // contact: levels, given directly or as normal force and coefficients (F = N μ)
+  bool via_mu = false;
+  double Fs = 0.0, Fk = 0.0, normal = 0.0, mu_s = 0.0, mu_k = 0.0;
+  // brake on body a: holding = Fs, braking = Fk, applied over r(t) = 0 → 1 from `time` over `ramp`
+  double time = 0.0, ramp = 0.0;
+  // clutch between a and b: F = μ f_N(t) (f_N ≤ 0 opens it)
+  Signal fN;
+  // freewheel [a, b] (a may be kGround: a backstop on b): holds while λ ≥ 0, overruns with u < 0
+  double drag = 0.0;
+  // stop on body a: `min` (stop_max false) or `max` at stop_pos, restitution e
+  bool stop_max = false;
+  double stop_pos = 0.0, e = 0.0;
+
+  [[nodiscard]] bool one_sided() const { return kind == Kind::freewheel || kind == Kind::stop; }
+  /// The static limit F_s(t) and kinetic level F_k(t) (∞ / the drag for one-sided elements).
+  [[nodiscard]] double static_limit(double t) const;
+  [[nodiscard]] double kinetic_level(double t) const;
+  /// Whether a brake or clutch is engaged at t (r > 0 or about to rise: the right limit).
+  [[nodiscard]] bool engaged(double t) const;
+  void breakpoints(std::vector<double>& out) const;
+};
+
+struct RefModel {
+  std::vector<Body> bodies;
+  std::vector<Link> links;
+  std::vector<Load> loads;
+  std::vector<Friction> frictions;
+  double t_end = 1.0, dt_out = 0.01;
+};
+
+struct RefEvent {
+  double t = 0.0;
+  std::string kind;     ///< gap_closed, gap_opened, stick, slip, reversal, impact, applied
+  std::string element;
+};
+
+struct RefOptions {
+  double omega_h = 0.02;  ///< h ω_max of the fixed step (its error: ReferenceSimulator.ConvergesWithTheStep…)
+  double h_max = 2e-3;    ///< s, upper bound of the step (also for models without springs)
+  long max_events = 20000;
+};
+
+struct RefResult {
+  std::vector<double> t;                  ///< the output rows k dt_out, k = 0 … round(t_end/dt_out)
+  std::vector<std::vector<double>> q, v;  ///< [row][body]
+  std::vector<RefEvent> events;
+  /// Where the consistent mode combinations gave different accelerations (the documented rule chose
+  /// one): +∞ when never. Compare only before it.
+  double ambiguous_from = std::numeric_limits<double>::infinity();
+  std::string error;                      ///< non-empty: the reference could not run (why)
+  long steps = 0;
+};
+
+/// Runs the reference simulation of `m`. Never throws for a model the generator makes; a model it
+/// cannot run (chattering, no consistent mode) returns with `error` set.
+RefResult simulate_reference(const RefModel& m, const RefOptions& o = {});
+
+}  // namespace machdyn::reference
