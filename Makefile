@@ -39,7 +39,7 @@ build-asan: deps
 	@cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=Asan -DCMAKE_CXX_COMPILER=$(ASAN_CXX) \
 	  -DCMAKE_CXX_FLAGS_ASAN="-O1 -gline-tables-only" -DMACHDYN_FUZZ=ON -DMACHDYN_MPI=OFF \
 	  -DMACHDYN_PYTHON=OFF -DMACHDYN_PACKAGE_TESTS=OFF $(CCACHE) >/dev/null
-	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli \
+	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli machdyn_campaign \
 	  fuzz_model_file fuzz_units fuzz_expression fuzz_gear_spec fuzz_signal_csv fuzz_set_vary
 
 demo: build-release
