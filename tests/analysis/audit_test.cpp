@@ -2,7 +2,10 @@
 // element, the time, the values and the invariant (so no check is dead) and passes the same state
 // made right; a driver that never decides its modes is caught on both integrators; a run with the
 // audit on gives the same numbers as without it.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <cstdlib>
 #include <limits>
 #include <memory>
@@ -16,6 +19,7 @@
 #include "machdyn/analysis/drive_system.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/solve/driver.hpp"
@@ -347,6 +351,77 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
   bool slipped = false;
   for (const auto& e : b.hybrid.events) slipped = slipped || (e.element == "k" && e.kind == "slip");
   EXPECT_TRUE(slipped);
+}
+
+// Claim: the audit resolves a speed to its integrator's global error, not to one step's tolerance.
+// examples/msl/one-way-clutch.yaml (rtol 1e-10, atol 1e-12): after the freewheel releases at 7/6 s
+// with the clutch open until 1.6 s, inertiaIn is driven by M = 10 sin 6πt and inertiaOut coasts, so
+// u = ω_out − ω_in = −(10/(6π)) (1 + cos 6πt) ≤ 0 (closed form: ω_in = ω_out at 7/6 s, the integral of
+// M/J since), touching 0 with u̇ = 0 at t = 1.5 s — a tangency, no event. Each integrator's u keeps
+// within the audit's resolution 1e3 (atol + rtol S) of that closed form on every row of (1.17, 1.59) s
+// (BDF is 7.7e-10 = 14 rtol S off, beyond one step's atol + rtol S: that tolerance called the tangency
+// a freewheel sliding against its direction), the run with the audit on passes, and a wrong sign the
+// size of a real missed lock (u = +1e-6 in slip−, 1e4 times the resolution) is still reported.
+TEST_P(AuditRun, SpeedsAreResolvedToTheirGlobalError) {
+  Model m = load_model(test::example("msl/one-way-clutch.yaml"));
+  m.simulation.integrator = GetParam();
+  SimulateOptions on;
+  on.check = true;
+  const SimulationResult r = simulate(m, on);
+  const auto& t = test::series(r, "t_s");
+  const auto& u = test::series(r, "freewheel.sliding_velocity_rad_s");
+  const auto& wa = test::series(r, "inertiaIn.velocity_rad_s");
+  const auto& wb = test::series(r, "inertiaOut.velocity_rad_s");
+  double worst = 0.0, res_min = 1.0;
+  int rows = 0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (t[k] <= 1.17 || t[k] >= 1.59) continue;
+    ++rows;
+    const double exact = -(10.0 / (6.0 * std::numbers::pi)) * (1.0 + std::cos(6.0 * std::numbers::pi * t[k]));
+    const double res = 1e3 * (m.simulation.atol + m.simulation.rtol * (std::abs(wa[k]) + std::abs(wb[k])));
+    worst = std::max(worst, std::abs(u[k] - exact) / res);
+    res_min = std::min(res_min, res);
+  }
+  EXPECT_GT(rows, 400);
+  EXPECT_LT(worst, 1.0);
+  std::printf("OneWayClutch %s: |u − closed form| ≤ %.3g × the audit's resolution\n",
+              GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", worst);
+  const ContactLaw law = ContactLaw::of(contact(m, "freewheel"));
+  audit::ContactValues x;
+  x.mode = static_cast<ContactMode>(-law.lock);
+  x.speed_scale = 0.56;
+  x.resolution = res_min;
+  x.u = 0.1 * res_min * -static_cast<double>(law.lock);  // on its side: fine
+  EXPECT_NO_THROW(audit::check_contact(law, "freewheel", 1.5, x));
+  x.u = 1e4 * res_min * static_cast<double>(law.lock);  // against it: a missed lock
+  expect_violation([&] { audit::check_contact(law, "freewheel", 1.5, x); }, "contact.sliding_direction", "freewheel",
+                   1.5, "u = ");
+}
+
+// Claim: a lossy gear on a prescribed speed is audited on the speed the engine decides its mode on.
+// examples/worm-hoist-s-curve.yaml stops its motor with 150 (1 − c)² (1 + 2c), c = t − 4 (a double
+// root at 5 s); the integrated state may cross 0 up to its error, 1e-6 of the scale 150 rad/s, before
+// the signal reaches it (dopri5: −3.2e-5 rad/s at 4.99955 s, where the signal is +9.1e-5). Both
+// integrators pass the audit and the gear stops at the signal's rest, 5 s (within 1e-8 s).
+TEST_P(AuditRun, LossyGearOnAPrescribedSpeedStopsWithItsSignal) {
+  Model m = load_model(test::example("worm-hoist-s-curve.yaml"));
+  m.simulation.integrator = GetParam();
+  SimulateOptions on;
+  on.check = true;
+  const SimulationResult r = simulate(m, on);
+  std::vector<double> stops;
+  for (const auto& e : r.hybrid.events)
+    if (e.element == "worm" && e.to == "stuck" && e.kind != "initial") stops.push_back(e.t);
+  ASSERT_EQ(stops.size(), 1u);
+  EXPECT_NEAR(stops[0], 5.0, 1e-8);
+  // The motor's state at the rows before the stop is within 1e-6 × 150 rad/s of its signal.
+  const auto& t = test::series(r, "t_s");
+  const auto& w = test::series(r, "motor.velocity_rad_s");
+  for (size_t k = 0; k < t.size(); ++k) {
+    const double c2 = std::clamp(t[k] - 4.0, 0.0, 1.0), c1 = std::clamp(t[k] - 0.5, 0.0, 1.0);
+    const double v = 150.0 * c1 * c1 * (3.0 - 2.0 * c1) * (1.0 - c2) * (1.0 - c2) * (1.0 + 2.0 * c2);
+    EXPECT_NEAR(w[k], v, 1e-6 * 150.0) << t[k];
+  }
 }
 
 }  // namespace

@@ -12,9 +12,11 @@
 ///   contact.static_limit     stuck friction contact, brake, clutch:  |λ| ≤ F_s(t) + 1e-12 F_s0
 ///                            (F_s = r(t) F_s0; the stick rule's own allowance, elements/contact.hpp)
 ///   contact.kinetic_law      sliding:  F = s r(t) F_k0(|u|)  to 1e-9 (r F_k0 + F_s0)
-///   contact.sliding_direction sliding in s:  s u ≥ −(1e-12 S + atol + rtol S), S = |v_a| + |v_b| + |w|
-///                            (F then opposes u on body a: a's load is −F; atol + rtol S the
-///                            integrator's resolution of the speeds, simulation.atol and rtol)
+///   contact.sliding_direction sliding in s:  s u ≥ −(1e-12 S + 1e3 (atol + rtol S)), S = |v_a| + |v_b| + |w|
+///                            (F then opposes u on body a: a's load is −F; 1e3 (atol + rtol S) the
+///                            integrator's resolution of the speeds: its local tolerance, simulation.
+///                            atol and rtol, accumulated over the steps — BDF's u on MSL OneWayClutch
+///                            is 14 rtol S off its closed form, a tangency u = 0 reads +7.7e-10)
 ///   contact.kinematic_load   stuck between prescribed motions: λ = 0 (its bodies are held by them)
 ///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −1e-9 (its hold rule's
 ///                            allowance); sliding only in its free direction −lock
@@ -28,12 +30,15 @@
 ///                            flank without closing), same rounding
 ///   lossy_gear.loss          loss power (X − Y) v_a ≥ −[1e-12 (|X| + |Y| + |F_a| + |F_b|) |v_a|
 ///                            + (|X| + |Y|) r_v]  (X, Y solved from the forces F_a, F_b on its bodies;
-///                            r_v = atol + rtol |v_a| + 1e-9 × a prescribed side's speed scale)
+///                            r_v = atol + rtol |v_a| + 1e-6 × a prescribed side's speed scale: the
+///                            integrated speed's error the engine itself takes as the signal,
+///                            PrescribedMotionLaw::snapped_velocity)
 ///   energy.balance           W − (ΔT + ΔV + friction + damping + release + impact + released parts)
-///                            ≤ tol · E_max + 1e-9 J, E_max the largest of |W|, T, V and each loss
-///                            so far, tol = max(1e-6, 1e3 rtol) (the books are quadrature states of the
-///                            same integration; an error of the integrator is O(rtol) per unit energy
-///                            and accumulates over the steps, a lost or invented energy is O(1))
+///                            ≤ tol · E_max + max(1e-9 J, 1e3 atol), E_max the largest of |W|, T, V and
+///                            each loss so far, tol = max(1e-6, 1e3 rtol) (the books are quadrature
+///                            states of the same integration; an error of the integrator is O(rtol) per
+///                            unit energy, O(atol) J absolute, and accumulates over the steps, a lost
+///                            or invented energy is O(1))
 ///   events.mode_columns      the mode columns of every output row equal the modes the event list
 ///                            says (its last `to` before the row), for contacts and gap links
 /// A released brake or clutch (application 0) has F_s = 0: it may carry nothing (1e-12 F_s0), and
@@ -119,8 +124,8 @@ struct EnergyValues {
     return work - (kinetic - kinetic_start + elastic - elastic_start + friction + damping + discrete);
   }
 };
-/// Checks the balance at t to tol · E_max + 1e-9 J; `E_max` is the largest energy so far (updated).
-void check_energy(double t, const EnergyValues& e, double tol, double& E_max);
+/// Checks the balance at t to tol · E_max + abs_tol; `E_max` is the largest energy so far (updated).
+void check_energy(double t, const EnergyValues& e, double tol, double& E_max, double abs_tol = 1e-9);
 
 /// Checks that the mode columns of `r` (contacts `NAME.mode`, gap links `NAME.gap_mode`) agree with
 /// its event list at every output row (a row at an event's time shows the modes before it).
@@ -159,7 +164,7 @@ class Audit {
   const EnergyBalance& E_;
   const double& release_loss_;
   std::vector<double> fc_;
-  double tol_E_ = 0.0, E_max_ = 0.0;
+  double tol_E_ = 0.0, abs_E_ = 1e-9, E_max_ = 0.0;
   std::unique_ptr<AuditError> pending_;  // the earliest failure in a mode, until it is settled
 };
 
