@@ -28,7 +28,7 @@ from . import _machdyn
 from ._result import Modes, Result, _Model
 
 __version__ = _machdyn.__version__
-__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report",
+__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report", "rainflow",
            "InputError", "SolverError", "Model", "Result", "Modes"]
 
 Model = _Model
@@ -238,6 +238,32 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
             tmp.cleanup()
     df.attrs.update({k: v for k, v in info.items() if k != "table_path" or tmp is None})
     return df
+
+
+def rainflow(series, gate: float = 0.0, residue: str = "half", frame: bool = True):
+    """Rainflow cycles of a load history (ASTM E1049-85, 5.4.4; docs/duty.md), as the library counts.
+
+    ``series``: any one-dimensional array-like of finite numbers (a numpy array, a list, a column of
+    :meth:`Result.__getitem__`). ``gate``: the hysteresis gate as a fraction of the largest range
+    (max − min of the series), in [0, 1): reversals of at most that size are dropped before counting.
+    ``residue``: ``"half"`` (each residue range is half a cycle) or ``"repeat"`` (the residue closed by
+    repeating the history; all cycles whole). Returns a pandas DataFrame with the columns ``range``,
+    ``mean``, ``count`` (1 or 0.5), ``from``, ``to`` in the order counted, or with ``frame=False`` a dict
+    of numpy arrays under the same keys. Bad input raises ValueError.
+    """
+    import numpy as np
+
+    if residue not in ("half", "repeat"):
+        raise ValueError(f"rainflow: residue is 'half' or 'repeat', not {residue!r}")
+    x = np.asarray(series, dtype=float)
+    if x.ndim != 1:
+        raise ValueError(f"rainflow: the series must be one-dimensional, not of shape {x.shape}")
+    d = _machdyn.rainflow(np.ascontiguousarray(x), float(gate), residue == "repeat")
+    if not frame:
+        return d
+    import pandas as pd
+
+    return pd.DataFrame({k: d[k] for k in ("range", "mean", "count", "from", "to")})
 
 
 def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:
