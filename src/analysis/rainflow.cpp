@@ -24,8 +24,15 @@ void RainflowCounter::add(double x) {
     return;
   }
   if (dir_ == 0) {
-    if (x - first_ > gate_) dir_ = 1, extreme_ = x;
-    else if (first_ - x > gate_) dir_ = -1, extreme_ = x;
+    const int d = x - first_ > gate_ ? 1 : first_ - x > gate_ ? -1 : 0;
+    if (d == 0) return;
+    const std::size_t n = stack_.size();
+    if (n >= 2 && (stack_[n - 1] - stack_[n - 2]) * d > 0) {
+      // After flush(): the history goes on past the last turning point, which was none.
+      stack_.pop_back();
+      --turning_points_;
+    }
+    dir_ = d, extreme_ = x;
   } else if (dir_ > 0) {
     if (x >= extreme_) extreme_ = x;
     else if (extreme_ - x > gate_) push(extreme_), dir_ = -1, extreme_ = x;
@@ -74,6 +81,12 @@ void RainflowCounter::push(double p) {
 }
 
 void RainflowCounter::finish() {
+  const std::size_t n = stack_.size();
+  if (dir_ == 0 && n >= 2) {  // after flush(): the last turning point runs on as the extreme
+    extreme_ = stack_[n - 1], dir_ = stack_[n - 1] > stack_[n - 2] ? 1 : -1;
+    stack_.pop_back();
+    --turning_points_;
+  }
   if (started_) {
     if (residue_ == RainflowResidue::half_cycles) {
       if (dir_ != 0) push(extreme_);
@@ -94,6 +107,58 @@ void RainflowCounter::finish() {
   }
   stack_.clear();
   started_ = false, dir_ = 0;
+}
+
+void RainflowCounter::flush() {
+  if (dir_ == 0) return;
+  push(extreme_);
+  first_ = extreme_, dir_ = 0;  // the next reversal beyond the gate sets the direction again
+}
+
+std::vector<double> RainflowCounter::residue() const {
+  std::vector<double> r = stack_;
+  if (dir_ != 0) r.push_back(extreme_);
+  return r;
+}
+
+RainflowPart rainflow_part(std::span<const double> series, double gate) {
+  RainflowPart part;
+  // The four-point counter (the repeat rule) never takes a half cycle while counting; flushed but not
+  // finished, what it holds is the part's irreducible residue.
+  RainflowCounter counter([&part](const RainflowCycle& c) { part.cycles.push_back(c); }, gate, RainflowResidue::repeat);
+  for (const double x : series) counter.add(x);
+  counter.flush();
+  part.residue = counter.residue();
+  return part;
+}
+
+std::vector<RainflowCycle> merge_parts(std::span<const RainflowPart> parts, std::span<const double> repeats,
+                                       RainflowResidue residue) {
+  if (parts.size() != repeats.size())
+    throw std::invalid_argument("rainflow: " + std::to_string(repeats.size()) + " repetitions for " +
+                                std::to_string(parts.size()) + " parts");
+  std::vector<RainflowCycle> out;
+  RainflowCounter residues([&out](const RainflowCycle& c) { out.push_back(c); }, 0.0, residue);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const double n = repeats[i];
+    if (!(n >= 0.0) || !std::isfinite(n) || n != std::floor(n))
+      throw std::invalid_argument("rainflow: the repetitions of a part must be a whole number >= 0, got " +
+                                  std::to_string(n));
+    if (n == 0.0) continue;
+    for (RainflowCycle c : parts[i].cycles) out.push_back({c.from, c.to, c.count * n});
+    const int feeds = n >= 2.0 ? 2 : 1;
+    for (int k = 0; k < feeds; ++k)
+      for (const double x : parts[i].residue) residues.add(x);
+    if (n > 2.0) {  // each further repetition closes the cycles of R_i·R_i once more
+      RainflowCounter closure([&out, n](const RainflowCycle& c) { out.push_back({c.from, c.to, c.count * (n - 2.0)}); },
+                              0.0, RainflowResidue::repeat);
+      for (int k = 0; k < 2; ++k)
+        for (const double x : parts[i].residue) closure.add(x);
+      closure.flush();  // R·R's last point closes cycles too
+    }
+  }
+  residues.finish();
+  return out;
 }
 
 std::vector<RainflowCycle> rainflow(std::span<const double> series, const RainflowOptions& options) {

@@ -344,3 +344,66 @@ TEST(Rainflow, BadInputThrows) {
 
 }  // namespace
 }  // namespace machdyn
+
+namespace machdyn {
+namespace {
+
+std::map<std::pair<double, double>, double> classes(const std::vector<RainflowCycle>& cs) {
+  std::map<std::pair<double, double>, double> m;
+  for (const auto& c : cs) m[{c.range(), c.mean()}] += c.count;
+  return m;
+}
+
+// ---- Parts of a history (operations of a duty) ------------------------------------------------
+// Claim: part A repeated n_A times then part B n_B times, merged from the parts alone, counts what
+// the whole history A^n_A · B^n_B counts, class for class (range, mean), under both residue rules —
+// checked against the plain count of the concatenated history.
+TEST(Rainflow, MergedPartsCountLikeTheWholeHistory) {
+  std::mt19937 rng(30);
+  const double reps[] = {0, 1, 2, 3, 5};
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<double> a, b;
+    std::uniform_int_distribution<int> d(-7, 7);
+    const int na = 1 + static_cast<int>(rng() % 15), nb = 1 + static_cast<int>(rng() % 15);
+    for (int i = 0; i < na; ++i) a.push_back(trial % 2 ? d(rng) : d(rng) + 0.013 * i);
+    for (int i = 0; i < nb; ++i) b.push_back(trial % 2 ? d(rng) : d(rng) - 0.007 * i);
+    const double ra = reps[rng() % 5], rb = reps[1 + rng() % 4];
+    std::vector<double> whole;
+    for (int k = 0; k < ra; ++k) whole.insert(whole.end(), a.begin(), a.end());
+    for (int k = 0; k < rb; ++k) whole.insert(whole.end(), b.begin(), b.end());
+    const std::vector<RainflowPart> parts = {rainflow_part(a), rainflow_part(b)};
+    const std::vector<double> n = {ra, rb};
+    for (const auto residue : {RainflowResidue::half_cycles, RainflowResidue::repeat}) {
+      const auto merged = classes(merge_parts(parts, n, residue));
+      const auto direct = classes(rainflow(whole, {.gate_fraction = 0.0, .residue = residue}));
+      ASSERT_EQ(merged.size(), direct.size()) << trial;
+      for (const auto& [k, v] : direct) {
+        ASSERT_TRUE(merged.count(k)) << trial;
+        EXPECT_DOUBLE_EQ(merged.at(k), v) << trial << " n " << ra << " " << rb << " rule " << int(residue);
+      }
+    }
+  }
+  const std::vector<RainflowPart> one = {rainflow_part(std::vector<double>{0, 1})};
+  EXPECT_THROW(merge_parts(one, std::vector<double>{1.5}), std::invalid_argument);
+  EXPECT_THROW(merge_parts(one, std::vector<double>{-1}), std::invalid_argument);
+  EXPECT_THROW(merge_parts(one, std::vector<double>{1, 1}), std::invalid_argument);
+}
+
+// Claim: flush() between two parts changes nothing when the history goes on — also when it goes on
+// in the same direction past the flushed turning point (which then was none).
+TEST(Rainflow, FlushThenContinueIsTheSameHistory) {
+  const std::vector<std::vector<double>> cases = {{0, 5, 2, 7}, {0, 5, 2, 4}, {0, -3, 1, -6}, {1, 2, 3, 4}};
+  for (const auto& x : cases)
+    for (const auto residue : {RainflowResidue::half_cycles, RainflowResidue::repeat}) {
+      std::vector<RainflowCycle> cs;
+      RainflowCounter k([&](const RainflowCycle& c) { cs.push_back(c); }, 0.0, residue);
+      k.add(x[0]), k.add(x[1]), k.add(x[2]);
+      k.flush();
+      k.add(x[3]);
+      k.finish();
+      EXPECT_EQ(sorted(cs), sorted(rainflow(x, {.gate_fraction = 0.0, .residue = residue}))) << x[3];
+    }
+}
+
+}  // namespace
+}  // namespace machdyn

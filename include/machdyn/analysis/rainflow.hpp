@@ -31,10 +31,11 @@
 
 namespace machdyn {
 
-/// One counted cycle: count 1 (whole) or 0.5 (half, a residue range in ASTM 5.4.4).
+/// One counted cycle: count 1 (whole) or 0.5 (half, a residue range in ASTM 5.4.4); merged parts
+/// (merge_parts) carry the number of repetitions.
 struct RainflowCycle {
   double from = 0.0, to = 0.0;  ///< the reversals, in the load's unit
-  double count = 1.0;           ///< 1 or 0.5
+  double count = 1.0;           ///< 1 or 0.5 (a multiple of them in merged parts)
   [[nodiscard]] double range() const { return to > from ? to - from : from - to; }
   [[nodiscard]] double mean() const { return 0.5 * (from + to); }
 };
@@ -61,6 +62,12 @@ class RainflowCounter {
   [[nodiscard]] std::size_t turning_points() const { return turning_points_ + (dir_ != 0 ? 1 : 0); }
   /// Turning points held now: the residue so far and the running extreme.
   [[nodiscard]] std::size_t held() const { return stack_.size() + (dir_ != 0 ? 1 : 0); }
+  /// Takes the running extreme as a turning point now (the end of a part of the history) without
+  /// ending the history: what the counter holds is then an irreducible residue (residue()), and
+  /// further samples continue the history.
+  void flush();
+  /// The residue so far: the turning points held (the stack and the running extreme), in order.
+  [[nodiscard]] std::vector<double> residue() const;
   /// The most turning points held at once (the memory bound, in points).
   [[nodiscard]] std::size_t max_held() const { return max_held_; }
 
@@ -77,6 +84,28 @@ class RainflowCounter {
   double extreme_ = 0.0;            // the running extreme since the last turning point
   std::size_t turning_points_ = 0, max_held_ = 0;
 };
+
+/// One part of a longer history (an operation of a duty): its whole cycles by the four-point rule
+/// (never a half) and its residue, the turning points left. Parts merge exactly: counting A·B equals
+/// A's cycles + B's cycles + the count of R_A·R_B (the residues' concatenation), and the residue of
+/// A·B is that of R_A·R_B.
+struct RainflowPart {
+  std::vector<RainflowCycle> cycles;
+  std::vector<double> residue;
+};
+
+/// The part of a series (gate h ≥ 0 in the load's unit, as RainflowCounter).
+RainflowPart rainflow_part(std::span<const double> series, double gate = 0.0);
+
+/// The count of the history part 0 repeated n_0 times back to back, then part 1 repeated n_1 times, …
+/// (n_i whole numbers ≥ 0), the residue at the end treated by `residue`. Exact, without building the
+/// history: part i gives n_i times its cycles; its residue R_i enters the sequence of residues
+/// min(n_i, 2) times, and each repetition beyond the second adds the cycles of R_i·R_i (R_i^n leaves
+/// the same stack as R_i·R_i after any prefix, each further R_i closing those cycles once more).
+/// Counts are multiplied (a cycle record of count n_i), not repeated. Throws std::invalid_argument on
+/// a negative or fractional repetition or a count list of the wrong length.
+std::vector<RainflowCycle> merge_parts(std::span<const RainflowPart> parts, std::span<const double> repeats,
+                                       RainflowResidue residue = RainflowResidue::half_cycles);
 
 /// Options of the whole-series count.
 struct RainflowOptions {
