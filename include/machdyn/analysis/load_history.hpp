@@ -49,4 +49,10 @@ struct LinkCycleOptions {
 std::vector<LinkCycles> count_link_cycles(const Model& m, const SimulateOptions& options,
                                           const LinkCycleOptions& count, SimulationResult* result = nullptr);
 
+/// The chosen link loads of one run as parts of a longer history (rainflow_part: whole cycles by the
+/// four-point rule, and the residue), to be merged with other runs' parts by merge_parts — the
+/// operations of a duty cycle. `count.residue` is not used (merge_parts takes the rule).
+std::vector<RainflowPart> link_parts(const Model& m, const SimulateOptions& options, const LinkCycleOptions& count,
+                                     SimulationResult* result = nullptr);
+
 }  // namespace machdyn
