@@ -18,7 +18,10 @@
 ///    cycle when both neighbours X and Z are at least as large (the four-point rule) — so the residue
 ///    R is a diverging-then-converging sequence; at the end R followed by R is counted on, which
 ///    yields R's cycles, all whole (R·R leaves R again). The counts are then those of one period of
-///    the infinitely repeated history: the history counted twice in a row minus once, cycle for cycle.
+///    the infinitely repeated history: the four-point count of the history three times in a row
+///    minus that of twice in a row, cycle for cycle.
+/// With equal ranges (ties) ASTM's X ≥ Y takes a run of them at the starting point as halves where
+/// the four-point rule takes pairs as whole cycles; the count per (range, mean) is the same.
 ///
 /// A cycle is reported with its points from → to (the half cycle's direction; a whole cycle's first
 /// reversal), range |to − from| and mean (from + to)/2. The largest range counted is always
