@@ -33,6 +33,7 @@
 #include "machdyn/io/energy_results.hpp"
 #include "machdyn/analysis/crane.hpp"
 #include "machdyn/io/crane_results.hpp"
+#include "machdyn/io/duty.hpp"
 #include "machdyn/io/gears_output.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
@@ -297,6 +298,12 @@ PYBIND11_MODULE(_machdyn, mod) {
     d["range"] = range, d["mean"] = mean, d["count"] = count, d["from"] = from, d["to"] = to;
     return d;
   }, py::arg("series"), py::arg("gate_fraction") = 0.0, py::arg("repeat") = false);
+
+  // A duty (io/duty.hpp), as `machdyn duty` runs it: duty.json's dict and the cycles per link.
+  mod.def("duty", [](const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets) {
+    const DutyResult r = nogil([&] { return run_duty(model_path, duty_path, sets); });
+    return py::make_tuple(duty_json(r).dump(), duty_cycles_csv(r));
+  });
 
   // For bench/python_bench.py: the median wall time of `repeats` calls of simulate() timed in C++,
   // the reference for the Python call's overhead.

@@ -28,7 +28,7 @@ from . import _machdyn
 from ._result import Modes, Result, _Model
 
 __version__ = _machdyn.__version__
-__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report", "rainflow",
+__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report", "rainflow", "duty",
            "InputError", "SolverError", "Model", "Result", "Modes"]
 
 Model = _Model
@@ -264,6 +264,28 @@ def rainflow(series, gate: float = 0.0, residue: str = "half", frame: bool = Tru
     import pandas as pd
 
     return pd.DataFrame({k: d[k] for k in ("range", "mean", "count", "from", "to")})
+
+
+def duty(model: str | _os.PathLike, duty: str | _os.PathLike,
+         set: Mapping[str, object] | Iterable[str] | None = None):
+    """A duty run as ``machdyn duty MODEL DUTY`` runs it (docs/duty.md): every operation (a load case
+    of the model file with its repetitions) simulated once, its link loads rainflow-counted over the
+    located turning points, the counts merged over the duty.
+
+    Returns ``(links, cycles)``: two pandas DataFrames — per link the figures of duty.json (``cycles``,
+    ``largest_range``, ``equivalent_range``, ``k``, ``nu``, ``s``, ``damage`` with an S–N curve), and
+    every merged cycle (``link, range, mean, count, from, to``, the rows of duty_cycles.csv). Bad input
+    raises :class:`InputError` with the file's line and column.
+    """
+    import io
+
+    import pandas as pd
+
+    text, csv = _machdyn.duty(_os.fspath(model), _os.fspath(duty), _sets(set))
+    summary = _json.loads(text)
+    links = pd.DataFrame(summary["links"]).set_index("link")
+    links.attrs["duty"] = {k: v for k, v in summary.items() if k != "links"}
+    return links, pd.read_csv(io.StringIO(csv), float_precision="round_trip")
 
 
 def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:

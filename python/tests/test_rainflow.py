@@ -1,9 +1,13 @@
 """machdyn.rainflow on numpy arrays: the ASTM E1049 example's published counts, a sine's closed form,
-and bad input."""
+and bad input; machdyn.duty equal to `machdyn duty`."""
+import json
+
 import numpy as np
+import pandas as pd
 import pytest
 
 import machdyn
+from conftest import run_cli
 
 
 def test_astm_example_counts():
@@ -42,3 +46,39 @@ def test_bad_input():
     with pytest.raises(ValueError):
         machdyn.rainflow(np.array([1.0, 2.0]), residue="close")
     assert len(machdyn.rainflow(np.array([]))) == 0
+
+
+DUTY_MODEL = """
+bodies:
+  A: {type: translational, mass: 1 kg}
+  B: {type: translational, mass: 1.5 kg, velocity: 0.5 m/s}
+links:
+  ab: {type: spring-damper, between: [A, B], stiffness: 1e4 N/m, damping: 2 N*s/m}
+simulation: {t_end: 0.3 s, rtol: 1e-10, atol: 1e-12}
+cases:
+  fast: {bodies: {B: {velocity: 0.5 m/s}}}
+  slow: {bodies: {B: {velocity: 0.2 m/s}}}
+"""
+
+
+def test_duty_equals_the_cli(tmp_path):
+    # machdyn.duty gives duty.json's figures and duty_cycles.csv's rows of `machdyn duty`, to the bit.
+    model = tmp_path / "m.yaml"
+    model.write_text(DUTY_MODEL)
+    duty = tmp_path / "d.yaml"
+    duty.write_text("operations:\n  lift: {case: fast, repeat: 3}\n  lower: {case: slow, repeat: 2}\n"
+                    "sn_curve: {m: 3, delta_ref: 100, n_ref: 1e6}\n")
+    links, cycles = machdyn.duty(model, duty)
+    run_cli("duty", model, duty, "-o", tmp_path / "out")
+    j = json.loads((tmp_path / "out" / "duty.json").read_text())
+    assert list(links.index) == ["ab"]
+    for key in ("cycles", "largest_range", "equivalent_range", "s", "damage"):
+        assert links.loc["ab", key] == j["links"][0][key]
+    csv = pd.read_csv(tmp_path / "out" / "duty_cycles.csv", float_precision="round_trip")
+    assert csv.equals(cycles)
+    # A bad duty: located.
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("operations:\n  lift: {case: heavy, repeat: 1}\n")
+    with pytest.raises(machdyn.InputError) as e:
+        machdyn.duty(model, bad)
+    assert "bad.yaml:2:" in str(e.value)
