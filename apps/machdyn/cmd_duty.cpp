@@ -4,7 +4,8 @@
 // (analysis/load_history.hpp), and the counts merged over the whole duty with the residue rule
 // (merge_parts, analysis/rainflow.hpp). Prints per link the cycles, the largest and the equivalent
 // range, EN 13001's s and, with an S–N curve, the Miner damage; writes DIR/duty.json and
-// DIR/duty_cycles.csv (default out/MODEL) after everything is computed.
+// DIR/duty_cycles.csv, DIR/duty_range_mean.csv and DIR/duty_from_to.csv (32 × 32 bins; default
+// out/MODEL) after everything is computed.
 #include <memory>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -27,6 +28,8 @@ int run_duty_command(const DutyArgs& a) {
   nlohmann::json j = duty_json(r);
   j["model"] = a.model, j["duty"] = a.duty;
   write_file_atomic((out_dir / "duty_cycles.csv").string(), duty_cycles_csv(r));
+  write_file_atomic((out_dir / "duty_range_mean.csv").string(), duty_matrix_csv(r, false));
+  write_file_atomic((out_dir / "duty_from_to.csv").string(), duty_matrix_csv(r, true));
   write_file_atomic((out_dir / "duty.json").string(), j.dump(2) + "\n");
   if (a.json) std::cout << j.dump(2) << "\n";
   else std::cout << duty_table(r);
@@ -42,7 +45,7 @@ void register_duty(CLI::App& app, int& exit_code) {
   cmd->add_option("MODEL", a->model, "Model file (YAML); operations name its load cases")->required();
   cmd->add_option("DUTY", a->duty, "Duty file (YAML): operations, residue, gate, m, n_ref, links, sn_curve")->required();
   cmd->add_flag("--json", a->json, "Print JSON to stdout");
-  cmd->add_option("-o,--out", a->out, "Output folder (default out/MODEL): duty.json, duty_cycles.csv");
+  cmd->add_option("-o,--out", a->out, "Output folder (default out/MODEL): duty.json, duty_cycles.csv, duty_range_mean.csv, duty_from_to.csv");
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_duty_command(*a); }); });
 }

@@ -185,4 +185,18 @@ std::string duty_cycles_csv(const DutyResult& r) {
   return csv;
 }
 
+std::string duty_matrix_csv(const DutyResult& r, bool from_to, int bins) {
+  std::string csv = from_to ? "link,from_lo,from_hi,to_lo,to_hi,count\n" : "link,range_lo,range_hi,mean_lo,mean_hi,count\n";
+  for (const DutyLink& l : r.links) {
+    const RainflowMatrix M = from_to ? from_to_matrix(l.cycles, bins) : range_mean_matrix(l.cycles, bins, bins);
+    const double wr = (M.row_hi - M.row_lo) / M.rows, wc = (M.col_hi - M.col_lo) / M.cols;
+    for (int i = 0; i < M.rows; ++i)
+      for (int k = 0; k < M.cols; ++k)
+        if (M.at(i, k) != 0.0)
+          csv += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", l.link, M.row_lo + i * wr,
+                             M.row_lo + (i + 1) * wr, M.col_lo + k * wc, M.col_lo + (k + 1) * wc, M.at(i, k));
+  }
+  return csv;
+}
+
 }  // namespace machdyn

@@ -76,6 +76,14 @@ sn_curve: {m: 3, delta_ref: 100, n_ref: 1e6}
   EXPECT_NEAR(l["s"].get<double>(), s3 / (largest * largest * largest) / 2e6, 1e-9 * l["s"].get<double>());
   EXPECT_NEAR(l["equivalent_range"].get<double>(), std::cbrt(s3 / nt), 1e-9 * largest);
   EXPECT_NEAR(l["damage"].get<double>(), d, 1e-9 * d);
+  // The matrices hold the same cycles: their cells sum to N_t, and every cycle lies in its cell.
+  for (const char* file : {"duty_range_mean.csv", "duty_from_to.csv"}) {
+    std::ifstream mcsv(dir / file);
+    std::getline(mcsv, line);
+    double cells = 0;
+    while (std::getline(mcsv, line)) cells += std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_NEAR(cells, nt, 1e-9 * nt) << file;
+  }
   // The library's merge of the two operations' runs: the same cycles.
   std::vector<RainflowPart> parts;
   for (const char* c : {"fast", "slow"}) {

@@ -62,5 +62,9 @@ nlohmann::json duty_json(const DutyResult& r);
 std::string duty_table(const DutyResult& r);
 /// duty_cycles.csv: link,range,mean,count,from,to (17 digits).
 std::string duty_cycles_csv(const DutyResult& r);
+/// duty_range_mean.csv (range–mean matrix, `bins` × `bins`) or duty_from_to.csv (from–to matrix):
+/// one row per non-empty cell, link,ROW_lo,ROW_hi,COL_lo,COL_hi,count, the bins of
+/// analysis/rainflow.hpp (RainflowMatrix) over each link's own extent.
+std::string duty_matrix_csv(const DutyResult& r, bool from_to, int bins = 32);
 
 }  // namespace machdyn
