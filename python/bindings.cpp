@@ -25,6 +25,7 @@
 #include "machdyn/io/linear_results.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/extra_outputs.hpp"
+#include "machdyn/analysis/rainflow.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
 #include "machdyn/gears/gear_model.hpp"
@@ -33,6 +34,7 @@
 #include "machdyn/io/energy_results.hpp"
 #include "machdyn/analysis/crane.hpp"
 #include "machdyn/io/crane_results.hpp"
+#include "machdyn/io/duty.hpp"
 #include "machdyn/io/gears_output.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
@@ -286,6 +288,34 @@ PYBIND11_MODULE(_machdyn, mod) {
     r->result = nogil([&] { return simulate(*p.model, options, extra); });
     return r;
   }, pybind11::arg("model"), pybind11::arg("outputs") = std::vector<std::string>{}, pybind11::arg("check") = false);
+
+  // Rainflow counting of any series (analysis/rainflow.hpp): the cycles as five arrays.
+  mod.def("rainflow", [](py::array_t<double, py::array::c_style | py::array::forcecast> series, double gate_fraction,
+                         bool repeat) {
+    if (series.ndim() != 1) throw py::value_error("rainflow: the series must be one-dimensional");
+    const std::span<const double> x(series.data(), static_cast<std::size_t>(series.size()));
+    RainflowOptions opt;
+    opt.gate_fraction = gate_fraction;
+    opt.residue = repeat ? RainflowResidue::repeat : RainflowResidue::half_cycles;
+    const std::vector<RainflowCycle> cs = nogil([&] { return rainflow(x, opt); });
+    const auto n = static_cast<py::ssize_t>(cs.size());
+    py::array_t<double> from(n), to(n), count(n), range(n), mean(n);
+    auto f = from.mutable_unchecked<1>(), t = to.mutable_unchecked<1>(), c = count.mutable_unchecked<1>(),
+         r = range.mutable_unchecked<1>(), mu = mean.mutable_unchecked<1>();
+    for (py::ssize_t k = 0; k < n; ++k) {
+      const RainflowCycle& y = cs[static_cast<std::size_t>(k)];
+      f(k) = y.from, t(k) = y.to, c(k) = y.count, r(k) = y.range(), mu(k) = y.mean();
+    }
+    py::dict d;
+    d["range"] = range, d["mean"] = mean, d["count"] = count, d["from"] = from, d["to"] = to;
+    return d;
+  }, py::arg("series"), py::arg("gate_fraction") = 0.0, py::arg("repeat") = false);
+
+  // A duty (io/duty.hpp), as `machdyn duty` runs it: duty.json's dict and the cycles per link.
+  mod.def("duty", [](const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets) {
+    const DutyResult r = nogil([&] { return run_duty(model_path, duty_path, sets); });
+    return py::make_tuple(duty_json(r).dump(), duty_cycles_csv(r));
+  });
 
   // For bench/python_bench.py: the median wall time of `repeats` calls of simulate() timed in C++,
   // the reference for the Python call's overhead.

@@ -45,5 +45,6 @@ void register_energy(CLI::App& app, int& exit_code);
 void register_gears(CLI::App& app, int& exit_code);
 void register_sweep(CLI::App& app, int& exit_code);
 void register_crane(CLI::App& app, int& exit_code);
+void register_duty(CLI::App& app, int& exit_code);
 
 }  // namespace machdyn::cli

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   machdyn::cli::register_sweep(app, exit_code);
   machdyn::cli::register_report(app, exit_code);
   machdyn::cli::register_crane(app, exit_code);
+  machdyn::cli::register_duty(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -29,7 +29,7 @@ from . import _machdyn
 from ._result import Modes, Result, _Model
 
 __version__ = _machdyn.__version__
-__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report",
+__all__ = ["load", "loads", "from_dict", "simulate", "modes", "energy", "crane", "gears", "sweep", "report", "rainflow", "duty",
            "InputError", "SolverError", "Model", "Result", "Modes"]
 
 Model = _Model
@@ -270,6 +270,54 @@ def sweep(model: Model, vary: Mapping[str, object], method: str = "grid", sample
             tmp.cleanup()
     df.attrs.update({k: v for k, v in info.items() if k != "table_path" or tmp is None})
     return df
+
+
+def rainflow(series, gate: float = 0.0, residue: str = "half", frame: bool = True):
+    """Rainflow cycles of a load history (ASTM E1049-85, 5.4.4; docs/duty.md), as the library counts.
+
+    ``series``: any one-dimensional array-like of finite numbers (a numpy array, a list, a column of
+    :meth:`Result.__getitem__`). ``gate``: the hysteresis gate as a fraction of the largest range
+    (max − min of the series), in [0, 1): reversals of at most that size are dropped before counting.
+    ``residue``: ``"half"`` (each residue range is half a cycle) or ``"repeat"`` (the residue closed by
+    repeating the history; all cycles whole). Returns a pandas DataFrame with the columns ``range``,
+    ``mean``, ``count`` (1 or 0.5), ``from``, ``to`` in the order counted, or with ``frame=False`` a dict
+    of numpy arrays under the same keys. Bad input raises ValueError.
+    """
+    import numpy as np
+
+    if residue not in ("half", "repeat"):
+        raise ValueError(f"rainflow: residue is 'half' or 'repeat', not {residue!r}")
+    x = np.asarray(series, dtype=float)
+    if x.ndim != 1:
+        raise ValueError(f"rainflow: the series must be one-dimensional, not of shape {x.shape}")
+    d = _machdyn.rainflow(np.ascontiguousarray(x), float(gate), residue == "repeat")
+    if not frame:
+        return d
+    import pandas as pd
+
+    return pd.DataFrame({k: d[k] for k in ("range", "mean", "count", "from", "to")})
+
+
+def duty(model: str | _os.PathLike, duty: str | _os.PathLike,
+         set: Mapping[str, object] | Iterable[str] | None = None):
+    """A duty run as ``machdyn duty MODEL DUTY`` runs it (docs/duty.md): every operation (a load case
+    of the model file with its repetitions) simulated once, its link loads rainflow-counted over the
+    located turning points, the counts merged over the duty.
+
+    Returns ``(links, cycles)``: two pandas DataFrames — per link the figures of duty.json (``cycles``,
+    ``largest_range``, ``equivalent_range``, ``k``, ``nu``, ``s``, ``damage`` with an S–N curve), and
+    every merged cycle (``link, range, mean, count, from, to``, the rows of duty_cycles.csv). Bad input
+    raises :class:`InputError` with the file's line and column.
+    """
+    import io
+
+    import pandas as pd
+
+    text, csv = _machdyn.duty(_os.fspath(model), _os.fspath(duty), _sets(set))
+    summary = _json.loads(text)
+    links = pd.DataFrame(summary["links"]).set_index("link")
+    links.attrs["duty"] = {k: v for k, v in summary.items() if k != "links"}
+    return links, pd.read_csv(io.StringIO(csv), float_precision="round_trip")
 
 
 def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:

@@ -179,7 +179,7 @@ void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMa
     Extremes& g = sig_[static_cast<size_t>(j)];
     const double r1 = rates_[static_cast<size_t>(j)], v1 = vals_[static_cast<size_t>(j)];
     if (((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) &&
-        !inside_extremes(s, j, ta, tb, g.value_prev, v1)) {
+        (every_ || !inside_extremes(s, j, ta, tb, g.value_prev, v1))) {
       const double te = locate_extremum(s, j, ta, g.rate_prev, tb, r1);
       s.interpolate(te, y_.data());
       consider(j, te, y_.data(), on_new_max);

@@ -22,6 +22,7 @@
 #include "machdyn/analysis/gear_clutch.hpp"
 #include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/analysis/machine_outputs.hpp"
+#include "machdyn/analysis/load_history.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
 #include "analysis/heat.hpp"
@@ -287,6 +288,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     peaks_.restart();
     if (audit_) [[unlikely]] audit_->after_event(t, y, !fired.empty());
   }
+  /// The load history (analysis/load_history.hpp): every value the link loads take, to `f`.
+  void set_link_values(PeakTracker::EveryValue f) { peaks_.set_every_value(std::move(f)); }
 
  private:
   // ---- output ----
@@ -1414,6 +1417,16 @@ SimulationResult simulate(const Model& m, const SimulateOptions& options, const 
                                  bytes / 1e9, kMaxOutputBytes / 1e9));
   SimulationResult out;
   DriveRun run(m, options, out, extra);
+  run.run();
+  return out;
+}
+
+SimulationResult simulate(const Model& m, const SimulateOptions& options, const LinkValueSink& link_values) {
+  if (m.simulation.initial == InitialState::equilibrium)
+    return simulate(with_equilibrium_start(m), options, link_values);
+  SimulationResult out;
+  DriveRun run(m, options, out);
+  if (link_values) run.set_link_values(link_values);
   run.run();
   return out;
 }

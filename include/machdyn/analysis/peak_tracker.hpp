@@ -85,6 +85,13 @@ class PeakTracker {
   /// Whether any value was seen (a run of zero length has none).
   [[nodiscard]] bool started() const { return started_; }
 
+  /// The load history for cycle counting (analysis/load_history.hpp): when set, every value the
+  /// tracker takes is handed to `every(j, t, s_j)` in time order — the start of each fresh piece,
+  /// every interior extremum (then located on every piece, none skipped by the bounds), the end of
+  /// each piece. A superset of the signal's turning points; unset (the default) it costs nothing.
+  using EveryValue = std::function<void(int j, double t, double v)>;
+  void set_every_value(EveryValue every) { every_ = std::move(every); }
+
   /// The extremes of every signal over a window of time (a slip phase): from open_window(t) on,
   /// every value the tracker takes (the ends of pieces, their located interior extrema) enters the
   /// open windows too, until close_window. A window that saw no value has max −∞, min +∞ and
@@ -106,6 +113,7 @@ class PeakTracker {
   void consider(int j, double t, const double* y, const NewMax& on_new_max);
   /// Inline: most values are no new extreme of the run (and no window is open).
   void consider_value(int j, double t, double v, const double* y, const NewMax& on_new_max) {
+    if (every_) every_(j, t, v);
     const Extremes& g = sig_[static_cast<size_t>(j)];
     if (!(started_ && v <= g.max && v >= g.min)) new_value(j, t, v, y, on_new_max);
     for (const int w : open_) {
@@ -134,6 +142,7 @@ class PeakTracker {
   std::vector<double> vals_, rates_;  // the signals' values and rates at the end of a piece
   std::vector<Window> windows_;      // by handle, open or free
   std::vector<int> open_, free_;     // the open windows' handles; closed handles to reuse
+  EveryValue every_;                 // set_every_value: the load history's sink, or empty
 };
 
 }  // namespace machdyn

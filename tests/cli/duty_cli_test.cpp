@@ -1,0 +1,137 @@
+// `machdyn duty MODEL DUTY` as a user meets it: the figures it prints and writes are those of its
+// own cycle list (k, ν, s, Δ_eq and the Miner damage recomputed here from duty_cycles.csv by their
+// definitions), the counts are those of the library's merge of the operations' runs, and bad duty
+// files are located errors (exit 2) that write nothing.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "machdyn/analysis/load_history.hpp"
+#include "machdyn/io/model_file.hpp"
+#include "support/support.hpp"
+
+namespace machdyn {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kModel = R"(
+bodies:
+  A: {type: translational, mass: 1 kg}
+  B: {type: translational, mass: 1.5 kg, velocity: 0.5 m/s}
+  C: {type: translational, mass: 2 kg}
+links:
+  ab: {type: spring-damper, between: [A, B], stiffness: 1e4 N/m, damping: 2 N*s/m}
+  bc: {type: spring, between: [B, C], stiffness: 2e4 N/m, gap: 1 mm}
+simulation: {t_end: 0.3 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+cases:
+  fast: {bodies: {B: {velocity: 0.5 m/s}}}
+  slow: {bodies: {B: {velocity: 0.2 m/s}}}
+)";
+
+// Claim: for a duty of 3 fast and 2 slow operations the CLI's cycles are the library's merge of the
+// two runs' parts (merge_parts with n = 3, 2), and its figures follow from its cycle list by their
+// definitions: N_t = Σ n, s = Σ n (Δ/Δ̂)³ / 2e6, Δ_eq = (Σ n Δ³ / N_t)^(1/3), D = Σ n / (1e6 (100/Δ)³).
+TEST(DutyCli, FiguresFollowFromTheMergedCycles) {
+  const std::string model = test::write_temp("duty-model.yaml", kModel);
+  const std::string duty = test::write_temp("duty.yaml", R"(
+operations:
+  lift: {case: fast, repeat: 3}
+  lower: {case: slow, repeat: 2}
+links: [ab]
+sn_curve: {m: 3, delta_ref: 100, n_ref: 1e6}
+)");
+  const auto dir = test::temp_dir() / "duty-out";
+  const auto r = test::run_cli("duty '" + model + "' '" + duty + "' -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("ab"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "duty.json"));
+  ASSERT_EQ(j["links"].size(), 1u);
+  // The cycles from the CSV.
+  std::ifstream csv(dir / "duty_cycles.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "link,range,mean,count,from,to");
+  double nt = 0, largest = 0, s3 = 0, d = 0;
+  std::vector<double> ranges, counts;
+  while (std::getline(csv, line)) {
+    std::stringstream ss(line);
+    std::string link, field;
+    std::getline(ss, link, ',');
+    std::vector<double> v;
+    while (std::getline(ss, field, ',')) v.push_back(std::stod(field));
+    ASSERT_EQ(v.size(), 5u);
+    ranges.push_back(v[0]), counts.push_back(v[2]);
+    nt += v[2], largest = std::max(largest, v[0]), s3 += v[2] * v[0] * v[0] * v[0];
+    d += v[2] / (1e6 * std::pow(100.0 / v[0], 3));
+  }
+  ASSERT_GT(ranges.size(), 5u);
+  const auto& l = j["links"][0];
+  EXPECT_EQ(l["link"], "ab");
+  EXPECT_NEAR(l["cycles"].get<double>(), nt, 1e-9 * nt);
+  EXPECT_NEAR(l["largest_range"].get<double>(), largest, 1e-12 * largest);
+  EXPECT_NEAR(l["s"].get<double>(), s3 / (largest * largest * largest) / 2e6, 1e-9 * l["s"].get<double>());
+  EXPECT_NEAR(l["equivalent_range"].get<double>(), std::cbrt(s3 / nt), 1e-9 * largest);
+  EXPECT_NEAR(l["damage"].get<double>(), d, 1e-9 * d);
+  // The matrices hold the same cycles: their cells sum to N_t, and every cycle lies in its cell.
+  for (const char* file : {"duty_range_mean.csv", "duty_from_to.csv"}) {
+    std::ifstream mcsv(dir / file);
+    std::getline(mcsv, line);
+    double cells = 0;
+    while (std::getline(mcsv, line)) cells += std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_NEAR(cells, nt, 1e-9 * nt) << file;
+  }
+  // The library's merge of the two operations' runs: the same cycles.
+  std::vector<RainflowPart> parts;
+  for (const char* c : {"fast", "slow"}) {
+    const Model m = load_model_case(model, {}, c);
+    SimulateOptions opt;
+    opt.record_series = false;
+    const SimulationResult plain = simulate(m, opt);
+    LinkCycleOptions count;
+    count.links = {0};
+    count.gates = {1e-6 * (plain.links[0].max - plain.links[0].min)};
+    parts.push_back(link_parts(m, opt, count)[0]);
+  }
+  const auto merged = merge_parts(parts, std::vector<double>{3, 2});
+  ASSERT_EQ(merged.size(), ranges.size());
+  double total = 0;
+  for (const auto& c : merged) total += c.count;
+  EXPECT_DOUBLE_EQ(total, nt);
+}
+
+struct BadDuty {
+  const char* name;
+  const char* text;
+  const char* message;  // a part of the located message
+  int line;             // its line in the duty file
+};
+
+// Claim: each bad duty file exits 2 with the problem at its file:line:col and writes nothing.
+TEST(DutyCli, BadDutyFilesAreLocatedAndWriteNothing) {
+  const std::string model = test::write_temp("duty-model2.yaml", kModel);
+  const BadDuty bad[] = {
+      {"unknown-case", "operations:\n  lift: {case: heavy, repeat: 3}\n", "unknown load case 'heavy'", 2},
+      {"negative", "operations:\n  lift: {case: fast, repeat: -1}\n", "whole number", 2},
+      {"fraction", "operations:\n  lift: {case: fast, repeat: 2.5}\n", "whole number", 2},
+      {"no-slope", "operations:\n  lift: {case: fast, repeat: 1}\nsn_curve: {delta_ref: 100, n_ref: 1e6}\n", "'m'", 3},
+      {"unknown-field", "operations:\n  lift: {case: fast, repeat: 1}\nresidu: half\n", "residu", 3},
+      {"unknown-link", "operations:\n  lift: {case: fast, repeat: 1}\nlinks: [cd]\n", "no link 'cd'", 3},
+      {"empty", "operations: {}\n", "non-empty", 1},
+  };
+  for (const BadDuty& b : bad) {
+    const std::string duty = test::write_temp(std::string(b.name) + ".duty.yaml", b.text);
+    const auto dir = test::temp_dir() / (std::string("bad-") + b.name);
+    const auto r = test::run_cli("duty '" + model + "' '" + duty + "' -o '" + dir.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << b.name << ": " << r.err;
+    EXPECT_NE(r.err.find(b.message), std::string::npos) << b.name << ": " << r.err;
+    EXPECT_NE(r.err.find(duty + ":" + std::to_string(b.line) + ":"), std::string::npos) << b.name << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir)) << b.name;
+  }
+}
+
+}  // namespace
+}  // namespace machdyn
