@@ -64,12 +64,14 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
       return;
     }
     if (law.lock != 0) {
-      // A freewheel (or an end stop the body rests on) holds while lock·λ ≥ 0 (allowance 1e-9).
-      if (law.lock * x.F < -1e-9)
+      // A freewheel (or an end stop the body rests on) holds while lock·λ ≥ −F_d (allowance 1e-9): its
+      // drag at rest F_d = F_k0(0) is the static limit of its free direction (0 for an end stop).
+      const double Fd = law.stop ? 0.0 : c.kinetic_level(0.0);
+      if (law.lock * x.F < -(Fd + 1e-9))
         fail(name, t, law.stop ? "stop.hold" : "freewheel.hold",
-             fmt::format("stuck with lock·λ = {:.17g} < 0 (λ = {:.17g}, lock {:+d}): it holds against its free "
-                         "direction",
-                         law.lock * x.F, x.F, law.lock));
+             fmt::format("stuck with lock·λ = {:.17g} < −F_d = {:.17g} (λ = {:.17g}, lock {:+d}): it holds against "
+                         "its free direction beyond its drag",
+                         law.lock * x.F, -Fd, x.F, law.lock));
       return;
     }
     const double Fs = r * c.static_limit;

@@ -283,6 +283,27 @@ class AuditObserver final : public StepObserver {
   Audit& a_;
 };
 
+// Claim: a freewheel's drag D is the static limit of its free direction (elements/contact.hpp): a
+// backstop with drag 10 N stuck holds a push in its free direction up to lock·λ = −10 N (the run of
+// Impact.BackstopWithDragStaysAtRestUntilThePushReachesTheDrag: λ = P = 20 t N until 0.5 s), and not
+// beyond; without drag the limit is 0.
+TEST(AuditChecks, FreewheelDragIsTheLimitOfItsFreeDirection) {
+  const Model m = model_of(R"(
+bodies: {b: {type: translational, mass: 1}, c: {type: translational, mass: 1}}
+freewheels: {F: {between: [ground, b], drag: 10}, G: {between: [ground, c]}}
+)");
+  for (const char* name : {"F", "G"}) {
+    const ContactLaw law = ContactLaw::of(contact(m, name));
+    const double D = std::string(name) == "F" ? 10.0 : 0.0;
+    audit::ContactValues x;
+    x.mode = ContactMode::stuck;
+    x.F = -law.lock * D;  // at its drag: holds
+    EXPECT_NO_THROW(audit::check_contact(law, name, 0.5, x)) << name;
+    x.F = -law.lock * (D + 0.5);  // beyond it
+    expect_violation([&] { audit::check_contact(law, name, 0.5, x); }, "freewheel.hold", name, 0.5, "lock·λ = -");
+  }
+}
+
 class AuditRun : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, AuditRun, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          test::IntegratorName{});

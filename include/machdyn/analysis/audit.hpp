@@ -18,8 +18,10 @@
 ///                            atol and rtol, accumulated over the steps — BDF's u on MSL OneWayClutch
 ///                            is 14 rtol S off its closed form, a tangency u = 0 reads +7.7e-10)
 ///   contact.kinematic_load   stuck between prescribed motions: λ = 0 (its bodies are held by them)
-///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −1e-9 (its hold rule's
-///                            allowance); sliding only in its free direction −lock
+///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −F_d − 1e-9 (F_d = F_k0(0),
+///                            a freewheel's drag at rest, the static limit of its free direction; 0 for
+///                            an end stop; 1e-9 its hold rule's allowance); sliding only in its free
+///                            direction −lock
 ///   stop.position            end stop:  −lock (q − q_stop) ≥ −(1e-12 max(1, |q_stop|) + atol + rtol |q|)
 ///   gap.flank_sign           closed on the positive flank F ≥ 0, on the negative one F ≤ 0, to
 ///                            1e-12 (|F_e| + |F_v|) + |F_e(e + r) − F_e(e)| + d r (the force of a
