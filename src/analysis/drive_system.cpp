@@ -1075,9 +1075,15 @@ void exact_clusters(const std::vector<ContactLaw>& contacts, const std::vector<i
   // a cluster whose velocities are already all equal keeps them. (Pairwise means one contact after
   // another are not exact on a chain: the last one moves a body of the first, and a contact decided
   // to slide from rest beside them started at u = ±1e-20, its event function negative.)
-  std::vector<int> parent(static_cast<size_t>(n));
+  // Scratch kept per thread: this runs at every event, and allocations were a measurable part of
+  // the travel start-up's time.
+  thread_local std::vector<int> parent, grounded, first, second, count;
+  thread_local std::vector<double> p, m;
+  thread_local std::vector<char> equal;
+  const auto N = static_cast<size_t>(n);
+  parent.resize(N);
   for (int i = 0; i < n; ++i) parent[static_cast<size_t>(i)] = i;
-  std::vector<int> grounded(static_cast<size_t>(n), -1);  // per root: a contact tying it to the ground
+  grounded.assign(N, -1);  // per root: a contact tying it to the ground
   for (int k : stuck) {
     const ContactLaw& c = contacts[static_cast<size_t>(k)];
     if (c.b >= 0) {
@@ -1090,26 +1096,36 @@ void exact_clusters(const std::vector<ContactLaw>& contacts, const std::vector<i
       if (grounded[static_cast<size_t>(ra)] < 0) grounded[static_cast<size_t>(ra)] = k;
     }
   }
-  // Per root: the bodies of its cluster.
-  std::vector<std::vector<int>> members(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) members[static_cast<size_t>(cluster_root(parent, i))].push_back(i);
-  for (int r = 0; r < n; ++r) {
-    const std::vector<int>& b = members[static_cast<size_t>(r)];
-    if (b.size() < 2 && grounded[static_cast<size_t>(r)] < 0) continue;
-    double common;
-    if (grounded[static_cast<size_t>(r)] >= 0) {
-      common = contacts[static_cast<size_t>(grounded[static_cast<size_t>(r)])].surface_velocity(t);
-    } else if (std::all_of(b.begin(), b.end(), [&](int i) { return v[i] == v[b.front()]; })) {
+  // Per root, from the velocities before any is changed (the clusters are disjoint): its first two
+  // bodies, its size, whether all its velocities are equal, Σ v_i/m_i⁻¹ and Σ 1/m_i⁻¹ in body order.
+  first.assign(N, -1), second.assign(N, -1), count.assign(N, 0), p.assign(N, 0.0), m.assign(N, 0.0), equal.assign(N, 1);
+  for (int i = 0; i < n; ++i) {
+    const auto r = static_cast<size_t>(cluster_root(parent, i));
+    if (count[r]++ == 0) first[r] = i;
+    else if (count[r] == 2) second[r] = i;
+    equal[r] = equal[r] && v[i] == v[first[r]];
+    p[r] += v[i] / im[i], m[r] += 1.0 / im[i];
+  }
+  // The common velocity per root, into p; `equal` left 0 for the roots whose bodies take it.
+  for (size_t r = 0; r < N; ++r) {
+    const bool keep = count[r] < 2 && grounded[r] < 0;
+    if (keep || (grounded[r] < 0 && equal[r])) {
+      equal[r] = 1;
       continue;
-    } else if (b.size() == 2) {
-      const double ia = im[b[0]], ib = im[b[1]];
-      common = (ib * v[b[0]] + ia * v[b[1]]) / (ia + ib);
-    } else {
-      double p = 0.0, m = 0.0;
-      for (int i : b) p += v[i] / im[i], m += 1.0 / im[i];
-      common = p / m;
     }
-    for (int i : b) v[i] = common;
+    if (grounded[r] >= 0) {
+      p[r] = contacts[static_cast<size_t>(grounded[r])].surface_velocity(t);
+    } else if (count[r] == 2) {
+      const double ia = im[first[r]], ib = im[second[r]];
+      p[r] = (ib * v[first[r]] + ia * v[second[r]]) / (ia + ib);
+    } else {
+      p[r] /= m[r];
+    }
+    equal[r] = 0;
+  }
+  for (int i = 0; i < n; ++i) {
+    const auto r = static_cast<size_t>(cluster_root(parent, i));
+    if (!equal[r]) v[i] = p[r];
   }
 }
 

@@ -30,6 +30,7 @@
 #include "analysis/machine_jumps.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/common/units.hpp"
+#include "machdyn/model/signal_sampling.hpp"
 #include "machdyn/solve/driver.hpp"
 #include "machdyn/solve/roots.hpp"
 
@@ -169,6 +170,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (jumps_.count() > 0) jumps_.event_functions(y, g + sys_.event_slots());
   }
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
+  [[nodiscard]] double sampling_step(double, double t_end) const override { return machdyn::sampling_step(m_, t_end); }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
     // The driver hands back every event function a decision left negative and asks again at the
     // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions

@@ -92,6 +92,23 @@ simulation: {t_end: 1, dt_out: 0.01, rtol: 1e-10, atol: 1e-12}
   EXPECT_LE(stuck_overload(r, "f", 10.0), 1.0 + 1e-9);
 }
 
+// Claim: the same slip at t* = asin(10/15)/(2π) on an output grid far coarser than the excursion
+// (dt_out = 1 s = t_end, the load above the limit for 0.27 s): the event functions are checked at
+// the sine's T/8 inside long steps (EventSystem::sampling_step), not at the output times — the rule
+// of old (output times inside steps longer than 2 dt_out) checked nothing here and saw no slip.
+TEST_P(MissedEvents, SineLoadSlipsAtArcsinOnACoarseOutputGrid) {
+  const Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 1}}
+loads: {F: {type: sine, body: m, amplitude: 15 N, frequency: 1 Hz}}
+contacts: {f: {between: [m, ground], static: 10 N, kinetic: 8 N}}
+simulation: {t_end: 1, dt_out: 1, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  const auto slips = events_of(r, "f", "slip");
+  ASSERT_GE(slips.size(), 1u);
+  EXPECT_NEAR(slips[0].t, std::asin(10.0 / 15.0) / (2 * std::numbers::pi), 1e-10);
+}
+
 // Claim: two contacts in parallel between one body and the ground (15 N and 0.015 N, kinetic 15 N
 // and 0) under 25 sin(πt/2) N hold together up to 15.015 N and both slide from
 // t_s = asin(15.015/25)/(π/2) = 0.41014… s; then m v' = F − 15, so

@@ -2,6 +2,8 @@
 // jump at an event, breakpoints, statistics summed over restarts, max_steps per run. On both
 // integrators.
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <vector>
 #include <gtest/gtest.h>
 
@@ -198,6 +200,54 @@ TEST_P(Driver, ADecisionThatNeverSettlesIsAnError) {
     EXPECT_NEAR(e.time(), 1.0, 1e-12);
   }
   EXPECT_LT(sys.decisions.size(), 40u);
+}
+
+/// A state that stands still (y' = 0) and one event function with an explicit dependence on t,
+/// g = 0.5 − sin(2π(t − 0.4)): the error control sees nothing, so the steps grow over the whole
+/// excursion of g below 0 (t in (0.4 + 1/12, 0.4 + 5/12)): dopri5 steps from 0.111 to 1, bdf from
+/// 0.343 to 1. The system states its sampling step, 1/8 of the period unless
+/// told otherwise (EventSystem::sampling_step).
+class StandingSine final : public EventSystem {
+ public:
+  explicit StandingSine(double h) : h_(h) {}
+  int size() const override { return 1; }
+  void rhs(double, const double*, double* dy) override { dy[0] = 0.0; }
+  int event_count() const override { return 1; }
+  void event_functions(double t, const double*, double* g) override {
+    g[0] = done ? 1.0 : 0.5 - std::sin(2.0 * std::numbers::pi * (t - 0.4));  // after the event: no more
+  }
+  double sampling_step(double, double) const override { return h_; }
+  bool handle_events(double t, double*, const std::vector<int>& fired) override {
+    if (!fired.empty()) events.push_back(t), done = true;
+    return !fired.empty();
+  }
+  std::vector<double> events;
+  bool done = false;
+
+ private:
+  double h_;
+};
+
+// Claim: with the sampling step of its signal (T/8) the driver finds the first crossing of
+// g = 0.5 − sin(2π(t − 0.4)) at the closed form 0.4 + asin(0.5)/(2π) = 0.4 + 1/12 s, whatever dt_out is (here one
+// output at the end: the grid of old, checked only in steps longer than 2 dt_out, saw nothing);
+// without it (an infinite sampling step) the crossing is stepped over — the claim can fail.
+TEST_P(Driver, AnExcursionInsideALongStepIsFoundAtTheSamplingStep) {
+  const double y0[1] = {0.0};
+  DriveOptions d;
+  d.dt_out = 1.0;
+  Counter c;
+  StandingSine sampled(1.0 / 8.0);
+  auto st = make_stepper(GetParam(), sampled, tight());
+  integrate(*st, sampled, 0.0, y0, 1.0, d, c);
+  ASSERT_GE(sampled.events.size(), 1u);
+  EXPECT_NEAR(sampled.events[0], 0.4 + 1.0 / 12.0, 1e-12);
+  StandingSine blind(std::numeric_limits<double>::infinity());
+  auto st2 = make_stepper(GetParam(), blind, tight());
+  Counter c2;
+  integrate(*st2, blind, 0.0, y0, 1.0, d, c2);
+  EXPECT_TRUE(blind.events.empty()) << "the steps did not cover the excursion: the test proves nothing; steps end at "
+                                     << ::testing::PrintToString(c2.seg_end);
 }
 
 }  // namespace

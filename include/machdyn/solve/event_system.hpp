@@ -7,6 +7,7 @@
 /// never steps across a breakpoint (a time where f jumps or has a kink in t). A system without
 /// events has event_count() = 0 and no breakpoints. Integrators still see only the OdeSystem part.
 
+#include <limits>
 #include <vector>
 
 #include "machdyn/solve/ode_system.hpp"
@@ -22,6 +23,15 @@ class EventSystem : public OdeSystem {
   /// Times in (t0, t_end), increasing, where f jumps or has a kink in t (steps, ramps, tables,
   /// a brake applied). Steps end exactly there and handle_events(t, y, {}) is called.
   [[nodiscard]] virtual std::vector<double> breakpoints(double /*t0*/, double /*t_end*/) const { return {}; }
+  /// The longest time over which the event functions may be judged by their values at its ends
+  /// alone, s: a function whose explicit dependence on t (a sine load against a constant limit
+  /// while the state stands still) can leave ≥ 0 and come back within a step, unseen by the error
+  /// control, which follows the state only. The driver checks the functions inside any step longer
+  /// than this, at this spacing. +∞ (the default): no such dependence — between breakpoints every
+  /// load is linear in t, so a function the stepper's state follows cannot turn around unseen.
+  [[nodiscard]] virtual double sampling_step(double /*t0*/, double /*t_end*/) const {
+    return std::numeric_limits<double>::infinity();
+  }
   /// At an event or breakpoint at t. `y` is the state just before (the left limit, in the old
   /// modes); `fired` lists the functions that crossed zero there, the earliest-located first (empty
   /// at a breakpoint). Decides the new modes and maps y in place to the state just after. Returns
