@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <memory>
 #include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
@@ -166,7 +168,9 @@ void CvodeBdf::step(double t_limit) {
       N_VDestroy(ele);
       N_VDestroy(ewt);
     }
-    throw SolverError(element, tcur, fmt::format("CVODE failed: {}", CVodeGetReturnFlagName(flag)));
+    // CVodeGetReturnFlagName returns a string of malloc's that the caller frees.
+    const std::unique_ptr<char, void (*)(void*)> name(CVodeGetReturnFlagName(flag), std::free);
+    throw SolverError(element, tcur, fmt::format("CVODE failed: {}", name ? name.get() : "unknown flag"));
   }
   t_old_ = t_;
   t_ = tret;
