@@ -780,13 +780,13 @@ void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
     else rhs_general<false>(t, y, dydt);
     return;
   }
-  if (!affine_) {
-    use_affine();
-    if (affine_->dense.kernel) {  // from now on inline (rhs)
-      fast_ = &affine_->dense;
-      rhs(t, y, dydt);
-      return;
-    }
+  // The mode's map may have been compiled already by contact_forces (a decision's λ, the event
+  // functions): its small kernel is taken here too, not only where this call compiled it.
+  if (!affine_) use_affine();
+  if (affine_->dense.kernel) {  // from now on inline (rhs)
+    fast_ = &affine_->dense;
+    rhs(t, y, dydt);
+    return;
   }
   const int N = size();
   const AffineMode& a = *affine_;
