@@ -42,7 +42,10 @@ build-asan: deps
 	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli machdyn_campaign \
 	  fuzz_model_file fuzz_units fuzz_expression fuzz_gear_spec fuzz_signal_csv fuzz_set_vary
 
-demo: build-release
+# The demo builds only the library and the CLI it runs (not the tests, benchmarks or Python module).
+demo: deps
+	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CCACHE) >/dev/null
+	@cmake --build $(BUILD_RELEASE) -j $(JOBS) --target machdyn_cli
 	@$(BUILD_RELEASE)/apps/machdyn/machdyn demo
 
 # The whole suite (release build), then the same suite and each fuzzer for 20 s under ASan + UBSan.

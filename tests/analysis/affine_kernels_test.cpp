@@ -10,7 +10,7 @@
 #include "analysis/affine_kernels.hpp"
 
 namespace machdyn::detail {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // The reference: out[i] = y[C + i] for i < C, then each row's sum from c[r], adding the products
 // column by column in ascending k, each product rounded before its add (as the header states).

@@ -26,7 +26,7 @@
 #include "machdyn/solve/stepper.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "audit.yaml"), "audit.yaml"); }
 

@@ -22,7 +22,7 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 using test::at;
 using test::series;

@@ -13,7 +13,7 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // F_sc = 9 kN, F_d = 5.5 kN (adhesion); W = 1.5 kN static and kinetic; mk = 300 kg, m2 = 10 000 kg.
 Model wheel_and_trolley(double F) {

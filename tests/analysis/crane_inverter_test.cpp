@@ -11,7 +11,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 const CraneFactorRow* find_row(const CraneReport& r, const std::string& factor) {
   for (const auto& x : r.rows)

@@ -7,7 +7,7 @@
 #include "machdyn/analysis/crane_standard.hpp"
 
 namespace machdyn::crane {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 constexpr HoistingClass kHC[4] = {HoistingClass::HC1, HoistingClass::HC2, HoistingClass::HC3, HoistingClass::HC4};
 constexpr HoistDriveClass kHD[5] = {HoistDriveClass::HD1, HoistDriveClass::HD2, HoistDriveClass::HD3,

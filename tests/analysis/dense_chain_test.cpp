@@ -10,7 +10,7 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Three masses, springs (c1, d1) between m1 and m2 and (c2, d2) between m2 and m3, constant loads P1
 // on m1 and P2 on m2. By hand: F1 = c1 (q1 − q2) + d1 (v1 − v2), F2 = c2 (q2 − q3) + d2 (v2 − v3),

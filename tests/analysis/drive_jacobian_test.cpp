@@ -16,7 +16,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // ∂f_i/∂y_j ≈ (f_i(y + h e_j) − f_i(y − h e_j)) / 2h with h = 1e-6 (1 + |y_j|): error O(h²) for a
 // smooth f, exact up to rounding for the linear chain; compared to 1e-6 of the largest entry.

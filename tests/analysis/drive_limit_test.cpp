@@ -14,7 +14,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // A free rotor (J = 1 kg·m²) run up by a speed drive along the ramp ω_ref = α t, α = 50 rad/s²:
 // K_p = 20 N·m·s/rad, T_i = 0.05 s, M_max = 100 N·m, torque lag T_m = 0.05 s. The lag lets the

@@ -21,7 +21,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Model compile_text(const std::string& text) {
   return compile_model_case(parse_yaml_string(text, "drives.yaml"), "drives.yaml", {}, "");

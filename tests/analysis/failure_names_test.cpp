@@ -11,7 +11,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 class FailureNames : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, FailureNames,

@@ -11,7 +11,7 @@
 #include "machdyn/analysis/fatigue.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // The spectrum: 10 cycles of range 100, 1000 of range 50 (mean 0), half a cycle of 80.
 std::vector<RainflowCycle> spectrum() {

@@ -13,7 +13,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 using C = std::complex<double>;
 constexpr double m1 = 2, m2 = 3, c = 5000, d = 40;

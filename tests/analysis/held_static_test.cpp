@@ -17,7 +17,7 @@
 #include "machdyn/analysis/simulate.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 class HeldStatic : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, HeldStatic, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),

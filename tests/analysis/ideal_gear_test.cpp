@@ -17,7 +17,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Model compile_text(const std::string& text) { return test::model_text(text, "gear.yaml"); }
 

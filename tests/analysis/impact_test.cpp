@@ -13,7 +13,7 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 class Impact : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Impact, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),

@@ -3,7 +3,7 @@
 #include "analysis/independent_rows.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: detail::independent_rows keeps exactly the rows that raise the rank of what comes before
 // them. Ranks by hand: with body 0 pinned (before), the row v_0 = 0 repeats the pin; v_0 − v_1 = 0 is

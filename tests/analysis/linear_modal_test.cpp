@@ -17,7 +17,7 @@
 #include "support/three_mass_hoist.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Topology topology(const Model& m, const std::string& text) { return parse_topology(m, text, Location{"test", 1, 0}); }
 

@@ -11,7 +11,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Four bodies; links: a plain spring-damper, a spring with a gap (flanks ±2 mm: Δ = 4 mm, δ = 0 in
 // its middle), a spring-damper

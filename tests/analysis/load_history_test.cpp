@@ -13,7 +13,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Three masses, a plain spring-damper A–B and a spring with a 1 mm gap B–C; B starts at 0.5 m/s.
 // The loads carry both modes (ω ≈ 70–170 rad/s) and the gap opens and closes (events, a load that

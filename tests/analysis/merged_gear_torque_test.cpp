@@ -13,7 +13,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 class MergedGearTorque : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, MergedGearTorque,

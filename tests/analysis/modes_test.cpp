@@ -10,7 +10,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: `modes` on the hoist equals paper 002 eq. 16 within 1e-10 relative.
 TEST(Modes, HoistFrequenciesEqualPaper002Eq16) {

@@ -14,7 +14,7 @@
 #include "support/oscillator.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 /// y'' = −ω² y, y(0) = 1, y'(0) = 0: y = cos ωt, signal s = 2 y − 0.5 y' (w = [2, −0.5]) =
 /// 2 cos ωt + 0.5 ω sin ωt = A cos(ωt − φ) with A = sqrt(4 + ω²/4), tan φ = ω/4: maximum A at

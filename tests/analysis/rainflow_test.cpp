@@ -16,7 +16,7 @@
 #include "machdyn/analysis/rainflow.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 using Cycle = std::tuple<double, double, double>;  // (from, to, count)
 
@@ -346,7 +346,7 @@ TEST(Rainflow, BadInputThrows) {
 }  // namespace machdyn
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 std::map<std::pair<double, double>, double> classes(const std::vector<RainflowCycle>& cs) {
   std::map<std::pair<double, double>, double> m;

@@ -13,7 +13,7 @@
 #include "machdyn/analysis/simulate.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 class SlackStatic : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, SlackStatic, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),

@@ -8,7 +8,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // A free geared chain, a second free group, a grounded group and a damper-only body.
 const char* kMixed = R"(bodies:

@@ -15,7 +15,7 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "stop.yaml"), "stop.yaml"); }
 

@@ -13,7 +13,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: the words set the modes they name; unnamed elements keep the initial state's modes.
 TEST(Topology, ParsesModeWords) {

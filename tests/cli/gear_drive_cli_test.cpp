@@ -8,7 +8,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 namespace fs = std::filesystem;
 
 // Claim: the summary carries the travel-speed uniformity of the last period for both ratios, the

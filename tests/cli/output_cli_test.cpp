@@ -15,7 +15,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 namespace fs = std::filesystem;
 

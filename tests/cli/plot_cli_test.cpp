@@ -13,7 +13,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 using test::slurp;
 using test::have_gnuplot;

@@ -7,7 +7,7 @@
 #include "machdyn/common/expression.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // f = u(1 + k cos 2φ): f' = −2uk sin 2φ, f'' = −4uk cos 2φ.
 TEST(ExpressionJet, WalkingLawAndItsDerivatives) {
@@ -49,7 +49,7 @@ TEST(ExpressionJet, RejectsUnknownNamesWithTheirColumn) {
 }  // namespace machdyn
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: the first and second derivatives of every function agree with central finite
 // differences of the value (an independent answer for the hand-written chain rules).

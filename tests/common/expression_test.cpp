@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: precedence and associativity are the usual ones (hand-evaluated values).
 TEST(Expression, PrecedenceAndAssociativity) {

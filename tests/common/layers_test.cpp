@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 namespace fs = std::filesystem;
 

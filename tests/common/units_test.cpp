@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 double si(const char* text, Dim d) {
   std::string err;

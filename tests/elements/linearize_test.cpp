@@ -10,7 +10,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 /// Elastic frequencies of M q̈ + K q = 0 on G q = 0: with q = N z (N a basis of ker G), the reduced
 /// pair (Nᵀ K N, Nᵀ M N). Eigenvalues below 1e-9 of the largest are rigid-body modes, dropped.

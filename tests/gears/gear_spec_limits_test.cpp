@@ -7,7 +7,7 @@
 #include "machdyn/io/yaml_reader.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 std::string first_error(const std::string& text) {
   try {

@@ -12,7 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 namespace fs = std::filesystem;
 

@@ -10,7 +10,7 @@
 #include "machdyn/io/yaml_reader.hpp"
 
 namespace machdyn::gears {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;

@@ -17,7 +17,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 const plot::Series& series_named(const plot::Figure& f, const std::string& prefix) {
   for (const auto& s : f.series)

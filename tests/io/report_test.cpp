@@ -14,7 +14,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 std::string hoist_report_html() {
   const Model m = load_model(test::example("hoist-3mass.yaml"), {"simulation.t_end=0.05"});

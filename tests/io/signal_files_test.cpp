@@ -10,7 +10,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 /// Writes `csv` beside a model whose load R.`sig` is `signal`, compiles it.
 Model with_csv(const std::string& stem, const std::string& csv, const std::string& signal) {

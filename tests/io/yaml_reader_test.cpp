@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 /// The first diagnostic of the InputError `text` raises, as "file:line:col: error: message".
 std::string first_error(const std::string& text) {
@@ -112,7 +112,7 @@ TEST(YamlReader, EmptyFileIsPlacedAtItsStart) {
 }  // namespace machdyn
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: `--set NAME.A.B=V` descends into nested maps: it sets one field of a nested map and keeps
 // its siblings, creates a missing map on the way, and refuses to descend into a plain value.

@@ -14,7 +14,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 /// A chain A–B–C–D of ideal gears of one ratio each (q_A = i q_B, ...), a spring on D and a torque on A.
 std::string gear_chain(const std::string& ratio) {

@@ -7,7 +7,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 const char* kGood = R"(name: two masses
 bodies:

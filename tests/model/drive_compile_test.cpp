@@ -12,7 +12,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Model compile_drives(const std::string& name, const std::string& drives) {
   return load_model(test::write_temp(name, "bodies:\n  R: {inertia: 1}\n  X: {type: translational, mass: 2}\ndrives:\n" +

@@ -10,7 +10,7 @@
 #include "machdyn/io/yaml_reader.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 constexpr double kPi = std::numbers::pi;
 

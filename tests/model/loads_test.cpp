@@ -5,7 +5,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Load kloss(double Mk, double sk, double w0) {
   Load l;

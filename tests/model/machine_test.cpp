@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 constexpr double kPi = std::numbers::pi;
 

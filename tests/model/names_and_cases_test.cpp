@@ -8,7 +8,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 const std::string kBase = R"(bodies:
   I1: {inertia: 1}

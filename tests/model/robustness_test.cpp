@@ -12,7 +12,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 struct SplitMix {  // a fixed generator, so every failure reproduces
   uint64_t s;

@@ -11,7 +11,7 @@
 #include "machdyn/common/expression.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 

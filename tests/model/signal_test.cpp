@@ -11,7 +11,7 @@
 #include "machdyn/model/signal.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 constexpr double kPi = std::numbers::pi;
 

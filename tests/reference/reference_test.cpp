@@ -13,7 +13,7 @@
 #include "machdyn/model/compile.hpp"
 
 namespace machdyn::reference {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 std::vector<RefEvent> of_kind(const RefResult& r, const std::string& kind) {
   std::vector<RefEvent> out;

@@ -12,7 +12,7 @@
 #include "machdyn/solve/stepper.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 /// A ball falling under gravity onto the floor: x'' = −g, event function x ≥ 0, at impact the speed
 /// reverses with restitution e (v⁺ = −e v⁻). Closed form: from rest at height h the first impact is

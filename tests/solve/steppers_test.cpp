@@ -7,7 +7,7 @@
 #include "machdyn/solve/stepper.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 using test::Oscillator;
 

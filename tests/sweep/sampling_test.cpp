@@ -8,7 +8,7 @@
 #include "machdyn/sweep/sampling.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: our xoshiro256** seeded through splitmix64 gives the reference sequence. The numbers come
 // from an independent Python transcription of the published algorithms (Vigna's splitmix64.c and
