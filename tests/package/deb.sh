@@ -16,7 +16,8 @@ done
 dpkg -x "$deb" "$work/root"
 with_python=0
 [ -f "$build/python/machdyn/__init__.py" ] && with_python=1  # MACHDYN_PYTHON=OFF or no pybind11: no module
-files=(usr/bin/machdyn usr/include/machdyn/analysis/simulate.hpp usr/lib/libmachdyn.a usr/lib/cmake/machdyn/machdynConfig.cmake)
+files=(usr/bin/machdyn usr/include/machdyn/analysis/simulate.hpp usr/lib/libmachdyn.a usr/lib/cmake/machdyn/machdynConfig.cmake
+       usr/share/doc/machdyn/README.md usr/share/doc/machdyn/model-files.md usr/share/doc/machdyn/crane-factors.md)
 [ $with_python = 1 ] && files+=(usr/lib/python3/dist-packages/machdyn/__init__.py)
 for f in "${files[@]}"; do
   test -e "$work/root/$f" || { echo "missing $f"; exit 1; }
