@@ -245,6 +245,10 @@ std::string field_unit(const Model& m, const std::string& target) {
     if (field == "stiffness") return r ? "N·m/rad" : "N/m";
     if (field == "damping") return r ? "N·m·s/rad" : "N·s/m";
     if (field == "gap" || field == "gap_start") return r ? "rad" : "m";
+    if (field == "EA") return "N";  // a rope's axial stiffness
+    if (field == "length" || field == "slack" || field == "drum_radius" || field == "radius") return "m";
+    if (field == "elastic_modulus") return "Pa";
+    if (field == "area") return "m²";
     return "";
   }
   for (const auto& l : m.loads) {
@@ -301,6 +305,12 @@ SweepPlotSpec parse_plot_spec(const std::string& text, const SweepPlan& plan, co
         throw InputError(where, fmt::format("'{}' is not varied; the varied fields are: {}", parts[k], fmt::join(targets, ", ")));
       spec.inputs.push_back(parts[k]);
     }
+    // With load cases every x has one point per case: one curve per case, never one line zig-zagging
+    // between the cases.
+    const bool cases = !plan.request.cases.empty();
+    if (cases && spec.inputs.size() == 1 && spec.inputs[0] != "case") spec.inputs.push_back("case");
+    if (cases && spec.inputs.size() == 2 && spec.inputs[0] != "case" && spec.inputs[1] != "case")
+      throw InputError(where, "with load cases, one of X and Y must be 'case' (one curve per case)");
   }
   for (const auto& x : spec.inputs) {
     spec.input_axes.push_back(plot::make_axis(x, field_unit(plan.base_model, x)));
