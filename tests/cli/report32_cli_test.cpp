@@ -108,6 +108,26 @@ TEST(Report32Cli, SweepPlotOneCurvePerCase) {
   for (const auto& s : fig.series) EXPECT_EQ(s.x, (std::vector<double>{1e4, 2e4, 3e4})) << s.name;
 }
 
+// Claim: the x axis of a sweep carries the unit of the fields a crane engineer sweeps: a rope's EA
+// and length, a stop's position, the crane section's hoisting speed.
+TEST(Report32Cli, SweepFieldUnits) {
+  const Model m = test::model_text(R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {inertia: 10 kg*m^2}
+  hook: {type: translational, mass: 1 t, vertical: up}
+links:
+  rope: {type: rope, between: [drum, hook], ratio: 4 rad/m, falls: 2, EA: 1e7 N, length: 10 m}
+stops:
+  floor: {body: hook, min: 0 m}
+simulation: {t_end: 0.1 s}
+)");
+  EXPECT_EQ(field_unit(m, "rope.EA"), "N");
+  EXPECT_EQ(field_unit(m, "rope.length"), "m");
+  EXPECT_EQ(field_unit(m, "floor.min"), "m");
+  EXPECT_EQ(field_unit(m, "crane.hoist_speed"), "m/s");
+}
+
 // Claim: an end stop takes `open` (off the stop, no constraint: = released) and `closed` (= stuck),
 // a freewheel `locked` and `free`; a wrong word lists the element's own words.
 TEST(Report32Cli, TopologyWordsOfStopsAndFreewheels) {
