@@ -38,8 +38,12 @@ def test_modes_name_their_topology_and_offer_the_hanging_one(tmp):
     c, J, i, mh = 4e6, 40.0, 4.0, 4000.0
     assert hanging.omega[-1] == pytest.approx(math.sqrt(c * (1 / (J * i * i) + 1 / mh)), rel=1e-10)
     assert "floor=released" in hanging.topology
-    by_index = modes.select(modes.topologies.index(hanging.topology))
-    assert by_index.omega.tolist() == hanging.omega.tolist()
+    # An index into the listed topologies gives that one's arrays (the first: these).
+    assert modes.select(0).omega.tolist() == modes.omega.tolist()
+    last = modes.select(len(modes.topologies) - 1)
+    assert last.topology == modes.topologies[-1]
+    with pytest.raises(IndexError):
+        modes.select(len(modes.topologies))
 
 
 def test_stop_words_open_and_closed_and_a_listing_error(tmp):
