@@ -13,6 +13,11 @@ install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/machdyn DESTINATION ${CMAKE_INSTAL
 install(TARGETS machdyn_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/examples/ DESTINATION ${CMAKE_INSTALL_DATADIR}/machdyn/examples COMPONENT cli
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.csv" PATTERN notebooks EXCLUDE)
+# The documentation (the references docs/*.md with their figures, the README) in the Debian place,
+# /usr/share/doc/machdyn.
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT cli
+        FILES_MATCHING PATTERN "*.md" PATTERN "*.png" PATTERN "*.svg")
+install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT cli)
 install(EXPORT machdynTargets NAMESPACE machdyn:: DESTINATION ${MACHDYN_CMAKE_DIR} COMPONENT dev)
 set(MACHDYN_WITH_MPI ${MPI_CXX_FOUND})
 configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/machdynConfig.cmake.in

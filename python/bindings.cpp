@@ -38,6 +38,7 @@
 #include "machdyn/io/gears_output.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
+#include "machdyn/io/report_run.hpp"
 #include "machdyn/io/results.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/io/input_file.hpp"
@@ -381,18 +382,20 @@ PYBIND11_MODULE(_machdyn, mod) {
     return py::make_tuple(io::gears_json(report), io::gears_text(report));
   });
 
-  mod.def("report_html", [](const PyModel& p, const std::string& command) {
+  // As `machdyn report`: the one pipeline of the CLI (io/report_run.hpp), so the same sections.
+  mod.def("report_html", [](const PyModel& p, const std::string& command, const std::string& frf_input,
+                            const std::vector<std::string>& frf_outputs, double f_lo_hz, double f_hi_hz,
+                            const std::vector<std::string>& links) {
+    report::ReportOptions opt;
+    opt.frf.input = frf_input, opt.frf.outputs = frf_outputs, opt.frf.f_lo_hz = f_lo_hz, opt.frf.f_hi_hz = f_hi_hz;
+    opt.frf.option_prefix = "frf_";
+    opt.links = links;
     return nogil([&] {
-      const SimulationResult r = simulate(*p.model);
-      const Modes modes = compute_modes(*p.model);
-      const auto energy = machine_energy(*p.model);
-      report::Case c;
-      c.name = p.load_case, c.model = p.model.get(), c.result = &r, c.modes = &modes;
-      c.energy = energy ? &*energy : nullptr;
-      std::optional<CraneReport> crane;
-      if (p.model->crane.given) crane = crane_analysis(*p.model);
-      c.crane = crane ? &*crane : nullptr;
-      return report::to_html(report::simulation_report({c}, command));
+      report::ReportRun run;
+      run.name = p.load_case;
+      run.model = *p.model;
+      report::run_report_case(run, opt);
+      return report::to_html(report::simulation_report({run.as_case()}, command));
     });
   });
 

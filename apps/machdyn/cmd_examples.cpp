@@ -44,12 +44,18 @@ void register_examples(CLI::App& app, int& exit_code) {
   ex->callback([&exit_code] {
     exit_code = guarded([] {
       const auto dir = examples_dir();
+      // Every model under the folder, its sub-folders (crane/, msl/) included, by relative path:
+      // the top level first, then each folder in name order.
       std::vector<std::filesystem::path> files;
-      for (const auto& e : std::filesystem::directory_iterator(dir))
-        if (e.path().extension() == ".yaml") files.push_back(e.path());
-      std::sort(files.begin(), files.end());
+      for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+        if (e.is_regular_file() && e.path().extension() == ".yaml") files.push_back(e.path().lexically_relative(dir));
+      std::sort(files.begin(), files.end(), [](const auto& x, const auto& y) {
+        const bool xtop = !x.has_parent_path(), ytop = !y.has_parent_path();
+        return xtop != ytop ? xtop : x < y;
+      });
       std::cout << fmt::format("examples in {}:\n", dir.string());
-      for (const auto& f : files) std::cout << fmt::format("  {:<28} {}\n", f.filename().string(), describe(f));
+      for (const auto& f : files)
+        std::cout << fmt::format("  {:<40} {}\n", f.generic_string(), describe(dir / f));
       return 0;
     });
   });

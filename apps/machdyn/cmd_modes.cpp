@@ -193,6 +193,8 @@ int run(const ModesArgs& a) {
     Modes md;
     md.omega = list.front().modes.omega, md.shapes = list.front().modes.shapes;
     figures.push_back(mode_shapes_figure(m, md));
+    // Name the topology the shapes belong to (the first listed; --topology chooses another).
+    if (!list.front().label.empty()) figures.back().title += fmt::format(" — {}", list.front().label);
   }
   if (want_frf) {
     j["frequency_response"] = frequency_response_json(frf);

@@ -1,12 +1,15 @@
-// `machdyn report MODEL [-o FILE.html] [--case NAME | --all-cases] [--set NAME.FIELD=VALUE ...] [--quiet]`:
+// `machdyn report MODEL [-o FILE.html] [--case NAME | --all-cases] [--links A,B] [--frf-input NAME]
+// [--frf-output NAME ...] [--frf-band LO:HI] [--set NAME.FIELD=VALUE ...] [--quiet]`:
 // simulate, compute the modes, and write one self-contained HTML report (io/report.hpp) that opens
 // offline. With --all-cases every load case of the file gets its own section, and one table compares
 // the peak link loads and dynamic factors of all cases.
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "commands.hpp"
 #include "progress.hpp"
@@ -19,6 +22,7 @@
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/report.hpp"
+#include "machdyn/io/report_run.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/model/cases.hpp"
@@ -37,6 +41,9 @@ struct ReportArgs {
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: embed series above the size limit
   bool check = false;         ///< --check: the invariant audit (analysis/audit.hpp)
+  FrfChoice frf;              ///< --frf-input, --frf-output, --frf-band
+  std::string frf_band;       ///< --frf-band LO:HI (Hz)
+  std::vector<std::string> links;  ///< --links
   std::string command_line;
 };
 
@@ -47,19 +54,6 @@ std::string case_description(const SpecNode& root, const std::string& name) {
   const SpecNode* d = c && c->is_map() ? c->find("description") : nullptr;
   return d && d->is_scalar() ? d->scalar : std::string();
 }
-
-/// Everything one case of the report holds (kept alive while the document is built).
-struct CaseRun {
-  std::string name, description;
-  Model model;
-  SimulationResult result;
-  Modes modes;
-  std::optional<EnergyResult> energy;
-  std::vector<TopologyModes> topologies;  ///< of each topology the run passed through
-  std::unique_ptr<FrequencyResponse> frf;
-  std::string frf_topology;
-  std::optional<CraneReport> crane;  ///< the crane analysis of a model with `crane:`
-};
 
 int run_report(const ReportArgs& a) {
   if (!report::assets_available())
@@ -75,10 +69,12 @@ int run_report(const ReportArgs& a) {
     names.push_back(a.load_case);  // "" = the model as written
   }
   const SpecNode root = names.size() > 1 || !names[0].empty() ? read_yaml_file(a.model) : SpecNode{};
-  std::deque<CaseRun> runs;  // stable addresses for report::Case
-  for (const auto& name : names)
-    runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
-                           {}, {}, std::nullopt, {}, {}, {}, std::nullopt});
+  std::deque<report::ReportRun> runs;  // stable addresses for report::Case
+  for (const auto& name : names) {
+    runs.emplace_back();
+    runs.back().name = name, runs.back().description = name.empty() ? "" : case_description(root, name);
+    runs.back().model = load_model_case(a.model, a.sets, name);
+  }
   // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
   // Never over an input file or a device (io/output_file.hpp): said now, not after the runs.
   const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
@@ -94,31 +90,20 @@ int run_report(const ReportArgs& a) {
                                    "simulation.dt_out or pass --large-output",
                                    byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
   }
+  report::ReportOptions options;
+  options.simulate.event_driven = a.all_cases;  // every case alike, as `simulate --all-cases`
+  options.simulate.check = a.check;
+  options.frf = a.frf;
+  options.links = a.links;
+  for (const auto& run : runs) report::check_report_choices(run.model, options);
   for (auto& run : runs) {
     ProgressBar bar(a.quiet);
-    SimulateOptions options;
-    options.progress = bar.callback();
-    options.event_driven = a.all_cases;  // every case alike, as `simulate --all-cases`
-    options.check = a.check;
-    run.result = simulate(run.model, options);
+    options.simulate.progress = bar.callback();
+    report::run_report_case(run, options);
     bar.clear();
-    run.modes = compute_modes(run.model);
-    run.energy = machine_energy(run.model);
-    run.topologies = run_topology_modes(run.model, run.result.hybrid, run.model.simulation.t_end);
-    run.frf = default_frequency_response(run.model, run.topologies, &run.frf_topology);
-    if (run.model.crane.given) run.crane = crane_analysis(run.model);
   }
   std::vector<report::Case> cases;
-  for (const auto& run : runs) {
-    report::Case c;
-    c.name = run.name, c.description = run.description;
-    c.model = &run.model, c.result = &run.result, c.modes = &run.modes;
-    c.energy = run.energy ? &*run.energy : nullptr;
-    c.topologies = &run.topologies;
-    c.frf = run.frf.get(), c.frf_topology = run.frf_topology;
-    c.crane = run.crane ? &*run.crane : nullptr;
-    cases.push_back(c);
-  }
+  for (const auto& run : runs) cases.push_back(run.as_case());
   const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
@@ -142,13 +127,38 @@ void register_report(CLI::App& app, int& exit_code) {
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
   cmd->add_flag("--check", args->check,
                 "Audit every run against the documented laws, as `simulate --check` (exit 3 on a violation)");
+  cmd->add_option("--links", args->links,
+                  "The links whose loads are drawn (names, comma-separated; default: all, in panels by unit and size)")
+      ->delimiter(',');
+  cmd->add_option("--frf-input", args->frf.input,
+                  "The frequency response's input: a load or a body (default: the drive — the first motor or drive)");
+  cmd->add_option("--frf-output", args->frf.outputs,
+                  "Its outputs: LINK.load, BODY.position or BODY.speed (repeatable or comma-separated; default: every link load)")
+      ->delimiter(',');
+  cmd->add_option("--frf-band", args->frf_band,
+                  "Its band LO:HI in Hz (default: 0.1 x the lowest mode to 2 x the highest resonance the outputs show)");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
+      if (!args->frf_band.empty()) {
+        const auto colon = args->frf_band.find(':');
+        char* end = nullptr;
+        const std::string lo = args->frf_band.substr(0, colon), hi = colon == std::string::npos ? "" : args->frf_band.substr(colon + 1);
+        args->frf.f_lo_hz = std::strtod(lo.c_str(), &end);
+        const bool lo_ok = !lo.empty() && *end == '\0';
+        args->frf.f_hi_hz = std::strtod(hi.c_str(), &end);
+        if (!lo_ok || hi.empty() || *end != '\0' || !(args->frf.f_lo_hz > 0.0 && args->frf.f_hi_hz > args->frf.f_lo_hz))
+          throw InputError(Location{"--frf-band", 0, 0},
+                           fmt::format("expected LO:HI in Hz with 0 < LO < HI, e.g. 0.1:20; got '{}'", args->frf_band));
+      }
       args->command_line = "machdyn report " + std::filesystem::path(args->model).filename().string();
       if (!args->load_case.empty()) args->command_line += " --case " + args->load_case;
       if (args->all_cases) args->command_line += " --all-cases";
       for (const auto& s : args->sets) args->command_line += " --set " + s;
+      if (!args->links.empty()) args->command_line += " --links " + fmt::format("{}", fmt::join(args->links, ","));
+      if (!args->frf.input.empty()) args->command_line += " --frf-input " + args->frf.input;
+      for (const auto& o : args->frf.outputs) args->command_line += " --frf-output " + o;
+      if (!args->frf_band.empty()) args->command_line += " --frf-band " + args->frf_band;
       return run_report(*args);
     });
   });

@@ -1,6 +1,7 @@
 // `machdyn simulate MODEL [-o DIR] [--json] [--plot] [--quiet] [--case NAME | --all-cases]
 // [--set NAME.FIELD=VALUE ...]` (`modes`: cmd_modes.cpp).
 #include <cmath>
+#include <set>
 #include <filesystem>
 #include <memory>
 #include <iostream>
@@ -39,7 +40,11 @@ struct SimulateArgs {
   bool rpm = false;           ///< --rpm: angular speeds of the figures in rpm
   std::vector<std::string> outputs;  ///< --outputs: extra column groups (analysis/extra_outputs.hpp)
   bool check = false;  ///< --check: the invariant audit (analysis/audit.hpp)
+  std::vector<std::string> links;  ///< --links: the links drawn by --plot
 };
+
+/// A dynamic factor for the tables: "–" where it has no meaning (NaN: no quasi-static load, a buffer).
+std::string factor_text(double f) { return std::isfinite(f) ? fmt::format("{:.4g}", f) : std::string("–"); }
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
   os << fmt::format("model: {} ({})\n", m.name, m.source);
@@ -50,8 +55,8 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
                     "dyn.factor", "unit");
   for (size_t l = 0; l < m.links.size(); ++l) {
     const auto& s = r.links[l];
-    os << fmt::format("{:<12} {:>14.6g} {:>12.6g} {:>14.6g} {:>14.6g} {:>10.4g}  {}\n", m.links[l].name, s.max,
-                      s.t_max, s.min, s.static_load, s.dynamic_factor, link_load_unit(m, m.links[l]));
+    os << fmt::format("{:<12} {:>14.6g} {:>12.6g} {:>14.6g} {:>14.6g} {:>10}  {}\n", m.links[l].name, s.max,
+                      s.t_max, s.min, s.static_load, factor_text(s.dynamic_factor), link_load_unit(m, m.links[l]));
   }
   if (r.hybrid.active) {
     long events = 0;
@@ -103,6 +108,9 @@ int run_all_cases(const SimulateArgs& a) {
                                    "than the limit of {}; raise simulation.dt_out or pass --large-output",
                                    models.size(), byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
   }
+  if (a.plot) plot::find_gnuplot();  // say it before the runs, not after
+  if (!a.links.empty())
+    for (const auto& m : models) (void)link_load_groups(m, SimulationResult{}, a.links);
   std::vector<SimulationResult> results;
   for (size_t c = 0; c < names.size(); ++c) {
     try {
@@ -129,6 +137,7 @@ int run_all_cases(const SimulateArgs& a) {
   for (const auto& name : names) locks.push_back(std::make_unique<FolderLock>(out_dir / name, kFolderLockWriteWait_s));
   // A failure while writing (disk full) removes what this run wrote, so no half set is left.
   std::vector<std::filesystem::path> written;
+  std::set<std::string> figure_names;  // --plot: the figure files written in the cases' folders
   try {
     for (size_t c = 0; c < names.size(); ++c) {
       const Model& m = models[c];
@@ -139,14 +148,23 @@ int run_all_cases(const SimulateArgs& a) {
       write_timeseries_csv(written.back(), r);
       written.push_back(dir / "summary.json");
       write_file_atomic(written.back().string(), summary.dump(2) + "\n");
+      if (a.plot) {  // each case's figures in its folder, as `simulate --case NAME --plot`
+        FigureOptions fig_options;
+        fig_options.rpm = a.rpm;
+        fig_options.links = a.links;
+        for (const auto& f : write_figures(dir.string(), simulation_figures(m, r, fig_options))) {
+          written.push_back(dir / f);
+          figure_names.insert(f);
+        }
+      }
       all.push_back(summary);
       long events = 0;
       for (const auto& e : r.hybrid.events) events += e.kind != "initial";
       for (size_t l = 0; l < m.links.size(); ++l) {
         const LinkSummary& s = r.links[l];
-        table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11.4g} {:>10} {:>6}  {}\n",
+        table += fmt::format("{:<20} {:<6} {:>11.5g} {:>11.5g} {:>11.5g} {:>11.4g} {:>9.4g} {:>11} {:>10} {:>6}  {}\n",
                              l == 0 ? names[c] : "", m.links[l].name, s.max, s.min, s.peak, s.t_peak, s.static_load,
-                             s.dynamic_factor, l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
+                             factor_text(s.dynamic_factor), l == 0 ? std::to_string(events) : "", "", link_load_unit(m, m.links[l]));
       }
     }
     written.push_back(out_dir / "cases.json");
@@ -165,6 +183,8 @@ int run_all_cases(const SimulateArgs& a) {
                              model_path, names.size())
               << table
               << fmt::format("wrote {0}/CASE/timeseries.csv, {0}/CASE/summary.json, {0}/cases.json\n", out_dir.string());
+    if (!figure_names.empty())
+      std::cout << fmt::format("figures: {}/CASE/{{{}}}\n", out_dir.string(), fmt::join(figure_names, ","));
   }
   return 0;
 }
@@ -173,6 +193,7 @@ int run_simulate(const SimulateArgs& a) {
   const Model m = load_model_case(a.model, a.sets, a.load_case);
   if (!a.large_output) check_output_size(m, kDefaultOutputLimitBytes, "--large-output");
   if (a.plot) plot::find_gnuplot();  // say it before a long run, not after
+  if (!a.links.empty()) (void)link_load_groups(m, SimulationResult{}, a.links);  // a typo costs no run
   ProgressBar bar(a.quiet);
   SimulateOptions options;
   options.progress = bar.callback();
@@ -187,6 +208,7 @@ int run_simulate(const SimulateArgs& a) {
   std::vector<std::string> figures;
   FigureOptions fig_options;
   fig_options.rpm = a.rpm;
+  fig_options.links = a.links;
   if (a.plot) figures = write_figures(out_dir, simulation_figures(m, r, fig_options));
   write_timeseries_csv(std::filesystem::path(out_dir) / "timeseries.csv", r);
   write_file_atomic((std::filesystem::path(out_dir) / "summary.json").string(), summary.dump(2) + "\n");
@@ -227,6 +249,9 @@ void register_simulate(CLI::App& app, int& exit_code) {
                 "Run every load case: one table of peak link loads and dynamic factors, outputs in OUT/CASE/; "
                 "if a case fails nothing is written");
   cmd->add_flag("--rpm", args->rpm, "With --plot: angular speeds in rpm instead of rad/s");
+  cmd->add_option("--links", args->links,
+                  "With --plot: the links whose loads are drawn (comma-separated; default: all, in panels by unit and size)")
+      ->delimiter(',');
   cmd->add_option("--outputs", args->outputs,
                   "Extra columns of timeseries.csv, comma-separated groups: deflection (per link), acceleration "
                   "(per body), power (per load and drive, damping power per damped link), heat (per friction "

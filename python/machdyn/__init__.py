@@ -152,12 +152,13 @@ def modes(model: Model, topology: str | None = None) -> Modes:
               (e.g. ``"c=closed, adhesion=stuck, W=slip+"``; docs/modes.md). Default: every
               topology the model can be in, listed in ``summary["topologies"]``.
     Returns :class:`Modes`: ``omega`` (rad/s), ``frequencies_hz`` (Hz), ``shapes`` (bodies × modes,
-    mass-normalized) of the named (or the first listed) topology, ``summary`` (the dict of
-    ``machdyn modes --json``: each topology's frequencies, shapes and damped modes).
-    Raises InputError for an unknown element or mode word.
+    mass-normalized) of the named (or the first listed: the initial state's) topology, named by
+    ``Modes.topology``; ``summary`` (the dict of ``machdyn modes --json``: each topology's
+    frequencies, shapes and damped modes); ``Modes.select(...)`` gives another topology's.
+    Raises InputError for an unknown element or mode word (the message lists the element's words).
     """
     text, omega, shapes = _machdyn.modes(model._core, "" if topology is None else str(topology))
-    return Modes(_json.loads(text), omega, shapes)
+    return Modes(_json.loads(text), omega, shapes, model)
 
 
 def energy(model: Model, to: str | float | None = None, points: int = 201, delta: float | None = None,
@@ -320,15 +321,26 @@ def duty(model: str | _os.PathLike, duty: str | _os.PathLike,
     return links, pd.read_csv(io.StringIO(csv), float_precision="round_trip")
 
 
-def report(model: Model, path: str | _os.PathLike, case: str | None = None) -> str:
+def report(model: Model, path: str | _os.PathLike, case: str | None = None, links: list[str] | None = None,
+           frf_input: str | None = None, frf_outputs: list[str] | None = None,
+           frf_band_hz: tuple[float, float] | None = None) -> str:
     """Simulates, computes the modes and writes the self-contained HTML report to ``path``, as
-    ``machdyn report``. Returns the path. Written through a temporary file, so a failed run leaves
-    no partial file; a path that is the model file (also through a link) or not a regular file
-    raises InputError."""
+    ``machdyn report`` (the same pipeline, so the same sections, the frequency response included).
+    Returns the path. Written through a temporary file, so a failed run leaves no partial file; a
+    path that is the model file (also through a link) or not a regular file raises InputError. The
+    file's mode follows the umask, as every file the CLI writes.
+
+    links:       the links whose loads are drawn (default: all, in panels by unit and size), as ``--links``.
+    frf_input:   the frequency response's input, a load or a body (default: the drive), as ``--frf-input``.
+    frf_outputs: its outputs, ``LINK.load``, ``BODY.position`` or ``BODY.speed`` (default: every link load).
+    frf_band_hz: its band ``(lo, hi)`` in Hz (default: 0.1 × the lowest mode to 2 × the highest
+                 resonance the outputs show), as ``--frf-band LO:HI``.
+    """
     m = model.with_case(case) if case else model
     command = f"machdyn.report({_os.path.basename(m.source)!r}" + (f", case={case!r}" if case else "") + ")"
     path = _os.fspath(path)
-    html = _machdyn.report_html(m._core, command)
+    lo, hi = (0.0, 0.0) if frf_band_hz is None else (float(frf_band_hz[0]), float(frf_band_hz[1]))
+    html = _machdyn.report_html(m._core, command, frf_input or "", list(frf_outputs or []), lo, hi, list(links or []))
     # Through a temporary file and a rename, never over the model file or a device (InputError).
     _machdyn.write_result_file(path, html)
     return path

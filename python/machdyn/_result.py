@@ -189,15 +189,35 @@ class Modes:
     ``omega``: elastic natural frequencies, rad/s, ascending. ``frequencies_hz``: the same in Hz.
     ``shapes``: bodies × modes, mass-normalized (φᵀ M φ = 1). ``bodies``: the row names.
     ``rigid_body_modes``: how many (ω = 0). ``summary``: the dict of ``machdyn modes --json``.
+    ``topology``: the topology (mode of every gap, contact, brake and stop) these arrays belong to —
+    without a ``topology`` argument the first listed, the initial state's (a load resting on the
+    floor has no rope mode there). ``topologies``: the labels of every topology in ``summary``;
+    ``select(name)`` gives the modes of another: an index into ``topologies``, or a topology text
+    as :func:`machdyn.modes` takes it (``"floor=open"`` for the hanging load).
     """
 
-    def __init__(self, summary: dict, omega: np.ndarray, shapes: np.ndarray):
+    def __init__(self, summary: dict, omega: np.ndarray, shapes: np.ndarray, model=None):
         self.summary = summary
         self.omega = np.asarray(omega)
         self.frequencies_hz = self.omega / (2 * np.pi)
         self.shapes = np.asarray(shapes)
         self.bodies: list[str] = list(summary["bodies"])
         self.rigid_body_modes: int = summary["rigid_body_modes"]
+        self.topology: str = summary.get("topology", "")
+        self.topologies: list[str] = [t["topology"] for t in summary.get("topologies", [])]
+        self._model = model
+
+    def select(self, topology: int | str) -> "Modes":
+        """The modes of another topology: an index into ``topologies`` or a topology text
+        (``"floor=open, rope=closed"``, docs/modes.md), as ``machdyn.modes(model, topology=...)``."""
+        if self._model is None:
+            raise ValueError("select: these modes were not made by machdyn.modes(model)")
+        from . import modes as _modes
+        if isinstance(topology, int):
+            if not 0 <= topology < len(self.topologies):
+                raise IndexError(f"select: topology index {topology} of {len(self.topologies)}")
+            topology = self.topologies[topology]
+        return _modes(self._model, topology)
 
     def to_pandas(self):
         """One row per mode: frequency_rad_s, frequency_hz and the amplitude of every body."""
@@ -205,10 +225,14 @@ class Modes:
         return pd.DataFrame(self.summary["shapes"])
 
     def __repr__(self) -> str:
-        return f"<machdyn.Modes: {len(self.omega)} elastic, f = {np.array2string(self.frequencies_hz, precision=4)} Hz>"
+        more = f"; {len(self.topologies)} topologies, select() another" if len(self.topologies) > 1 else ""
+        where = f" of topology '{self.topology}'" if self.topology else ""
+        return (f"<machdyn.Modes{where}: {len(self.omega)} elastic, "
+                f"f = {np.array2string(self.frequencies_hz, precision=4)} Hz{more}>")
 
     def _repr_html_(self) -> str:
         rows = [[k + 1, _g(w, 8), _g(w / (2 * np.pi), 8)] + [f"{self.shapes[i, k]:+.4f}" for i in range(len(self.bodies))]
                 for k, w in enumerate(self.omega)]
+        where = f"topology {self.topology}; " if self.topology else ""
         return _table_html(["mode", "ω [rad/s]", "f [Hz]"] + self.bodies, rows,
-                           f"{self.rigid_body_modes} rigid-body mode(s)")
+                           f"{where}{self.rigid_body_modes} rigid-body mode(s)")

@@ -93,8 +93,10 @@ CraneFactorRow phi2_row(const Model& m) {
   CraneFactorRow r;
   r.factor = "phi2";
   r.case_name = fmt::format("hoisting a grounded load, {}/{}, vh = {:.4g} m/s", to_string(hc), to_string(hd), vh);
-  r.clause = fmt::format("EN 13001-2 phi2 = phi2,min + beta2 vh ({}: beta2 = {:.2f} s/m; {}: phi2,min = {:.2f})",
-                         to_string(hc), beta2(hc), to_string(hd), phi2_min(hc, hd));
+  // φ2,min depends on both classes (HC1…HC4 for HD1, HD2, HD4; 1.05 in every class for HD3, HD5): name both.
+  r.clause = fmt::format("EN 13001-2 phi2 = phi2,min + beta2 vh ({}: beta2 = {:.2f} s/m; {}/{}: phi2,min = {:.2f}{})",
+                         to_string(hc), beta2(hc), to_string(hc), to_string(hd), phi2_min(hc, hd),
+                         hd == HoistDriveClass::HD3 || hd == HoistDriveClass::HD5 ? ", the same in every class" : "");
   if ((hd == HoistDriveClass::HD2 || hd == HoistDriveClass::HD3) && !(c.creep_speed > 0.0)) {
     // Neither number exists without the creep speed: the standard's φ2 is φ2,min + β2 vh,CS too.
     r.case_name = fmt::format("hoisting a grounded load, {}/{}, vh = creep speed (not given)", to_string(hc),

@@ -1,8 +1,12 @@
 #include "machdyn/analysis/linear_analysis.hpp"
 
 #include <algorithm>
+#include <numbers>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "machdyn/elements/linearize.hpp"
 
@@ -34,18 +38,72 @@ std::vector<TopologyModes> run_topology_modes(const Model& m, const HybridReport
   return out;
 }
 
+std::string default_frf_input(const Model& m) {
+  for (const Load& l : m.loads)
+    if (l.kind == LoadKind::motor_linear || l.kind == LoadKind::motor_kloss || l.kind == LoadKind::motor_table) return l.name;
+  if (!m.drives.empty()) return m.bodies[static_cast<size_t>(m.drives.front().body)].name;
+  for (const Load& l : m.loads) {
+    // compile's weight of a vertical body ("NAME.weight", model.hpp Body::vertical) excites nothing a drive does
+    const Body& b = m.bodies[static_cast<size_t>(l.body)];
+    if (!(b.vertical != 0 && l.name == b.name + ".weight")) return l.name;
+  }
+  return m.bodies.empty() ? std::string() : m.bodies.front().name;
+}
+
 std::unique_ptr<FrequencyResponse> default_frequency_response(const Model& m, const std::vector<TopologyModes>& list,
-                                                              std::string* label) {
-  if (m.loads.empty() || m.links.empty()) return nullptr;
-  for (const TopologyModes& t : list) {
+                                                              std::string* label, const FrfChoice& choice) {
+  if (m.bodies.empty() || (m.links.empty() && choice.outputs.empty())) return nullptr;
+  const Location at_input{choice.option_prefix + "input", 0, 0}, at_output{choice.option_prefix + "output", 0, 0},
+      at_band{choice.option_prefix + "band", 0, 0};
+  const bool band_given = choice.f_lo_hz > 0.0 || choice.f_hi_hz > 0.0;
+  if (band_given && !(choice.f_lo_hz > 0.0 && choice.f_hi_hz > choice.f_lo_hz && std::isfinite(choice.f_hi_hz)))
+    throw InputError(at_band, fmt::format("expected 0 < f_lo < f_hi in Hz, got {} … {}", choice.f_lo_hz, choice.f_hi_hz));
+  const std::string input_name = choice.input.empty() ? default_frf_input(m) : choice.input;
+  const LinearSignal input = linear_input(m, input_name, at_input);
+  // The topology: the one with the most elastic modes (a hoist's hanging load, not the load resting
+  // on the floor with its rope slack, where the rope force answers nothing); on a tie the longest
+  // in the run, then the first.
+  std::vector<const TopologyModes*> order;
+  for (const TopologyModes& t : list) order.push_back(&t);
+  auto time_in = [](const TopologyModes& t) {
+    double s = 0.0;
+    for (const auto& [a, b] : t.intervals) s += b - a;
+    return s;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const TopologyModes* x, const TopologyModes* y) {
+    if (x->modes.omega.size() != y->modes.omega.size()) return x->modes.omega.size() > y->modes.omega.size();
+    return time_in(*x) > time_in(*y);
+  });
+  for (const TopologyModes* tp : order) {
+    const TopologyModes& t = *tp;
     if (t.modes.omega.size() == 0) continue;
-    const Location at{m.source, 0, 0};
     std::vector<LinearSignal> outs;
-    for (const Link& l : m.links) outs.push_back(linear_output(m, t.topology, l.name + ".load", at));
-    const Eigen::VectorXd w = frequency_grid(0.1 * t.modes.omega.minCoeff(), 3.0 * t.modes.omega.maxCoeff(), 400, true);
+    if (choice.outputs.empty())
+      for (const Link& l : m.links) outs.push_back(linear_output(m, t.topology, l.name + ".load", at_output));
+    else
+      for (const auto& o : choice.outputs) outs.push_back(linear_output(m, t.topology, o, at_output));
+    const LinearModel lin = linearize(m, t.topology);
+    const double two_pi = 2.0 * std::numbers::pi;
     if (label) *label = t.label;
-    return std::make_unique<FrequencyResponse>(
-        frequency_response(linearize(m, t.topology), linear_input(m, m.loads.front().name, at), outs, w));
+    if (band_given)
+      return std::make_unique<FrequencyResponse>(frequency_response(
+          lin, input, outs, frequency_grid(two_pi * choice.f_lo_hz, two_pi * choice.f_hi_hz, 400, true)));
+    // The band: a first look over 0.1 × the lowest to 3 × the highest mode finds the resonances
+    // that show in the outputs; the band ends at twice the highest of those.
+    const double lo = 0.1 * t.modes.omega.minCoeff();
+    auto wide = std::make_unique<FrequencyResponse>(
+        frequency_response(lin, input, outs, frequency_grid(lo, 3.0 * t.modes.omega.maxCoeff(), 400, true)));
+    const Eigen::MatrixXd mag = wide->magnitude();
+    double top = 0.0;
+    for (const ResonancePeak& p : resonance_peaks(*wide)) {
+      double largest = 0.0;
+      for (Eigen::Index f = 0; f < mag.rows(); ++f)
+        if (std::isfinite(mag(f, p.output))) largest = std::max(largest, mag(f, p.output));
+      if (p.magnitude >= 0.01 * largest) top = std::max(top, p.omega);
+    }
+    const double hi = top > 0.0 ? 2.0 * top : 3.0 * t.modes.omega.maxCoeff();
+    if (!(hi < 3.0 * t.modes.omega.maxCoeff())) return wide;
+    return std::make_unique<FrequencyResponse>(frequency_response(lin, input, outs, frequency_grid(lo, hi, 400, true)));
   }
   return nullptr;
 }

@@ -27,20 +27,28 @@ bool gap_word(const std::string& w, GapMode* g) {
   return false;
 }
 
-/// Sets mode and engagement from a contact word; false if the word is not one.
-bool contact_word(const std::string& w, bool brake, ContactMode* c, bool* engaged) {
+/// The direction a contact slides in when the topology says only "sliding": slip+, or a
+/// freewheel's free direction.
+ContactMode free_direction(const FrictionContact& c) {
+  return ContactLaw::of(c).can_slide(ContactMode::slip_pos) ? ContactMode::slip_pos : ContactMode::slip_neg;
+}
+
+/// Sets mode and engagement from a contact word; false if the word is not one. Besides the
+/// contact words, the words of the element's own kind: an end stop is `closed` (at the stop, held:
+/// stuck) or `open` (off it: released), as a gap; a freewheel `locked` (stuck) or `free` (sliding
+/// in its free direction); a brake `applied` (stuck).
+bool contact_word(const std::string& w, const FrictionContact& contact, ContactMode* c, bool* engaged) {
   *engaged = true;
+  const bool brake = contact.brake;
+  if (contact.stop && (w == "closed" || w == "on")) return *c = ContactMode::stuck, true;
+  if (contact.stop && (w == "open" || w == "off")) return *c = ContactMode::stuck, *engaged = false, true;
+  if (contact.lock != 0 && w == "locked") return *c = ContactMode::stuck, true;
+  if (contact.lock != 0 && w == "free") return *c = free_direction(contact), true;
   if (w == "stuck" || (brake && w == "applied")) return *c = ContactMode::stuck, true;
   if (w == "slip+" || w == "sliding") return *c = ContactMode::slip_pos, true;
   if (w == "slip-") return *c = ContactMode::slip_neg, true;
   if (w == "released") return *c = ContactMode::stuck, *engaged = false, true;
   return false;
-}
-
-/// The direction a contact slides in when the topology says only "sliding": slip+, or a
-/// freewheel's free direction.
-ContactMode free_direction(const FrictionContact& c) {
-  return ContactLaw::of(c).can_slide(ContactMode::slip_pos) ? ContactMode::slip_pos : ContactMode::slip_neg;
 }
 
 std::string names_of(const Model& m) {
@@ -95,12 +103,15 @@ void apply_topology_text(const Model& m, const std::string& text, const Location
       } else if (contact != m.contacts.end()) {
         ContactMode c;
         bool engaged;
-        const bool known = contact_word(word, contact->brake, &c, &engaged);
+        const bool known = contact_word(word, *contact, &c, &engaged);
         if (known && word == "sliding") c = free_direction(*contact);  // a freewheel's free direction
         if (!known) {
-          diag.error(wat, fmt::format("'{}' is not a mode of {} '{}': expected stuck{}, slip+, slip-, sliding or released",
-                                      word, contact->brake ? "brake" : "contact", name,
-                                      contact->brake ? ", applied" : ""));
+          const char* kind = contact->stop ? "end stop" : contact->lock != 0 ? "freewheel" : contact->brake ? "brake" : "contact";
+          const char* own = contact->stop ? "closed (at the stop), open (off it), "
+                            : contact->lock != 0 ? "locked, free, "
+                            : contact->brake ? "applied, " : "";
+          diag.error(wat, fmt::format("'{}' is not a mode of {} '{}': expected {}stuck, slip+, slip-, sliding or released",
+                                      word, kind, name, own));
         } else {
           const auto k = static_cast<size_t>(contact - m.contacts.begin());
           topo.contacts[k] = c;
@@ -186,7 +197,7 @@ std::vector<TopologyInterval> run_topologies(const Model& m, const HybridReport&
     const auto k = static_cast<size_t>(it->second - 1000000);
     ContactMode c;
     bool engaged;
-    if (contact_word(word, m.contacts[k].brake, &c, &engaged)) {
+    if (contact_word(word, m.contacts[k], &c, &engaged)) {
       released[k] = !engaged;
       if (engaged) topo.contacts[k] = c;
     }

@@ -800,6 +800,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       s.static_at_max = static_loads(at_max_[static_cast<size_t>(l)])(l);
       s.static_at_min = static_loads(at_min_[static_cast<size_t>(l)])(l);
       set_peak(s);
+      // A buffer's force has no quasi-static counterpart (it is zero until the impact, and the
+      // impact's reference is the rigid-body peak of φ7, analysis/crane.hpp): no dynamic factor.
+      if (m_.links[static_cast<size_t>(l)].buffer) s.dynamic_factor = std::numeric_limits<double>::quiet_NaN();
       out_.links.push_back(s);
     }
   }

@@ -8,7 +8,9 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/machine.hpp"
 
 namespace machdyn {
@@ -51,13 +53,14 @@ std::vector<double> scaled(std::vector<double> v, double k) {
 /// "MODEL [case]: what" — a figure in a report names the model and the case.
 std::string titled(const Model& m, const std::string& what) { return m.name + ": " + what; }
 
-/// The events of a hybrid run as marks: brakes applied (at t_apply > 0), gaps closing and opening,
+/// The events of a hybrid run as marks: brakes applied (at t_apply > 0, if ever), gaps closing and opening,
 /// contacts breaking away and sticking. With more than 12, only the first of each kind and element
 /// (a stick–slip run has hundreds); the title of the figure says so through `*thinned`.
 std::vector<plot::EventMark> event_marks(const Model& m, const SimulationResult& r, bool* thinned) {
   std::vector<plot::EventMark> all;
   for (const auto& c : m.contacts)
-    if (c.brake && c.t_apply > 0.0) all.push_back({c.t_apply, c.name + " applied"});
+    // t_apply is t_end for a brake never applied in the run (released there): no mark.
+    if (c.brake && c.t_apply > 0.0 && !c.released(c.t_apply)) all.push_back({c.t_apply, c.name + " applied"});
   for (const auto& e : r.hybrid.events) {
     if (e.kind == "initial") continue;
     std::string what = e.kind == "slip" ? "breakaway" : e.kind == "stick" ? "sticks" : e.kind;
@@ -88,15 +91,16 @@ std::vector<plot::EventMark> event_marks(const Model& m, const SimulationResult&
 /// The link loads as series of `f` (left axis N·m, right axis N when both occur), in engineering
 /// units; `static_in_legend`: the quasi-static load as a dashed line in the link's colour with its
 /// value in the legend entry (one label per link, so many links never overlap).
-void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_legend, plot::Figure& f) {
+void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_legend, plot::Figure& f,
+                    const std::vector<std::size_t>& which) {
   const auto& t = column(r, "t_s");
-  const bool any_torque = std::any_of(m.links.begin(), m.links.end(),
-                                      [&](const Link& l) { return std::string(link_load_unit(m, l)) == "N*m"; });
-  const bool any_force = std::any_of(m.links.begin(), m.links.end(),
-                                     [&](const Link& l) { return std::string(link_load_unit(m, l)) == "N"; });
+  const bool any_torque = std::any_of(which.begin(), which.end(),
+                                      [&](std::size_t l) { return std::string(link_load_unit(m, m.links[l])) == "N*m"; });
+  const bool any_force = std::any_of(which.begin(), which.end(),
+                                     [&](std::size_t l) { return std::string(link_load_unit(m, m.links[l])) == "N"; });
   double largest[3] = {0, 0, 0};
   auto axis_of = [&](const Link& L) { return any_torque && std::string(link_load_unit(m, L)) == "N" ? 2 : 1; };
-  for (std::size_t l = 0; l < m.links.size(); ++l)
+  for (const std::size_t l : which)
     for (double v : column(r, m.links[l].name + ".load_"))
       if (std::isfinite(v)) largest[axis_of(m.links[l])] = std::max(largest[axis_of(m.links[l])], std::abs(v));
   const auto [k1, u1] = engineering(largest[1], any_torque ? "N*m" : "N");
@@ -105,16 +109,17 @@ void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_le
   if (any_torque && any_force) f.y2 = plot::make_axis("link force F", u2);
   double peak_abs = -1.0;
   plot::Annotation peak;
-  for (std::size_t l = 0; l < m.links.size(); ++l) {
+  for (const std::size_t l : which) {
     const Link& L = m.links[l];
     const int axis = axis_of(L);
     const double k = axis == 2 ? k2 : k1;
     const std::string& unit = axis == 2 ? u2 : u1;
     std::string name = fmt::format("{} ({}–{})", L.name, endpoint_name(m, L.a), endpoint_name(m, L.b));
     const bool has_static = l < r.links.size() && std::isfinite(r.links[l].static_load);
+    const int series_index = static_cast<int>(f.series.size());
     if (static_in_legend && has_static) {
       name += fmt::format(", {}* = {} {}", L.name, number(k * r.links[l].static_load), unit);
-      f.ref_lines.push_back(plot::make_ref_line(k * r.links[l].static_load, "", static_cast<int>(l), axis));
+      f.ref_lines.push_back(plot::make_ref_line(k * r.links[l].static_load, "", series_index, axis));
     }
     f.series.push_back(plot::make_series(name, t, scaled(column(r, L.name + ".load_"), k), plot::Style::line, axis));
     // The peak: the extreme of larger magnitude of the link whose peak is largest (in its unit).
@@ -125,27 +130,96 @@ void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_le
       if (std::isfinite(v) && std::abs(v) * k > peak_abs) {
         peak_abs = std::abs(v) * k;
         peak = {tv, k * v, fmt::format("{} peak {} {} at {} s", L.name, number(k * v), unit, number(tv)),
-                static_cast<int>(l), axis};
+                series_index, axis};
       }
     }
   }
   if (peak_abs > 0.0) f.notes.push_back(peak);
 }
 
-}  // namespace
+std::vector<std::size_t> all_links(const Model& m) {
+  std::vector<std::size_t> v(m.links.size());
+  for (std::size_t l = 0; l < v.size(); ++l) v[l] = l;
+  return v;
+}
 
-plot::Figure link_loads_figure(const Model& m, const SimulationResult& r) {
+plot::Figure link_loads_panel(const Model& m, const SimulationResult& r, const std::vector<std::size_t>& which,
+                              std::string id, const std::string& what) {
   plot::Figure f;
-  f.id = "link_loads";
+  f.id = std::move(id);
   f.x = plot::make_axis("time t", "s");
-  add_link_loads(m, r, true, f);
+  add_link_loads(m, r, true, f, which);
   bool thinned = false;
   if (r.hybrid.active) f.events = event_marks(m, r, &thinned);
-  f.title = titled(m, std::string("link loads") +
-                          (f.events.empty() ? "" : thinned ? "; dotted: first events of each kind" : "; dotted: events"));
+  f.title = titled(m, what + (f.events.empty() ? "" : thinned ? "; dotted: first events of each kind" : "; dotted: events"));
   f.zero_line = true;
   f.legend = plot::Figure::Legend::below;
   return f;
+}
+
+}  // namespace
+
+plot::Figure link_loads_figure(const Model& m, const SimulationResult& r) {
+  return link_loads_panel(m, r, all_links(m), "link_loads", "link loads");
+}
+
+std::vector<std::vector<std::size_t>> link_load_groups(const Model& m, const SimulationResult& r,
+                                                       const std::vector<std::string>& links) {
+  std::vector<std::size_t> chosen;
+  for (const auto& name : links) {
+    const auto it = std::find_if(m.links.begin(), m.links.end(), [&](const Link& l) { return l.name == name; });
+    if (it == m.links.end()) {
+      std::vector<std::string> known;
+      for (const auto& l : m.links) known.push_back(l.name);
+      throw InputError(Location{"--links", 0, 0},
+                       fmt::format("no link '{}'; the model's links: {}", name, fmt::join(known, ", ")));
+    }
+    const auto l = static_cast<std::size_t>(it - m.links.begin());
+    if (std::find(chosen.begin(), chosen.end(), l) == chosen.end()) chosen.push_back(l);
+  }
+  if (links.empty()) chosen = all_links(m);
+  // Per unit (N·m, N), in descending order of the peak magnitude; a link whose peak is below
+  // 1/kPanelRatio of its panel's largest starts a new panel, so each panel's curves are readable.
+  constexpr double kPanelRatio = 8.0;
+  auto peak_of = [&](std::size_t l) {
+    return l < r.links.size() ? std::max(std::abs(r.links[l].max), std::abs(r.links[l].min)) : 0.0;
+  };
+  std::vector<std::vector<std::size_t>> groups;
+  for (const char* unit : {"N*m", "N"}) {
+    std::vector<std::size_t> of_unit;
+    for (const std::size_t l : chosen)
+      if (std::string(link_load_unit(m, m.links[l])) == unit) of_unit.push_back(l);
+    std::stable_sort(of_unit.begin(), of_unit.end(), [&](std::size_t a, std::size_t b) { return peak_of(a) > peak_of(b); });
+    double top = 0.0;
+    for (const std::size_t l : of_unit) {
+      if (groups.empty() || std::string(link_load_unit(m, m.links[groups.back().front()])) != unit ||
+          peak_of(l) * kPanelRatio < top) {
+        groups.emplace_back();
+        top = peak_of(l);
+      }
+      groups.back().push_back(l);
+    }
+  }
+  // Inside a panel, the links in the file's order (their colours follow it).
+  for (auto& g : groups) std::sort(g.begin(), g.end());
+  return groups;
+}
+
+std::vector<plot::Figure> link_loads_figures(const Model& m, const SimulationResult& r,
+                                             const std::vector<std::string>& links) {
+  const auto groups = link_load_groups(m, r, links);
+  std::vector<plot::Figure> figs;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::string> names;
+    for (const std::size_t l : groups[g]) names.push_back(m.links[l].name);
+    const bool one = groups.size() == 1 && links.empty();
+    figs.push_back(link_loads_panel(m, r, groups[g], g == 0 ? "link_loads" : fmt::format("link_loads_{}", g + 1),
+                                    one                 ? std::string("link loads")
+                                    : groups.size() == 1 ? fmt::format("link loads ({})", fmt::join(names, ", "))
+                                                         : fmt::format("link loads ({}; panel {} of {})",
+                                                                       fmt::join(names, ", "), g + 1, groups.size())));
+  }
+  return figs;
 }
 
 plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r) { return body_speeds_figure(m, r, {}); }
@@ -208,7 +282,7 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
   plot::Figure f;
   f.x = plot::make_axis("time t", "s");
   // The cyclogram compares with the adhesion limit, not the quasi-static load.
-  add_link_loads(m, r, false, f);
+  add_link_loads(m, r, false, f, all_links(m));
   f.id = "load_cyclogram";
   f.zero_line = true;
   f.legend = plot::Figure::Legend::below;
@@ -295,7 +369,8 @@ std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationRes
   const auto friction = std::find_if(m.contacts.begin(), m.contacts.end(), [](const FrictionContact& c) { return !c.joint; });
   const bool hybrid = r.hybrid.active && friction != m.contacts.end();
   if (hybrid && !m.links.empty()) figs.push_back(load_cyclogram_figure(m, r));
-  if (!m.links.empty()) figs.push_back(link_loads_figure(m, r));
+  if (!m.links.empty())
+    for (auto& f : link_loads_figures(m, r, opt.links)) figs.push_back(std::move(f));
   figs.push_back(body_speeds_figure(m, r, opt));
   if (hybrid) {
     const BodyKind first = m.bodies[static_cast<std::size_t>(friction->a)].kind;
@@ -313,10 +388,20 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
   plot::Figure f;
   f.id = "mode_shapes";
   const Eigen::Index shown = std::min<Eigen::Index>(modes.shapes.cols(), std::max(1, max_modes));
+  // Angles (rad) beside displacements (m) have no common scale: a 32 t load's bounce would look
+  // still beside a motor's rotation. Then each coordinate is weighted by √I (√(kg·m²) or √kg), so
+  // √I_i φ_i is dimensionless and its square the body's share of the mode's kinetic energy
+  // (Σ I_i φ_i² = 1 for the mass-normalized shape), then scaled to max 1 as the rest.
+  const bool mixed = std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return b.kind == BodyKind::rotational; }) &&
+                     std::any_of(m.bodies.begin(), m.bodies.end(), [](const Body& b) { return b.kind == BodyKind::translational; });
+  Eigen::MatrixXd shapes = modes.shapes;
+  if (mixed)
+    for (int i = 0; i < m.dof() && i < shapes.rows(); ++i) shapes.row(i) *= std::sqrt(m.bodies[static_cast<std::size_t>(i)].inertia);
+  const std::string how = mixed ? "rad and m: each coordinate × √I (kinetic-energy share), scaled to max 1"
+                                : "each scaled to max |φ| = 1";
   f.title = titled(m, shown < modes.shapes.cols()
-                         ? fmt::format("the {} lowest of {} elastic mode shapes (each scaled to max |φ| = 1)", shown,
-                                       modes.shapes.cols())
-                         : std::string("elastic mode shapes (each scaled to max |φ| = 1)"));
+                         ? fmt::format("the {} lowest of {} elastic mode shapes ({})", shown, modes.shapes.cols(), how)
+                         : fmt::format("elastic mode shapes ({})", how));
   f.x = plot::make_axis("body", "");
   // Every body named while the names fit; a long chain names every k-th body.
   std::size_t name_chars = 0;
@@ -325,15 +410,15 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
   for (int i = 0; i < m.dof(); i += every) f.x.ticks.push_back({i + 1.0, m.bodies[static_cast<std::size_t>(i)].name});
   if (every > 1 && (m.dof() - 1) % every >= 2)  // the last body too, unless its neighbour is named
     f.x.ticks.push_back({static_cast<double>(m.dof()), m.bodies.back().name});
-  f.y = plot::make_axis("relative amplitude φ / max|φ|", "");
+  f.y = mixed ? plot::make_axis("relative amplitude √I·φ / max|√I·φ|", "") : plot::make_axis("relative amplitude φ / max|φ|", "");
   for (Eigen::Index k = 0; k < shown; ++k) {
-    const double scale = modes.shapes.col(k).cwiseAbs().maxCoeff();
+    const double scale = shapes.col(k).cwiseAbs().maxCoeff();
     plot::Series s = plot::make_series(fmt::format("mode {}: {:.4g} Hz ({:.4g} rad/s)", k + 1,
                                                    modes.omega(k) / (2 * kPi), modes.omega(k)),
                                        {}, {}, plot::Style::linepoints);
     for (int i = 0; i < m.dof(); ++i) {
       s.x.push_back(i + 1.0);
-      s.y.push_back(scale > 0 ? modes.shapes(i, k) / scale : 0.0);
+      s.y.push_back(scale > 0 ? shapes(i, k) / scale : 0.0);
     }
     if (m.dof() > 12) s.style = plot::Style::line;  // markers would crowd a long chain
     f.series.push_back(std::move(s));

@@ -26,7 +26,7 @@ class TempFile {
     // A file of that name is a leftover of an earlier process with this pid: never write through it
     // (O_EXCL | O_NOFOLLOW: not through a link planted there either).
     (void)::unlink(tmp_.c_str());
-    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);  // 0666 & ~umask, as any new file
     if (fd_ < 0) fail(errno);
   }
   ~TempFile() {

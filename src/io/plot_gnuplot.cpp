@@ -35,6 +35,39 @@ std::size_t utf8_length(const std::string& s) {
   return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
 }
 
+/// A title as a gnuplot string, broken into lines of at most kTitleWidth characters: a longer one
+/// is cut off at both ends of the canvas (about 90 characters of 12 pt fit 800 px). Breaks after
+/// the last "; ", ": " or ", " that fits (else the last space); a double-quoted string, so "\n" breaks.
+std::string title_string(const std::string& title) {
+  constexpr std::size_t kTitleWidth = 84;
+  std::vector<std::string> lines;
+  std::string rest = title;
+  while (utf8_length(rest) > kTitleWidth) {
+    std::size_t limit = 0;  // the byte after the kTitleWidth-th character
+    for (std::size_t chars = 0; limit < rest.size() && chars <= kTitleWidth; ++limit)
+      if ((static_cast<unsigned char>(rest[limit]) & 0xC0) != 0x80) ++chars;
+    std::size_t cut = std::string::npos;
+    for (const char* sep : {"; ", ": ", ", "}) {
+      const std::size_t p = rest.rfind(sep, limit - 2);
+      if (p != std::string::npos && p >= limit / 2 && (cut == std::string::npos || p + 1 > cut)) cut = p + 1;
+    }
+    if (cut == std::string::npos) cut = rest.rfind(' ', limit - 1);
+    if (cut == std::string::npos || cut == 0) break;
+    lines.push_back(rest.substr(0, cut));
+    rest = rest.substr(cut + 1);
+  }
+  lines.push_back(rest);
+  std::string q = "\"";
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (k) q += "\\n";
+    for (const char ch : lines[k]) {
+      if (ch == '"' || ch == '\\') q += '\\';
+      q += ch;
+    }
+  }
+  return q + "\"";
+}
+
 bool finite_point(const Series& s, std::size_t k) { return std::isfinite(s.x[k]) && std::isfinite(s.y[k]); }
 
 bool has_points(const Series& s) {
@@ -163,7 +196,7 @@ std::string gnuplot_script(const Figure& fig, Format format, const std::string& 
   else
     g += "set terminal pngcairo size 1600,1000 noenhanced font 'DejaVu Sans,24' background '#ffffff' linewidth 2\n";
   g += "set output " + quote(output_path) + "\n";
-  if (!fig.title.empty()) g += "set title " + quote(fig.title) + "\n";
+  if (!fig.title.empty()) g += "set title " + title_string(fig.title) + "\n";
   g += "set border 3 lw 1\nset tics nomirror out\n";
   g += "set grid xtics ytics lc rgb '#d0d0d0' lw 1 dt 1\n";
   g += "set xlabel " + quote(fig.x.label()) + "\n";

@@ -207,11 +207,15 @@ constexpr const char* kPageScript = R"js(
       axes[0].splits = function () { return spec.x.ticks.map(function (t) { return t[0]; }); };
       axes[0].values = function (u, splits) { return splits.map(function (v) { return tickLabels[v] || ""; }); };
     }
+    // A log axis (distr 3): whole decades around the data, as gnuplot draws it.
+    function logRange(u, mn, mx) { return uPlot.rangeLog(mn, mx, 10, true); }
     var scales = { x: { time: false }, y: { range: padRange(1) } };
+    if (spec.x.log) { scales.x.distr = 3; scales.x.log = 10; scales.x.range = function (u, mn, mx) { return [mn, mx]; }; }
+    if (spec.y.log) scales.y = { distr: 3, log: 10, range: logRange };
     if (spec.x.min != null && spec.x.max != null) scales.x.range = function () { return [spec.x.min, spec.x.max]; };
     if (spec.y2) {
       axes.push({ label: spec.y2.label, labelSize: 28, size: 70, scale: "y2", side: 1, grid: { show: false } });
-      scales.y2 = { range: padRange(2) };
+      scales.y2 = spec.y2.log ? { distr: 3, log: 10, range: logRange } : { range: padRange(2) };
     }
     var u = new uPlot({
       width: width, height: 400, series: series, axes: axes, scales: scales,
@@ -311,6 +315,7 @@ std::string figure_json(const plot::Figure& fig, const std::string& dom_id) {
     nlohmann::ordered_json ticks = nlohmann::ordered_json::array();
     for (const auto& [v, l] : a.ticks) ticks.push_back({v, l});
     ax["ticks"] = ticks;
+    ax["log"] = a.log;  // a logarithmic scale (a Bode plot's frequency and |H|)
     return ax;
   };
   j["x"] = axis(fig.x);

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "machdyn/model/describe.hpp"
 #include "machdyn/model/element.hpp"
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/report.hpp"
@@ -36,14 +37,6 @@ std::string body_name(const Model& m, int b) {
 /// A link's ends as the file names them (compile may have moved them: model.hpp, Link::given_a).
 std::string ends(const Model& m, const Link& l) {
   return shown_body(m, l.a, l.given_a) + " – " + shown_body(m, l.b, l.given_b);
-}
-
-const char* link_kind(LinkKind k) {
-  switch (k) {
-    case LinkKind::damper: return "damper";
-    case LinkKind::spring_damper: return "spring-damper";
-    default: return "spring";
-  }
 }
 
 /// The coordinate a link's load and stiffness are measured in: body b, or a for a link to the ground.
@@ -228,14 +221,15 @@ std::vector<Table> model_tables(const Model& m) {
     bodies.rows.push_back({b.name, rot ? "rotational" : "translational", num(b.inertia), rot ? "kg·m²" : "kg",
                            num(b.q0) + " " + position_unit(b.kind), num(b.v0) + " " + velocity_unit(b.kind)});
   }
-  Table links = table("Links", {"link", "type", "between", "ratio i", "stiffness c", "damping d"});
+  Table links = table("Links", {"link", "type", "between", "ratio i", "stiffness c", "damping d", "as written"});
   for (const auto& l : m.links) {
     const auto kind = link_kind_body(m, l);
     const std::string load = pretty_unit(load_unit(kind)), pos = position_unit(kind);
     const std::string ru = ratio_unit(m, l);
-    links.rows.push_back({l.name, link_kind(l.kind), ends(m, l), num(shown_ratio(m, l)) + (ru.empty() ? "" : " " + ru),
+    const ElementText text = describe_link(m, l);  // the element's own words (model/describe.hpp)
+    links.rows.push_back({l.name, text.type, ends(m, l), num(shown_ratio(m, l)) + (ru.empty() ? "" : " " + ru),
                           l.kind == LinkKind::damper ? "–" : num(l.c) + " " + load + "/" + pos,
-                          l.kind == LinkKind::spring ? "–" : num(l.d) + " " + load + "·s/" + pos});
+                          l.kind == LinkKind::spring ? "–" : num(l.d) + " " + load + "·s/" + pos, pretty_unit(text.definition)});
   }
   const bool gaps = std::any_of(m.links.begin(), m.links.end(), [](const Link& l) { return l.has_gap; });
   if (gaps) {
@@ -250,27 +244,22 @@ std::vector<Table> model_tables(const Model& m) {
   }
   links.note = "Deflection δ = q_a / i − q_b, load F = c δ + d δ̇ (positive: tension), in the coordinate of the second body.";
   if (gaps) links.note += " Gap: the link carries load only on a flank; start: the position inside the gap at δ = 0.";
-  Table contacts = table("Friction contacts and brakes", {"contact", "type", "between", "static limit F_s", "kinetic F_k", "details"});
+  Table contacts = table("Friction contacts, brakes, clutches, freewheels and end stops",
+                         {"element", "type", "between", "as written"});
   for (const auto& c : m.contacts) {
     if (c.joint) continue;  // a gear joint is no friction element
-    const std::string u = pretty_unit(load_unit(m.bodies[static_cast<std::size_t>(c.a)].kind));
-    std::string kinetic = c.kinetic.size() == 1 ? num(c.kinetic[0]) + " " + u
-                                                 : fmt::format("table of {} speeds, {} … {} {}", c.kinetic.size(),
-                                                               num(c.kinetic.front()), num(c.kinetic.back()), u);
-    std::string details;
-    if (c.applied)
-      details = c.by_normal_force ? "normal force " + c.application.describe("N") : "applied " + c.application.describe("");
-    if (c.stribeck_speed > 0.0)
-      details += fmt::format("{}Stribeck: w_s = {}, δ = {}", details.empty() ? "" : "; ", num(c.stribeck_speed),
-                             num(c.stribeck_exponent));
-    if (!c.surface_velocities.empty() && c.b == kGround)
-      details = c.surface_times.empty() ? fmt::format("ground surface moves at {}", num(c.surface_velocities[0]))
-                                        : "ground surface velocity: a table in t";
-    contacts.rows.push_back({c.name, c.brake ? "brake" : c.clutch ? "clutch" : "friction", shown_body(m, c.a, c.given_a) + " – " + shown_body(m, c.b, c.given_b),
-                             num(c.static_limit) + " " + u, kinetic, details.empty() ? "–" : details});
+    const ElementText text = describe_contact(m, c);  // the element's own words (model/describe.hpp)
+    contacts.rows.push_back({c.name, text.type, shown_body(m, c.a, c.given_a) + " – " + shown_body(m, c.b, c.given_b),
+                             pretty_unit(text.definition)});
   }
+  contacts.text_values = true;
   contacts.note = "Stuck while the transmitted force stays within F_s; sliding with F_k against the sliding velocity "
                   "u = v_a − v_b (docs/hybrid.md).";
+  Table gears = table("Gearboxes", {"gear", "type", "as written"});
+  for (const ElementText& g : describe_gears(m)) gears.rows.push_back({g.name, g.type, pretty_unit(g.definition)});
+  gears.text_values = true;
+  gears.note = "An ideal gear ties its bodies rigidly (compile merges them into one coordinate); a lossy gear keeps "
+               "both and loses power by its efficiencies (docs/model-files.md, lossy gears).";
   Table loads = table("Loads", {"load", "type", "body", "definition"});
   for (const auto& L : m.loads)
     loads.rows.push_back({L.name, L.kind == LoadKind::signal ? Signal::kind_name(L.signal.kind()) : load_kind(L.kind),
@@ -292,7 +281,8 @@ std::vector<Table> model_tables(const Model& m) {
                   "the released part's weight and kinetic energy leave with it (docs/model-files.md#releases).";
   std::vector<Table> t{std::move(bodies)};
   if (!m.links.empty()) t.push_back(std::move(links));
-  if (!m.contacts.empty()) t.push_back(std::move(contacts));
+  if (!contacts.rows.empty()) t.push_back(std::move(contacts));
+  if (!gears.rows.empty()) t.push_back(std::move(gears));
   if (!m.loads.empty()) t.push_back(std::move(loads));
   if (!m.drives.empty()) t.push_back(std::move(drives));
   if (!m.releases.empty()) t.push_back(std::move(releases));
@@ -360,7 +350,9 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
     else if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
     Section plots;
     plots.title = c.name.empty() ? "Plots" : "Plots — case " + c.name;
-    plots.figures = simulation_figures(m, r);
+    FigureOptions figure_options;
+    figure_options.links = c.links;
+    plots.figures = simulation_figures(m, r, figure_options);
     if (c.modes && c.modes->shapes.cols() > 0) plots.figures.push_back(mode_shapes_figure(m, *c.modes));
     if (c.frf) {
       plots.figures.push_back(bode_magnitude_figure(m, *c.frf, c.frf_topology));

@@ -94,7 +94,9 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
                         {"period_s", number_or_null(st.period_s)},
                         {"link_max_over_static_limit", ratio},
                         {"unit", load_unit(m.bodies[static_cast<size_t>(c.a)].kind)}};
-    if (c.brake || c.applied) contacts[c.name]["applied_at_s"] = c.t_apply;
+    // null for a brake that stays released over the run (t_apply = t_end there, compile_hybrid.cpp).
+    if (c.brake || c.applied)
+      contacts[c.name]["applied_at_s"] = c.released(c.t_apply) ? nlohmann::json() : nlohmann::json(c.t_apply);
   }
   j["contacts"] = contacts;
   const EnergyBalance& E = h.energy;

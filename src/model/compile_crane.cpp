@@ -1,4 +1,5 @@
 #include "model/compile_crane.hpp"
+#include "machdyn/model/describe.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -248,6 +249,35 @@ void compile_crane(const SpecNode* crane, Model& m, Diagnostics& diag) {
   }
   c.buffers = link_list(f, "buffers", m, true);
   f.finish();
+}
+
+
+// A buffer as the file wrote it: its side, position and characteristic (Link::Characteristic).
+std::string describe_buffer(const Model& m, const Link& l) {
+  const bool lower = l.a == kGround;  // [ground, body]: δ = −q, δ₊ = −x_b
+  const int body = lower ? l.b : l.a;
+  const BodyKind k = m.bodies[static_cast<size_t>(body)].kind;
+  const std::string qu = position_unit(k), lu = load_unit(k);
+  std::string t = fmt::format("{} buffer of '{}' at {} {}: ", lower ? "lower" : "upper", m.bodies[static_cast<size_t>(body)].name,
+                              describe_number(lower ? -l.gap : l.gap), qu);
+  switch (l.characteristic) {
+    case Link::Characteristic::linear: t += fmt::format("linear, c = {} {}/{}", describe_number(l.c), lu, qu); break;
+    case Link::Characteristic::progressive:
+      t += fmt::format("progressive F = c·sⁿ, c = {} {}/{}ⁿ, n = {}", describe_number(l.coefficient), lu, qu,
+                       describe_number(l.exponent));
+      break;
+    case Link::Characteristic::hydraulic:
+      t += fmt::format("hydraulic F = c s + d v + k v|v|, c = {} {}/{}, k = {} {}·s²/{}²", describe_number(l.c), lu, qu,
+                       describe_number(l.hydraulic_k), lu, qu);
+      break;
+    case Link::Characteristic::table:
+      t += fmt::format("force–stroke table of {} points up to s = {} {}, F = {} {}", l.table_stroke.size(),
+                       describe_number(l.table_stroke.empty() ? 0.0 : l.table_stroke.back()), qu,
+                       describe_number(l.table_force.empty() ? 0.0 : l.table_force.back()), lu);
+      break;
+  }
+  if (l.d > 0.0) t += fmt::format(", d = {} {}·s/{}", describe_number(l.d), lu, qu);
+  return t + "; compression only";
 }
 
 }  // namespace machdyn::detail

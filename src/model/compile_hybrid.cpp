@@ -1,4 +1,5 @@
 #include "compile_hybrid.hpp"
+#include "machdyn/model/describe.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -523,6 +524,74 @@ void compile_stops(const SpecNode* stops, Model& m, Diagnostics& diag) {
       f.error_at(key, fmt::format("'{}' starts on the stop moving into it (velocity {})", b.name, b.v0));
     m.contacts.push_back(c);
   }
+}
+
+
+// A gap as the file wrote it (compile_link_gap): backlash with its start, or a single flank.
+std::string describe_gap(const Model& m, const Link& l) {
+  const int body = l.b != kGround ? l.b : l.a;
+  const std::string qu = position_unit(body == kGround ? BodyKind::rotational : m.bodies[static_cast<size_t>(body)].kind);
+  if (l.tension_only) return fmt::format("one flank at δ = {} {} (no load below it)", describe_number(l.gap), qu);
+  return fmt::format("backlash Δ = {} {}, starting {} {} from the negative flank", describe_number(l.gap), qu,
+                     describe_number(l.gap_start), qu);
+}
+
+namespace {
+// The thermal model of a friction element (`thermal:`), temperatures in °C as most files give them.
+std::string thermal_text(const ThermalMass& th) {
+  constexpr double kKelvin = 273.15;
+  return fmt::format("thermal: C = {} J/K, G = {} W/K{}, ambient {} °C, T(0) = {} °C", describe_number(th.heat_capacity),
+                     describe_number(th.conductance), th.conductance == 0.0 ? " (adiabatic)" : "",
+                     describe_number(th.ambient - kKelvin), describe_number(th.initial - kKelvin));
+}
+}  // namespace
+
+// A friction element as the file wrote it: an end stop, a freewheel, a brake, a clutch or a contact.
+ElementText describe_friction_element(const Model& m, const FrictionContact& c) {
+  const BodyKind k = m.bodies[static_cast<size_t>(c.a)].kind;
+  const std::string lu = load_unit(k), qu = position_unit(k), vu = velocity_unit(k);
+  const std::string a = shown_body(m, c.a, c.given_a), b = shown_body(m, c.b, c.given_b);
+  ElementText e{c.name, "", ""};
+  auto levels = [&] {
+    std::string kinetic = c.kinetic.size() == 1
+                              ? describe_number(c.kinetic[0]) + " " + lu
+                              : fmt::format("a table over {} sliding speeds, {} … {} {}", c.kinetic.size(),
+                                            describe_number(c.kinetic.front()), describe_number(c.kinetic.back()), lu);
+    std::string t = fmt::format("static limit F_s = {} {}, kinetic F_k = {}", describe_number(c.static_limit), lu, kinetic);
+    if (c.stribeck_speed > 0.0)
+      t += fmt::format(" (Stribeck: w_s = {} {}, δ = {})", describe_number(c.stribeck_speed), vu,
+                       describe_number(c.stribeck_exponent));
+    return t;
+  };
+  if (c.joint) {
+    e.type = "gear joint";
+    e.definition = "a rigid velocity constraint (always locked)";
+  } else if (c.stop) {
+    e.type = "end stop";
+    e.definition = fmt::format("{} stop of '{}' at {} {}, restitution e = {}", c.lock < 0 ? "lower" : "upper", a,
+                               describe_number(c.stop_position), qu, describe_number(c.restitution));
+  } else if (c.lock != 0) {
+    e.type = "freewheel";
+    e.definition = c.b == kGround ? fmt::format("backstop: '{}' moves {} only", a, c.lock < 0 ? "forward" : "backward")
+                                  : fmt::format("'{}' drives '{}' forward, '{}' may overrun", a, b, b);
+    if (!c.kinetic.empty() && c.kinetic[0] > 0.0)
+      e.definition += fmt::format("; drag {} {} while free", describe_number(c.kinetic[0]), lu);
+  } else {
+    e.type = c.brake ? "brake" : c.clutch ? "clutch" : "friction";
+    e.definition = (c.brake ? fmt::format("holding F_s = {} {}, braking F_k = {}", describe_number(c.static_limit), lu,
+                                          c.kinetic.size() == 1 ? describe_number(c.kinetic[0]) + " " + lu
+                                                                : std::string("a table over the sliding speed"))
+                            : levels());
+    if (c.applied)
+      e.definition += c.by_normal_force ? "; normal force f_N(t): " + c.application.describe("N") + " (levels at its largest)"
+                                        : "; application (0 released … 1 full): " + c.application.describe("");
+    if (!c.surface_velocities.empty() && c.b == kGround)
+      e.definition += c.surface_times.empty()
+                          ? fmt::format("; ground surface moves at {} {}", describe_number(c.surface_velocities[0]), vu)
+                          : std::string("; ground surface velocity: a table in t");
+  }
+  if (c.thermal) e.definition += "; " + thermal_text(*c.thermal);
+  return e;
 }
 
 }  // namespace machdyn::detail

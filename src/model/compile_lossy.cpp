@@ -1,4 +1,5 @@
 // Lossy gears: read with the links, put on the merged bodies after the ideal gears (model/compile_lossy.hpp).
+#include "machdyn/model/describe.hpp"
 //
 // An end slaved by ideal gears moves as q_A = ρ_A q_a (RigidSlave), so the file's q_A = i q_B becomes
 // q_a = (i ρ_B/ρ_A) q_b on the bodies that remain; the loss data stay in A's coordinate and the law
@@ -291,6 +292,31 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
           break;
         }
   }
+}
+
+
+// A lossy gear as the file wrote it: ratio, efficiencies both ways, bearing friction, self-locking.
+ElementText describe_lossy_gear(const Model& m, const LossyGear& g) {
+  const BodyKind k = m.bodies[static_cast<size_t>(g.a)].kind;
+  const std::string lu = load_unit(k);
+  const double i = g.ratio * g.rho_a / g.rho_b;  // the file's ratio (model.hpp LossyGear::ratio)
+  const std::string A = m.bodies[static_cast<size_t>(g.a)].name, B = m.bodies[static_cast<size_t>(g.b)].name;
+  std::string t = fmt::format("'{}' – '{}', ratio i = {} (v_A = i v_B)", A, B, describe_number(i));
+  if (g.speeds.empty()) {
+    t += fmt::format(", efficiency η = {} while A drives, {} while B drives", describe_number(g.eta_forward.at(0)),
+                     describe_number(g.eta_reverse.at(0)));
+    if (g.eta_reverse.at(0) == 0.0) t += " (self-locking)";
+    if (g.bearing_forward.at(0) > 0.0 || g.bearing_reverse.at(0) > 0.0)
+      t += fmt::format(", bearing friction {} / {} {} (in A's coordinate)", describe_number(g.bearing_forward.at(0)),
+                       describe_number(g.bearing_reverse.at(0)), lu);
+  } else {
+    t += fmt::format(", losses tabulated over |v_A| at {} speeds up to {} {}: η {} … {} while A drives, {} … {} while B "
+                     "drives",
+                     g.speeds.size(), describe_number(g.speeds.back()), velocity_unit(k),
+                     describe_number(g.eta_forward.front()), describe_number(g.eta_forward.back()),
+                     describe_number(g.eta_reverse.front()), describe_number(g.eta_reverse.back()));
+  }
+  return {g.name, "lossy gear", t};
 }
 
 }  // namespace machdyn::detail

@@ -1,4 +1,5 @@
 // Ideal gears: rigid connections resolved at compile time (model/compile_rigid.hpp).
+#include "machdyn/model/describe.hpp"
 //
 // A group G of bodies tied by ideal gears moves as one: q_s = ρ_s q_M for every s in G, with the
 // master M (ρ_M = 1) the group's first body in the file. ρ follows each gear q_a = i q_b along a
@@ -382,6 +383,23 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
   m.bodies = std::move(kept);
   m.index_bodies();
   for (const IdealGear& g : gears) m.ideal_gears.push_back(g.name);
+}
+
+
+// The ideal gears compile merged: the ratio where compile kept it (MergedGear), the group they form.
+std::vector<ElementText> describe_ideal_gears(const Model& m) {
+  std::vector<ElementText> out;
+  for (const std::string& name : m.ideal_gears) {
+    const auto g = std::find_if(m.merged_gears.begin(), m.merged_gears.end(), [&](const MergedGear& x) { return x.name == name; });
+    ElementText e{name, "ideal gear", ""};
+    if (g != m.merged_gears.end())
+      e.definition = fmt::format("ratio i = {} (q_A = i q_B), no loss; merged into the rigid group of '{}'",
+                                 describe_number(g->ratio), m.bodies[static_cast<size_t>(g->body)].name);
+    else
+      e.definition = "no loss; its bodies move as one rigid group (the ratio is in the model file)";
+    out.push_back(std::move(e));
+  }
+  return out;
 }
 
 }  // namespace machdyn::detail

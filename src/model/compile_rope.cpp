@@ -1,4 +1,5 @@
 #include "compile_rope.hpp"
+#include "machdyn/model/describe.hpp"
 
 #include <optional>
 
@@ -47,6 +48,24 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
   l.drum_q0 = l.a >= 0 && static_cast<size_t>(l.a) < bodies.size() ? bodies[static_cast<size_t>(l.a)].q0 : 0.0;
   l.c = l.falls * l.EA / l.length;
   return true;
+}
+
+
+// A rope as the file wrote it: falls, EA, free length, the drum's 1/R, and the hook stiffness they give.
+std::string describe_rope(const Model& m, const Link& l) {
+  const double n = l.falls, per_m = shown_ratio(m, l) / n;  // the file's drum ratio 1/R, rad/m
+  std::string t = fmt::format("{} fall{}", l.falls, l.falls == 1 ? "" : "s");
+  if (l.EA > 0.0)
+    t += fmt::format(", EA = {} N, free length L = {} m per fall at the start, drum 1/R = {} rad/m (R = {} m); "
+                     "hook stiffness n·EA/L = {} N/m at the start (changes as the drum winds)",
+                     describe_number(l.EA), describe_number(l.length), describe_number(per_m),
+                     describe_number(1.0 / per_m), describe_number(l.c));
+  else
+    t += fmt::format(", drum 1/R = {} rad/m; stiffness at the hook c = {} N/m (constant)", describe_number(per_m),
+                     describe_number(l.c));
+  if (l.d > 0.0) t += fmt::format(", damping d = {} N·s/m", describe_number(l.d));
+  if (l.gap > 0.0) t += fmt::format(", slack {} m", describe_number(l.gap));
+  return t + "; tension only";
 }
 
 }  // namespace machdyn::detail

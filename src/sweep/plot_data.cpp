@@ -245,6 +245,12 @@ std::string field_unit(const Model& m, const std::string& target) {
     if (field == "stiffness") return r ? "N·m/rad" : "N/m";
     if (field == "damping") return r ? "N·m·s/rad" : "N·s/m";
     if (field == "gap" || field == "gap_start") return r ? "rad" : "m";
+    if (field == "EA") return "N";  // a rope's axial stiffness
+    if (field == "length" || field == "slack" || field == "drum_radius" || field == "radius") return "m";
+    if (field == "elastic_modulus") return "Pa";
+    if (l.buffer && (field == "min" || field == "max" || field == "stroke")) return r ? "rad" : "m";
+    if (l.buffer && field == "force") return r ? "N·m" : "N";
+    if (field == "area") return "m²";
     return "";
   }
   for (const auto& l : m.loads) {
@@ -257,9 +263,25 @@ std::string field_unit(const Model& m, const std::string& target) {
       return velocity_unit(k);
     return "";
   }
+  if (elem == "crane") {  // the `crane:` section's speeds and release mass
+    if (field == "hoist_speed" || field == "creep_speed") return "m/s";
+    if (field == "release_mass" || field == "mass") return "kg";
+    return "";
+  }
+  for (const auto& d : m.drives) {  // a drive's times, speeds and torques by the field's name
+    if (d.name != elem) continue;
+    const BodyKind k = m.bodies[static_cast<size_t>(d.body)].kind;
+    if (field.find("time") != std::string::npos || field == "t0" || field == "t1") return "s";
+    if (field.find("speed") != std::string::npos) return velocity_unit(k);
+    if (field.find("torque") != std::string::npos || field.find("force") != std::string::npos ||
+        field.find("limit") != std::string::npos)
+      return plot::pretty_unit(load_unit(k));
+    return "";
+  }
   for (const auto& c : m.contacts) {
     if (c.name != elem) continue;
     const BodyKind k = m.bodies[static_cast<size_t>(c.a)].kind;
+    if (c.stop && (field == "min" || field == "max")) return position_unit(k);
     if (field == "static" || field == "kinetic" || field == "holding" || field == "braking")
       return plot::pretty_unit(load_unit(k));
     if (field == "normal_force") return "N";
@@ -301,6 +323,12 @@ SweepPlotSpec parse_plot_spec(const std::string& text, const SweepPlan& plan, co
         throw InputError(where, fmt::format("'{}' is not varied; the varied fields are: {}", parts[k], fmt::join(targets, ", ")));
       spec.inputs.push_back(parts[k]);
     }
+    // With load cases every x has one point per case: one curve per case, never one line zig-zagging
+    // between the cases.
+    const bool cases = !plan.request.cases.empty();
+    if (cases && spec.inputs.size() == 1 && spec.inputs[0] != "case") spec.inputs.push_back("case");
+    if (cases && spec.inputs.size() == 2 && spec.inputs[0] != "case" && spec.inputs[1] != "case")
+      throw InputError(where, "with load cases, one of X and Y must be 'case' (one curve per case)");
   }
   for (const auto& x : spec.inputs) {
     spec.input_axes.push_back(plot::make_axis(x, field_unit(plan.base_model, x)));

@@ -1,6 +1,6 @@
 // The crane standards' factors (analysis/crane_standard.hpp) against every value printed on the
-// collected-facts page /work/shared/docs/crane-standards.md (the only tables available; the table
-// there is cited in each claim as "crane-standards.md, <section>").
+// table of docs/crane-factors.md, "Where the standard's values come from" (public sources named there;
+// cited in each claim as "crane-standards.md, <section>", the facts page the table was built from).
 #include <stdexcept>
 #include <gtest/gtest.h>
 

@@ -93,6 +93,10 @@ TEST(Cli, HelpVersionAndExamples) {
   EXPECT_EQ(e.exit_code, 0);
   EXPECT_NE(e.out.find("hoist-3mass.yaml"), std::string::npos);
   EXPECT_NE(e.out.find("Three-mass hoist"), std::string::npos);
+  // The sub-folders are listed by their relative path, and no description speaks of the project's issues.
+  EXPECT_NE(e.out.find("crane/main-hoist.yaml"), std::string::npos) << e.out;
+  EXPECT_NE(e.out.find("msl/first.yaml"), std::string::npos) << e.out;
+  EXPECT_EQ(e.out.find("issue"), std::string::npos) << e.out;
 }
 
 // Claim: demo runs the default example and writes its results.

@@ -46,7 +46,7 @@ TEST(Plot, ScriptHasLabelsLegendAndReferenceLine) {
   const std::string g = plot::gnuplot_script(two_series(), plot::Format::svg, "/tmp/d.dat", "/tmp/o.svg");
   EXPECT_NE(g.find("set xlabel 'time t, s'"), std::string::npos) << g;
   EXPECT_NE(g.find("set ylabel 'link torque M, N·m'"), std::string::npos);
-  EXPECT_NE(g.find("set title 'A ''quoted'' title'"), std::string::npos);
+  EXPECT_NE(g.find("set title \"A 'quoted' title\""), std::string::npos) << g;
   EXPECT_NE(g.find("index 0 using 1:2 with lines lc rgb '#0072B2' lw 2 dt 1 title 'c1 (I1–I2)'"), std::string::npos) << g;
   EXPECT_NE(g.find("index 1 using 1:2 with steps"), std::string::npos);
   EXPECT_NE(g.find("first 354 nohead lc rgb '#0072B2'"), std::string::npos);

@@ -39,12 +39,30 @@ TopologyModes analyse_topology(const Model& m, const Topology& topo, double t = 
 /// The modes of each topology a run passed through (run_topologies), with their intervals.
 std::vector<TopologyModes> run_topology_modes(const Model& m, const HybridReport& report, double t_end);
 
-/// The frequency response a report shows: from the first load (a force or torque on its body) to
-/// every link load, 400 log-spaced frequencies from 0.1 × the lowest to 3 × the highest natural
-/// frequency, in the first of `list` that has an elastic mode. Null when there is none (or no
-/// load, or no link). *label gets that topology's label.
+/// What a report's frequency response shows (`machdyn report --frf-input/--frf-output/--frf-band`,
+/// Python `report(frf_input=, frf_outputs=, frf_band_hz=)`); empty fields are chosen:
+///   input:   the drive — the first motor load, else the body of the first drive (`drives:`), else the
+///            first load that is not a body's weight, else the first body;
+///   outputs: every link load (LINK.load; also BODY.position, BODY.speed);
+///   band:    0.1 × the lowest natural frequency up to 2 × the highest resonance that shows in the
+///            outputs (a peak of |H| above 1 % of the output's largest), so a stiff coupling's mode
+///            that the input barely excites does not stretch the band to hundreds of Hz.
+struct FrfChoice {
+  std::string input;
+  std::vector<std::string> outputs;
+  double f_lo_hz = 0.0, f_hi_hz = 0.0;  ///< the band in Hz; 0, 0: chosen
+  std::string option_prefix = "--frf-";  ///< errors are located at PREFIX input/output/band
+};
+
+/// The input FrfChoice chooses when none is named: a load's name or a body's name.
+std::string default_frf_input(const Model& m);
+
+/// The frequency response a report shows (FrfChoice) in the topology of `list` with the most elastic
+/// modes (a hanging load rather than one resting on the floor; on a tie the longest in the run, then
+/// the first), 400 log-spaced frequencies. Null when there is none (or no link and no output named).
+/// *label gets that topology's label. A name that is no load, body or output is an InputError.
 std::unique_ptr<FrequencyResponse> default_frequency_response(const Model& m, const std::vector<TopologyModes>& list,
-                                                              std::string* label);
+                                                              std::string* label, const FrfChoice& choice = {});
 
 /// Elastic frequencies (rad/s) with body `body` at each position in `positions` (rad or m), the
 /// other bodies at their initial positions, in topology `topo`: row p holds the ascending

@@ -23,7 +23,8 @@ namespace machdyn {
 /// (docs/design.md). The peak is the extreme of larger
 /// magnitude (the maximum on a tie), and
 ///   dynamic_factor = peak / static_load,  static_load = the quasi-static load at t_peak,
-/// NaN when |static_load| ≤ 1e-9 |peak| (no quasi-static load to compare with).
+/// NaN when |static_load| ≤ 1e-9 |peak| (no quasi-static load to compare with) and for a buffer (its
+/// reference is the rigid-body peak of φ7). An extreme below 1e-12 of the link's largest magnitude is 0.
 struct LinkSummary {
   double max = 0.0, min = 0.0;      ///< N·m or N
   double t_max = 0.0, t_min = 0.0;  ///< s

@@ -27,7 +27,19 @@ plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r);
 /// Choices of how figures show their quantities.
 struct FigureOptions {
   bool rpm = false;  ///< angular speeds in rpm (n = 60 ω / 2π) instead of rad/s
+  std::vector<std::string> links;  ///< the links whose loads are drawn (`--links`); empty: all
 };
+
+/// The links `links` (all when empty; an unknown name is an InputError at `--links` listing the
+/// links) grouped into panels: per unit (N·m, then N), in descending order of the peak |load|, a
+/// link whose peak is below 1/8 of its panel's largest starts a new panel — a 0.37 kN·m coupling
+/// does not lie flat beside a 40 kN·m drum shaft. Each panel lists its links in the file's order.
+std::vector<std::vector<std::size_t>> link_load_groups(const Model& m, const SimulationResult& r,
+                                                       const std::vector<std::string>& links = {});
+/// One link-loads figure per panel of link_load_groups (ids link_loads, link_loads_2, …; a title
+/// naming the panel's links when there is more than one panel or links were chosen).
+std::vector<plot::Figure> link_loads_figures(const Model& m, const SimulationResult& r,
+                                             const std::vector<std::string>& links = {});
 /// The same with options (rpm).
 plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r, const FigureOptions& opt);
 
@@ -49,12 +61,15 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r);
 /// none is left out.
 plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind kind);
 
-/// The figures `simulate --plot` writes: link loads (when the model has links), body speeds; for a
+/// The figures `simulate --plot` writes: link loads in panels (link_loads_figures; opt.links chooses
+/// the links), body speeds; for a
 /// hybrid model with links and contacts the load cyclogram and the contacts figure in addition.
 std::vector<plot::Figure> simulation_figures(const Model& m, const SimulationResult& r, const FigureOptions& opt = {});
 
 /// Elastic mode shapes: amplitude per body (x: the bodies in model order, named), one curve per
-/// mode, each scaled to max |φ_i| = 1 and labelled with its natural frequency. At most `max_modes`
+/// mode, each scaled to max |φ_i| = 1 and labelled with its natural frequency; a model mixing
+/// rotational (rad) and translational (m) bodies weights each entry by √I_i first (√I_i φ_i is
+/// dimensionless, its square the body's share of the mode's kinetic energy), as the title says. At most `max_modes`
 /// (the lowest) are drawn, so that a long chain's figure stays readable; the title says so.
 plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_modes = 6);
 

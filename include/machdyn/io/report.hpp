@@ -84,6 +84,8 @@ struct Case {
   /// Optional: the crane analysis of a model with a `crane:` section (analysis/crane.hpp), shown as
   /// its own section: the factor table beside EN 13001-2 and each factor's time history.
   const CraneReport* crane = nullptr;
+  /// The links whose loads are drawn (`--links`); empty: every link, in panels by unit and size.
+  std::vector<std::string> links;
 };
 
 /// The natural frequencies (Hz) and damping ratios of each topology, with its time intervals.
