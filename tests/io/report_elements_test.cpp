@@ -21,7 +21,7 @@
 #include "machdyn/model/describe.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // A hoist as a crane engineer writes it: motor, coupling, brake with a thermal model, a lossy
 // gearbox, an ideal gear, a rope of 4 falls with EA and length, the hook on a floor stop.
