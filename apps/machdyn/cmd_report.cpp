@@ -18,6 +18,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "machdyn/io/duty_figures.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/io/output_file.hpp"
@@ -37,6 +38,7 @@ struct ReportArgs {
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: embed series above the size limit
   bool check = false;         ///< --check: the invariant audit (analysis/audit.hpp)
+  std::string duty;           ///< --duty DUTY: a duty section (io/duty_figures.hpp)
   std::string command_line;
 };
 
@@ -94,6 +96,9 @@ int run_report(const ReportArgs& a) {
                                    "simulation.dt_out or pass --large-output",
                                    byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
   }
+  // A duty (--duty): run first, so that a bad duty file stops before the report's own runs.
+  std::optional<DutyResult> duty;
+  if (!a.duty.empty()) duty = run_duty(a.model, a.duty, a.sets);
   for (auto& run : runs) {
     ProgressBar bar(a.quiet);
     SimulateOptions options;
@@ -119,7 +124,9 @@ int run_report(const ReportArgs& a) {
     c.crane = run.crane ? &*run.crane : nullptr;
     cases.push_back(c);
   }
-  const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
+  report::Document doc = report::simulation_report(cases, a.command_line);
+  if (duty) doc.sections.push_back(duty_report_section(*duty));
+  const std::string html = report::to_html(doc);
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
                            static_cast<double>(html.size()) / 1e3,
@@ -142,12 +149,14 @@ void register_report(CLI::App& app, int& exit_code) {
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
   cmd->add_flag("--check", args->check,
                 "Audit every run against the documented laws, as `simulate --check` (exit 3 on a violation)");
+  cmd->add_option("--duty", args->duty, "A duty file: add its section (cycles, k_m and classes, exceedance diagrams; docs/duty.md)");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
       args->command_line = "machdyn report " + std::filesystem::path(args->model).filename().string();
       if (!args->load_case.empty()) args->command_line += " --case " + args->load_case;
       if (args->all_cases) args->command_line += " --all-cases";
+      if (!args->duty.empty()) args->command_line += " --duty " + std::filesystem::path(args->duty).filename().string();
       for (const auto& s : args->sets) args->command_line += " --set " + s;
       return run_report(*args);
     });

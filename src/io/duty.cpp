@@ -1,11 +1,15 @@
 #include "machdyn/io/duty.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <thread>
 #include <cmath>
 #include <limits>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "machdyn/analysis/duty_classes.hpp"
 #include "machdyn/analysis/load_history.hpp"
 #include "machdyn/common/spec.hpp"
 #include "machdyn/common/units.hpp"
@@ -32,6 +36,16 @@ DutySpec read_duty(const std::string& path, const std::vector<std::string>& case
   }
   if (auto m = r.positive("m", dim::none, 3.0)) d.m = *m;
   if (auto n = r.positive("n_ref", dim::none, 2e6)) d.n_ref = *n;
+  if (auto life = r.positive("design_life", dim::time, 0.0, true)) d.design_life_h = *life / 3600.0;
+  if (const SpecNode* rated = r.node("rated")) {
+    if (!rated->is_map()) diag.error(rated->loc, "'rated' is a map LINK: rated load (N or N*m, the link's unit)");
+    else {
+      FieldReader rr(*rated, "'rated'", diag);
+      for (const SpecField& f : rated->fields)
+        if (auto v = rr.positive(f.first, dim::none)) d.rated.emplace_back(f.first, *v), d.rated_locs.push_back(f.second.loc);
+      rr.finish();
+    }
+  }
   if (const SpecNode* links = r.node("links")) {
     if (!links->is_seq()) diag.error(links->loc, "'links' is a list of link names");
     else
@@ -57,6 +71,7 @@ DutySpec read_duty(const std::string& path, const std::vector<std::string>& case
       }
     }
   }
+  const double life_h = d.design_life_h;
   const SpecNode* ops = r.node("operations");
   if (!ops) r.error_at("operations", "a duty needs 'operations:', a map of NAME: {case: CASE, repeat: N}");
   else if (!ops->is_map() || ops->fields.empty())
@@ -76,7 +91,21 @@ DutySpec read_duty(const std::string& path, const std::vector<std::string>& case
           o.error_at("case", fmt::format("unknown load case '{}'; the model has: {}", *c,
                                          cases.empty() ? std::string("none") : fmt::format("{}", fmt::join(cases, ", "))));
       }
-      if (auto n = o.quantity("repeat", dim::none)) {
+      const bool per_hour = f.second.find("per_hour") != nullptr;
+      if (per_hour && f.second.find("repeat") != nullptr)
+        o.error_at("per_hour", "give either 'repeat' (a count) or 'per_hour' (with the duty's design_life), not both");
+      if (per_hour) {
+        if (auto n = o.quantity("per_hour", dim::none)) {
+          if (!(*n >= 0.0) || !std::isfinite(*n))
+            o.error_at("per_hour", fmt::format("the operations per hour are a number >= 0, not {}", *n));
+          else if (!(life_h > 0.0))
+            o.error_at("per_hour", "'per_hour' needs the duty's 'design_life' (hours of operation of the design life)");
+          else if (const double total = std::round(*n * life_h); total > 1e15)
+            o.error_at("per_hour", fmt::format("{} per hour over {} h is more than 1e15 operations", *n, life_h));
+          else
+            op.per_hour = *n, op.repeat = total;
+        }
+      } else if (auto n = o.quantity("repeat", dim::none)) {
         if (!(*n >= 0.0) || *n != std::floor(*n) || *n > 1e15)
           o.error_at("repeat", fmt::format("the repetitions are a whole number >= 0, not {}", *n));
         op.repeat = *n;
@@ -89,56 +118,143 @@ DutySpec read_duty(const std::string& path, const std::vector<std::string>& case
   return d;
 }
 
-DutyResult run_duty(const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets) {
+namespace {
+
+/// What one operation's run leaves: per chosen link its kept turning points (append_turning_point),
+/// its range and its ∫|P|³ dt.
+struct OperationRun {
+  std::vector<std::vector<double>> points;
+  std::vector<double> lo, hi;
+  std::vector<CubicLoadIntegral> cubes;
+};
+
+/// Runs one operation once, keeping what the counts and k_m need of each chosen link's history.
+OperationRun run_operation(const Model& m, const std::vector<int>& links) {
+  OperationRun run;
+  const std::size_t n = links.size();
+  run.points.resize(n), run.cubes.resize(n);
+  run.lo.assign(n, std::numeric_limits<double>::infinity()), run.hi.assign(n, -std::numeric_limits<double>::infinity());
+  std::vector<int> slot(m.links.size(), -1);
+  for (std::size_t k = 0; k < n; ++k) slot[static_cast<std::size_t>(links[k])] = static_cast<int>(k);
+  SimulateOptions opt;
+  opt.record_series = false;
+  simulate(m, opt, [&](int l, double t, double v) {
+    const int k = slot[static_cast<std::size_t>(l)];
+    if (k < 0) return;
+    const auto j = static_cast<std::size_t>(k);
+    append_turning_point(run.points[j], v);
+    run.lo[j] = std::min(run.lo[j], v), run.hi[j] = std::max(run.hi[j], v);
+    run.cubes[j].add(t, v);
+  });
+  return run;
+}
+
+/// fn(i) for i in [0, n) on `jobs` threads (0: all cores), each index once; every exception is kept
+/// and the one of the lowest index rethrown after all have finished, as a serial loop would report.
+template <class Fn>
+void for_each_index(std::size_t n, int jobs, Fn fn) {
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < n;) {
+      try {
+        fn(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t threads = std::min<std::size_t>(n, jobs > 0 ? static_cast<std::size_t>(jobs) : hw);
+  if (threads <= 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t k = 0; k < threads; ++k) pool.emplace_back(work);
+    for (auto& t : pool) t.join();
+  }
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace
+
+DutyResult run_duty(const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets,
+                    int jobs) {
   DutyResult out;
   out.spec = read_duty(duty_path, case_names(read_yaml_file(model_path)));
   const DutySpec& duty = out.spec;
 
-  // Each operation once: its extremes (for the gate), then its link loads as parts.
-  std::vector<std::string> names;
+  // Every operation's model first (bad input stops before anything runs), the links by name (the
+  // first operation's model).
+  std::vector<Model> models;
+  for (const DutyOperation& op : duty.operations) models.push_back(load_model_case(model_path, sets, op.load_case));
+  std::vector<std::string> names, units;
   std::vector<int> links;
-  std::vector<std::vector<RainflowPart>> parts;  // [operation][link]
-  for (const DutyOperation& op : duty.operations) {
-    const Model m = load_model_case(model_path, sets, op.load_case);
-    if (names.empty()) {  // the links to count, by name (the first operation's model)
-      Diagnostics diag;
-      for (size_t k = 0; k < duty.links.size(); ++k) {
-        int found = -1;
-        for (size_t l = 0; l < m.links.size(); ++l)
-          if (m.links[l].name == duty.links[k]) found = static_cast<int>(l);
-        if (found < 0) diag.error(duty.link_locs[k], fmt::format("the model has no link '{}'", duty.links[k]));
-        links.push_back(found);
+  {
+    const Model& m = models.front();
+    Diagnostics diag;
+    for (size_t k = 0; k < duty.links.size(); ++k) {
+      int found = -1;
+      for (size_t l = 0; l < m.links.size(); ++l)
+        if (m.links[l].name == duty.links[k]) found = static_cast<int>(l);
+      if (found < 0) diag.error(duty.link_locs[k], fmt::format("the model has no link '{}'", duty.links[k]));
+      links.push_back(found);
+    }
+    if (links.empty())
+      for (size_t l = 0; l < m.links.size(); ++l) links.push_back(static_cast<int>(l));
+    for (const int l : links)
+      if (l >= 0) {
+        names.push_back(m.links[static_cast<size_t>(l)].name);
+        units.emplace_back(link_load_unit(m, m.links[static_cast<size_t>(l)]));
       }
-      diag.throw_if_any();
-      if (links.empty())
-        for (size_t l = 0; l < m.links.size(); ++l) links.push_back(static_cast<int>(l));
-      for (const int l : links) names.push_back(m.links[static_cast<size_t>(l)].name);
-      if (names.empty()) throw InputError(Location{model_path, 0, 0}, "the model has no links to count");
-    }
-    SimulateOptions opt;
-    opt.record_series = false;
-    const SimulationResult plain = simulate(m, opt);
-    LinkCycleOptions count;
-    count.links = links;
-    for (const int l : links) {
-      const LinkSummary& s = plain.links[static_cast<size_t>(l)];
-      count.gates.push_back(duty.gate * (s.max - s.min));
-    }
-    parts.push_back(link_parts(m, opt, count));
+    for (size_t k = 0; k < duty.rated.size(); ++k)
+      if (std::find(names.begin(), names.end(), duty.rated[k].first) == names.end())
+        diag.error(duty.rated_locs[k], fmt::format("'rated' names '{}', not a counted link; counted: {}", duty.rated[k].first,
+                                                   fmt::join(names, ", ")));
+    diag.throw_if_any();
+    if (names.empty()) throw InputError(Location{model_path, 0, 0}, "the model has no links to count");
   }
 
-  // Merge per link over the duty, then the figures.
+  // Each operation simulated once, on all cores: its link histories kept as turning points; the gate
+  // (a fraction of the operation's range, known only at its end) applied to them afterwards, which
+  // counts what a counter gated during the run counts (append_turning_point is lossless).
+  std::vector<OperationRun> runs(models.size());
+  for_each_index(models.size(), jobs, [&](std::size_t i) { runs[i] = run_operation(models[i], links); });
+
   std::vector<double> repeats;
   for (const DutyOperation& op : duty.operations) repeats.push_back(op.repeat);
+  double running = 0.0;  // Σ n_i T_i, s
+  for (size_t i = 0; i < runs.size(); ++i) {
+    double t = 0.0;
+    for (const auto& c : runs[i].cubes) t = std::max(t, c.duration());
+    out.op_seconds.push_back(t);
+    running += repeats[i] * t;
+  }
+  out.running_hours = running / 3600.0;
+  out.utilization_class = utilization_class(out.running_hours);
+
   for (size_t k = 0; k < links.size(); ++k) {
     std::vector<RainflowPart> of_link;
-    for (const auto& p : parts) of_link.push_back(p[k]);
+    double cube = 0.0, peak = 0.0;
+    for (size_t i = 0; i < runs.size(); ++i) {
+      const OperationRun& r = runs[i];
+      const double range = r.hi[k] >= r.lo[k] ? r.hi[k] - r.lo[k] : 0.0;
+      of_link.push_back(rainflow_part(r.points[k], duty.gate * range));
+      if (repeats[i] > 0.0) cube += repeats[i] * r.cubes[k].integral(), peak = std::max(peak, r.cubes[k].peak());
+    }
     DutyLink l;
-    l.link = names[k];
+    l.link = names[k], l.unit = units[k];
     l.cycles = merge_parts(of_link, repeats, duty.residue);
     l.history = stress_history(l.cycles, duty.m, duty.n_ref);
     if (l.history.total_cycles > 0) l.equivalent_range = equivalent_range(l.cycles, duty.m, l.history.total_cycles);
     if (duty.has_curve) l.damage = miner_damage(l.cycles, duty.curve);
+    l.p_max = peak;
+    for (const auto& [name, value] : duty.rated)
+      if (name == l.link) l.p_max = value, l.rated = true;
+    if (running > 0.0 && l.p_max > 0.0) l.k_m = cube / (l.p_max * l.p_max * l.p_max * running);
+    l.spectrum_class = spectrum_class(l.k_m);
+    l.group = mechanism_group(l.spectrum_class, out.utilization_class);
     out.links.push_back(std::move(l));
   }
   return out;
@@ -149,8 +265,16 @@ nlohmann::json duty_json(const DutyResult& r) {
   nlohmann::json j;
   j["residue"] = duty.residue == RainflowResidue::repeat ? "repeat" : "half";
   j["gate_fraction"] = duty.gate, j["m"] = duty.m, j["n_ref"] = duty.n_ref;
-  for (const DutyOperation& op : duty.operations)
-    j["operations"].push_back({{"name", op.name}, {"case", op.load_case}, {"repeat", op.repeat}});
+  if (duty.design_life_h > 0.0) j["design_life_h"] = duty.design_life_h;
+  for (size_t i = 0; i < duty.operations.size(); ++i) {
+    const DutyOperation& op = duty.operations[i];
+    nlohmann::json o = {{"name", op.name}, {"case", op.load_case}, {"repeat", op.repeat}};
+    if (op.per_hour >= 0.0) o["per_hour"] = op.per_hour;
+    if (i < r.op_seconds.size()) o["seconds"] = r.op_seconds[i];
+    j["operations"].push_back(o);
+  }
+  j["running_hours"] = r.running_hours;
+  j["utilization_class"] = fmt::format("T{}", r.utilization_class);
   for (const DutyLink& l : r.links) {
     nlohmann::json e = {{"link", l.link},
                         {"cycles", l.history.total_cycles},
@@ -158,7 +282,12 @@ nlohmann::json duty_json(const DutyResult& r) {
                         {"equivalent_range", l.equivalent_range},
                         {"k", l.history.k},
                         {"nu", l.history.nu},
-                        {"s", l.history.s}};
+                        {"s", l.history.s},
+                        {"k_m", l.k_m},
+                        {"p_max", l.p_max},
+                        {"p_max_rated", l.rated},
+                        {"spectrum_class", fmt::format("L{}", l.spectrum_class)},
+                        {"mechanism_group", fmt::format("M{}", l.group)}};
     if (duty.has_curve) e["damage"] = l.damage;
     j["links"].push_back(e);
   }
@@ -167,12 +296,16 @@ nlohmann::json duty_json(const DutyResult& r) {
 
 std::string duty_table(const DutyResult& r) {
   const bool curve = r.spec.has_curve;
-  std::string table = fmt::format("{:<16} {:>14} {:>14} {:>14} {:>12} {:>12}\n", "link", "cycles", "largest range",
-                                  "equiv. range", "s", curve ? "damage" : "");
+  std::string table = fmt::format("{:<16} {:>14} {:>14} {:>14} {:>12} {:>8} {:>4} {:>4} {:>12}\n", "link", "cycles",
+                                  "largest range", "equiv. range", "s", "k_m", "L", "M", curve ? "damage" : "");
   for (const DutyLink& l : r.links)
-    table += fmt::format("{:<16} {:>14.6g} {:>14.6g} {:>14.6g} {:>12.4g} {:>12}\n", l.link, l.history.total_cycles,
-                         l.history.largest, l.equivalent_range, l.history.s,
+    table += fmt::format("{:<16} {:>14.6g} {:>14.6g} {:>14.6g} {:>12.4g} {:>8.4f} {:>4} {:>4} {:>12}\n", l.link,
+                         l.history.total_cycles, l.history.largest, l.equivalent_range, l.history.s, l.k_m,
+                         fmt::format("L{}", l.spectrum_class), fmt::format("M{}", l.group),
                          curve ? fmt::format("{:.4g}", l.damage) : std::string());
+  table += fmt::format("running time {:.6g} h (T{}){}; k_m over it, P_max the {}\n", r.running_hours, r.utilization_class,
+                       r.spec.design_life_h > 0.0 ? fmt::format(" of a design life of {:.6g} h", r.spec.design_life_h) : "",
+                       r.spec.rated.empty() ? "largest |load| of the duty" : "rated load where given, else the largest |load|");
   return table;
 }
 

@@ -121,6 +121,11 @@ TEST(DutyCli, BadDutyFilesAreLocatedAndWriteNothing) {
       {"unknown-field", "operations:\n  lift: {case: fast, repeat: 1}\nresidu: half\n", "residu", 3},
       {"unknown-link", "operations:\n  lift: {case: fast, repeat: 1}\nlinks: [cd]\n", "no link 'cd'", 3},
       {"empty", "operations: {}\n", "non-empty", 1},
+      {"per-hour-no-life", "operations:\n  lift: {case: fast, per_hour: 12}\n", "design_life", 2},
+      {"both-counts", "design_life: 100 h\noperations:\n  lift: {case: fast, per_hour: 12, repeat: 3}\n", "not both", 3},
+      {"negative-rate", "design_life: 100 h\noperations:\n  lift: {case: fast, per_hour: -2}\n", ">= 0", 3},
+      {"life-unit", "design_life: 100 m\noperations:\n  lift: {case: fast, repeat: 1}\n", "design_life", 1},
+      {"rated-unknown", "operations:\n  lift: {case: fast, repeat: 1}\nlinks: [ab]\nrated: {bc: 20}\n", "'rated' names 'bc'", 4},
   };
   for (const BadDuty& b : bad) {
     const std::string duty = test::write_temp(std::string(b.name) + ".duty.yaml", b.text);
