@@ -34,8 +34,9 @@ std::string stem(const std::string& name) {
   return s;
 }
 
-/// The exceedance diagram with x = H (log_x: the gnuplot figure on a log axis) or x = log10 H (the
-/// report's charts have linear axes only).
+/// The exceedance diagram with x = H on a log axis (log_x) or x = log10 H on a linear one (both the
+/// report's charts, which have linear axes only, and gnuplot, whose log-axis labels of 10^6 and
+/// 10^7 run into each other, use the latter).
 plot::Figure exceedance_figure(const DutyLink& l, double m, bool log_x) {
   const Exceedance e = exceedance(l.cycles);
   const double largest = e.range.empty() ? 0.0 : e.range.front();
@@ -87,7 +88,7 @@ Exceedance exceedance(const std::vector<RainflowCycle>& cycles) {
   return e;
 }
 
-plot::Figure duty_exceedance_figure(const DutyLink& l, double m) { return exceedance_figure(l, m, true); }
+plot::Figure duty_exceedance_figure(const DutyLink& l, double m) { return exceedance_figure(l, m, false); }
 
 std::string duty_heat_map_data(const DutyLink& l, int bins) {
   const RainflowMatrix M = range_mean_matrix(l.cycles, bins, bins);
@@ -117,8 +118,8 @@ plot::Rendered render_duty_heat_map(const DutyLink& l, int bins) {
         data += fmt::format("{:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g}\n", k * 0.5 * (m0 + m1),
                             k * 0.5 * (r0 + r1), k * m0, k * m1, k * r0, k * r1, M.at(i, j));
       }
-  const std::string title = fmt::format("{}: rainflow matrix, {} cycles in {} × {} classes", l.link,
-                                        number(M.total()), bins, bins);
+  const std::string title = fmt::format("{}: rainflow matrix, {} cycles in {} × {} classes (colour: cycles, log scale)",
+                                        l.link, number(M.total()), bins, bins);
   const auto script = [&, unit = unit](plot::Format format, const std::string& data_path, const std::string& out) {
     const bool svg = format == plot::Format::svg;
     std::string g = "reset\nset encoding utf8\n";
@@ -129,7 +130,6 @@ plot::Rendered render_duty_heat_map(const DutyLink& l, int bins) {
     g += "set title " + plot::quote(title) + "\n";
     g += "set xlabel " + plot::quote("mean load, " + unit) + "\n";
     g += "set ylabel " + plot::quote("load range Δ, " + unit) + "\n";
-    g += "set cblabel " + plot::quote("cycles (log scale)") + "\n";
     g += "set format x '%.10g'\nset format y '%.10g'\n";
     g += "set logscale cb\n";
     // Viridis, as the sweep's heat map: monotone in lightness, readable in greyscale.

@@ -5,7 +5,7 @@
 /// range–mean matrix as a heat map; and the duty's section of `machdyn report --duty`.
 ///
 ///   exceedance   H(Δ) = Σ n_i over the cycles with Δ_i ≥ Δ: the cycles whose range reaches Δ, drawn
-///                as a staircase of Δ against H (log scale);
+///                as a staircase of Δ against log₁₀ H;
 ///   class limits the constant-range spectrum of N_t cycles that has the spectrum factor k_lim
 ///                (k = Σ n_i (Δ_i/Δ̂)^m / N_t) lies at Δ̂ k_lim^(1/m): a spectrum whose equivalent
 ///                range Δ_eq (for N_t cycles) lies below that line has k ≤ k_lim. Drawn for the
