@@ -3,13 +3,16 @@
 // definitions), the counts are those of the library's merge of the operations' runs, and bad duty
 // files are located errors (exit 2) that write nothing.
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "machdyn/analysis/load_history.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
 #include "support/support.hpp"
 
@@ -136,6 +139,102 @@ TEST(DutyCli, BadDutyFilesAreLocatedAndWriteNothing) {
     EXPECT_NE(r.err.find(duty + ":" + std::to_string(b.line) + ":"), std::string::npos) << b.name << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir)) << b.name;
   }
+}
+
+// Claim: the worked example of docs/duty.md, as the doc checks it by hand. The 32 t main hoist's duty
+// (2, 4, 6, 8 lifts an hour of 24 s over 20 000 h): n = 40 000, 80 000, 120 000, 160 000; running time
+// 400 000 × 24 s = 2 666.7 h → T4; k_m of the rope within 0.5 % of the static loads' estimate
+// (2·1 + 4·0.63³ + 6·0.25³ + 8·0.025³)/20 = 0.15470 → L2; M4 (T4 with L2). The rope's largest range is
+// the peak of a plain run of the full lift (its minimum is 0: slack before the lift).
+TEST(DutyCli, WorkedExampleOfThe32tHoist) {
+  const std::string src = MACHDYN_SOURCE_DIR;
+  const std::string model = src + "/examples/duty/hoist-32t.yaml", duty = src + "/examples/duty/hoist-32t.duty.yaml";
+  const auto dir = test::temp_dir() / "duty-hoist32";
+  const auto r = test::run_cli("duty '" + model + "' '" + duty + "' --json -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double n[] = {40000, 80000, 120000, 160000};
+  ASSERT_EQ(j["operations"].size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(j["operations"][k]["repeat"].get<double>(), n[k]);
+    EXPECT_NEAR(j["operations"][k]["seconds"].get<double>(), 24.0, 1e-9);
+  }
+  EXPECT_NEAR(j["running_hours"].get<double>(), 400000.0 * 24.0 / 3600.0, 1e-6);
+  EXPECT_EQ(j["utilization_class"], "T4");
+  const double km = (2.0 + 4.0 * std::pow(0.63, 3) + 6.0 * std::pow(0.25, 3) + 8.0 * std::pow(0.025, 3)) / 20.0;
+  for (const auto& l : j["links"]) {
+    EXPECT_NEAR(l["k_m"].get<double>(), km, 5e-3 * km) << l["link"];
+    EXPECT_EQ(l["spectrum_class"], "L2") << l["link"];
+    EXPECT_EQ(l["mechanism_group"], "M4") << l["link"];
+    EXPECT_TRUE(l["p_max_rated"].get<bool>());
+  }
+  const Model full = load_model_case(model, {}, "full");
+  SimulateOptions opt;
+  opt.record_series = false;
+  const SimulationResult plain = simulate(full, opt);
+  std::size_t rope = 0;
+  while (full.links[rope].name != "rope") ++rope;
+  EXPECT_EQ(j["links"][0]["link"], "rope");
+  EXPECT_NEAR(plain.links[rope].min, 0.0, 1e-6);
+  EXPECT_NEAR(j["links"][0]["largest_range"].get<double>(), plain.links[rope].max - plain.links[rope].min,
+              1e-6 * plain.links[rope].max);
+}
+
+// Claim: `machdyn report --duty` adds the duty's section (its title, the classes, an exceedance chart
+// per link); a bad duty file stops the report at its line before any run and writes no report.
+TEST(DutyCli, ReportWithADutySection) {
+  const std::string model = test::write_temp("duty-report-model.yaml", kModel);
+  const std::string duty = test::write_temp("duty-report.duty.yaml", R"(
+operations:
+  lift: {case: fast, repeat: 3}
+  lower: {case: slow, repeat: 2}
+links: [ab, bc]
+)");
+  const auto html = test::temp_dir() / "duty-report.html";
+  fs::remove(html);
+  const auto r = test::run_cli("report '" + model + "' --quiet --duty '" + duty + "' -o '" + html.string() + "'");
+  if (r.exit_code != 0 && r.err.find("MACHDYN_REPORT=OFF") != std::string::npos) GTEST_SKIP() << "no report assets";
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(html);
+  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("Duty: load cycles and classification"), std::string::npos);
+  EXPECT_NE(page.find("data-figure=\"duty_exceedance_ab-"), std::string::npos);
+  EXPECT_NE(page.find("data-figure=\"duty_exceedance_bc-"), std::string::npos);
+  EXPECT_NE(page.find("class of utilization T0"), std::string::npos);
+
+  const std::string bad = test::write_temp("duty-report-bad.duty.yaml", "operations:\n  lift: {case: heavy, repeat: 3}\n");
+  const auto html2 = test::temp_dir() / "duty-report-bad.html";
+  fs::remove(html2);
+  const auto b = test::run_cli("report '" + model + "' --quiet --duty '" + bad + "' -o '" + html2.string() + "'");
+  EXPECT_EQ(b.exit_code, 2) << b.err;
+  EXPECT_NE(b.err.find(bad + ":2:"), std::string::npos) << b.err;
+  EXPECT_FALSE(fs::exists(html2));
+}
+
+// Claim: --plot writes per link the exceedance diagram and the heat map (SVG + PNG) beside the other
+// files; when gnuplot fails (an executable that exits 1), nothing at all is written.
+TEST(DutyCli, PlotWritesTheFiguresOrNothing) {
+  if (!test::have_gnuplot()) GTEST_SKIP() << "no gnuplot";
+  const std::string model = test::write_temp("duty-plot-model.yaml", kModel);
+  const std::string duty = test::write_temp("duty-plot.duty.yaml", "operations:\n  lift: {case: fast, repeat: 3}\n");
+  const auto dir = test::temp_dir() / "duty-plot";
+  fs::remove_all(dir);
+  auto r = test::run_cli("duty '" + model + "' '" + duty + "' --plot -o '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* link : {"ab", "bc"})
+    for (const char* kind : {"duty_exceedance_", "duty_heatmap_"})
+      for (const char* ext : {".svg", ".png"}) EXPECT_TRUE(fs::exists(dir / (std::string(kind) + link + ext))) << kind << link << ext;
+  std::ifstream svg(dir / "duty_exceedance_ab.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("cumulative spectrum"), std::string::npos);
+
+  const auto dir2 = test::temp_dir() / "duty-plot-fails";
+  fs::remove_all(dir2);
+  ::setenv("MACHDYN_GNUPLOT", "/bin/false", 1);
+  r = test::run_cli("duty '" + model + "' '" + duty + "' --plot -o '" + dir2.string() + "'");
+  ::unsetenv("MACHDYN_GNUPLOT");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir2));
 }
 
 }  // namespace
