@@ -160,9 +160,9 @@ report::Section duty_report_section(const DutyResult& r) {
                         op.per_hour >= 0.0 ? number(op.per_hour) : "", fmt::format("{:.0f}", op.repeat),
                         i < r.op_seconds.size() ? number(r.op_seconds[i]) : ""});
   }
-  ops.note = fmt::format("running time Σ n_i T_i = {} h: class of utilization T{}{}", number(r.running_hours),
+  ops.note = fmt::format("running time Σ n_i T_i = {:.6g} h: class of utilization T{}{}", r.running_hours,
                          r.utilization_class,
-                         d.design_life_h > 0.0 ? fmt::format(" (design life {} h)", number(d.design_life_h)) : "");
+                         d.design_life_h > 0.0 ? fmt::format(" (design life {:.6g} h)", d.design_life_h) : "");
   s.tables.push_back(ops);
   report::Table t;
   t.caption = "Per link";
