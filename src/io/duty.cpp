@@ -92,8 +92,10 @@ DutySpec read_duty(const std::string& path, const std::vector<std::string>& case
                                          cases.empty() ? std::string("none") : fmt::format("{}", fmt::join(cases, ", "))));
       }
       const bool per_hour = f.second.find("per_hour") != nullptr;
-      if (per_hour && f.second.find("repeat") != nullptr)
+      if (per_hour && f.second.find("repeat") != nullptr) {
+        o.node("repeat");  // known, only not with per_hour: one message, not a second "unknown field"
         o.error_at("per_hour", "give either 'repeat' (a count) or 'per_hour' (with the duty's design_life), not both");
+      }
       if (per_hour) {
         if (auto n = o.quantity("per_hour", dim::none)) {
           if (!(*n >= 0.0) || !std::isfinite(*n))
