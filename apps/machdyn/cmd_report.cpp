@@ -34,11 +34,11 @@ struct ReportArgs {
   std::string out;    ///< the HTML file (default out/MODEL/report.html)
   bool quiet = false;
   std::vector<std::string> sets;
+  std::string duty;        ///< --duty DUTY: a duty section (io/duty_figures.hpp)
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: embed series above the size limit
   bool check = false;         ///< --check: the invariant audit (analysis/audit.hpp)
-  std::string duty;           ///< --duty DUTY: a duty section (io/duty_figures.hpp)
   std::string command_line;
 };
 
@@ -81,6 +81,9 @@ int run_report(const ReportArgs& a) {
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
                            {}, {}, std::nullopt, {}, {}, {}, std::nullopt});
+  // A duty (--duty): run first, so that a bad duty file stops before the report's own runs.
+  std::optional<DutyResult> duty;
+  if (!a.duty.empty()) duty = run_duty(a.model, a.duty, a.sets);
   // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
   // Never over an input file or a device (io/output_file.hpp): said now, not after the runs.
   const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
@@ -96,9 +99,6 @@ int run_report(const ReportArgs& a) {
                                    "simulation.dt_out or pass --large-output",
                                    byte_size_text(total), byte_size_text(kDefaultOutputLimitBytes)));
   }
-  // A duty (--duty): run first, so that a bad duty file stops before the report's own runs.
-  std::optional<DutyResult> duty;
-  if (!a.duty.empty()) duty = run_duty(a.model, a.duty, a.sets);
   for (auto& run : runs) {
     ProgressBar bar(a.quiet);
     SimulateOptions options;
@@ -147,9 +147,9 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
   cmd->add_flag("--all-cases", args->all_cases,
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
+  cmd->add_option("--duty", args->duty, "A duty file: add its section (cycles, k_m and classes, exceedance diagrams; docs/duty.md)");
   cmd->add_flag("--check", args->check,
                 "Audit every run against the documented laws, as `simulate --check` (exit 3 on a violation)");
-  cmd->add_option("--duty", args->duty, "A duty file: add its section (cycles, k_m and classes, exceedance diagrams; docs/duty.md)");
   add_set_option(*cmd, args->sets);
   cmd->callback([args, &exit_code] {
     exit_code = guarded([&] {
