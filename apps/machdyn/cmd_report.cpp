@@ -81,14 +81,14 @@ int run_report(const ReportArgs& a) {
   for (const auto& name : names)
     runs.push_back(CaseRun{name, name.empty() ? "" : case_description(root, name), load_model_case(a.model, a.sets, name),
                            {}, {}, std::nullopt, {}, {}, {}, std::nullopt});
-  // A duty (--duty): run first, so that a bad duty file stops before the report's own runs.
-  std::optional<DutyResult> duty;
-  if (!a.duty.empty()) duty = run_duty(a.model, a.duty, a.sets);
   // One convention with simulate: out/MODEL/report.html, for one case out/MODEL/CASE/report.html.
   // Never over an input file or a device (io/output_file.hpp): said now, not after the runs.
   const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
   if (const std::string problem = output_target_problem(out); !problem.empty())
     throw InputError(Location{a.out.empty() ? out : "-o " + out, 0, 0}, "refusing to write the report here: " + problem);
+  // A duty (--duty): run first, so that a bad duty file stops before the report's own runs.
+  std::optional<DutyResult> duty;
+  if (!a.duty.empty()) duty = run_duty(a.model, a.duty, a.sets);
   // The report embeds every series: the same size limit as simulate's time series, before any run.
   if (!a.large_output) {
     std::uint64_t total = 0;
