@@ -7,7 +7,8 @@
 // DIR/duty_cycles.csv, DIR/duty_range_mean.csv and DIR/duty_from_to.csv (32 × 32 bins; default
 // out/MODEL) after everything is computed; --plot also the figures of each link (the exceedance
 // diagram and the rainflow heat map, SVG + PNG, io/duty_figures.hpp), rendered before anything is
-// written. The operations run on all cores (-j N: on N threads; the result is the same).
+// written. The operations run on all cores (-j N: on N threads; the result is the same), and under
+// `mpirun -np R` over R ranks as sweeps do (rank 0 merges, reports and writes; the result is the same).
 #include <memory>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -15,6 +16,7 @@
 #include "commands.hpp"
 #include "machdyn/io/duty.hpp"
 #include "machdyn/io/duty_figures.hpp"
+#include "machdyn/sweep/mpi.hpp"
 
 namespace machdyn::cli {
 namespace {
@@ -27,8 +29,18 @@ struct DutyArgs {
 };
 
 int run_duty_command(const DutyArgs& a) {
-  if (a.plot) plot::find_gnuplot();  // said before the runs, not after
+  MpiSession mpi;  // MPI only under a multi-rank launcher
+  // Other ranks stay silent and write nothing: rank 0 reports errors and results once.
+  const bool root = MpiSession::rank() == 0;
+  std::streambuf* cerr_buf = std::cerr.rdbuf();
+  if (!root) std::cerr.rdbuf(nullptr);
+  struct Restore {
+    std::streambuf* buf;
+    ~Restore() { std::cerr.rdbuf(buf); }
+  } restore{cerr_buf};
+  if (a.plot && root) plot::find_gnuplot();  // said before the runs, not after
   const DutyResult r = run_duty(a.model, a.duty, a.sets, a.jobs);
+  if (!root) return 0;
   const std::filesystem::path out_dir = output_dir(a.model, a.out, "");
   nlohmann::json j = duty_json(r);
   j["model"] = a.model, j["duty"] = a.duty;
@@ -65,7 +77,7 @@ void register_duty(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", a->json, "Print JSON to stdout");
   cmd->add_option("-o,--out", a->out, "Output folder (default out/MODEL): duty.json, duty_cycles.csv, duty_range_mean.csv, duty_from_to.csv");
   cmd->add_flag("--plot", a->plot, "Also write per link duty_exceedance_LINK and duty_heatmap_LINK (.svg, .png; needs gnuplot)");
-  cmd->add_option("-j,--jobs", a->jobs, "Threads for the operations (default: all cores; the result is the same)")
+  cmd->add_option("-j,--jobs", a->jobs, "Threads for the operations (default: all cores, shared by the MPI ranks of a node; the result is the same)")
       ->check(CLI::NonNegativeNumber);
   add_set_option(*cmd, a->sets);
   cmd->callback([a, &exit_code] { exit_code = guarded([&] { return run_duty_command(*a); }); });

@@ -73,6 +73,7 @@ def test_duty_equals_the_cli(tmp_path):
     j = json.loads((tmp_path / "out" / "duty.json").read_text())
     assert list(links.index) == ["ab"]
     for key in ("cycles", "largest_range", "equivalent_range", "s", "damage", "k_m", "p_max", "spectrum_class",
+                "stress_history_class",
                 "mechanism_group"):
         assert links.loc["ab", key] == j["links"][0][key]
     assert links.attrs["duty"]["running_hours"] == j["running_hours"]

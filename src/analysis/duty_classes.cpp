@@ -12,6 +12,8 @@ namespace {
 // ISO 4301-1 / FEM 1.001: the upper limits of the classes (docs/duty.md, "The standards' tables").
 constexpr std::array<double, 4> kSpectrumLimits = {0.125, 0.25, 0.5, 1.0};
 constexpr std::array<double, 9> kUtilizationHours = {200, 400, 800, 1600, 3200, 6300, 12500, 25000, 50000};
+// EN 13001-1: the upper limits of s of S0…S9 (docs/duty.md: one public source, verify).
+constexpr std::array<double, 10> kStressHistoryLimits = {0.008, 0.016, 0.032, 0.063, 0.125, 0.25, 0.5, 1.0, 2.0, 4.0};
 
 }  // namespace
 
@@ -61,6 +63,24 @@ int mechanism_group(int spectrum_class, int utilization_class) {
     throw std::invalid_argument("mechanism group: L" + std::to_string(spectrum_class) + ", T" +
                                 std::to_string(utilization_class) + " is not a class");
   return std::clamp(utilization_class + spectrum_class - 2, 1, 8);
+}
+
+int stress_history_class(double s) {
+  for (int i = 0; i < 10; ++i)
+    if (s <= kStressHistoryLimits[static_cast<std::size_t>(i)]) return i;
+  return 10;
+}
+
+std::string stress_history_class_name(int stress_history_class) {
+  if (stress_history_class < 0 || stress_history_class > 10) throw std::invalid_argument("stress history class: S0..S9");
+  static constexpr std::array<const char*, 11> kNames = {"S0", "S1", "S2", "S3", "S4", "S5",
+                                                         "S6", "S7", "S8", "S9", ">S9"};
+  return kNames[static_cast<std::size_t>(stress_history_class)];
+}
+
+double stress_history_class_limit(int stress_history_class) {
+  if (stress_history_class < 0 || stress_history_class > 9) throw std::invalid_argument("stress history class: S0..S9");
+  return kStressHistoryLimits[static_cast<std::size_t>(stress_history_class)];
 }
 
 double spectrum_class_limit(int spectrum_class) {

@@ -5,7 +5,9 @@
 #include <exception>
 #include <thread>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -16,6 +18,8 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/cases.hpp"
+#include "machdyn/sweep/mpi.hpp"
+#include "sweep/mpi_detail.hpp"
 
 namespace machdyn {
 
@@ -127,14 +131,103 @@ namespace {
 struct OperationRun {
   std::vector<std::vector<double>> points;
   std::vector<double> lo, hi;
-  std::vector<CubicLoadIntegral> cubes;
+  std::vector<double> cube, seconds, peak;  ///< ∫|P|³ dt, its running time and max |P| (CubicLoadIntegral)
 };
+
+/// An operation's run, or the error that stopped it, packed for rank 0 (MPI): doubles and counts as
+/// their bytes (ranks of one job share the byte order), an error as its kind and message.
+struct Packer {
+  std::string bytes;
+  void put(double v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); }
+  void put(std::size_t n) { put(static_cast<double>(n)); }
+  void put(const std::vector<double>& v) {
+    put(v.size());
+    bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+  }
+  void put(const std::string& s) {
+    put(s.size());
+    bytes.append(s);
+  }
+};
+
+struct Unpacker {
+  const std::string& bytes;
+  std::size_t at = 0;
+  double number() {
+    if (at + sizeof(double) > bytes.size()) throw std::runtime_error("duty: a rank's results were cut short");
+    double v;
+    std::memcpy(&v, bytes.data() + at, sizeof v);
+    at += sizeof v;
+    return v;
+  }
+  std::size_t count() { return static_cast<std::size_t>(number()); }
+  std::vector<double> numbers() {
+    std::vector<double> v(count());
+    if (at + v.size() * sizeof(double) > bytes.size()) throw std::runtime_error("duty: a rank's results were cut short");
+    if (!v.empty()) std::memcpy(v.data(), bytes.data() + at, v.size() * sizeof(double));
+    at += v.size() * sizeof(double);
+    return v;
+  }
+  std::string text() {
+    const std::size_t n = count();
+    if (at + n > bytes.size()) throw std::runtime_error("duty: a rank's results were cut short");
+    std::string s = bytes.substr(at, n);
+    at += n;
+    return s;
+  }
+};
+
+// Error kinds across ranks: a solver failure keeps its element and time; anything else its message.
+enum class RemoteError { none = 0, solver = 1, other = 2 };
+
+void pack_run(Packer& p, std::size_t index, const OperationRun& run, const std::exception_ptr& error) {
+  p.put(index);
+  if (error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const SolverError& e) {
+      p.put(static_cast<double>(RemoteError::solver)), p.put(e.element()), p.put(e.time()), p.put(std::string(e.what()));
+    } catch (const std::exception& e) {
+      p.put(static_cast<double>(RemoteError::other)), p.put(std::string(e.what()));
+    }
+    return;
+  }
+  p.put(static_cast<double>(RemoteError::none));
+  p.put(run.points.size());
+  for (const auto& v : run.points) p.put(v);
+  for (const auto* v : {&run.lo, &run.hi, &run.cube, &run.seconds, &run.peak}) p.put(*v);
+}
+
+void unpack_run(Unpacker& u, std::vector<OperationRun>& runs, std::vector<std::exception_ptr>& errors) {
+  const std::size_t i = u.count();
+  if (i >= runs.size()) throw std::runtime_error("duty: a rank sent an operation that is not in the duty");
+  const auto kind = static_cast<RemoteError>(static_cast<int>(u.number()));
+  if (kind == RemoteError::solver) {
+    std::string element = u.text();
+    const double t = u.number();
+    std::string message = u.text();
+    // The message is SolverError's own "… in ELEMENT at t = …: WHAT": rebuilt from WHAT, it reads the same.
+    const std::string prefix = SolverError(element, t, "").what();
+    if (message.starts_with(prefix)) message.erase(0, prefix.size());
+    errors[i] = std::make_exception_ptr(SolverError(std::move(element), t, message));
+    return;
+  }
+  if (kind == RemoteError::other) {
+    errors[i] = std::make_exception_ptr(std::runtime_error(u.text()));
+    return;
+  }
+  OperationRun& run = runs[i];
+  run.points.resize(u.count());
+  for (auto& v : run.points) v = u.numbers();
+  for (auto* v : {&run.lo, &run.hi, &run.cube, &run.seconds, &run.peak}) *v = u.numbers();
+}
 
 /// Runs one operation once, keeping what the counts and k_m need of each chosen link's history.
 OperationRun run_operation(const Model& m, const std::vector<int>& links) {
   OperationRun run;
   const std::size_t n = links.size();
-  run.points.resize(n), run.cubes.resize(n);
+  run.points.resize(n);
+  std::vector<CubicLoadIntegral> cubes(n);
   run.lo.assign(n, std::numeric_limits<double>::infinity()), run.hi.assign(n, -std::numeric_limits<double>::infinity());
   std::vector<int> slot(m.links.size(), -1);
   for (std::size_t k = 0; k < n; ++k) slot[static_cast<std::size_t>(links[k])] = static_cast<int>(k);
@@ -146,16 +239,17 @@ OperationRun run_operation(const Model& m, const std::vector<int>& links) {
     const auto j = static_cast<std::size_t>(k);
     append_turning_point(run.points[j], v);
     run.lo[j] = std::min(run.lo[j], v), run.hi[j] = std::max(run.hi[j], v);
-    run.cubes[j].add(t, v);
+    cubes[j].add(t, v);
   });
+  for (const CubicLoadIntegral& c : cubes)
+    run.cube.push_back(c.integral()), run.seconds.push_back(c.duration()), run.peak.push_back(c.peak());
   return run;
 }
 
-/// fn(i) for i in [0, n) on `jobs` threads (0: all cores), each index once; every exception is kept
-/// and the one of the lowest index rethrown after all have finished, as a serial loop would report.
+/// fn(i) for i in [0, n) on `jobs` threads (0: all cores, shared with the other ranks of this node),
+/// each index once; each index's exception is kept in `errors[i]`.
 template <class Fn>
-void for_each_index(std::size_t n, int jobs, Fn fn) {
-  std::vector<std::exception_ptr> errors(n);
+void for_each_index(std::size_t n, int jobs, std::vector<std::exception_ptr>& errors, Fn fn) {
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i; (i = next.fetch_add(1)) < n;) {
@@ -166,7 +260,7 @@ void for_each_index(std::size_t n, int jobs, Fn fn) {
       }
     }
   };
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency() / static_cast<unsigned>(MpiSession::local_size()));
   const std::size_t threads = std::min<std::size_t>(n, jobs > 0 ? static_cast<std::size_t>(jobs) : hw);
   if (threads <= 1) {
     work();
@@ -175,8 +269,6 @@ void for_each_index(std::size_t n, int jobs, Fn fn) {
     for (std::size_t k = 0; k < threads; ++k) pool.emplace_back(work);
     for (auto& t : pool) t.join();
   }
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace
@@ -221,15 +313,39 @@ DutyResult run_duty(const std::string& model_path, const std::string& duty_path,
   // Each operation simulated once, on all cores: its link histories kept as turning points; the gate
   // (a fraction of the operation's range, known only at its end) applied to them afterwards, which
   // counts what a counter gated during the run counts (append_turning_point is lossless).
+  // Under MPI (`mpirun -np N machdyn duty …`, sweep/mpi.hpp) rank r runs the operations i with
+  // i mod N = r and sends them to rank 0, which merges all in the duty's order as a serial run does;
+  // the other ranks return without links (they write nothing).
+  const int rank = MpiSession::rank(), ranks = MpiSession::size();
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < models.size(); ++i)
+    if (static_cast<int>(i % static_cast<std::size_t>(ranks)) == rank) mine.push_back(i);
   std::vector<OperationRun> runs(models.size());
-  for_each_index(models.size(), jobs, [&](std::size_t i) { runs[i] = run_operation(models[i], links); });
+  std::vector<std::exception_ptr> errors(models.size()), mine_errors(mine.size());
+  for_each_index(mine.size(), jobs, mine_errors, [&](std::size_t k) { runs[mine[k]] = run_operation(models[mine[k]], links); });
+  for (std::size_t k = 0; k < mine.size(); ++k) errors[mine[k]] = mine_errors[k];
+  if (ranks > 1) {
+    if (rank != 0) {
+      Packer p;
+      for (std::size_t k = 0; k < mine.size(); ++k) pack_run(p, mine[k], runs[mine[k]], errors[mine[k]]);
+      mpi_detail::send_to_root(p.bytes);
+      return out;
+    }
+    for (int source = 1; source < ranks; ++source) {
+      const std::string bytes = mpi_detail::receive_from(source);
+      Unpacker u{bytes};
+      while (u.at < bytes.size()) unpack_run(u, runs, errors);
+    }
+  }
+  for (const auto& e : errors)  // the first failure in the duty's order, as a serial loop reports it
+    if (e) std::rethrow_exception(e);
 
   std::vector<double> repeats;
   for (const DutyOperation& op : duty.operations) repeats.push_back(op.repeat);
   double running = 0.0;  // Σ n_i T_i, s
   for (size_t i = 0; i < runs.size(); ++i) {
     double t = 0.0;
-    for (const auto& c : runs[i].cubes) t = std::max(t, c.duration());
+    for (const double c : runs[i].seconds) t = std::max(t, c);
     out.op_seconds.push_back(t);
     running += repeats[i] * t;
   }
@@ -243,7 +359,7 @@ DutyResult run_duty(const std::string& model_path, const std::string& duty_path,
       const OperationRun& r = runs[i];
       const double range = r.hi[k] >= r.lo[k] ? r.hi[k] - r.lo[k] : 0.0;
       of_link.push_back(rainflow_part(r.points[k], duty.gate * range));
-      if (repeats[i] > 0.0) cube += repeats[i] * r.cubes[k].integral(), peak = std::max(peak, r.cubes[k].peak());
+      if (repeats[i] > 0.0) cube += repeats[i] * r.cube[k], peak = std::max(peak, r.peak[k]);
     }
     DutyLink l;
     l.link = names[k], l.unit = units[k];
@@ -257,6 +373,7 @@ DutyResult run_duty(const std::string& model_path, const std::string& duty_path,
     if (running > 0.0 && l.p_max > 0.0) l.k_m = cube / (l.p_max * l.p_max * l.p_max * running);
     l.spectrum_class = spectrum_class(l.k_m);
     l.group = mechanism_group(l.spectrum_class, out.utilization_class);
+    l.stress_class = stress_history_class(l.history.s);
     out.links.push_back(std::move(l));
   }
   return out;
@@ -285,6 +402,7 @@ nlohmann::json duty_json(const DutyResult& r) {
                         {"k", l.history.k},
                         {"nu", l.history.nu},
                         {"s", l.history.s},
+                        {"stress_history_class", stress_history_class_name(l.stress_class)},
                         {"k_m", l.k_m},
                         {"p_max", l.p_max},
                         {"p_max_rated", l.rated},
@@ -298,12 +416,14 @@ nlohmann::json duty_json(const DutyResult& r) {
 
 std::string duty_table(const DutyResult& r) {
   const bool curve = r.spec.has_curve;
-  std::string table = fmt::format("{:<16} {:>14} {:>14} {:>14} {:>12} {:>8} {:>4} {:>4} {:>12}\n", "link", "cycles",
-                                  "largest range", "equiv. range", "s", "k_m", "L", "M", curve ? "damage" : "");
+  std::string table = fmt::format("{:<16} {:>14} {:>14} {:>14} {:>12} {:>4} {:>8} {:>4} {:>4} {:>12}\n", "link",
+                                  "cycles", "largest range", "equiv. range", "s", "S", "k_m", "L", "M",
+                                  curve ? "damage" : "");
   for (const DutyLink& l : r.links)
-    table += fmt::format("{:<16} {:>14.6g} {:>14.6g} {:>14.6g} {:>12.4g} {:>8.4f} {:>4} {:>4} {:>12}\n", l.link,
-                         l.history.total_cycles, l.history.largest, l.equivalent_range, l.history.s, l.k_m,
-                         fmt::format("L{}", l.spectrum_class), fmt::format("M{}", l.group),
+    table += fmt::format("{:<16} {:>14.6g} {:>14.6g} {:>14.6g} {:>12.4g} {:>4} {:>8.4f} {:>4} {:>4} {:>12}\n", l.link,
+                         l.history.total_cycles, l.history.largest, l.equivalent_range, l.history.s,
+                         stress_history_class_name(l.stress_class), l.k_m, fmt::format("L{}", l.spectrum_class),
+                         fmt::format("M{}", l.group),
                          curve ? fmt::format("{:.4g}", l.damage) : std::string());
   table += fmt::format("running time {:.6g} h (T{}){}; k_m over it, P_max the {}\n", r.running_hours, r.utilization_class,
                        r.spec.design_life_h > 0.0 ? fmt::format(" of a design life of {:.6g} h", r.spec.design_life_h) : "",

@@ -166,7 +166,7 @@ report::Section duty_report_section(const DutyResult& r) {
   s.tables.push_back(ops);
   report::Table t;
   t.caption = "Per link";
-  t.header = {"link", "unit", "cycles N_t", "largest range Δ̂", "Δ_eq", "s", "P_max", "k_m", "L", "M"};
+  t.header = {"link", "unit", "cycles N_t", "largest range Δ̂", "Δ_eq", "s", "S (EN 13001)", "P_max", "k_m", "L", "M"};
   if (d.has_curve) t.header.push_back("Miner damage D");
   for (const DutyLink& l : r.links) {
     std::vector<std::string> row = {l.link,
@@ -175,6 +175,7 @@ report::Section duty_report_section(const DutyResult& r) {
                                     number(l.history.largest),
                                     number(l.equivalent_range),
                                     number(l.history.s),
+                                    stress_history_class_name(l.stress_class),
                                     number(l.p_max) + (l.rated ? " (rated)" : ""),
                                     fmt::format("{:.4f}", l.k_m),
                                     fmt::format("L{}", l.spectrum_class),

@@ -24,6 +24,7 @@ int env_int(const char* name) {
 
 #ifdef MACHDYN_HAVE_MPI
 constexpr int kTagRows = 7001;
+constexpr int kTagDuty = 7002;
 #endif
 
 }  // namespace
@@ -112,7 +113,23 @@ int poll_rows(std::string& records) {
     records += buf;
   }
 }
+
+void send_to_root(const std::string& bytes) {
+  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_CHAR, 0, kTagDuty, MPI_COMM_WORLD);
+}
+
+std::string receive_from(int source) {
+  MPI_Status st;
+  MPI_Probe(source, kTagDuty, MPI_COMM_WORLD, &st);
+  int count = 0;
+  MPI_Get_count(&st, MPI_CHAR, &count);
+  std::string buf(static_cast<size_t>(count), '\0');
+  MPI_Recv(buf.data(), count, MPI_CHAR, source, kTagDuty, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return buf;
+}
 #else
+void send_to_root(const std::string&) {}
+std::string receive_from(int) { return {}; }
 void broadcast(int&) {}
 void broadcast(std::vector<char>&) {}
 void send_rows(const std::string&) {}

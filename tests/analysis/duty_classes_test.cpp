@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -57,6 +58,34 @@ TEST(DutyClasses, ClassBoundariesOfTheTables) {
   EXPECT_EQ(utilization_class(1e6), 9);
   EXPECT_THROW(spectrum_class_limit(5), std::invalid_argument);
   EXPECT_THROW(utilization_class_limit_hours(9), std::invalid_argument);
+}
+
+// Claim: EN 13001-1's S-classes of the stress history parameter s have the upper limits 4 · 2^(S−9)
+// (S9: 4, halving per class down to S0), printed rounded to two digits (0.063, 0.032, 0.016, 0.008):
+// every boundary belongs to the lower class, the next double above it to the next class; above
+// S9's 4 no class of the table (">S9").
+TEST(DutyClasses, StressHistoryClassBoundaries) {
+  const double limits[] = {0.008, 0.016, 0.032, 0.063, 0.125, 0.25, 0.5, 1.0, 2.0, 4.0};
+  for (int S = 0; S <= 9; ++S) {
+    const double lim = limits[S];
+    // The table's doubling, as printed: 4 · 2^(S−9) rounded (0.0078125 → 0.008: 2.4 %).
+    EXPECT_NEAR(lim, 4.0 * std::pow(2.0, S - 9), 0.025 * lim) << S;
+    EXPECT_EQ(stress_history_class(lim), S) << lim;
+    EXPECT_EQ(stress_history_class(std::nextafter(lim, 0.0)), S) << lim;
+    EXPECT_EQ(stress_history_class(std::nextafter(lim, 10.0)), S + 1) << lim;
+    if (S > 0) {
+      EXPECT_EQ(stress_history_class(std::nextafter(limits[S - 1], 10.0)), S) << lim;
+    }
+    EXPECT_EQ(stress_history_class_limit(S), lim);
+    std::string name = "S";
+    name += std::to_string(S);
+    EXPECT_EQ(stress_history_class_name(S), name);
+  }
+  EXPECT_EQ(stress_history_class(0.0), 0);
+  EXPECT_EQ(stress_history_class(100.0), 10);
+  EXPECT_EQ(stress_history_class_name(10), ">S9");
+  EXPECT_THROW(stress_history_class_limit(10), std::invalid_argument);
+  EXPECT_THROW(stress_history_class_name(11), std::invalid_argument);
 }
 
 // Claim: the mechanism group is the table of ISO 4301-1 / FEM 1.001 — written out here cell by cell

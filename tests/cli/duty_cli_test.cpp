@@ -10,10 +10,12 @@
 #include <sstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sys/wait.h>
 
 #include "machdyn/analysis/load_history.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "machdyn/sweep/mpi.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -77,6 +79,15 @@ sn_curve: {m: 3, delta_ref: 100, n_ref: 1e6}
   EXPECT_NEAR(l["cycles"].get<double>(), nt, 1e-9 * nt);
   EXPECT_NEAR(l["largest_range"].get<double>(), largest, 1e-12 * largest);
   EXPECT_NEAR(l["s"].get<double>(), s3 / (largest * largest * largest) / 2e6, 1e-9 * l["s"].get<double>());
+  {  // its EN 13001 class: the first of the table's limits at or above s
+    const double sv = s3 / (largest * largest * largest) / 2e6;
+    const double limits[] = {0.008, 0.016, 0.032, 0.063, 0.125, 0.25, 0.5, 1.0, 2.0, 4.0};
+    int S = 0;
+    while (S < 10 && sv > limits[S]) ++S;
+    std::string name = "S";
+    name += std::to_string(S);
+    EXPECT_EQ(l["stress_history_class"], S < 10 ? name : ">S9") << sv;
+  }
   EXPECT_NEAR(l["equivalent_range"].get<double>(), std::cbrt(s3 / nt), 1e-9 * largest);
   EXPECT_NEAR(l["damage"].get<double>(), d, 1e-9 * d);
   // The matrices hold the same cycles: their cells sum to N_t, and every cycle lies in its cell.
@@ -237,6 +248,64 @@ TEST(DutyCli, PlotWritesTheFiguresOrNothing) {
   ::unsetenv("MACHDYN_GNUPLOT");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_FALSE(fs::exists(dir2));
+}
+
+// Claim: under `mpirun -np 2` (the sweep runner's MPI path) the operations are split over the two
+// ranks — operation i on rank i mod 2 — and rank 0 merges them in the duty's order: the terminal
+// table and every file byte for byte those of a one-process, one-thread run of the same duty (five
+// operations, so each rank has some and the ranks' parts interleave in the merge). An operation that
+// fails on rank 1 (the second, whose case allows 5 solver steps) is reported by rank 0 with the
+// message and exit code (3) a one-process run gives, and nothing is written.
+TEST(DutyCli, TwoMpiRanksGiveTheSameDuty) {
+  if (!MpiSession::built()) GTEST_SKIP() << "built without MPI (install libopenmpi-dev and reconfigure)";
+  const auto sh = [](const std::string& cmd) {
+    const int status = std::system(("cd '" + test::temp_dir().string() + "' || exit 1; " + cmd).c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  if (sh("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found (apt-get install openmpi-bin)";
+  const std::string model = test::write_temp("duty-mpi-model.yaml", std::string(kModel) + "  broken: {simulation: {max_steps: 5}}\n");
+  const std::string duty = test::write_temp("duty-mpi.yaml", R"(
+operations:
+  lift: {case: fast, repeat: 3}
+  lower: {case: slow, repeat: 2}
+  lift2: {case: fast, repeat: 1}
+  swing: {repeat: 4}
+  last: {case: slow, repeat: 5}
+residue: repeat
+sn_curve: {m: 3, delta_ref: 100, n_ref: 1e6}
+)");
+  const std::string bad = test::write_temp("duty-mpi-bad.yaml", R"(
+operations:
+  lift: {case: fast, repeat: 3}
+  stuck: {case: broken, repeat: 2}
+  lower: {case: slow, repeat: 1}
+)");
+  std::string cli = "'";
+  cli.append(MACHDYN_CLI).append("'");
+  const std::string mpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+                             "mpirun -np 2 --oversubscribe ";
+  for (const char* d : {"duty-mpi1", "duty-mpi2", "duty-mpi-bad1", "duty-mpi-bad2"}) fs::remove_all(test::temp_dir() / d);
+  const std::string args = " duty '" + model + "' '" + duty + "' -j 1 -o ";
+  ASSERT_EQ(sh(cli + args + "duty-mpi1 >duty-mpi1.out 2>duty-mpi1.err"), 0) << test::slurp(test::temp_dir() / "duty-mpi1.err");
+  ASSERT_EQ(sh(mpirun + cli + args + "duty-mpi2 >duty-mpi2.out 2>duty-mpi2.err"), 0)
+      << test::slurp(test::temp_dir() / "duty-mpi2.err");
+  EXPECT_EQ(test::slurp(test::temp_dir() / "duty-mpi2.out"), test::slurp(test::temp_dir() / "duty-mpi1.out"));
+  for (const char* f : {"duty.json", "duty_cycles.csv", "duty_range_mean.csv", "duty_from_to.csv"}) {
+    const std::string one = test::slurp(test::temp_dir() / "duty-mpi1" / f);
+    EXPECT_GT(one.size(), 100u) << f;
+    EXPECT_EQ(test::slurp(test::temp_dir() / "duty-mpi2" / f), one) << f;
+  }
+  const std::string bad_args = " duty '" + model + "' '" + bad + "' -j 1 -o ";
+  EXPECT_EQ(sh(cli + bad_args + "duty-mpi-bad1 >/dev/null 2>duty-mpi-bad1.err"), 3);
+  EXPECT_EQ(sh(mpirun + cli + bad_args + "duty-mpi-bad2 >/dev/null 2>duty-mpi-bad2.err"), 3);
+  const std::string one = test::slurp(test::temp_dir() / "duty-mpi-bad1.err");
+  ASSERT_NE(one.find("maximum number of steps"), std::string::npos) << one;
+  // rank 0's message, once (the other rank is silent; mpirun adds its own lines after it)
+  const std::string two = test::slurp(test::temp_dir() / "duty-mpi-bad2.err");
+  EXPECT_EQ(two.substr(0, one.size()), one) << two;
+  EXPECT_EQ(two.find(one, 1), std::string::npos) << two;
+  EXPECT_FALSE(fs::exists(test::temp_dir() / "duty-mpi-bad1"));
+  EXPECT_FALSE(fs::exists(test::temp_dir() / "duty-mpi-bad2"));
 }
 
 }  // namespace

@@ -12,6 +12,11 @@
 ///   mechanism group       M = T + L − 2 (the table's diagonals: T2·L1 = T1·L2 = T0·L3 = M1, each class
 ///                         up one group up), below M1 taken as M1, above M8 as M8 (the table's blanks)
 ///
+/// and EN 13001-1's classes of the stress history parameter s (analysis/fatigue.hpp, s = ν k):
+///   S0: s ≤ 0.008, S1: ≤ 0.016, S2: ≤ 0.032, S3: ≤ 0.063, S4: ≤ 0.125, S5: ≤ 0.25, S6: ≤ 0.5,
+///   S7: ≤ 1, S8: ≤ 2, S9: ≤ 4 (4 · 2^(S−9), rounded to two digits as printed); above 4
+///   outside the table. One public source, verify against the standard (docs/duty.md).
+///
 /// The classes depend on a class-boundary comparison only: a value on a boundary belongs to the lower
 /// class (the tables give upper limits "≤").
 
@@ -50,6 +55,13 @@ int spectrum_class(double k_m);
 int utilization_class(double hours);
 /// M1…M8 (returns 1…8) of a spectrum class L (1…4) and a class of utilization T (0…9).
 int mechanism_group(int spectrum_class, int utilization_class);
+
+/// EN 13001's S-class of a stress history parameter s ≥ 0: 0…9 for S0…S9, 10 above S9's limit (4).
+int stress_history_class(double s);
+/// "S0"…"S9", ">S9" for 10.
+std::string stress_history_class_name(int stress_history_class);
+/// The upper limit of s of class S0…S9.
+double stress_history_class_limit(int stress_history_class);
 
 /// The upper limit of k_m of class L (1…4) and of the running hours of class T (0…8; T9 has none).
 double spectrum_class_limit(int spectrum_class);

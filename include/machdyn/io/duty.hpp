@@ -59,6 +59,7 @@ struct DutyLink {
   bool rated = false;      ///< p_max is the rated load of the duty file
   int spectrum_class = 0;  ///< L1…L4
   int group = 0;           ///< M1…M8 (with the duty's class of utilization)
+  int stress_class = 0;    ///< EN 13001's S0…S9 of s (10: above S9), analysis/duty_classes.hpp
 };
 
 struct DutyResult {
@@ -70,7 +71,9 @@ struct DutyResult {
 };
 
 /// Reads the duty file and runs it on the model file (with `sets` overrides), every operation once,
-/// on `jobs` threads (0: all cores; the result is the same for any number). Every model is compiled
+/// on `jobs` threads (0: all cores; the result is the same for any number). Under MPI (an active
+/// MpiSession of sweep/mpi.hpp with R ranks) rank r runs the operations i ≡ r (mod R) and rank 0
+/// merges them all, as one process would; the other ranks return a result without links. Every model is compiled
 /// before any runs, so bad input stops first. InputError for bad input, SolverError for a failed run
 /// (the first operation's in the duty's order when several fail).
 DutyResult run_duty(const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets,
