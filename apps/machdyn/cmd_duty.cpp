@@ -39,7 +39,8 @@ int run_duty_command(const DutyArgs& a) {
     ~Restore() { std::cerr.rdbuf(buf); }
   } restore{cerr_buf};
   if (a.plot && root) plot::find_gnuplot();  // said before the runs, not after
-  const DutyResult r = run_duty(a.model, a.duty, a.sets, a.jobs);
+  const std::unique_ptr<DutyRanks> ranks = MpiSession::size() > 1 ? mpi_duty_ranks() : nullptr;
+  const DutyResult r = run_duty(a.model, a.duty, a.sets, a.jobs, ranks.get());
   if (!root) return 0;
   const std::filesystem::path out_dir = output_dir(a.model, a.out, "");
   nlohmann::json j = duty_json(r);

@@ -18,8 +18,6 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/cases.hpp"
-#include "machdyn/sweep/mpi.hpp"
-#include "sweep/mpi_detail.hpp"
 
 namespace machdyn {
 
@@ -249,7 +247,7 @@ OperationRun run_operation(const Model& m, const std::vector<int>& links) {
 /// fn(i) for i in [0, n) on `jobs` threads (0: all cores, shared with the other ranks of this node),
 /// each index once; each index's exception is kept in `errors[i]`.
 template <class Fn>
-void for_each_index(std::size_t n, int jobs, std::vector<std::exception_ptr>& errors, Fn fn) {
+void for_each_index(std::size_t n, int jobs, int ranks_on_node, std::vector<std::exception_ptr>& errors, Fn fn) {
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i; (i = next.fetch_add(1)) < n;) {
@@ -260,7 +258,7 @@ void for_each_index(std::size_t n, int jobs, std::vector<std::exception_ptr>& er
       }
     }
   };
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency() / static_cast<unsigned>(MpiSession::local_size()));
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency() / static_cast<unsigned>(std::max(1, ranks_on_node)));
   const std::size_t threads = std::min<std::size_t>(n, jobs > 0 ? static_cast<std::size_t>(jobs) : hw);
   if (threads <= 1) {
     work();
@@ -274,7 +272,7 @@ void for_each_index(std::size_t n, int jobs, std::vector<std::exception_ptr>& er
 }  // namespace
 
 DutyResult run_duty(const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets,
-                    int jobs) {
+                    int jobs, DutyRanks* ranks_of_run) {
   DutyResult out;
   out.spec = read_duty(duty_path, case_names(read_yaml_file(model_path)));
   const DutySpec& duty = out.spec;
@@ -313,26 +311,26 @@ DutyResult run_duty(const std::string& model_path, const std::string& duty_path,
   // Each operation simulated once, on all cores: its link histories kept as turning points; the gate
   // (a fraction of the operation's range, known only at its end) applied to them afterwards, which
   // counts what a counter gated during the run counts (append_turning_point is lossless).
-  // Under MPI (`mpirun -np N machdyn duty …`, sweep/mpi.hpp) rank r runs the operations i with
+  // Over ranks (`mpirun -np N machdyn duty …`, DutyRanks) rank r runs the operations i with
   // i mod N = r and sends them to rank 0, which merges all in the duty's order as a serial run does;
   // the other ranks return without links (they write nothing).
-  const int rank = MpiSession::rank(), ranks = MpiSession::size();
+  const int rank = ranks_of_run ? ranks_of_run->rank() : 0, ranks = ranks_of_run ? ranks_of_run->size() : 1;
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < models.size(); ++i)
     if (static_cast<int>(i % static_cast<std::size_t>(ranks)) == rank) mine.push_back(i);
   std::vector<OperationRun> runs(models.size());
   std::vector<std::exception_ptr> errors(models.size()), mine_errors(mine.size());
-  for_each_index(mine.size(), jobs, mine_errors, [&](std::size_t k) { runs[mine[k]] = run_operation(models[mine[k]], links); });
+  for_each_index(mine.size(), jobs, ranks_of_run ? ranks_of_run->on_this_node() : 1, mine_errors, [&](std::size_t k) { runs[mine[k]] = run_operation(models[mine[k]], links); });
   for (std::size_t k = 0; k < mine.size(); ++k) errors[mine[k]] = mine_errors[k];
   if (ranks > 1) {
     if (rank != 0) {
       Packer p;
       for (std::size_t k = 0; k < mine.size(); ++k) pack_run(p, mine[k], runs[mine[k]], errors[mine[k]]);
-      mpi_detail::send_to_root(p.bytes);
+      ranks_of_run->send_to_root(p.bytes);
       return out;
     }
     for (int source = 1; source < ranks; ++source) {
-      const std::string bytes = mpi_detail::receive_from(source);
+      const std::string bytes = ranks_of_run->receive_from(source);
       Unpacker u{bytes};
       while (u.at < bytes.size()) unpack_run(u, runs, errors);
     }

@@ -5,6 +5,7 @@
 #include <string>
 #include <fmt/format.h>
 
+#include "machdyn/io/duty.hpp"
 #include "sweep/mpi_detail.hpp"
 
 #ifdef MACHDYN_HAVE_MPI
@@ -84,6 +85,19 @@ void MpiSession::abort(int code) {
 #endif
   std::_Exit(code);
 }
+
+namespace {
+class MpiDutyRanks final : public DutyRanks {
+ public:
+  [[nodiscard]] int rank() const override { return MpiSession::rank(); }
+  [[nodiscard]] int size() const override { return MpiSession::size(); }
+  [[nodiscard]] int on_this_node() const override { return MpiSession::local_size(); }
+  void send_to_root(const std::string& bytes) override { mpi_detail::send_to_root(bytes); }
+  std::string receive_from(int rank) override { return mpi_detail::receive_from(rank); }
+};
+}  // namespace
+
+std::unique_ptr<DutyRanks> mpi_duty_ranks() { return std::make_unique<MpiDutyRanks>(); }
 
 namespace mpi_detail {
 

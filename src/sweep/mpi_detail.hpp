@@ -1,6 +1,6 @@
 #pragma once
-// The few messages of a sweep (and of a duty, io/duty.cpp) under MPI (private to src/). Without MPI in the build these are
-// never called (MpiSession::active() is false).
+// The few messages of a sweep (and of a duty: mpi_duty_ranks) under MPI (private to src/sweep).
+// Without MPI in the build these are never called (MpiSession::active() is false).
 #include <string>
 #include <vector>
 

@@ -70,14 +70,26 @@ struct DutyResult {
   int utilization_class = 0;       ///< T0…T9 of running_hours
 };
 
+/// The processes a duty's operations are spread over (R ranks; rank 0 merges): the messages, not
+/// their carrier — MPI's is sweep/mpi.hpp's `mpi_duty_ranks`, the layer above.
+class DutyRanks {
+ public:
+  virtual ~DutyRanks() = default;
+  [[nodiscard]] virtual int rank() const = 0;
+  [[nodiscard]] virtual int size() const = 0;
+  [[nodiscard]] virtual int on_this_node() const = 0;       ///< ranks sharing this node's cores
+  virtual void send_to_root(const std::string& bytes) = 0;  ///< a rank ≠ 0: its operations' results
+  virtual std::string receive_from(int rank) = 0;           ///< rank 0: rank `rank`'s results
+};
+
 /// Reads the duty file and runs it on the model file (with `sets` overrides), every operation once,
-/// on `jobs` threads (0: all cores; the result is the same for any number). Under MPI (an active
-/// MpiSession of sweep/mpi.hpp with R ranks) rank r runs the operations i ≡ r (mod R) and rank 0
-/// merges them all, as one process would; the other ranks return a result without links. Every model is compiled
-/// before any runs, so bad input stops first. InputError for bad input, SolverError for a failed run
-/// (the first operation's in the duty's order when several fail).
+/// on `jobs` threads (0: all cores; the result is the same for any number). With `ranks` (R > 1),
+/// rank r runs the operations i ≡ r (mod R) on its share of the node's cores and rank 0 merges them
+/// all in the duty's order, as one process would; the other ranks return a result without links.
+/// Every model is compiled before any runs, so bad input stops first. InputError for bad input,
+/// SolverError for a failed run (the first operation's in the duty's order when several fail).
 DutyResult run_duty(const std::string& model_path, const std::string& duty_path, const std::vector<std::string>& sets,
-                    int jobs = 0);
+                    int jobs = 0, DutyRanks* ranks = nullptr);
 
 /// duty.json's content and the terminal table.
 nlohmann::json duty_json(const DutyResult& r);
