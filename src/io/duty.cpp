@@ -320,7 +320,8 @@ DutyResult run_duty(const std::string& model_path, const std::string& duty_path,
     if (static_cast<int>(i % static_cast<std::size_t>(ranks)) == rank) mine.push_back(i);
   std::vector<OperationRun> runs(models.size());
   std::vector<std::exception_ptr> errors(models.size()), mine_errors(mine.size());
-  for_each_index(mine.size(), jobs, ranks_of_run ? ranks_of_run->on_this_node() : 1, mine_errors, [&](std::size_t k) { runs[mine[k]] = run_operation(models[mine[k]], links); });
+  for_each_index(mine.size(), jobs, ranks_of_run ? ranks_of_run->on_this_node() : 1, mine_errors,
+                 [&](std::size_t k) { runs[mine[k]] = run_operation(models[mine[k]], links); });
   for (std::size_t k = 0; k < mine.size(); ++k) errors[mine[k]] = mine_errors[k];
   if (ranks > 1) {
     if (rank != 0) {

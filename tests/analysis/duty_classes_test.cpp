@@ -1,6 +1,7 @@
-// The mechanism classes of ISO 4301-1 / FEM 1.001 (analysis/duty_classes.hpp) against independent
-// answers: a spectrum worked by hand (and published as a worked example), the class tables written
-// out cell by cell as the public sources print them (docs/duty.md), and a closed-form integral.
+// The mechanism classes of ISO 4301-1 / FEM 1.001 and EN 13001's S-classes
+// (analysis/duty_classes.hpp) against independent answers: a spectrum worked by hand (and published
+// as a worked example), the class tables written out cell by cell as the public sources print them
+// (docs/duty.md), and a closed-form integral.
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
