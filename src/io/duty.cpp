@@ -117,6 +117,9 @@ DutySpec read_duty(const std::string& path, const std::vector<std::string>& case
       o.finish();
       d.operations.push_back(op);
     }
+  if (!d.operations.empty() &&
+      std::all_of(d.operations.begin(), d.operations.end(), [](const DutyOperation& op) { return op.repeat == 0.0; }))
+    diag.error(ops->loc, "every operation is done 0 times: the duty's load history is empty");
   r.finish();
   diag.throw_if_any();
   return d;

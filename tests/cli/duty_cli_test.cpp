@@ -124,7 +124,8 @@ struct BadDuty {
   int line;             // its line in the duty file
 };
 
-// Claim: each bad duty file exits 2 with the problem at its file:line:col and writes nothing.
+// Claim: each bad duty file exits 2 with the problem at its file:line:col and writes nothing (an
+// empty load history — every operation done 0 times — included).
 TEST(DutyCli, BadDutyFilesAreLocatedAndWriteNothing) {
   const std::string model = test::write_temp("duty-model2.yaml", kModel);
   const BadDuty bad[] = {
@@ -140,6 +141,8 @@ TEST(DutyCli, BadDutyFilesAreLocatedAndWriteNothing) {
       {"negative-rate", "design_life: 100 h\noperations:\n  lift: {case: fast, per_hour: -2}\n", ">= 0", 3},
       {"life-unit", "design_life: 100 m\noperations:\n  lift: {case: fast, repeat: 1}\n", "design_life", 1},
       {"rated-unknown", "operations:\n  lift: {case: fast, repeat: 1}\nlinks: [ab]\nrated: {bc: 20}\n", "'rated' names 'bc'", 4},
+      {"no-history", "design_life: 100 h\noperations:\n  lift: {case: fast, repeat: 0}\n  lower: {case: slow, per_hour: 0}\n",
+       "load history is empty", 3},
   };
   for (const BadDuty& b : bad) {
     const std::string duty = test::write_temp(std::string(b.name) + ".duty.yaml", b.text);
