@@ -56,3 +56,6 @@ if command -v pngquant >/dev/null; then
 fi
 ls -la docs/img
 du -sh docs/img
+# The duty figures of docs/duty.md (issue 30): the rope of the 32 t main hoist's worked example.
+"$machdyn" duty examples/duty/hoist-32t.yaml examples/duty/hoist-32t.duty.yaml --plot -o "$tmp/duty" >/dev/null
+cp "$tmp"/duty/duty_{exceedance,heatmap}_rope.png docs/img/

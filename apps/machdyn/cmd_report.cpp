@@ -21,6 +21,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/model_file.hpp"
+#include "machdyn/io/duty_figures.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/report_run.hpp"
 #include "machdyn/io/yaml_reader.hpp"
@@ -37,6 +38,7 @@ struct ReportArgs {
   std::string out;    ///< the HTML file (default out/MODEL/report.html)
   bool quiet = false;
   std::vector<std::string> sets;
+  std::string duty;        ///< --duty DUTY: a duty section (io/duty_figures.hpp)
   std::string load_case;   ///< --case
   bool all_cases = false;  ///< --all-cases
   bool large_output = false;  ///< --large-output: embed series above the size limit
@@ -80,6 +82,9 @@ int run_report(const ReportArgs& a) {
   const std::string out = a.out.empty() ? (output_dir(a.model, "", a.load_case) / "report.html").string() : a.out;
   if (const std::string problem = output_target_problem(out); !problem.empty())
     throw InputError(Location{a.out.empty() ? out : "-o " + out, 0, 0}, "refusing to write the report here: " + problem);
+  // A duty (--duty): run first, so that a bad duty file stops before the report's own runs.
+  std::optional<DutyResult> duty;
+  if (!a.duty.empty()) duty = run_duty(a.model, a.duty, a.sets);
   // The report embeds every series: the same size limit as simulate's time series, before any run.
   if (!a.large_output) {
     std::uint64_t total = 0;
@@ -104,7 +109,9 @@ int run_report(const ReportArgs& a) {
   }
   std::vector<report::Case> cases;
   for (const auto& run : runs) cases.push_back(run.as_case());
-  const std::string html = report::to_html(report::simulation_report(cases, a.command_line));
+  report::Document doc = report::simulation_report(cases, a.command_line);
+  if (duty) doc.sections.push_back(duty_report_section(*duty));
+  const std::string html = report::to_html(doc);
   write_file_atomic(out, html);
   std::cout << fmt::format("wrote {} ({:.1f} kB{}); open it in any browser, it needs no network\n", out,
                            static_cast<double>(html.size()) / 1e3,
@@ -125,6 +132,7 @@ void register_report(CLI::App& app, int& exit_code) {
   cmd->add_option("--case", args->load_case, "Report one load case of the file's 'cases:'");
   cmd->add_flag("--all-cases", args->all_cases,
                 "Report every load case: a section each, and one table comparing peak link loads and dynamic factors");
+  cmd->add_option("--duty", args->duty, "A duty file: add its section (cycles, k_m and classes, exceedance diagrams; docs/duty.md)");
   cmd->add_flag("--check", args->check,
                 "Audit every run against the documented laws, as `simulate --check` (exit 3 on a violation)");
   cmd->add_option("--links", args->links,
@@ -154,6 +162,7 @@ void register_report(CLI::App& app, int& exit_code) {
       args->command_line = "machdyn report " + std::filesystem::path(args->model).filename().string();
       if (!args->load_case.empty()) args->command_line += " --case " + args->load_case;
       if (args->all_cases) args->command_line += " --all-cases";
+      if (!args->duty.empty()) args->command_line += " --duty " + std::filesystem::path(args->duty).filename().string();
       for (const auto& s : args->sets) args->command_line += " --set " + s;
       if (!args->links.empty()) args->command_line += " --links " + fmt::format("{}", fmt::join(args->links, ","));
       if (!args->frf.input.empty()) args->command_line += " --frf-input " + args->frf.input;

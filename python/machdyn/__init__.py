@@ -306,7 +306,10 @@ def duty(model: str | _os.PathLike, duty: str | _os.PathLike,
     located turning points, the counts merged over the duty.
 
     Returns ``(links, cycles)``: two pandas DataFrames — per link the figures of duty.json (``cycles``,
-    ``largest_range``, ``equivalent_range``, ``k``, ``nu``, ``s``, ``damage`` with an S–N curve), and
+    ``largest_range``, ``equivalent_range``, ``k``, ``nu``, ``s``, ``damage`` with an S–N curve, the load
+    spectrum factor ``k_m`` with ``p_max``, ``spectrum_class`` L1–L4, ``mechanism_group`` M1–M8 and EN 13001's
+    ``stress_history_class`` S0–S9 of ``s``; the
+    duty's running hours and class of utilization in ``links.attrs["duty"]``), and
     every merged cycle (``link, range, mean, count, from, to``, the rows of duty_cycles.csv). Bad input
     raises :class:`InputError` with the file's line and column.
     """

@@ -72,8 +72,12 @@ def test_duty_equals_the_cli(tmp_path):
     run_cli("duty", model, duty, "-o", tmp_path / "out")
     j = json.loads((tmp_path / "out" / "duty.json").read_text())
     assert list(links.index) == ["ab"]
-    for key in ("cycles", "largest_range", "equivalent_range", "s", "damage"):
+    for key in ("cycles", "largest_range", "equivalent_range", "s", "damage", "k_m", "p_max", "spectrum_class",
+                "stress_history_class",
+                "mechanism_group"):
         assert links.loc["ab", key] == j["links"][0][key]
+    assert links.attrs["duty"]["running_hours"] == j["running_hours"]
+    assert links.attrs["duty"]["utilization_class"] == j["utilization_class"] == "T0"
     csv = pd.read_csv(tmp_path / "out" / "duty_cycles.csv", float_precision="round_trip")
     assert csv.equals(cycles)
     # A bad duty: located.

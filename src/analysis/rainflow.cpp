@@ -121,6 +121,16 @@ std::vector<double> RainflowCounter::residue() const {
   return r;
 }
 
+void append_turning_point(std::vector<double>& points, double x) {
+  const std::size_t n = points.size();
+  if (n >= 1 && x == points[n - 1]) return;
+  if (n >= 2 && (points[n - 1] - points[n - 2]) * (x - points[n - 1]) > 0.0) {
+    points[n - 1] = x;  // the run goes on: its end moves
+    return;
+  }
+  points.push_back(x);
+}
+
 RainflowPart rainflow_part(std::span<const double> series, double gate) {
   RainflowPart part;
   // The four-point counter (the repeat rule) never takes a half cycle while counting; flushed but not

@@ -5,6 +5,7 @@
 #include <string>
 #include <fmt/format.h>
 
+#include "machdyn/io/duty.hpp"
 #include "sweep/mpi_detail.hpp"
 
 #ifdef MACHDYN_HAVE_MPI
@@ -24,6 +25,7 @@ int env_int(const char* name) {
 
 #ifdef MACHDYN_HAVE_MPI
 constexpr int kTagRows = 7001;
+constexpr int kTagDuty = 7002;
 #endif
 
 }  // namespace
@@ -84,6 +86,19 @@ void MpiSession::abort(int code) {
   std::_Exit(code);
 }
 
+namespace {
+class MpiDutyRanks final : public DutyRanks {
+ public:
+  [[nodiscard]] int rank() const override { return MpiSession::rank(); }
+  [[nodiscard]] int size() const override { return MpiSession::size(); }
+  [[nodiscard]] int on_this_node() const override { return MpiSession::local_size(); }
+  void send_to_root(const std::string& bytes) override { mpi_detail::send_to_root(bytes); }
+  std::string receive_from(int rank) override { return mpi_detail::receive_from(rank); }
+};
+}  // namespace
+
+std::unique_ptr<DutyRanks> mpi_duty_ranks() { return std::make_unique<MpiDutyRanks>(); }
+
 namespace mpi_detail {
 
 #ifdef MACHDYN_HAVE_MPI
@@ -112,7 +127,23 @@ int poll_rows(std::string& records) {
     records += buf;
   }
 }
+
+void send_to_root(const std::string& bytes) {
+  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_CHAR, 0, kTagDuty, MPI_COMM_WORLD);
+}
+
+std::string receive_from(int source) {
+  MPI_Status st;
+  MPI_Probe(source, kTagDuty, MPI_COMM_WORLD, &st);
+  int count = 0;
+  MPI_Get_count(&st, MPI_CHAR, &count);
+  std::string buf(static_cast<size_t>(count), '\0');
+  MPI_Recv(buf.data(), count, MPI_CHAR, source, kTagDuty, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return buf;
+}
 #else
+void send_to_root(const std::string&) {}
+std::string receive_from(int) { return {}; }
 void broadcast(int&) {}
 void broadcast(std::vector<char>&) {}
 void send_rows(const std::string&) {}

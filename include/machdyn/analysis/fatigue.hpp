@@ -2,8 +2,9 @@
 /// @file
 /// Fatigue figures of counted load cycles (analysis/rainflow.hpp), in the load's own unit (N·m, N):
 /// a Basquin S–N curve with a knee and an optional second slope, Palmgren–Miner damage, the
-/// equivalent constant range, and EN 13001's stress history parameter s. The standards' class tables
-/// (S-classes, L/T-classes, M-groups) are not here yet (docs/duty.md).
+/// equivalent constant range, and EN 13001's stress history parameter s. The mechanism classes of
+/// ISO 4301-1 (k_m, L, T, M) are in analysis/duty_classes.hpp; EN 13001's S-classes are not
+/// collected (docs/duty.md).
 ///
 ///   S–N curve (Basquin):  N(Δ) = N_ref (Δ_ref/Δ)^m                 for Δ ≥ Δ_knee,
 ///                         N(Δ) = N_knee (Δ_knee/Δ)^m₂              for Δ < Δ_knee,

@@ -88,6 +88,15 @@ class RainflowCounter {
   std::size_t turning_points_ = 0, max_held_ = 0;
 };
 
+/// Appends sample x to `points`, keeping only where the history turns: a point inside a monotone run
+/// (the last point when x goes on in its direction) is replaced by x, a value equal to the last is
+/// dropped, the first sample always stays. Lossless for counting: the turning points through any
+/// gate h >= 0 (RainflowCounter), hence every count and residue, are the same over `points` as over
+/// all the samples — the gate looks only at the running extreme and at how far the signal came back
+/// from it, and both are reached at the ends of a monotone run. Holds the reversals, not the samples:
+/// a history can be kept while its range (and so a gate given as a fraction of it) is not yet known.
+void append_turning_point(std::vector<double>& points, double x);
+
 /// One part of a longer history (an operation of a duty): its whole cycles by the four-point rule
 /// (never a half) and its residue, the turning points left. Parts merge exactly: counting A·B equals
 /// A's cycles + B's cycles + the count of R_A·R_B (the residues' concatenation), and the residue of

@@ -4,7 +4,11 @@
 /// finds MPI (option MACHDYN_MPI, default AUTO); MPI is initialized only when the process was
 /// started by a launcher with more than one rank, so a plain `machdyn sweep` never touches it.
 
+#include <memory>
+
 namespace machdyn {
+
+class DutyRanks;  // io/duty.hpp
 
 /// Initializes MPI (MPI_THREAD_FUNNELED: only the main thread calls MPI) when started by mpirun
 /// with more than one rank, and finalizes it on destruction. Throws std::runtime_error when
@@ -27,6 +31,9 @@ class MpiSession {
   /// Whether this build has MPI.
   static bool built();
 };
+
+/// A duty's ranks over MPI (io/duty.hpp's run_duty): the world of an active MpiSession.
+std::unique_ptr<DutyRanks> mpi_duty_ranks();
 
 /// The number of ranks the launcher announces in the environment (OpenMPI: OMPI_COMM_WORLD_SIZE;
 /// MPICH, Slurm: PMI_SIZE), 1 if none.
