@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals"};
   return f;
 }
 
@@ -39,9 +39,49 @@ double sig(double x, int d = 3) {
   return std::round(x * e) / e;
 }
 
-Signal random_signal(Rng& r, double t_end, double scale) {
+/// A random table: 3–5 points over the run (the first sometimes after 0, sometimes a jump: two
+/// points at one time), values from `value(r)`; outside held or extrapolated.
+template <class V>
+Signal random_table(Rng& r, double t_end, V value, bool may_extrapolate) {
   Signal s;
-  switch (r.i(0, 3)) {
+  s.kind = Signal::Kind::table;
+  const int n = r.i(3, 5);
+  double t = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.3) * t_end);
+  for (int k = 0; k < n; ++k) {
+    s.points.emplace_back(t, value(r));
+    if (k + 2 < n && r.p(0.2)) s.points.emplace_back(t, value(r)), ++k;  // a jump (never at the ends)
+    t = sig(t + r.u(0.05, 0.35) * t_end);
+  }
+  s.extrapolate = may_extrapolate && r.p(0.4);
+  return s;
+}
+
+/// A random pulse train from `start` with `count` pulses (or no end).
+Signal random_pulse(Rng& r, double t_end, double low, double high) {
+  Signal s;
+  s.kind = Signal::Kind::pulse, s.before = low, s.value = high;
+  s.period = sig(r.u(0.1, 0.5) * t_end);
+  s.width = sig(s.period * r.u(0.2, 0.7));
+  s.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.4) * t_end);
+  s.count = r.p(0.5) ? -1 : r.i(1, 4);
+  return s;
+}
+
+/// A random expression c0 + c1 t + A sin(2π f t + phase) + B exp(−t/τ) of magnitude about `scale`.
+Signal random_expression(Rng& r, double t_end, double scale) {
+  Signal s;
+  s.kind = Signal::Kind::expression;
+  s.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale);
+  s.slope = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * scale / t_end);
+  if (r.p(0.7)) s.amplitude = sig(r.u(0.2, 1) * scale), s.frequency_hz = sig(r.u(0.5, 6.0), 2), s.phase = sig(r.u(0, 3));
+  if (r.p(0.5)) s.decay = sig(r.u(-1, 1) * scale), s.tau = sig(r.u(0.05, 0.5) * t_end);
+  return s;
+}
+
+/// A load signal of every kind of docs/model-files.md (but sum and file), magnitude about `scale`.
+Signal random_signal(Rng& r, double t_end, double scale, bool every_kind) {
+  Signal s;
+  switch (every_kind ? r.i(0, 6) : r.i(0, 3)) {
     case 0: s.kind = Signal::Kind::constant, s.value = sig(r.u(-1, 1) * scale); break;
     case 1:
       s.kind = Signal::Kind::step, s.value = sig(r.u(-1, 1) * scale), s.before = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * scale);
@@ -51,10 +91,62 @@ Signal random_signal(Rng& r, double t_end, double scale) {
       s.kind = Signal::Kind::ramp, s.value = sig(r.u(-1, 1) * scale), s.before = r.p(0.6) ? 0.0 : sig(r.u(-1, 1) * scale);
       s.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.5) * t_end);
       break;
-    default:
+    case 3:
       s.kind = Signal::Kind::sine, s.amplitude = sig(r.u(0.2, 1) * scale), s.frequency_hz = sig(r.u(0.5, 6.0), 2);
       s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale);
       s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+    case 4: s = random_table(r, t_end, [&](Rng& g) { return sig(g.u(-1, 1) * scale); }, true); break;
+    case 5: s = random_pulse(r, t_end, r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale), sig(r.u(-1, 1) * scale)); break;
+    default: s = random_expression(r, t_end, scale); break;
+  }
+  return s;
+}
+
+/// A brake's application r(t) ∈ [0, 1] of every kind that stays there: a step or ramp up (or a ramp
+/// down: released), a table applying and releasing, a pulse, a sine about ½, 1 − e^(−t/τ).
+Signal random_application(Rng& r, double t_end) {
+  Signal s;
+  switch (r.i(0, 5)) {
+    case 0: s.kind = Signal::Kind::step, s.value = r.p(0.7) ? 1.0 : sig(r.u(0.3, 1.0)), s.t0 = sig(r.u(0.0, 0.6) * t_end); break;
+    case 1:
+      s.kind = Signal::Kind::ramp, s.t0 = sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.4) * t_end);
+      s.value = 1.0;
+      if (r.p(0.3)) std::swap(s.value, s.before);  // released over the ramp
+      break;
+    case 2: s = random_table(r, t_end, [](Rng& g) { return g.p(0.3) ? 0.0 : g.p(0.5) ? 1.0 : sig(g.u(0.0, 1.0)); }, false); break;
+    case 3: s = random_pulse(r, t_end, 0.0, r.p(0.6) ? 1.0 : sig(r.u(0.3, 1.0))); break;
+    case 4:
+      s.kind = Signal::Kind::sine, s.offset = 0.55, s.amplitude = sig(r.u(0.1, 0.45)), s.frequency_hz = sig(r.u(0.5, 4.0), 2);
+      s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+    default: s.kind = Signal::Kind::expression, s.offset = 1.0, s.decay = -1.0, s.tau = sig(r.u(0.02, 0.3) * t_end); break;
+  }
+  return s;
+}
+
+/// A normal force of about `fN` N of every kind; with `may_open` it may fall to zero or below (a
+/// clutch opening: a sine through zero, a table or pulse to 0, a ramp down), else it stays ≥ fN/5.
+Signal random_normal(Rng& r, double t_end, double fN, bool may_open) {
+  Signal s;
+  const double lo = may_open && r.p(0.5) ? 0.0 : sig(0.2 * fN);
+  switch (r.i(0, 6)) {
+    case 0: s.kind = Signal::Kind::constant, s.value = fN; break;
+    case 1: s.kind = Signal::Kind::step, s.value = fN, s.before = lo, s.t0 = sig(r.u(0.0, 0.5) * t_end); break;
+    case 2:
+      s.kind = Signal::Kind::ramp, s.value = fN, s.before = lo, s.t0 = sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.4) * t_end);
+      if (may_open && r.p(0.25)) std::swap(s.value, s.before);
+      break;
+    case 3:
+      s.kind = Signal::Kind::sine, s.amplitude = sig(r.u(0.2, 1.0) * fN), s.frequency_hz = sig(r.u(0.5, 4.0), 2);
+      s.offset = may_open ? sig(r.u(-0.3, 1.0) * fN) : sig(s.amplitude + r.u(0.2, 1.0) * fN);
+      s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+    case 4: s = random_table(r, t_end, [&](Rng& g) { return g.p(0.3) ? lo : sig(g.u(0.2, 1.0) * fN); }, false); break;
+    case 5: s = random_pulse(r, t_end, lo, fN); break;
+    default:
+      s.kind = Signal::Kind::expression, s.offset = fN, s.decay = -sig(r.u(0.0, 0.8) * fN), s.tau = sig(r.u(0.02, 0.3) * t_end);
+      if (r.p(0.5)) s.amplitude = sig(r.u(0.0, 0.15) * fN), s.frequency_hz = sig(r.u(0.5, 4.0), 2);
       break;
   }
   return s;
@@ -80,8 +172,17 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
   Rng r{seed * 0x2545F4914F6CDD1Dull + index * 0x9E3779B97F4A7C15ull + fnv(family)};
   for (int k = 0; k < 4; ++k) r.next();
   RefModel m;
-  const bool mixed = family == "mixed";
-  auto has = [&](const char* f) { return family == f || (mixed && r.p(0.35)); };
+  const bool mixed = family == "mixed", signals = family == "signals";
+  // Every signal kind (tables, pulses, expressions besides constants, steps, ramps and sines; brake
+  // applications and normal forces as signals) in the families that were added with them; the
+  // first families keep their random streams (and models) as they were.
+  const bool every_kind = !(family == "chain" || family == "gap" || family == "one-sided" || family == "ground-friction" ||
+                            family == "body-friction" || family == "freewheel" || family == "stop");
+  auto has = [&](const char* f) {
+    const std::string fs = f;
+    return family == fs || (mixed && r.p(0.35)) ||
+           (signals && (fs == "ground-friction" || fs == "brake" || fs == "clutch") && r.p(0.4));
+  };
   const int n = r.i(2, 6);
   m.t_end = sig(r.u(0.4, 1.2), 2);
   m.dt_out = m.t_end / 200;
@@ -112,8 +213,8 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
     m.links.push_back(L);
   }
   // Loads.
-  const int nl = r.i(1, 2);
-  for (int k = 0; k < nl; ++k) m.loads.push_back({named("P", k), r.i(0, n - 1), random_signal(r, m.t_end, force)});
+  const int nl = signals ? r.i(1, 3) : r.i(1, 2);
+  for (int k = 0; k < nl; ++k) m.loads.push_back({named("P", k), r.i(0, n - 1), random_signal(r, m.t_end, force, every_kind)});
 
   // Gaps and one-sided links replace chain links.
   auto pick_link = [&]() -> Link* {
@@ -155,6 +256,7 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       f.normal = sig(r.log_u(200.0, 3000.0));
       f.mu_s = Fs / f.normal * (1 + 1e-3 * r.u());  // many digits: the last bits of F_s = N μ_s matter
       f.mu_k = f.mu_s * (r.p(0.2) ? 1.0 : r.u(0.5, 1.0));
+      if (every_kind && r.p(0.4)) f.fN = random_normal(r, m.t_end, f.normal, false);  // a normal force that varies
     } else {
       f.Fs = Fs;
       f.Fk = r.p(0.2) ? Fs : sig(Fs * r.u(0.5, 1.0));
@@ -187,6 +289,7 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       f.Fk = r.p(0.3) ? f.Fs : sig(f.Fs * r.u(0.6, 1.0));
       f.time = r.p(0.3) ? 0.0 : sig(r.u(0.05, 0.6) * m.t_end);
       f.ramp = r.p(0.4) ? 0.0 : sig(r.u(0.02, 0.3) * m.t_end);
+      if (every_kind && r.p(0.5)) f.with_application = true, f.application = random_application(r, m.t_end);
       add(f);
     }
   if (has("clutch"))
@@ -197,10 +300,14 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       const double fN = sig(r.log_u(200.0, 3000.0));
       f.mu_s = sig(r.log_u(0.2, 2.0) * force / fN);
       f.mu_k = r.p(0.2) ? f.mu_s : sig(f.mu_s * r.u(0.5, 1.0));
-      f.fN.value = fN;
-      if (r.p(0.5)) f.fN.kind = Signal::Kind::step, f.fN.t0 = sig(r.u(0.0, 0.5) * m.t_end);
-      else f.fN.kind = Signal::Kind::ramp, f.fN.t0 = sig(r.u(0.0, 0.4) * m.t_end), f.fN.t1 = sig(f.fN.t0 + r.u(0.05, 0.4) * m.t_end);
-      if (f.fN.kind == Signal::Kind::step && f.fN.t0 == 0.0) f.fN.kind = Signal::Kind::constant;
+      if (!every_kind || r.p(0.5)) {  // the step or ramp that closes it
+        f.fN.value = fN;
+        if (r.p(0.5)) f.fN.kind = Signal::Kind::step, f.fN.t0 = sig(r.u(0.0, 0.5) * m.t_end);
+        else f.fN.kind = Signal::Kind::ramp, f.fN.t0 = sig(r.u(0.0, 0.4) * m.t_end), f.fN.t1 = sig(f.fN.t0 + r.u(0.05, 0.4) * m.t_end);
+        if (f.fN.kind == Signal::Kind::step && f.fN.t0 == 0.0) f.fN.kind = Signal::Kind::constant;
+      } else {
+        f.fN = random_normal(r, m.t_end, fN, true);
+      }
       pair_used.insert({std::min(f.a, f.b), std::max(f.a, f.b)});
       body_friction_on.insert(f.a), body_friction_on.insert(f.b);
       // A clutch closing on a running pair: give one side a speed.
@@ -256,7 +363,7 @@ std::string num(double x) {
 std::string end_name(const RefModel& m, int i) { return i < 0 ? "ground" : m.bodies[static_cast<size_t>(i)].name; }
 
 std::string signal_yaml(const Signal& s, const char* unit) {
-  const std::string u = std::string(" ") + unit;
+  const std::string u = *unit != 0 ? std::string(" ") + unit : std::string();
   switch (s.kind) {
     case Signal::Kind::constant: return "type: constant, value: " + num(s.value) + u;
     case Signal::Kind::step:
@@ -267,6 +374,22 @@ std::string signal_yaml(const Signal& s, const char* unit) {
     case Signal::Kind::sine:
       return "type: sine, amplitude: " + num(s.amplitude) + u + ", frequency: " + num(s.frequency_hz) +
              " Hz, phase: " + num(s.phase) + ", offset: " + num(s.offset) + u + ", start: " + num(s.t0) + " s";
+    case Signal::Kind::table: {
+      std::string y = "type: table, points: [";  // plain numbers: SI
+      for (size_t k = 0; k < s.points.size(); ++k) y += (k ? ", [" : "[") + num(s.points[k].first) + ", " + num(s.points[k].second) + "]";
+      return y + "], outside: " + (s.extrapolate ? "extrapolate" : "hold");
+    }
+    case Signal::Kind::pulse:
+      return "type: pulse, high: " + num(s.value) + u + ", low: " + num(s.before) + u + ", period: " + num(s.period) + " s, width: " +
+             num(s.width) + " s, start: " + num(s.t0) + " s" + (s.count >= 0 ? ", count: " + std::to_string(s.count) : std::string());
+    case Signal::Kind::expression: {
+      // c0 + c1 t + A sin(2 pi f t + phase) + B exp(-t/tau), in SI (the expression language's text).
+      std::string e = num(s.offset);
+      if (s.slope != 0.0) e += " + " + num(s.slope) + "*t";
+      if (s.amplitude != 0.0) e += " + " + num(s.amplitude) + "*sin(2*pi*" + num(s.frequency_hz) + "*t + " + num(s.phase) + ")";
+      if (s.decay != 0.0) e += " + " + num(s.decay) + "*exp(-t/" + num(s.tau) + ")";
+      return "type: expression, expression: '" + e + "'";
+    }
   }
   return "";
 }
@@ -301,12 +424,16 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       switch (k) {
         case Friction::Kind::contact:
           y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], ";
-          y += f.via_mu ? "normal_force: " + num(f.normal) + " N, mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k)
-                        : "static: " + num(f.Fs) + " N, kinetic: " + num(f.Fk) + " N";
+          y += !f.via_mu ? "static: " + num(f.Fs) + " N, kinetic: " + num(f.Fk) + " N"
+               : "normal_force: " + (f.fN.kind == Signal::Kind::constant && f.fN.value == 0.0
+                                         ? num(f.normal) + " N"
+                                         : "{" + signal_yaml(f.fN, "N") + "}") +
+                     ", mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k);
           break;
         case Friction::Kind::brake:
-          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + " N, braking: " + num(f.Fk) + " N, time: " + num(f.time) +
-               " s, ramp: " + num(f.ramp) + " s";
+          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + " N, braking: " + num(f.Fk) + " N, " +
+               (f.with_application ? "application: {" + signal_yaml(f.application, "") + "}"
+                                   : "time: " + num(f.time) + " s, ramp: " + num(f.ramp) + " s");
           break;
         case Friction::Kind::clutch:
           y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], normal_force: {" + signal_yaml(f.fN, "N") +

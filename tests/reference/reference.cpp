@@ -22,13 +22,70 @@ double Signal::at(double t) const {
       return before + (value - before) * (t - t0) / (t1 - t0);
     case Kind::sine:
       return t < t0 ? offset : offset + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * (t - t0) + phase);
+    case Kind::table: {
+      const size_t n = points.size();
+      if (n == 0) return 0.0;
+      auto line = [&](size_t i, size_t j) {  // the line through points i and j at t
+        const auto [ta, sa] = points[i];
+        const auto [tb, sb] = points[j];
+        return tb == ta ? sb : sa + (sb - sa) * (t - ta) / (tb - ta);
+      };
+      if (t < points.front().first) return extrapolate && n > 1 ? line(0, 1) : points.front().second;
+      if (t >= points.back().first) return extrapolate && n > 1 ? line(n - 2, n - 1) : points.back().second;
+      // The last point at or before t (of two at one time, the second: the value after the jump).
+      size_t i = 0;
+      while (i + 1 < n && points[i + 1].first <= t) ++i;
+      return line(i, i + 1);
+    }
+    case Kind::pulse: {
+      if (t < t0) return before;
+      // The period index k with t0 + kP ≤ t < t0 + (k+1)P, the edges computed as the breakpoints
+      // are (the quotient alone can round an edge into the period before).
+      double k = std::floor((t - t0) / period);
+      if (t >= t0 + (k + 1) * period) k += 1;
+      else if (t < t0 + k * period) k -= 1;
+      if (count >= 0 && k >= static_cast<double>(count)) return before;
+      return t - (t0 + k * period) < width ? value : before;
+    }
+    case Kind::expression:
+      return offset + slope * t + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * t + phase) + decay * std::exp(-t / tau);
   }
   return 0.0;
 }
 
-void Signal::breakpoints(std::vector<double>& out) const {
-  if (kind == Kind::step || kind == Kind::sine) out.push_back(t0);
-  if (kind == Kind::ramp) out.push_back(t0), out.push_back(t1);
+void Signal::breakpoints(std::vector<double>& out, double t_end, bool zeros) const {
+  switch (kind) {
+    case Kind::constant:
+    case Kind::expression: break;
+    case Kind::step: out.push_back(t0); break;
+    case Kind::ramp: out.push_back(t0), out.push_back(t1); break;
+    case Kind::sine: out.push_back(t0); break;
+    case Kind::table:
+      for (const auto& p : points) out.push_back(p.first);
+      break;
+    case Kind::pulse:
+      for (long k = 0; (count < 0 || k < count) && t0 + static_cast<double>(k) * period <= t_end; ++k)
+        out.push_back(t0 + static_cast<double>(k) * period), out.push_back(t0 + static_cast<double>(k) * period + width);
+      break;
+  }
+  if (!zeros) return;
+  // Zero crossings inside the pieces: a ramp's and a table's segments (linear), a sine's (closed form).
+  auto segment = [&](double ta, double sa, double tb, double sb) {
+    if (tb > ta && ((sa < 0 && sb > 0) || (sa > 0 && sb < 0))) out.push_back(ta + (tb - ta) * sa / (sa - sb));
+  };
+  if (kind == Kind::ramp) segment(t0, before, t1, value);
+  if (kind == Kind::table)
+    for (size_t i = 0; i + 1 < points.size(); ++i) segment(points[i].first, points[i].second, points[i + 1].first, points[i + 1].second);
+  if (kind == Kind::sine && amplitude != 0.0 && std::abs(offset) < std::abs(amplitude)) {
+    // offset + A sin(x) = 0, x = ω (t − t0) + phase: x = asin(c) + 2πk or π − asin(c) + 2πk, c = −offset/A.
+    const double w = 2 * std::numbers::pi * frequency_hz, c = std::asin(-offset / amplitude);
+    for (double x0 : {c, std::numbers::pi - c})
+      for (double k = std::floor((phase - x0) / (2 * std::numbers::pi)); ; k += 1.0) {
+        const double t = t0 + (x0 + 2 * std::numbers::pi * k - phase) / w;
+        if (t > t_end) break;
+        if (t > t0) out.push_back(t);
+      }
+  }
 }
 
 namespace {
@@ -41,8 +98,8 @@ double ramp01(double t, double t0, double dt) {
 
 double Friction::static_limit(double t) const {
   switch (kind) {
-    case Kind::contact: return via_mu ? normal * mu_s : Fs;
-    case Kind::brake: return ramp01(t, time, ramp) * Fs;
+    case Kind::contact: return via_mu ? normal_at(t) * mu_s : Fs;
+    case Kind::brake: return application_at(t) * Fs;
     case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_s;
     default: return HUGE_VAL;
   }
@@ -50,8 +107,8 @@ double Friction::static_limit(double t) const {
 
 double Friction::kinetic_level(double t) const {
   switch (kind) {
-    case Kind::contact: return via_mu ? normal * mu_k : Fk;
-    case Kind::brake: return ramp01(t, time, ramp) * Fk;
+    case Kind::contact: return via_mu ? normal_at(t) * mu_k : Fk;
+    case Kind::brake: return application_at(t) * Fk;
     case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_k;
     case Kind::freewheel: return drag;
     case Kind::stop: return 0.0;
@@ -59,15 +116,22 @@ double Friction::kinetic_level(double t) const {
   return 0.0;
 }
 
+double Friction::application_at(double t) const { return with_application ? application.at(t) : ramp01(t, time, ramp); }
+
 bool Friction::engaged(double t) const {
-  if (kind == Kind::brake) return t >= time;  // from `time` on the ramp rises (or the step is full)
-  if (kind == Kind::clutch) return fN.at(t) > 0.0 || fN.at(t + 1e-9 * std::max(1.0, t)) > 0.0;
+  // Engaged where the level is positive just after t (a step or ramp starting at t engages at t;
+  // the engine decides its levels on the right of a breakpoint, docs/hybrid.md).
+  const double tr = t + 1e-9 * std::max(1.0, t);
+  if (kind == Kind::brake) return with_application ? application.at(tr) > 0.0 : t >= time;
+  if (kind == Kind::clutch) return fN.at(tr) > 0.0;
   return true;
 }
 
-void Friction::breakpoints(std::vector<double>& out) const {
-  if (kind == Kind::brake) out.push_back(time), out.push_back(time + ramp);
-  if (kind == Kind::clutch) fN.breakpoints(out);
+void Friction::breakpoints(std::vector<double>& out, double t_end) const {
+  if (kind == Kind::brake && with_application) application.breakpoints(out, t_end, true);
+  else if (kind == Kind::brake) out.push_back(time), out.push_back(time + ramp);
+  if (kind == Kind::clutch) fN.breakpoints(out, t_end, true);
+  if (kind == Kind::contact && via_mu) fN.breakpoints(out, t_end);
 }
 
 namespace {
@@ -90,10 +154,13 @@ class Sim {
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
     // The force scale of the model (the thresholds of the switching functions are relative to it).
-    for (const auto& l : m.loads) fscale_ = std::max({fscale_, std::abs(l.s.value), std::abs(l.s.before),
-                                                      std::abs(l.s.amplitude) + std::abs(l.s.offset)});
-    for (const auto& f : m.frictions)
-      if (!f.one_sided()) fscale_ = std::max(fscale_, f.static_limit(1e300));
+    // (sampled over the run: every signal kind, its largest magnitude up to a sample's spacing).
+    for (int i = 0; i <= 2000; ++i) {
+      const double t = m.t_end * i / 2000.0;
+      for (const auto& l : m.loads) fscale_ = std::max(fscale_, std::abs(l.s.at(t)));
+      for (const auto& f : m.frictions)
+        if (!f.one_sided()) fscale_ = std::max(fscale_, f.static_limit(t));
+    }
     // The fastest rate: √(c/m) and d/m of every link over its lighter body.
     double w = 0.0;
     for (const auto& l : m.links) {
@@ -624,8 +691,8 @@ RefResult Sim::run() {
   bool g0_valid = true;
 
   std::vector<double> bps;
-  for (const auto& l : m_.loads) l.s.breakpoints(bps);
-  for (const auto& f : m_.frictions) f.breakpoints(bps);
+  for (const auto& l : m_.loads) l.s.breakpoints(bps, m_.t_end);
+  for (const auto& f : m_.frictions) f.breakpoints(bps, m_.t_end);
   std::sort(bps.begin(), bps.end());
   bps.erase(std::remove_if(bps.begin(), bps.end(), [&](double b) { return !(b > 0.0 && b < m_.t_end); }), bps.end());
   bps.erase(std::unique(bps.begin(), bps.end()), bps.end());

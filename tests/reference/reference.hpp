@@ -43,21 +43,39 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace machdyn::reference {
 
-/// A signal of time: the load and normal-force kinds of docs/model-files.md the generator uses.
+/// A signal of time: every kind of docs/model-files.md ("Signals") but `sum` and `file`.
+///   constant  value
+///   step      `before` for t < t0, `value` from t0 on
+///   ramp      `before` until t0, linear to `value` at t1
+///   sine      `offset` before t0, then offset + A sin(2π f (t − t0) + phase)
+///   table     piecewise linear through `points` (two points at one time: a jump, the second value
+///             from that time on); outside the end values held, or with `extrapolate` the end
+///             segments continued
+///   pulse     `value` (high) for `width` at the start of each period P from t0, `count` times
+///             (−1: no end), `before` (low) otherwise
+///   expression  c0 + c1 t + A sin(ω t + phase) + B exp(−t/τ) (written as the expression language's
+///             text; no breakpoints)
 struct Signal {
-  enum class Kind { constant, step, ramp, sine } kind = Kind::constant;
-  double value = 0.0;   ///< constant, step's and ramp's final value
-  double before = 0.0;  ///< step and ramp: the value before
-  double t0 = 0.0;      ///< step's time, ramp's start, sine's start
+  enum class Kind { constant, step, ramp, sine, table, pulse, expression } kind = Kind::constant;
+  double value = 0.0;   ///< constant, step's and ramp's final value, pulse's high
+  double before = 0.0;  ///< step and ramp: the value before; pulse: low
+  double t0 = 0.0;      ///< step's time, ramp's start, sine's and pulse's start
   double t1 = 0.0;      ///< ramp's end
-  double amplitude = 0.0, frequency_hz = 0.0, phase = 0.0, offset = 0.0;  ///< sine
+  double amplitude = 0.0, frequency_hz = 0.0, phase = 0.0, offset = 0.0;  ///< sine (expression: A, ω/(2π), phase, c0)
+  std::vector<std::pair<double, double>> points;  ///< table: (t, s), t non-decreasing
+  bool extrapolate = false;                       ///< table: `outside: extrapolate`
+  double period = 0.0, width = 0.0;               ///< pulse
+  long count = -1;                                ///< pulse: −1 = no end
+  double slope = 0.0, decay = 0.0, tau = 1.0;     ///< expression: c1, B, τ
   [[nodiscard]] double at(double t) const;
-  /// The times where the signal jumps or kinks (the stepper ends a step there).
-  void breakpoints(std::vector<double>& out) const;
+  /// The times in [0, t_end] where the signal jumps or kinks (the stepper ends a step there); with
+  /// `zeros`, also where it crosses zero (a clutch's or brake's normal force opening and closing).
+  void breakpoints(std::vector<double>& out, double t_end, bool zeros = false) const;
 };
 
 constexpr int kGround = -1;
@@ -96,11 +114,15 @@ struct Friction {
   enum class Kind { contact, brake, clutch, freewheel, stop } kind = Kind::contact;
   std::string name;
   int a = 0, b = kGround;
-  // contact: levels, given directly or as normal force and coefficients (F = N μ)
+  // contact: levels, given directly or as normal force and coefficients (F = N μ); the normal force
+  // N(t) = `normal` when fN is a constant 0 signal, else fN (a signal kept positive by the generator)
   bool via_mu = false;
   double Fs = 0.0, Fk = 0.0, normal = 0.0, mu_s = 0.0, mu_k = 0.0;
-  // brake on body a: holding = Fs, braking = Fk, applied over r(t) = 0 → 1 from `time` over `ramp`
+  // brake on body a: holding = Fs, braking = Fk, applied over r(t) = 0 → 1 from `time` over `ramp`,
+  // or (with_application) by the signal r(t) = `application` (0 released, 1 full levels)
   double time = 0.0, ramp = 0.0;
+  bool with_application = false;
+  Signal application;
   // clutch between a and b: F = μ f_N(t) (f_N ≤ 0 opens it)
   Signal fN;
   // freewheel [a, b] (a may be kGround: a backstop on b): holds while λ ≥ 0, overruns with u < 0
@@ -115,7 +137,13 @@ struct Friction {
   [[nodiscard]] double kinetic_level(double t) const;
   /// Whether a brake or clutch is engaged at t (r > 0 or about to rise: the right limit).
   [[nodiscard]] bool engaged(double t) const;
-  void breakpoints(std::vector<double>& out) const;
+  /// A brake's application r(t) ∈ [0, 1].
+  [[nodiscard]] double application_at(double t) const;
+  /// A contact's normal force N(t).
+  [[nodiscard]] double normal_at(double t) const {
+    return fN.kind == Signal::Kind::constant && fN.value == 0.0 ? normal : fN.at(t);
+  }
+  void breakpoints(std::vector<double>& out, double t_end) const;
 };
 
 struct RefModel {
