@@ -168,6 +168,9 @@ RefModel without_body(const RefModel& m, int i) {
     if (l.body != i) l.body = map(l.body), s.loads.push_back(l);
   for (auto f : m.frictions)
     if (f.a != i && f.b != i) f.a = map(f.a), f.b = map(f.b), s.frictions.push_back(f);
+  s.gears.clear();
+  for (auto g : m.gears)
+    if (g.a != i && g.b != i) g.a = map(g.a), g.b = map(g.b), s.gears.push_back(g);
   return s;
 }
 

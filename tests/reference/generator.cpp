@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear"};
   return f;
 }
 
@@ -351,6 +351,39 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
         break;
       }
     }
+  // Ideal gears: 1–2 bodies slaved to chain bodies (q_master = i q_slave), with loads and links
+  // from the slave (its first end) back into the chain or to the ground; friction on the masters.
+  if (family == "gear") {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      const int master = r.i(0, n - 1), slave = static_cast<int>(m.bodies.size());
+      const double i = sig((r.p(0.3) ? -1 : 1) * r.log_u(0.3, 3.0));
+      m.bodies.push_back({named("g", slave - n), sig(r.log_u(0.5, 10.0)), 0.0, 0.0});
+      m.gears.push_back({named("G", slave - n), master, slave, i});
+      if (r.p(0.6)) m.loads.push_back({named("Pg", slave - n), slave, random_signal(r, m.t_end, force, true)});
+      if (r.p(0.6)) {
+        Link L;
+        L.name = named("kg", slave - n);
+        L.a = slave, L.b = r.p(0.3) ? kGround : r.i(0, n - 1);
+        L.c = sig(r.log_u(2e3, 5e4));
+        L.d = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.1) * 2 * std::sqrt(L.c * m.bodies[static_cast<size_t>(slave)].m));
+        if (L.b == master) L.b = kGround;  // a link inside the rigid group is an input error
+        m.links.push_back(L);
+      }
+    }
+    if (r.p(0.5)) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = m.gears[0].a, f.b = kGround;
+      levels(f);
+      add(f);
+    }
+    if (r.p(0.3)) {
+      Friction f;
+      f.kind = Friction::Kind::brake, f.name = fname("B"), f.a = m.gears.back().a, f.b = kGround;
+      f.Fs = sig(r.log_u(0.3, 3.0) * force), f.Fk = sig(f.Fs * r.u(0.6, 1.0)), f.time = sig(r.u(0.05, 0.6) * m.t_end);
+      add(f);
+    }
+  }
+  for (const auto& g : m.gears) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
 }
 
@@ -401,7 +434,12 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   for (const auto& b : m.bodies)
     y += "  " + b.name + ": {type: translational, mass: " + num(b.m) + " kg, position: " + num(b.q0) +
          " m, velocity: " + num(b.v0) + " m/s}\n";
-  if (!m.links.empty()) y += "links:\n";
+  bool first_link = true;
+  if (!m.links.empty()) y += "links:\n", first_link = false;
+  for (const auto& g : m.gears) {
+    if (first_link) y += "links:\n", first_link = false;
+    y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) + "}\n";
+  }
   for (const auto& L : m.links) {
     const bool rope = L.kind == Link::Kind::rope;
     y += "  " + L.name + ": {type: " + (rope ? "rope" : L.d > 0 || L.kind != Link::Kind::plain ? "spring-damper" : "spring") +

@@ -45,7 +45,7 @@ double Signal::at(double t) const {
       if (t >= t0 + (k + 1) * period) k += 1;
       else if (t < t0 + k * period) k -= 1;
       if (count >= 0 && k >= static_cast<double>(count)) return before;
-      return t - (t0 + k * period) < width ? value : before;
+      return t < t0 + k * period + width ? value : before;  // the falling edge as its breakpoint
     }
     case Kind::expression:
       return offset + slope * t + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * t + phase) + decay * std::exp(-t / tau);
@@ -151,6 +151,16 @@ class Sim {
  public:
   Sim(const RefModel& m, const RefOptions& o) : m_(m), o_(o), n_(static_cast<int>(m.bodies.size())) {
     for (const auto& b : m.bodies) im_.push_back(1.0 / b.m);
+    // The inverse mass under the ideal gears' rows J (q_a = i q_b: the row e_a − i e_b, held in
+    // every mode): P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹, so a = P f is the motion the gears allow and
+    // the gears' forces never need to be known. Without gears P = M⁻¹.
+    P_ = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(im_.data(), n_)).asDiagonal();
+    if (!m.gears.empty()) {
+      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<long>(m.gears.size()), n_);
+      for (size_t g = 0; g < m.gears.size(); ++g) J(static_cast<long>(g), m.gears[g].a) += 1.0, J(static_cast<long>(g), m.gears[g].b) -= m.gears[g].ratio;
+      const Eigen::MatrixXd Mi = P_;
+      P_ = Mi - Mi * J.transpose() * (J * Mi * J.transpose()).inverse() * J * Mi;
+    }
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
     // The force scale of the model (the thresholds of the switching functions are relative to it).
@@ -180,6 +190,12 @@ class Sim {
   const RefOptions& o_;
   int n_;
   std::vector<double> im_;
+  Eigen::MatrixXd P_;  // the inverse mass under the gears' rows (M⁻¹ without gears)
+
+  /// Slaved bodies follow their gear exactly: x_b = x_a / i (the rounding of P's projection).
+  void follow_gears(double* x) const {
+    for (const auto& g : m_.gears) x[g.b] = x[g.a] / g.ratio;
+  }
   Modes md_;
   double fscale_ = 1.0, h_ = 1e-3;
   RefResult res_;
@@ -228,8 +244,7 @@ class Sim {
       if (fr.a >= 0) S.G(r, fr.a) += 1.0;
       if (fr.b >= 0) S.G(r, fr.b) -= 1.0;
     }
-    const Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(im_.data(), n_);
-    S.A = S.G * im.asDiagonal() * S.G.transpose();
+    S.A = S.G * P_ * S.G.transpose();
     Eigen::FullPivLU<Eigen::MatrixXd> lu(S.A);
     lu.setThreshold(1e-12);
     S.full = lu.rank() == s;
@@ -318,8 +333,8 @@ class Sim {
         mask |= 1u << k;
       }
     }
-    for (int i = 0; i < n_; ++i) a[i] = f[static_cast<size_t>(i)] * im_[static_cast<size_t>(i)];
-    if (mask == 0) return;
+    Eigen::Map<Eigen::VectorXd>(a, n_) = P_ * Eigen::Map<const Eigen::VectorXd>(f.data(), n_);
+    if (mask == 0) return follow_gears(a);
     const StuckSet& S = stuck_set(mask);
     const int s = static_cast<int>(S.rows.size());
     // b = G M⁻¹ f (the free accelerations' row differences); G M⁻¹ Gᵀ λ = b.
@@ -340,8 +355,7 @@ class Sim {
       const int k = S.rows[static_cast<size_t>(r)];
       const Friction& fr = m_.frictions[static_cast<size_t>(k)];
       const double l = lamv_[static_cast<size_t>(r)];
-      if (fr.a >= 0) a[fr.a] -= im_[static_cast<size_t>(fr.a)] * l;
-      if (fr.b >= 0) a[fr.b] += im_[static_cast<size_t>(fr.b)] * l;
+      for (int i = 0; i < n_; ++i) a[i] -= l * ((fr.a >= 0 ? P_(i, fr.a) : 0.0) - (fr.b >= 0 ? P_(i, fr.b) : 0.0));
       lam[k] = l;
     }
     // Bodies held together get exactly equal accelerations (a stuck pair's rounding).
@@ -350,6 +364,7 @@ class Sim {
       if (fr.a >= 0 && fr.b < 0) a[fr.a] = 0.0;
       else if (fr.b >= 0 && fr.a < 0) a[fr.b] = 0.0;
     }
+    follow_gears(a);
   }
 
   void deriv(double t, const std::vector<double>& y, const Modes& md, std::vector<double>& dy) {
@@ -452,12 +467,11 @@ class Sim {
       if (fr.a >= 0) G(r, fr.a) += 1.0;
       if (fr.b >= 0) G(r, fr.b) -= 1.0;
     }
-    Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(im_.data(), n_);
     Eigen::Map<Eigen::VectorXd> v(y.data() + n_, n_);
-    const Eigen::MatrixXd A = G * im.asDiagonal() * G.transpose();
+    const Eigen::MatrixXd A = G * P_ * G.transpose();
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
     cod.setThreshold(1e-12);
-    const Eigen::VectorXd dv = im.asDiagonal() * (G.transpose() * (cod.pseudoInverse() * (G * v)));
+    const Eigen::VectorXd dv = P_ * (G.transpose() * (cod.pseudoInverse() * (G * v)));
     v -= dv;
     // Exactly equal speeds: the mean of each stuck pair (rounding of the projection).
     for (int r = 0; r < s; ++r) {
@@ -474,6 +488,7 @@ class Sim {
           v(fr.a) = v(fr.b) = vm;
         }
       }
+    follow_gears(y.data() + n_);
   }
 
   /// Decides the friction elements at zero sliding speed (`zero`: their indices) by enumeration;

@@ -146,8 +146,18 @@ struct Friction {
   void breakpoints(std::vector<double>& out, double t_end) const;
 };
 
+/// An ideal gear (docs/model-files.md, "Ideal gears"): q_a = i q_b, rigid, no losses. Body b is
+/// slaved to a (later in the file than a, no friction element on it, links on it only as their
+/// first end, no other gear on it; a is no slave).
+struct Gear {
+  std::string name;
+  int a = 0, b = 1;
+  double ratio = 1.0;  ///< i ≠ 0
+};
+
 struct RefModel {
   std::vector<Body> bodies;
+  std::vector<Gear> gears;
   std::vector<Link> links;
   std::vector<Load> loads;
   std::vector<Friction> frictions;
