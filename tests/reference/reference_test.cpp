@@ -1,5 +1,6 @@
 // The reference simulator itself against closed forms (so a later mismatch with the engine can be
 // trusted to be the engine's), its convergence with the step, and the generator's files compiling.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <gtest/gtest.h>
@@ -258,6 +259,137 @@ TEST(ReferenceCampaign, ComparisonDetectsADifferentModel) {
   RefModel other = m;
   other.bodies[0].m *= 1.01;
   EXPECT_EQ(compare(other, "dopri5", ref).kind, Outcome::Kind::state_mismatch);
+}
+
+}  // namespace
+}  // namespace machdyn::reference
+
+namespace machdyn::reference {
+namespace {
+
+// Claim: the signal kinds read as docs/model-files.md ("Signals") states them. A free mass m = 2 kg
+// under three loads — a pulse (high 10 N, low 2 N, period 0.2 s, width 0.05 s, from 0.1 s, 3 times),
+// a table with a jump ([0, 0], [0.2, 10], [0.2, −5], [0.5, 5], extrapolated: the last segment's slope
+// 10/0.3 continues) and an expression 1 + 3 t + 4 sin(2π·1.5 t + 0.3) − 2 e^(−t/0.1) — moves with
+// v(t) = (1/m) ∫₀ᵗ ΣP: the pulse's integral counts its pieces, the table's is the trapezoids up to t,
+// the expression's is t + 1.5 t² − (4/ω)(cos(ωt + 0.3) − cos 0.3) − 0.2 (1 − e^(−t/0.1)), ω = 3π.
+TEST(ReferenceSimulator, SignalKindsIntegrateToTheirClosedForms) {
+  Signal pulse, table, expr;
+  pulse.kind = Signal::Kind::pulse, pulse.value = 10.0, pulse.before = 2.0, pulse.period = 0.2, pulse.width = 0.05, pulse.t0 = 0.1;
+  pulse.count = 3;
+  table.kind = Signal::Kind::table, table.points = {{0.0, 0.0}, {0.2, 10.0}, {0.2, -5.0}, {0.5, 5.0}}, table.extrapolate = true;
+  expr.kind = Signal::Kind::expression, expr.offset = 1.0, expr.slope = 3.0, expr.amplitude = 4.0, expr.frequency_hz = 1.5;
+  expr.phase = 0.3, expr.decay = -2.0, expr.tau = 0.1;
+  EXPECT_EQ(table.at(0.2), -5.0);  // the jump: the second value from its time on
+  EXPECT_EQ(table.at(0.1), 5.0);
+  EXPECT_NEAR(table.at(0.8), 5.0 + 10.0 / 0.3 * 0.3, 1e-12);
+  EXPECT_EQ(pulse.at(0.1), 10.0);
+  EXPECT_EQ(pulse.at(0.16), 2.0);
+  EXPECT_EQ(pulse.at(0.5), 10.0);  // the third pulse, 0.5 = 0.1 + 2·0.2
+  EXPECT_EQ(pulse.at(0.7), 2.0);   // no fourth
+  RefModel m;
+  m.bodies = {{"m", 2.0, 0.0, 0.0}};
+  m.loads = {{"P", 0, pulse}, {"T", 0, table}, {"E", 0, expr}};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  auto pulse_int = [](double t) {  // 2 t plus 8 N over the high parts
+    double s = 2.0 * t;
+    for (int k = 0; k < 3; ++k) s += 8.0 * std::clamp(t - (0.1 + 0.2 * k), 0.0, 0.05);
+    return s;
+  };
+  auto table_int = [](double t) {
+    if (t <= 0.2) return 25.0 * t * t;                      // 50 t
+    const double u = t - 0.2;                               // −5 + (10/0.3) u
+    return 1.0 + (-5.0 * u + 0.5 * (10.0 / 0.3) * u * u);   // extrapolated beyond 0.5 on the same line
+  };
+  const double w = 2 * std::numbers::pi * 1.5;
+  auto expr_int = [&](double t) {
+    return t + 1.5 * t * t - 4.0 / w * (std::cos(w * t + 0.3) - std::cos(0.3)) - 0.2 * (1 - std::exp(-t / 0.1));
+  };
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    EXPECT_NEAR(r.v[k][0], (pulse_int(t) + table_int(t) + expr_int(t)) / 2.0, 1e-9) << t;
+  }
+}
+
+// Claim: a brake released by its application signal r(t) (1 until 0.2 s, a ramp to 0 at 0.6 s)
+// holding 100 N, braking 80 N, on a block m = 5 kg pushed by 50 N: stuck while 100 r ≥ 50, so it
+// slips at r = ½, t* = 0.4 s; then 5 a = 50 − 80 r(t), r = (0.6 − t)/0.4 until 0.6 s, 0 after
+// (released there): v(t) = [50 (t − t*) − 200 ∫_{t*}^{min(t, 0.6)} (0.6 − s) ds]/5.
+TEST(ReferenceSimulator, BrakeReleasedByItsApplicationSignal) {
+  RefModel m;
+  m.bodies = {{"block", 5.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 0, P.s.value = 50.0;
+  m.loads = {P};
+  Friction b;
+  b.kind = Friction::Kind::brake, b.name = "B", b.a = 0, b.b = kGround, b.Fs = 100.0, b.Fk = 80.0;
+  b.with_application = true;
+  b.application.kind = Signal::Kind::ramp, b.application.before = 1.0, b.application.value = 0.0;
+  b.application.t0 = 0.2, b.application.t1 = 0.6;
+  m.frictions = {b};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  EXPECT_NEAR(slip[0].t, 0.4, 1e-11);
+  ASSERT_EQ(of_kind(r, "released").size(), 1u);
+  EXPECT_NEAR(of_kind(r, "released")[0].t, 0.6, 1e-12);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], te = std::min(t, 0.6);
+    const double v = t <= 0.4 ? 0.0 : (50 * (t - 0.4) - 200 * (0.6 * (te - 0.4) - 0.5 * (te * te - 0.16))) / 5;
+    EXPECT_NEAR(r.v[k][0], v, 1e-10) << t;
+  }
+}
+
+// Claim: a clutch's normal force as a sine through zero has its zeros as breakpoints: each found
+// root t_z of 100 + 300 sin(2π·2 (t − 0.1) + 0.5) satisfies it to rounding, and they alternate
+// falling and rising, every half period apart in pairs (4 roots per second at 2 Hz).
+TEST(ReferenceSimulator, SineNormalForceZerosAreBreakpoints) {
+  Signal s;
+  s.kind = Signal::Kind::sine, s.offset = 100.0, s.amplitude = 300.0, s.frequency_hz = 2.0, s.phase = 0.5, s.t0 = 0.1;
+  std::vector<double> bp;
+  s.breakpoints(bp, 1.1, true);
+  std::vector<double> zeros;
+  for (double t : bp)
+    if (t > 0.1) zeros.push_back(t);
+  ASSERT_EQ(zeros.size(), 4u);  // 1 s of a 2 Hz sine: two falling, two rising zeros
+  std::sort(zeros.begin(), zeros.end());
+  for (double t : zeros) EXPECT_NEAR(s.at(t), 0.0, 1e-10) << t;
+  EXPECT_NEAR(zeros[2] - zeros[0], 0.5, 1e-12);
+  EXPECT_NEAR(zeros[3] - zeros[1], 0.5, 1e-12);
+}
+
+// Claim: an ideal gear q_a = i q_b (i = 2) slaving m_b = 1 kg to m_a = 3 kg reduces to one body of
+// mass m_a + m_b/i² = 3.25 kg on which a load P_b on b acts as P_b/i (virtual work). With P = 100 t
+// on a, P_b = −4 N on b and a ground contact F_s = 20 N, F_k = 15 N on a, the group stays stuck until
+// 100 t − 2 = 20, t* = 0.22 s, then 3.25 a = 100 t − 2 − 15: v_a = [50 (t² − t*²) − 17 (t − t*)]/3.25
+// and v_b = v_a/2 throughout.
+TEST(ReferenceSimulator, IdealGearReducesTheMassAndTheLoads) {
+  RefModel m;
+  m.bodies = {{"a", 3.0, 0.0, 0.0}, {"b", 1.0, 0.0, 0.0}};
+  m.gears = {{"G", 0, 1, 2.0}};
+  Load P, Pb;
+  P.name = "P", P.body = 0, P.s.kind = Signal::Kind::ramp, P.s.value = 100.0, P.s.t0 = 0.0, P.s.t1 = 1.0;
+  Pb.name = "Pb", Pb.body = 1, Pb.s.value = -4.0;
+  m.loads = {P, Pb};
+  Friction f;
+  f.name = "f", f.a = 0, f.b = kGround, f.Fs = 20.0, f.Fk = 15.0;
+  m.frictions = {f};
+  m.t_end = 0.8, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  EXPECT_NEAR(slip[0].t, 0.22, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], v = t <= 0.22 ? 0.0 : (50 * (t * t - 0.0484) - 17 * (t - 0.22)) / 3.25;
+    EXPECT_NEAR(r.v[k][0], v, 1e-10) << t;
+    EXPECT_NEAR(r.v[k][1], v / 2, 1e-10) << t;
+    EXPECT_NEAR(r.q[k][1], r.q[k][0] / 2, 1e-12) << t;
+  }
 }
 
 }  // namespace
