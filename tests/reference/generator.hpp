@@ -4,8 +4,8 @@
 /// both the engine's model file (to_yaml) and the reference simulator's input are made, so the two
 /// see the very same numbers (every value written with 17 significant digits).
 ///
-/// Families (each model has a chain of 2–6 bodies with springs, spring-dampers and 1–2 loads of every
-/// signal kind, plus the family's elements):
+/// Families (each model has a chain of 2–6 bodies with springs, spring-dampers and 1–2 loads, plus
+/// the family's elements):
 ///   chain            springs and dampers only
 ///   gap              gap links, both flank laws (linear, elasto-backlash)
 ///   one-sided        one-sided links (`flank`) and ropes with slack
@@ -16,6 +16,13 @@
 ///   freewheel        freewheels between bodies and backstops, with and without drag
 ///   stop             end stops, plastic and with restitution
 ///   mixed            a bit of everything above
+///   signals          1–3 loads of every signal kind (tables with jumps, pulses, expressions besides
+///                    constants, steps, ramps, sines), contacts with a varying normal force, brakes
+///                    with an application signal, clutches opened and closed by their normal force
+///   gear             bodies slaved to the chain by ideal gears (ratio ±0.3–3), with loads and
+///                    links of their own, a contact and a brake on the masters
+/// The first seven families draw their loads from constant, step, ramp and sine only (their models
+/// are those of the first campaigns); brake, clutch, mixed, signals and gear from every kind.
 
 #include <cstdint>
 #include <string>

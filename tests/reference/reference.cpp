@@ -116,7 +116,8 @@ double Friction::kinetic_level(double t) const {
   return 0.0;
 }
 
-double Friction::application_at(double t) const { return with_application ? application.at(t) : ramp01(t, time, ramp); }
+// r(t) = max(0, s(t)): an application below 0 is released (docs/model-files.md, Brakes).
+double Friction::application_at(double t) const { return with_application ? std::max(0.0, application.at(t)) : ramp01(t, time, ramp); }
 
 bool Friction::engaged(double t) const {
   // Engaged where the level is positive just after t (a step or ramp starting at t engages at t;

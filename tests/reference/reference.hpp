@@ -34,11 +34,18 @@
 ///   consistent ones give different accelerations the run says so (`ambiguous_from`): the physics
 ///   is not unique there and a comparison after it is not meaningful.
 ///
-/// Limits (what the generator respects): translational bodies, link ratio 1, no gears (ideal, lossy,
-/// planetary), prescribed motions, releases, buffers, drives or machines; signals constant, step,
-/// ramp and sine only; constant friction levels (no tables, Stribeck or moving surfaces); end stops only on bodies without friction to another body (an impact through
-/// a stuck contact would need an impulsive friction law); brakes and clutches are applied, never
-/// released again; a freewheel is the only friction element on its pair of bodies.
+/// Ideal gears (q_a = i q_b) are held as rows J of the inverse mass: a = P f with
+/// P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹ (no reduction to a master, as compile does); the stuck set's λ
+/// solves (G P Gᵀ) λ = G P f̃.
+///
+/// Limits (what the generator respects): translational bodies, link ratio 1, no lossy or planetary
+/// gears, prescribed motions, releases, buffers, drives or machines; signals of every kind but `sum`
+/// and `file` (expressions only of the form c0 + c1 t + A sin(2π f t + φ) + B e^(−t/τ)); constant
+/// friction levels (no tables, Stribeck or moving surfaces); a contact's normal force stays positive;
+/// end stops only on bodies without friction to another body and without gears (an impact through a
+/// stuck contact would need an impulsive friction law); an ideal gear's slave carries no friction
+/// element and is the first end of its links; a freewheel is the only friction element on its pair
+/// of bodies.
 
 #include <cstdint>
 #include <limits>
