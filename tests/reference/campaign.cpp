@@ -130,7 +130,8 @@ Outcome compare(const RefModel& m, const std::string& integrator, const RefResul
     return {Outcome::Kind::state_mismatch, "output rows: engine " + std::to_string(ts ? ts->size() : 0) + ", reference " + std::to_string(ref.t.size()), 0.0};
   for (size_t i = 0; i < m.bodies.size(); ++i)
     for (int w = 0; w < 2; ++w) {
-      const std::string name = m.bodies[i].name + (w == 0 ? ".position_m" : ".velocity_m_s");
+      const std::string name = m.bodies[i].name + (w == 0 ? (m.rotational ? ".position_rad" : ".position_m")
+                                                          : (m.rotational ? ".velocity_rad_s" : ".velocity_m_s"));
       const auto* c = col(name);
       if (c == nullptr) return {Outcome::Kind::state_mismatch, "no column " + name, 0.0};
       double scale = 0.0;
@@ -170,7 +171,7 @@ RefModel without_body(const RefModel& m, int i) {
     if (f.a != i && f.b != i) f.a = map(f.a), f.b = map(f.b), s.frictions.push_back(f);
   s.gears.clear();
   for (auto g : m.gears)
-    if (g.a != i && g.b != i) g.a = map(g.a), g.b = map(g.b), s.gears.push_back(g);
+    if (g.a != i && g.b != i && g.c != i) g.a = map(g.a), g.b = map(g.b), g.c = map(g.c), s.gears.push_back(g);
   return s;
 }
 

@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary"};
   return f;
 }
 
@@ -183,7 +183,8 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
     return family == fs || (mixed && r.p(0.35)) ||
            (signals && (fs == "ground-friction" || fs == "brake" || fs == "clutch") && r.p(0.4));
   };
-  const int n = r.i(2, 6);
+  const int n = family == "planetary" ? r.i(3, 6) : r.i(2, 6);
+  m.rotational = family == "planetary";
   m.t_end = sig(r.u(0.4, 1.2), 2);
   m.dt_out = m.t_end / 200;
   for (int i = 0; i < n; ++i) m.bodies.push_back({named("b", i), sig(r.log_u(1.0, 20.0)), 0.0, 0.0});
@@ -383,7 +384,32 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
-  for (const auto& g : m.gears) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
+  // A planetary gear among three chain members (rotational bodies: inertias, torques), with a contact
+  // and a brake to the ground on two of them (at most two: three would lock the gear redundantly).
+  if (family == "planetary") {
+    std::vector<int> idx(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) idx[static_cast<size_t>(k)] = k;
+    for (int k = 0; k < 3; ++k) std::swap(idx[static_cast<size_t>(k)], idx[static_cast<size_t>(r.i(k, n - 1))]);
+    Gear g;
+    g.name = "PG", g.planetary = true, g.a = idx[0], g.b = idx[1], g.c = idx[2], g.ratio = sig(r.u(1.5, 5.0));
+    m.gears.push_back(g);
+    if (r.p(0.5)) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = idx[static_cast<size_t>(r.i(0, 2))], f.b = kGround;
+      f.Fs = sig(r.log_u(0.2, 2.0) * force), f.Fk = r.p(0.2) ? f.Fs : sig(f.Fs * r.u(0.5, 1.0));
+      add(f);
+    }
+    if (r.p(0.4)) {
+      Friction f;
+      f.kind = Friction::Kind::brake, f.name = fname("B"), f.a = idx[static_cast<size_t>(r.i(0, 2))], f.b = kGround;
+      f.Fs = sig(r.log_u(0.3, 3.0) * force), f.Fk = sig(f.Fs * r.u(0.6, 1.0));
+      f.time = sig(r.u(0.05, 0.6) * m.t_end), f.ramp = r.p(0.5) ? 0.0 : sig(r.u(0.02, 0.3) * m.t_end);
+      if (r.p(0.4)) f.with_application = true, f.application = random_application(r, m.t_end);
+      add(f);
+    }
+  }
+  for (const auto& g : m.gears)
+    if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
 }
 
@@ -394,6 +420,14 @@ std::string num(double x) {
   return buf;
 }
 std::string end_name(const RefModel& m, int i) { return i < 0 ? "ground" : m.bodies[static_cast<size_t>(i)].name; }
+
+/// The units of a model's bodies: translational (m, N) or rotational (rad, N·m).
+struct Units {
+  const char *q, *v, *F, *c, *d;
+};
+Units units_of(const RefModel& m) {
+  return m.rotational ? Units{"rad", "rad/s", "N*m", "N*m/rad", "N*m*s/rad"} : Units{"m", "m/s", "N", "N/m", "N*s/m"};
+}
 
 std::string signal_yaml(const Signal& s, const char* unit) {
   const std::string u = *unit != 0 ? std::string(" ") + unit : std::string();
@@ -430,29 +464,36 @@ std::string signal_yaml(const Signal& s, const char* unit) {
 
 std::string to_yaml(const RefModel& m, const std::string& integrator, const std::string& header) {
   std::string y = header;
+  const Units U = units_of(m);
+  const std::string q = std::string(" ") + U.q, F = std::string(" ") + U.F;
   y += "name: random reference model\nbodies:\n";
   for (const auto& b : m.bodies)
-    y += "  " + b.name + ": {type: translational, mass: " + num(b.m) + " kg, position: " + num(b.q0) +
-         " m, velocity: " + num(b.v0) + " m/s}\n";
+    y += "  " + b.name + (m.rotational ? ": {type: rotational, inertia: " + num(b.m) + " kg*m^2"
+                                       : ": {type: translational, mass: " + num(b.m) + " kg") +
+         ", position: " + num(b.q0) + q + ", velocity: " + num(b.v0) + " " + U.v + "}\n";
   bool first_link = true;
   if (!m.links.empty()) y += "links:\n", first_link = false;
   for (const auto& g : m.gears) {
     if (first_link) y += "links:\n", first_link = false;
-    y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) + "}\n";
+    if (g.planetary)
+      y += "  " + g.name + ": {type: planetary-gear, sun: " + end_name(m, g.a) + ", ring: " + end_name(m, g.b) + ", carrier: " +
+           end_name(m, g.c) + ", ratio: " + num(g.ratio) + "}\n";
+    else
+      y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) + "}\n";
   }
   for (const auto& L : m.links) {
     const bool rope = L.kind == Link::Kind::rope;
     y += "  " + L.name + ": {type: " + (rope ? "rope" : L.d > 0 || L.kind != Link::Kind::plain ? "spring-damper" : "spring") +
-         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " N/m";
-    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " N*s/m";
-    if (L.kind == Link::Kind::gap) y += ", gap: " + num(L.gap) + " m, gap_start: " + num(L.gap_start) + " m";
-    if (L.kind == Link::Kind::one_sided) y += ", flank: " + num(L.flank) + " m";
-    if (rope) y += ", slack: " + num(L.flank) + " m";
+         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " " + U.c;
+    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " " + U.d;
+    if (L.kind == Link::Kind::gap) y += ", gap: " + num(L.gap) + q + ", gap_start: " + num(L.gap_start) + q;
+    if (L.kind == Link::Kind::one_sided) y += ", flank: " + num(L.flank) + q;
+    if (rope) y += ", slack: " + num(L.flank) + q;
     if (L.elasto) y += ", flank_law: elasto-backlash";
     y += "}\n";
   }
   if (!m.loads.empty()) y += "loads:\n";
-  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, "N") + "}\n";
+  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, U.F) + "}\n";
   auto section = [&](Friction::Kind k, const char* title) {
     bool first = true;
     for (const auto& f : m.frictions) {
@@ -462,14 +503,14 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       switch (k) {
         case Friction::Kind::contact:
           y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], ";
-          y += !f.via_mu ? "static: " + num(f.Fs) + " N, kinetic: " + num(f.Fk) + " N"
+          y += !f.via_mu ? "static: " + num(f.Fs) + F + ", kinetic: " + num(f.Fk) + F
                : "normal_force: " + (f.fN.kind == Signal::Kind::constant && f.fN.value == 0.0
                                          ? num(f.normal) + " N"
                                          : "{" + signal_yaml(f.fN, "N") + "}") +
                      ", mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k);
           break;
         case Friction::Kind::brake:
-          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + " N, braking: " + num(f.Fk) + " N, " +
+          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + F + ", braking: " + num(f.Fk) + F + ", " +
                (f.with_application ? "application: {" + signal_yaml(f.application, "") + "}"
                                    : "time: " + num(f.time) + " s, ramp: " + num(f.ramp) + " s");
           break;
@@ -478,10 +519,10 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
                "}, mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k);
           break;
         case Friction::Kind::freewheel:
-          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], drag: " + num(f.drag) + " N";
+          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], drag: " + num(f.drag) + F;
           break;
         case Friction::Kind::stop:
-          y += "body: " + end_name(m, f.a) + (f.stop_max ? ", max: " : ", min: ") + num(f.stop_pos) + " m, restitution: " + num(f.e);
+          y += "body: " + end_name(m, f.a) + (f.stop_max ? ", max: " : ", min: ") + num(f.stop_pos) + q + ", restitution: " + num(f.e);
           break;
       }
       y += "}\n";

@@ -158,7 +158,12 @@ class Sim {
     P_ = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(im_.data(), n_)).asDiagonal();
     if (!m.gears.empty()) {
       Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<long>(m.gears.size()), n_);
-      for (size_t g = 0; g < m.gears.size(); ++g) J(static_cast<long>(g), m.gears[g].a) += 1.0, J(static_cast<long>(g), m.gears[g].b) -= m.gears[g].ratio;
+      for (size_t g = 0; g < m.gears.size(); ++g) {
+        const Gear& G = m.gears[g];
+        const auto r = static_cast<long>(g);
+        if (G.planetary) J(r, G.a) += 1.0, J(r, G.b) += G.ratio, J(r, G.c) -= 1.0 + G.ratio;  // Willis
+        else J(r, G.a) += 1.0, J(r, G.b) -= G.ratio;                                          // q_a = i q_b
+      }
       const Eigen::MatrixXd Mi = P_;
       P_ = Mi - Mi * J.transpose() * (J * Mi * J.transpose()).inverse() * J * Mi;
     }
@@ -195,7 +200,8 @@ class Sim {
 
   /// Slaved bodies follow their gear exactly: x_b = x_a / i (the rounding of P's projection).
   void follow_gears(double* x) const {
-    for (const auto& g : m_.gears) x[g.b] = x[g.a] / g.ratio;
+    for (const auto& g : m_.gears)
+      if (!g.planetary) x[g.b] = x[g.a] / g.ratio;
   }
   Modes md_;
   double fscale_ = 1.0, h_ = 1e-3;

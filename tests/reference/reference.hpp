@@ -156,13 +156,18 @@ struct Friction {
 /// An ideal gear (docs/model-files.md, "Ideal gears"): q_a = i q_b, rigid, no losses. Body b is
 /// slaved to a (later in the file than a, no friction element on it, links on it only as their
 /// first end, no other gear on it; a is no slave).
+/// With `planetary`: a planetary gear (Willis) among sun a, ring b and carrier c, all with inertia:
+/// ω_a + z ω_b − (1 + z) ω_c = 0, z = `ratio` > 1 (nobody slaved: a row of P like the ideal gear's).
 struct Gear {
   std::string name;
   int a = 0, b = 1;
-  double ratio = 1.0;  ///< i ≠ 0
+  double ratio = 1.0;  ///< i ≠ 0 (planetary: z = z_ring/z_sun > 1)
+  bool planetary = false;
+  int c = -1;          ///< planetary: the carrier
 };
 
 struct RefModel {
+  bool rotational = false;  ///< every body rotational (φ in rad, kg·m², N·m): the same equations
   std::vector<Body> bodies;
   std::vector<Gear> gears;
   std::vector<Link> links;
