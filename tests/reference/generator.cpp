@@ -49,7 +49,8 @@ Signal random_table(Rng& r, double t_end, V value, bool may_extrapolate) {
   double t = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.3) * t_end);
   for (int k = 0; k < n; ++k) {
     s.points.emplace_back(t, value(r));
-    if (k + 2 < n && r.p(0.2)) s.points.emplace_back(t, value(r)), ++k;  // a jump (never at the ends)
+    // A jump: never at the ends (an extrapolated table needs end segments of positive length).
+    if (k + 2 < n && r.p(0.2) && k >= 1) s.points.emplace_back(t, value(r)), ++k;
     t = sig(t + r.u(0.05, 0.35) * t_end);
   }
   s.extrapolate = may_extrapolate && r.p(0.4);

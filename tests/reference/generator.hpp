@@ -21,8 +21,10 @@
 ///                    with an application signal, clutches opened and closed by their normal force
 ///   gear             bodies slaved to the chain by ideal gears (ratio ±0.3–3), with loads and
 ///                    links of their own, a contact and a brake on the masters
+///   planetary        rotational bodies (inertias, torques) with a planetary gear among three of
+///                    them (z = 1.5–5), a contact and a brake (time, ramp or application) on members
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
-/// are those of the first campaigns); brake, clutch, mixed, signals and gear from every kind.
+/// are those of the first campaigns); brake, clutch, mixed, signals, gear and planetary from every kind.
 
 #include <cstdint>
 #include <string>

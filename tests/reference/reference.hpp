@@ -38,8 +38,13 @@
 /// P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹ (no reduction to a master, as compile does); the stuck set's λ
 /// solves (G P Gᵀ) λ = G P f̃.
 ///
-/// Limits (what the generator respects): translational bodies, link ratio 1, no lossy or planetary
-/// gears, prescribed motions, releases, buffers, drives or machines; signals of every kind but `sum`
+/// Planetary gears are the Willis row e_sun + z e_ring − (1 + z) e_carrier of J (every member with
+/// inertia). A model's bodies are all translational or all rotational (the same equations).
+///
+/// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members,
+/// prescribed motions, releases, buffers, drives or machines; at most two friction elements to the
+/// ground on a planetary gear's members (three would lock it redundantly, where the engine weights
+/// the joint's row in the share); signals of every kind but `sum`
 /// and `file` (expressions only of the form c0 + c1 t + A sin(2π f t + φ) + B e^(−t/τ)); constant
 /// friction levels (no tables, Stribeck or moving surfaces); a contact's normal force stays positive;
 /// end stops only on bodies without friction to another body and without gears (an impact through a
