@@ -392,5 +392,46 @@ TEST(ReferenceSimulator, IdealGearReducesTheMassAndTheLoads) {
   }
 }
 
+
+// Claim: a planetary gear ω_s + z ω_r − (1 + z) ω_c = 0 (z = 3) among a sun J_s = 0.5, a ring
+// J_r = 4 and a carrier J_c = 2 kg·m², a torque M = 10 N·m on the sun. Free: the gear's load λ (on
+// the sun −λ, the ring −z λ, the carrier +(1 + z) λ) keeps the row's accelerations at 0:
+// (M − λ)/J_s − z² λ/J_r − (1 + z)² λ/J_c = 0, λ = (M/J_s)/(1/J_s + z²/J_r + (1 + z)²/J_c), every
+// acceleration constant (φ = a t²/2). With the ring held by a contact (F_s = 1e4 N·m) the sun turns
+// the carrier at 1/(1 + z): a_s = M/(J_s + J_c/(1 + z)²), the ring stays at rest.
+TEST(ReferenceSimulator, PlanetaryGearSharesTheSunTorqueByWillis) {
+  RefModel m;
+  m.rotational = true;
+  m.bodies = {{"sun", 0.5, 0.0, 0.0}, {"ring", 4.0, 0.0, 0.0}, {"carrier", 2.0, 0.0, 0.0}};
+  Gear g;
+  g.name = "PG", g.planetary = true, g.a = 0, g.b = 1, g.c = 2, g.ratio = 3.0;
+  m.gears = {g};
+  Load M;
+  M.name = "M", M.body = 0, M.s.value = 10.0;
+  m.loads = {M};
+  m.t_end = 0.5, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double lam = (10.0 / 0.5) / (1 / 0.5 + 9.0 / 4.0 + 16.0 / 2.0);
+  const double a[3] = {(10.0 - lam) / 0.5, -3.0 * lam / 4.0, 4.0 * lam / 2.0};
+  for (size_t k = 0; k < r.t.size(); ++k)
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(r.v[k][static_cast<size_t>(i)], a[i] * r.t[k], 1e-11) << r.t[k];
+      EXPECT_NEAR(r.q[k][static_cast<size_t>(i)], 0.5 * a[i] * r.t[k] * r.t[k], 1e-11) << r.t[k];
+    }
+  Friction hold;
+  hold.name = "hold", hold.a = 1, hold.b = kGround, hold.Fs = 1e4, hold.Fk = 1e4;
+  m.frictions = {hold};
+  const RefResult h = simulate_reference(m);
+  ASSERT_TRUE(h.error.empty()) << h.error;
+  EXPECT_TRUE(h.events.empty());
+  const double as = 10.0 / (0.5 + 2.0 / 16.0);
+  for (size_t k = 0; k < h.t.size(); ++k) {
+    EXPECT_NEAR(h.v[k][0], as * h.t[k], 1e-11) << h.t[k];
+    EXPECT_EQ(h.v[k][1], 0.0) << h.t[k];
+    EXPECT_NEAR(h.v[k][2], as * h.t[k] / 4.0, 1e-11) << h.t[k];
+  }
+}
+
 }  // namespace
 }  // namespace machdyn::reference
