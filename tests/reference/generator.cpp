@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion"};
   return f;
 }
 
@@ -409,6 +409,43 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
+  // A prescribed motion (speed or acceleration of every kind that keeps the speed continuous) on one
+  // chain body, with friction contacts from it to free neighbours (a stuck one makes the neighbour
+  // follow the motion).
+  if (family == "motion") {
+    const int p = r.i(0, n - 1);
+    Body& b = m.bodies[static_cast<size_t>(p)];
+    const double vs = sig(r.u(0.1, 1.0));
+    if (r.p(0.6)) {
+      b.motion = Body::Motion::speed;
+      switch (r.i(0, 3)) {  // a speed without jumps: a ramp, a sine from its zero, a table, an expression
+        case 0:
+          b.prescribed.kind = Signal::Kind::ramp, b.prescribed.value = sig(r.u(-1, 1) * vs), b.prescribed.before = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * vs);
+          b.prescribed.t0 = sig(r.u(0.0, 0.4) * m.t_end), b.prescribed.t1 = sig(b.prescribed.t0 + r.u(0.05, 0.5) * m.t_end);
+          break;
+        case 1:
+          b.prescribed.kind = Signal::Kind::sine, b.prescribed.amplitude = vs, b.prescribed.frequency_hz = sig(r.u(0.5, 5.0), 2);
+          b.prescribed.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * vs), b.prescribed.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.05, 0.5) * m.t_end);
+          break;
+        case 2: {
+          b.prescribed = random_table(r, m.t_end, [&](Rng& g) { return sig(g.u(-1, 1) * vs); }, r.p(0.3));
+          auto& pts = b.prescribed.points;  // no jumps in a speed
+          pts.erase(std::unique(pts.begin(), pts.end(), [](const auto& x, const auto& y) { return x.first == y.first; }), pts.end());
+          break;
+        }
+        default: b.prescribed = random_expression(r, m.t_end, vs); break;
+      }
+    } else {
+      b.motion = Body::Motion::acceleration;
+      b.prescribed = random_signal(r, m.t_end, sig(r.u(1.0, 10.0)), true);
+    }
+    for (int k = r.i(0, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = p, f.b = (p + r.i(1, n - 1)) % n;
+      levels(f);
+      add(f);
+    }
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -471,7 +508,12 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   for (const auto& b : m.bodies)
     y += "  " + b.name + (m.rotational ? ": {type: rotational, inertia: " + num(b.m) + " kg*m^2"
                                        : ": {type: translational, mass: " + num(b.m) + " kg") +
-         ", position: " + num(b.q0) + q + ", velocity: " + num(b.v0) + " " + U.v + "}\n";
+         ", position: " + num(b.q0) + q +
+         (b.motion == Body::Motion::speed ? std::string() : ", velocity: " + num(b.v0) + " " + U.v) +
+         (b.motion == Body::Motion::free ? std::string()
+          : b.motion == Body::Motion::speed ? std::string(", motion: {speed: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s" : "m/s") + "}}"
+                                            : std::string(", motion: {acceleration: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s^2" : "m/s^2") + "}}") +
+         "}\n";
   bool first_link = true;
   if (!m.links.empty()) y += "links:\n", first_link = false;
   for (const auto& g : m.gears) {

@@ -53,6 +53,29 @@ double Signal::at(double t) const {
   return 0.0;
 }
 
+double Signal::slope_at(double t) const {
+  const double w = 2 * std::numbers::pi * frequency_hz;
+  switch (kind) {
+    case Kind::constant:
+    case Kind::step:
+    case Kind::pulse: return 0.0;
+    case Kind::ramp: return t >= t0 && t < t1 ? (value - before) / (t1 - t0) : 0.0;
+    case Kind::sine: return t < t0 ? 0.0 : amplitude * w * std::cos(w * (t - t0) + phase);
+    case Kind::table: {
+      const size_t n = points.size();
+      if (n < 2) return 0.0;
+      auto seg = [&](size_t i) { return (points[i + 1].second - points[i].second) / (points[i + 1].first - points[i].first); };
+      if (t < points.front().first) return extrapolate ? seg(0) : 0.0;
+      if (t >= points.back().first) return extrapolate ? seg(n - 2) : 0.0;
+      size_t i = 0;
+      while (i + 1 < n && points[i + 1].first <= t) ++i;
+      return seg(i);
+    }
+    case Kind::expression: return slope + amplitude * w * std::cos(w * t + phase) - decay / tau * std::exp(-t / tau);
+  }
+  return 0.0;
+}
+
 void Signal::breakpoints(std::vector<double>& out, double t_end, bool zeros) const {
   switch (kind) {
     case Kind::constant:
@@ -155,6 +178,9 @@ class Sim {
     // The inverse mass under the ideal gears' rows J (q_a = i q_b: the row e_a − i e_b, held in
     // every mode): P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹, so a = P f is the motion the gears allow and
     // the gears' forces never need to be known. Without gears P = M⁻¹.
+    // A prescribed body weighs nothing here: its acceleration is the signal's (set in accel).
+    for (int i = 0; i < n_; ++i)
+      if (m.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) im_[static_cast<size_t>(i)] = 0.0;
     P_ = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(im_.data(), n_)).asDiagonal();
     if (!m.gears.empty()) {
       Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<long>(m.gears.size()), n_);
@@ -341,6 +367,8 @@ class Sim {
       }
     }
     Eigen::Map<Eigen::VectorXd>(a, n_) = P_ * Eigen::Map<const Eigen::VectorXd>(f.data(), n_);
+    for (int i = 0; i < n_; ++i)  // P has no row for a prescribed body: its motion is the signal's
+      if (m_.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) a[i] = m_.bodies[static_cast<size_t>(i)].prescribed_acceleration(t);
     if (mask == 0) return follow_gears(a);
     const StuckSet& S = stuck_set(mask);
     const int s = static_cast<int>(S.rows.size());
@@ -490,9 +518,13 @@ class Sim {
       for (int r = 0; r < s; ++r) {
         const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
         if (fr.a >= 0 && fr.b >= 0) {
-          const double ma = 1.0 / im_[static_cast<size_t>(fr.a)], mb = 1.0 / im_[static_cast<size_t>(fr.b)];
-          const double vm = (ma * v(fr.a) + mb * v(fr.b)) / (ma + mb);
-          v(fr.a) = v(fr.b) = vm;
+          if (im_[static_cast<size_t>(fr.a)] == 0.0) v(fr.b) = v(fr.a);  // a prescribed body leads
+          else if (im_[static_cast<size_t>(fr.b)] == 0.0) v(fr.a) = v(fr.b);
+          else {
+            const double ma = 1.0 / im_[static_cast<size_t>(fr.a)], mb = 1.0 / im_[static_cast<size_t>(fr.b)];
+            const double vm = (ma * v(fr.a) + mb * v(fr.b)) / (ma + mb);
+            v(fr.a) = v(fr.b) = vm;
+          }
         }
       }
     follow_gears(y.data() + n_);
@@ -691,7 +723,10 @@ class Sim {
 
 RefResult Sim::run() {
   std::vector<double> y(static_cast<size_t>(2 * n_));
-  for (int i = 0; i < n_; ++i) y[static_cast<size_t>(i)] = m_.bodies[static_cast<size_t>(i)].q0, y[static_cast<size_t>(n_ + i)] = m_.bodies[static_cast<size_t>(i)].v0;
+  for (int i = 0; i < n_; ++i) {
+    const Body& b = m_.bodies[static_cast<size_t>(i)];
+    y[static_cast<size_t>(i)] = b.q0, y[static_cast<size_t>(n_ + i)] = b.motion == Body::Motion::speed ? b.prescribed.at(0.0) : b.v0;
+  }
   // Initial modes: gaps by δ(0), stops off unless on the stop, friction by u(0) (zero: decided).
   for (size_t k = 0; k < m_.links.size(); ++k) {
     const Link& L = m_.links[k];
@@ -714,6 +749,8 @@ RefResult Sim::run() {
 
   std::vector<double> bps;
   for (const auto& l : m_.loads) l.s.breakpoints(bps, m_.t_end);
+  for (const auto& b : m_.bodies)
+    if (b.motion != Body::Motion::free) b.prescribed.breakpoints(bps, m_.t_end);
   for (const auto& f : m_.frictions) f.breakpoints(bps, m_.t_end);
   std::sort(bps.begin(), bps.end());
   bps.erase(std::remove_if(bps.begin(), bps.end(), [&](double b) { return !(b > 0.0 && b < m_.t_end); }), bps.end());

@@ -85,6 +85,8 @@ struct Signal {
   long count = -1;                                ///< pulse: −1 = no end
   double slope = 0.0, decay = 0.0, tau = 1.0;     ///< expression: c1, B, τ
   [[nodiscard]] double at(double t) const;
+  /// ds/dt on the right of t (a ramp's, a table segment's slope; 0 for steps and pulses).
+  [[nodiscard]] double slope_at(double t) const;
   /// The times in [0, t_end] where the signal jumps or kinks (the stepper ends a step there); with
   /// `zeros`, also where it crosses zero (a clutch's or brake's normal force opening and closing).
   void breakpoints(std::vector<double>& out, double t_end, bool zeros = false) const;
@@ -92,9 +94,19 @@ struct Signal {
 
 constexpr int kGround = -1;
 
+/// A body; with `motion` a prescribed motion (docs/model-files.md, "Prescribed motion"): q'' = a(t)
+/// (`acceleration`, from q0, v0) or q' = v(t) (`speed`: q'' = dv/dt on the right, v(0) the start).
+/// Its mass then weighs nothing (P has no row or column for it): every element on it still acts.
 struct Body {
+  Body() = default;
+  Body(std::string name_, double m_, double q0_, double v0_) : name(std::move(name_)), m(m_), q0(q0_), v0(v0_) {}
   std::string name;
   double m = 1.0, q0 = 0.0, v0 = 0.0;  ///< kg, m, m/s
+  enum class Motion { free, acceleration, speed } motion = Motion::free;
+  Signal prescribed;
+  [[nodiscard]] double prescribed_acceleration(double t) const {
+    return motion == Motion::acceleration ? prescribed.at(t) : prescribed.slope_at(t);
+  }
 };
 
 /// A spring-damper link between bodies a and b (either may be kGround): δ = q_a − q_b, the load F
