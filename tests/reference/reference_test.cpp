@@ -433,5 +433,33 @@ TEST(ReferenceSimulator, PlanetaryGearSharesTheSunTorqueByWillis) {
   }
 }
 
+
+// Claim: a body moved by a prescribed acceleration a_p = 10 t (m/s², from rest) carries a block
+// m = 3 kg on a contact F_s = 4.5 N, F_k = 3 N. Stuck, the contact gives the block m a_p = 30 t, so
+// it slips at t* = 4.5/30 = 0.15 s; then the block accelerates at F_k/m = 1 m/s² while the body
+// runs ahead: v_p = 5 t², v_b = 5 t*² + (t − t*). The prescribed body follows its signal whatever
+// the contact does (q_p = 5 t³/3).
+TEST(ReferenceSimulator, PrescribedAccelerationDragsABlockUntilItSlips) {
+  RefModel m;
+  m.bodies = {{"p", 50.0, 0.0, 0.0}, {"b", 3.0, 0.0, 0.0}};
+  m.bodies[0].motion = Body::Motion::acceleration;
+  m.bodies[0].prescribed.kind = Signal::Kind::ramp, m.bodies[0].prescribed.value = 10.0, m.bodies[0].prescribed.t1 = 1.0;
+  Friction f;
+  f.name = "f", f.a = 0, f.b = 1, f.Fs = 4.5, f.Fk = 3.0;
+  m.frictions = {f};
+  m.t_end = 0.6, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  EXPECT_NEAR(slip[0].t, 0.15, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    EXPECT_NEAR(r.v[k][0], 5 * t * t, 1e-12) << t;
+    EXPECT_NEAR(r.q[k][0], 5 * t * t * t / 3, 1e-12) << t;
+    EXPECT_NEAR(r.v[k][1], t <= 0.15 ? 5 * t * t : 5 * 0.0225 + (t - 0.15), 1e-10) << t;
+  }
+}
+
 }  // namespace
 }  // namespace machdyn::reference
