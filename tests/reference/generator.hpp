@@ -23,8 +23,11 @@
 ///                    links of their own, a contact and a brake on the masters
 ///   planetary        rotational bodies (inertias, torques) with a planetary gear among three of
 ///                    them (z = 1.5–5), a contact and a brake (time, ramp or application) on members
+///   motion           a chain body moved by a prescribed speed (ramp, sine from its zero, table
+///                    without jumps, expression) or acceleration (every kind), with 0–2 contacts
+///                    from it to free bodies
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
-/// are those of the first campaigns); brake, clutch, mixed, signals, gear and planetary from every kind.
+/// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary and motion from every kind.
 
 #include <cstdint>
 #include <string>

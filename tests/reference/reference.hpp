@@ -41,8 +41,12 @@
 /// Planetary gears are the Willis row e_sun + z e_ring − (1 + z) e_carrier of J (every member with
 /// inertia). A model's bodies are all translational or all rotational (the same equations).
 ///
+/// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
+/// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
+///
 /// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members,
-/// prescribed motions, releases, buffers, drives or machines; at most two friction elements to the
+/// `position` motions, releases, buffers, drives or machines; prescribed bodies only with contacts
+/// to free bodies (no ground friction, freewheel, stop or gear on them), a speed without jumps; at most two friction elements to the
 /// ground on a planetary gear's members (three would lock it redundantly, where the engine weights
 /// the joint's row in the share); signals of every kind but `sum`
 /// and `file` (expressions only of the form c0 + c1 t + A sin(2π f t + φ) + B e^(−t/τ)); constant
