@@ -169,6 +169,9 @@ RefModel without_body(const RefModel& m, int i) {
     if (l.body != i) l.body = map(l.body), s.loads.push_back(l);
   for (auto f : m.frictions)
     if (f.a != i && f.b != i) f.a = map(f.a), f.b = map(f.b), s.frictions.push_back(f);
+  s.releases.clear();
+  for (auto x : m.releases)
+    if (x.body != i) x.body = map(x.body), s.releases.push_back(x);
   s.gears.clear();
   for (auto g : m.gears)
     if (g.a != i && g.b != i && g.c != i) g.a = map(g.a), g.b = map(g.b), g.c = map(g.c), s.gears.push_back(g);

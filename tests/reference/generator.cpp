@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release"};
   return f;
 }
 
@@ -446,6 +446,23 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
+  // Releases: 1–2 chain bodies lose 20–80 % of their mass at an instant of the run, with contacts to
+  // the ground and between bodies (a stuck one is decided again with the new mass).
+  if (family == "release") {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      const int b = r.i(0, n - 1);
+      double left = m.bodies[static_cast<size_t>(b)].m;
+      for (const auto& x : m.releases)
+        if (x.body == b) left -= x.dm;
+      m.releases.push_back({named("R", static_cast<int>(m.releases.size())), b, sig(r.u(0.2, 0.6) * left), sig(r.u(0.05, 0.8) * m.t_end)});
+    }
+    for (int k = r.i(0, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = m.releases[0].body, f.b = r.p(0.6) ? kGround : (f.a + r.i(1, n - 1)) % n;
+      levels(f);
+      add(f);
+    }
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -576,6 +593,10 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   section(Friction::Kind::clutch, "clutches");
   section(Friction::Kind::freewheel, "freewheels");
   section(Friction::Kind::stop, "stops");
+  if (!m.releases.empty()) y += "releases:\n";
+  for (const auto& x : m.releases)
+    y += "  " + x.name + ": {body: " + end_name(m, x.body) + (m.rotational ? ", inertia: " + num(x.dm) + " kg*m^2" : ", mass: " + num(x.dm) + " kg") +
+         ", time: " + num(x.t) + " s}\n";
   y += "simulation: {t_end: " + num(m.t_end) + " s, dt_out: " + num(m.dt_out) + " s, rtol: 1e-10, atol: 1e-12, max_steps: 500000, integrator: " +
        integrator + "}\n";
   return y;

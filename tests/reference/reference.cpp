@@ -174,25 +174,8 @@ struct Modes {
 class Sim {
  public:
   Sim(const RefModel& m, const RefOptions& o) : m_(m), o_(o), n_(static_cast<int>(m.bodies.size())) {
-    for (const auto& b : m.bodies) im_.push_back(1.0 / b.m);
-    // The inverse mass under the ideal gears' rows J (q_a = i q_b: the row e_a − i e_b, held in
-    // every mode): P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹, so a = P f is the motion the gears allow and
-    // the gears' forces never need to be known. Without gears P = M⁻¹.
-    // A prescribed body weighs nothing here: its acceleration is the signal's (set in accel).
-    for (int i = 0; i < n_; ++i)
-      if (m.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) im_[static_cast<size_t>(i)] = 0.0;
-    P_ = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(im_.data(), n_)).asDiagonal();
-    if (!m.gears.empty()) {
-      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<long>(m.gears.size()), n_);
-      for (size_t g = 0; g < m.gears.size(); ++g) {
-        const Gear& G = m.gears[g];
-        const auto r = static_cast<long>(g);
-        if (G.planetary) J(r, G.a) += 1.0, J(r, G.b) += G.ratio, J(r, G.c) -= 1.0 + G.ratio;  // Willis
-        else J(r, G.a) += 1.0, J(r, G.b) -= G.ratio;                                          // q_a = i q_b
-      }
-      const Eigen::MatrixXd Mi = P_;
-      P_ = Mi - Mi * J.transpose() * (J * Mi * J.transpose()).inverse() * J * Mi;
-    }
+    for (const auto& b : m.bodies) mass_.push_back(b.m);
+    build_P();
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
     // The force scale of the model (the thresholds of the switching functions are relative to it).
@@ -207,8 +190,8 @@ class Sim {
     double w = 0.0;
     for (const auto& l : m.links) {
       double mm = HUGE_VAL;
-      if (l.a >= 0) mm = std::min(mm, m.bodies[l.a].m);
-      if (l.b >= 0) mm = std::min(mm, m.bodies[l.b].m);
+      if (l.a >= 0) mm = std::min(mm, m.bodies[l.a].m - released_from(l.a));
+      if (l.b >= 0) mm = std::min(mm, m.bodies[l.b].m - released_from(l.b));
       const double meff = (l.a >= 0 && l.b >= 0) ? mm / 2 : mm;
       w = std::max({w, std::sqrt(l.c / meff), l.d / meff});
     }
@@ -217,12 +200,48 @@ class Sim {
 
   RefResult run();
 
+  /// The mass all releases of body i take away.
+  double released_from(int i) const {
+    double dm = 0.0;
+    for (const auto& r : m_.releases)
+      if (r.body == i) dm += r.dm;
+    return dm;
+  }
+
  private:
   const RefModel& m_;
   const RefOptions& o_;
   int n_;
   std::vector<double> im_;
   Eigen::MatrixXd P_;  // the inverse mass under the gears' rows (M⁻¹ without gears)
+
+  std::vector<double> mass_;  // the bodies' current masses (releases lower them)
+
+  /// M⁻¹ and P from the current masses (at the start and after every release; the stuck sets' A,
+  /// formed from P, are formed again).
+  void build_P() {
+    im_.clear();
+    for (double mi : mass_) im_.push_back(1.0 / mi);
+    // The inverse mass under the ideal gears' rows J (q_a = i q_b: the row e_a − i e_b, held in
+    // every mode): P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹, so a = P f is the motion the gears allow and
+    // the gears' forces never need to be known. Without gears P = M⁻¹.
+    // A prescribed body weighs nothing here: its acceleration is the signal's (set in accel).
+    for (int i = 0; i < n_; ++i)
+      if (m_.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) im_[static_cast<size_t>(i)] = 0.0;
+    P_ = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(im_.data(), n_)).asDiagonal();
+    if (!m_.gears.empty()) {
+      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<long>(m_.gears.size()), n_);
+      for (size_t g = 0; g < m_.gears.size(); ++g) {
+        const Gear& G = m_.gears[g];
+        const auto r = static_cast<long>(g);
+        if (G.planetary) J(r, G.a) += 1.0, J(r, G.b) += G.ratio, J(r, G.c) -= 1.0 + G.ratio;  // Willis
+        else J(r, G.a) += 1.0, J(r, G.b) -= G.ratio;                                          // q_a = i q_b
+      }
+      const Eigen::MatrixXd Mi = P_;
+      P_ = Mi - Mi * J.transpose() * (J * Mi * J.transpose()).inverse() * J * Mi;
+    }
+    sets_.clear();
+  }
 
   /// Slaved bodies follow their gear exactly: x_b = x_a / i (the rounding of P's projection).
   void follow_gears(double* x) const {
@@ -751,6 +770,7 @@ RefResult Sim::run() {
   for (const auto& l : m_.loads) l.s.breakpoints(bps, m_.t_end);
   for (const auto& b : m_.bodies)
     if (b.motion != Body::Motion::free) b.prescribed.breakpoints(bps, m_.t_end);
+  for (const auto& r : m_.releases) bps.push_back(r.t);
   for (const auto& f : m_.frictions) f.breakpoints(bps, m_.t_end);
   std::sort(bps.begin(), bps.end());
   bps.erase(std::remove_if(bps.begin(), bps.end(), [&](double b) { return !(b > 0.0 && b < m_.t_end); }), bps.end());
@@ -860,6 +880,12 @@ RefResult Sim::run() {
       g0 = std::move(g1);
       if (ib < bps.size() && t == bps[ib]) {
         ++ib;
+        // Releases at t: the mass drops, position and velocity are continuous (the released part
+        // leaves with the body's velocity); the stuck ones are decided again with the new masses.
+        bool released = false;
+        for (const auto& r : m_.releases)
+          if (r.t == t) mass_[static_cast<size_t>(r.body)] -= r.dm, released = true, record(t, "release", r.name);
+        if (released) build_P();
         engage(t, y, false);
         decide(t, y, {});
         restart(t, y, g0);

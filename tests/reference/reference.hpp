@@ -187,6 +187,14 @@ struct Gear {
   int c = -1;          ///< planetary: the carrier
 };
 
+/// A release (docs/model-files.md, "Releases"): body `body` loses Δm at t_r > 0, its position and
+/// velocity continuous.
+struct Release {
+  std::string name;
+  int body = 0;
+  double dm = 0.0, t = 0.0;  ///< kg (kg·m²), s
+};
+
 struct RefModel {
   bool rotational = false;  ///< every body rotational (φ in rad, kg·m², N·m): the same equations
   std::vector<Body> bodies;
@@ -194,6 +202,7 @@ struct RefModel {
   std::vector<Link> links;
   std::vector<Load> loads;
   std::vector<Friction> frictions;
+  std::vector<Release> releases;
   double t_end = 1.0, dt_out = 0.01;
 };
 
