@@ -214,6 +214,11 @@ RefModel shrink(const RefModel& m0, const std::string& integrator, Outcome::Kind
       c.frictions.erase(c.frictions.begin() + static_cast<long>(k));
       if (still_fails(c)) best = c, changed = true;
     }
+    for (size_t k = best.releases.size(); k-- > 0;) {
+      RefModel c = best;
+      c.releases.erase(c.releases.begin() + static_cast<long>(k));
+      if (still_fails(c)) best = c, changed = true;
+    }
     for (size_t k = best.loads.size(); k-- > 0;) {
       RefModel c = best;
       c.loads.erase(c.loads.begin() + static_cast<long>(k));

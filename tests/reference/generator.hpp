@@ -26,8 +26,10 @@
 ///   motion           a chain body moved by a prescribed speed (ramp, sine from its zero, table
 ///                    without jumps, expression) or acceleration (every kind), with 0–2 contacts
 ///                    from it to free bodies
+///   release          1–2 chain bodies losing 20–60 % of their mass at an instant, with 0–2 contacts
+///                    on the first (to the ground or another body)
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
-/// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary and motion from every kind.
+/// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion and release from every kind.
 
 #include <cstdint>
 #include <string>

@@ -461,5 +461,28 @@ TEST(ReferenceSimulator, PrescribedAccelerationDragsABlockUntilItSlips) {
   }
 }
 
+
+// Claim: a block m = 4 kg pushed by 8 N from rest that releases Δm = 1 kg at 0.5 s keeps its
+// position and velocity there and accelerates at 8/3 m/s² after: v = 2 t until 0.5 s, then
+// v = 1 + (8/3)(t − 0.5); x = t² until 0.5 s, then 0.25 + (t − 0.5) + (4/3)(t − 0.5)².
+TEST(ReferenceSimulator, ReleaseKeepsTheVelocityAndChangesTheAcceleration) {
+  RefModel m;
+  m.bodies = {{"block", 4.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 0, P.s.value = 8.0;
+  m.loads = {P};
+  m.releases = {{"R", 0, 1.0, 0.5}};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(of_kind(r, "release").size(), 1u);
+  EXPECT_EQ(of_kind(r, "release")[0].t, 0.5);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], u = t - 0.5;
+    EXPECT_NEAR(r.v[k][0], t <= 0.5 ? 2 * t : 1 + 8.0 / 3 * u, 1e-12) << t;
+    EXPECT_NEAR(r.q[k][0], t <= 0.5 ? t * t : 0.25 + u + 4.0 / 3 * u * u, 1e-12) << t;
+  }
+}
+
 }  // namespace
 }  // namespace machdyn::reference
