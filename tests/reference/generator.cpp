@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic"};
   return f;
 }
 
@@ -463,6 +463,25 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
+  // Kinetic levels over the sliding speed: 1–3 contacts (to the ground and between bodies) with a
+  // table from speed 0 (F_k(0) ≤ F_s, rising or falling) or the Stribeck law.
+  if (family == "kinetic") {
+    for (int k = r.i(1, 3); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1), f.b = r.p(0.6) ? kGround : (f.a + r.i(1, n - 1)) % n;
+      f.Fs = sig(r.log_u(0.2, 2.0) * force);
+      f.Fk = sig(f.Fs * r.u(0.3, 0.9));
+      if (r.p(0.5)) {
+        double sp = 0.0;
+        f.kinetic_table.emplace_back(0.0, r.p(0.3) ? f.Fs : sig(f.Fs * r.u(0.5, 1.0)));
+        for (int j = r.i(1, 3); j > 0; --j) sp = sig(sp + r.log_u(0.01, 0.3)), f.kinetic_table.emplace_back(sp, sig(f.Fs * r.u(0.3, 1.2)));
+      } else {
+        f.stribeck_speed = sig(r.log_u(0.01, 0.3));
+        f.stribeck_exponent = r.p(0.5) ? 1.0 : sig(r.u(1.0, 2.5), 2);
+      }
+      add(f);
+    }
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -475,6 +494,19 @@ std::string num(double x) {
   return buf;
 }
 std::string end_name(const RefModel& m, int i) { return i < 0 ? "ground" : m.bodies[static_cast<size_t>(i)].name; }
+
+/// A contact's kinetic level: a number, a table over the sliding speed (plain SI numbers), or the
+/// Coulomb level with the Stribeck law's speed and exponent.
+std::string kinetic_yaml(const Friction& f, const std::string& F) {
+  if (!f.kinetic_table.empty()) {
+    std::string y = "[";
+    for (size_t k = 0; k < f.kinetic_table.size(); ++k)
+      y += (k ? ", [" : "[") + num(f.kinetic_table[k].first) + ", " + num(f.kinetic_table[k].second) + "]";
+    return y + "]";
+  }
+  if (f.stribeck_speed > 0.0) return num(f.Fk) + F + ", stribeck_speed: " + num(f.stribeck_speed) + " m/s, stribeck_exponent: " + num(f.stribeck_exponent);
+  return num(f.Fk) + F;
+}
 
 /// The units of a model's bodies: translational (m, N) or rotational (rad, N·m).
 struct Units {
@@ -563,7 +595,7 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       switch (k) {
         case Friction::Kind::contact:
           y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], ";
-          y += !f.via_mu ? "static: " + num(f.Fs) + F + ", kinetic: " + num(f.Fk) + F
+          y += !f.via_mu ? "static: " + num(f.Fs) + F + ", kinetic: " + kinetic_yaml(f, F)
                : "normal_force: " + (f.fN.kind == Signal::Kind::constant && f.fN.value == 0.0
                                          ? num(f.normal) + " N"
                                          : "{" + signal_yaml(f.fN, "N") + "}") +

@@ -128,9 +128,20 @@ double Friction::static_limit(double t) const {
   }
 }
 
-double Friction::kinetic_level(double t) const {
+double Friction::kinetic_level(double t, double speed) const {
   switch (kind) {
-    case Kind::contact: return via_mu ? normal_at(t) * mu_k : Fk;
+    case Kind::contact:
+      if (via_mu) return normal_at(t) * mu_k;
+      if (!kinetic_table.empty()) {  // linear in the sliding speed, the end values held
+        const auto& T = kinetic_table;
+        if (speed <= T.front().first) return T.front().second;
+        if (speed >= T.back().first) return T.back().second;
+        size_t i = 0;
+        while (T[i + 1].first <= speed) ++i;
+        return T[i].second + (T[i + 1].second - T[i].second) * (speed - T[i].first) / (T[i + 1].first - T[i].first);
+      }
+      if (stribeck_speed > 0.0) return Fk + (Fs - Fk) * std::exp(-std::pow(speed / stribeck_speed, stribeck_exponent));  // Stribeck
+      return Fk;
     case Kind::brake: return application_at(t) * Fk;
     case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_k;
     case Kind::freewheel: return drag;
@@ -378,7 +389,7 @@ class Sim {
       const Friction& fr = m_.frictions[k];
       lam[k] = 0.0;
       if (sliding(md.fr[k])) {
-        const double F = sign_of(md.fr[k]) * fr.kinetic_level(t);
+        const double F = sign_of(md.fr[k]) * fr.kinetic_level(t, std::abs(rel_u(fr, y)));
         if (fr.b >= 0) f[static_cast<size_t>(fr.b)] += F;
         if (fr.a >= 0) f[static_cast<size_t>(fr.a)] -= F;
       } else if (md.fr[k] == FMode::stuck) {
@@ -491,6 +502,10 @@ class Sim {
         else out.push_back({f.static_limit(t) - std::abs(lam[k]), 1e-13 * f.static_limit(t) + eps_f, -1, fi});
       } else {
         out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
+        // The kinks of a kinetic table over the sliding speed: located (no mode changes there), so
+        // no fixed step runs across a change of slope of the friction force.
+        for (size_t j = 1; j < f.kinetic_table.size(); ++j)
+          out.push_back({std::abs(rel_u(f, y.data())) - f.kinetic_table[j].first, 0.0, -1, fi, true});
       }
     }
     return out;

@@ -156,6 +156,10 @@ struct Friction {
   Signal fN;
   // freewheel [a, b] (a may be kGround: a backstop on b): holds while λ ≥ 0, overruns with u < 0
   double drag = 0.0;
+  // contact with levels: F_k0(s) a table [(s, F)] from s = 0 (held beyond its ends), or the Stribeck
+  // law F_k0(s) = F_k + (F_s − F_k) exp(−(s/w_s)^δ) (stribeck_speed w_s > 0)
+  std::vector<std::pair<double, double>> kinetic_table;
+  double stribeck_speed = 0.0, stribeck_exponent = 1.0;
   // stop on body a: `min` (stop_max false) or `max` at stop_pos, restitution e
   bool stop_max = false;
   double stop_pos = 0.0, e = 0.0;
@@ -163,7 +167,8 @@ struct Friction {
   [[nodiscard]] bool one_sided() const { return kind == Kind::freewheel || kind == Kind::stop; }
   /// The static limit F_s(t) and kinetic level F_k(t) (∞ / the drag for one-sided elements).
   [[nodiscard]] double static_limit(double t) const;
-  [[nodiscard]] double kinetic_level(double t) const;
+  /// F_k(t, s) at sliding speed s ≥ 0 (a contact's table or Stribeck law; the others constant in s).
+  [[nodiscard]] double kinetic_level(double t, double speed = 0.0) const;
   /// Whether a brake or clutch is engaged at t (r > 0 or about to rise: the right limit).
   [[nodiscard]] bool engaged(double t) const;
   /// A brake's application r(t) ∈ [0, 1].
