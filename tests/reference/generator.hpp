@@ -28,8 +28,10 @@
 ///                    from it to free bodies
 ///   release          1–2 chain bodies losing 20–60 % of their mass at an instant, with 0–2 contacts
 ///                    on the first (to the ground or another body)
+///   kinetic          1–3 contacts with a kinetic level over the sliding speed: a table from speed
+///                    0 or the Stribeck law
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
-/// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion and release from every kind.
+/// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 
 #include <cstdint>
 #include <string>

@@ -44,18 +44,17 @@
 /// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
 ///
-/// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members,
-/// `position` motions, buffers, drives or machines; releases only on free bodies without gears, at
-/// t_r > 0; prescribed bodies only with contacts
-/// to free bodies (no ground friction, freewheel, stop or gear on them), a speed without jumps; at most two friction elements to the
-/// ground on a planetary gear's members (three would lock it redundantly, where the engine weights
-/// the joint's row in the share); signals of every kind but `sum`
-/// and `file` (expressions only of the form c0 + c1 t + A sin(2π f t + φ) + B e^(−t/τ)); constant
-/// friction levels (no tables, Stribeck or moving surfaces); a contact's normal force stays positive;
-/// end stops only on bodies without friction to another body and without gears (an impact through a
-/// stuck contact would need an impulsive friction law); an ideal gear's slave carries no friction
-/// element and is the first end of its links; a freewheel is the only friction element on its pair
-/// of bodies.
+/// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
+/// motions, buffers, drives or machines; releases only on free bodies without gears, at t_r > 0;
+/// prescribed bodies only with contacts to free bodies (no ground friction, freewheel, stop or gear on
+/// them), a speed without jumps; at most two friction elements to the ground on a planetary gear's
+/// members (three would lock it redundantly, where the engine weights the joint's row in the share);
+/// signals of every kind but `sum` and `file` (expressions only of the form c0 + c1 t + A sin(2π f t +
+/// φ) + B e^(−t/τ)); speed-dependent kinetic levels (tables, Stribeck) only on contacts given by levels,
+/// no moving surfaces; a contact's normal force stays positive; end stops only on bodies without
+/// friction to another body and without gears (an impact through a stuck contact would need an impulsive
+/// friction law); an ideal gear's slave carries no friction element and is the first end of its links; a
+/// freewheel is the only friction element on its pair of bodies.
 
 #include <cstdint>
 #include <limits>

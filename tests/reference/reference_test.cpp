@@ -484,5 +484,28 @@ TEST(ReferenceSimulator, ReleaseKeepsTheVelocityAndChangesTheAcceleration) {
   }
 }
 
+
+// Claim: a block m = 5 kg sliding at v0 = 1 m/s on a ground contact whose kinetic level is the table
+// F_k(s) = 10 + 10 s N (points [0, 10], [2, 30]; F_s = 20 N) decelerates by m v' = −(10 + 10 v):
+// v = 2 e^(−2t) − 1, which reaches 0 at t* = ln 2 / 2 = 0.34657 s, where it sticks (no load).
+TEST(ReferenceSimulator, KineticTableOverTheSlidingSpeed) {
+  RefModel m;
+  m.bodies = {{"block", 5.0, 0.0, 1.0}};
+  Friction f;
+  f.name = "f", f.a = 0, f.b = kGround, f.Fs = 20.0, f.Fk = 10.0;
+  f.kinetic_table = {{0.0, 10.0}, {2.0, 30.0}};
+  m.frictions = {f};
+  m.t_end = 0.6, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto stick = of_kind(r, "stick");
+  ASSERT_EQ(stick.size(), 1u);
+  EXPECT_NEAR(stick[0].t, std::log(2.0) / 2, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    EXPECT_NEAR(r.v[k][0], t < std::log(2.0) / 2 ? 2 * std::exp(-2 * t) - 1 : 0.0, 1e-10) << t;
+  }
+}
+
 }  // namespace
 }  // namespace machdyn::reference
