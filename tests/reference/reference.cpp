@@ -206,6 +206,19 @@ class Sim {
       const double meff = (l.a >= 0 && l.b >= 0) ? mm / 2 : mm;
       w = std::max({w, std::sqrt(l.c / meff), l.d / meff});
     }
+    // A kinetic level falling or rising with the sliding speed is a damper of rate |dF_k/ds|/m: the
+    // Stribeck law's steepest slope (F_s − F_k)/w_s (at s = 0 for δ = 1, below it for δ > 1), a
+    // table's steepest segment.
+    for (const auto& f : m.frictions) {
+      double slope = f.stribeck_speed > 0.0 ? (f.Fs - f.Fk) / f.stribeck_speed : 0.0;
+      for (size_t j = 1; j < f.kinetic_table.size(); ++j)
+        slope = std::max(slope, std::abs(f.kinetic_table[j].second - f.kinetic_table[j - 1].second) /
+                                    (f.kinetic_table[j].first - f.kinetic_table[j - 1].first));
+      double mm = HUGE_VAL;
+      if (f.a >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.a)].m);
+      if (f.b >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.b)].m);
+      if (slope > 0.0) w = std::max(w, slope / ((f.a >= 0 && f.b >= 0) ? mm / 2 : mm));
+    }
     h_ = w > 0 ? std::min(o.h_max, o.omega_h / w) : o.h_max;
   }
 
