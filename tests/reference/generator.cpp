@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer"};
   return f;
 }
 
@@ -482,6 +482,21 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
+  // Linear buffers against the ground (one-sided springs with damping) on 1–2 chain bodies, placed
+  // a little off the start so the loads drive the bodies onto them.
+  if (family == "buffer") {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Link L;
+      L.kind = Link::Kind::one_sided, L.buffer = true, L.name = named("U", k);
+      const int b = r.i(0, n - 1);
+      const double xb = sig(r.log_u(5e-4, 1e-2));
+      if (r.p(0.5)) L.a = b, L.b = kGround, L.flank = xb;     // max: x_b above
+      else L.a = kGround, L.b = b, L.flank = -(-xb);          // min at −x_b: δ = −x ≥ x_b
+      L.c = sig(r.log_u(1e4, 2e5));
+      L.d = r.p(0.4) ? 0.0 : sig(r.u(0.0, 0.3) * 2 * std::sqrt(L.c * m.bodies[static_cast<size_t>(b)].m));
+      m.links.push_back(L);
+    }
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -574,6 +589,7 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) + "}\n";
   }
   for (const auto& L : m.links) {
+    if (L.buffer) continue;  // under buffers:
     const bool rope = L.kind == Link::Kind::rope;
     y += "  " + L.name + ": {type: " + (rope ? "rope" : L.d > 0 || L.kind != Link::Kind::plain ? "spring-damper" : "spring") +
          ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " " + U.c;
@@ -625,6 +641,14 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   section(Friction::Kind::clutch, "clutches");
   section(Friction::Kind::freewheel, "freewheels");
   section(Friction::Kind::stop, "stops");
+  bool first_buffer = true;
+  for (const auto& L : m.links) {
+    if (!L.buffer) continue;
+    if (first_buffer) y += "buffers:\n", first_buffer = false;
+    const bool upper = L.b == kGround;  // [body, ground]: max at δ₊; [ground, body]: min at −δ₊
+    y += "  " + L.name + ": {body: " + end_name(m, upper ? L.a : L.b) + (upper ? ", max: " + num(L.flank) : ", min: " + num(-L.flank)) + q +
+         ", stiffness: " + num(L.c) + " " + U.c + (L.d > 0 ? ", damping: " + num(L.d) + " " + U.d : std::string()) + "}\n";
+  }
   if (!m.releases.empty()) y += "releases:\n";
   for (const auto& x : m.releases)
     y += "  " + x.name + ": {body: " + end_name(m, x.body) + (m.rotational ? ", inertia: " + num(x.dm) + " kg*m^2" : ", mass: " + num(x.dm) + " kg") +

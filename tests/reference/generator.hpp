@@ -30,6 +30,7 @@
 ///                    on the first (to the ground or another body)
 ///   kinetic          1–3 contacts with a kinetic level over the sliding speed: a table from speed
 ///                    0 or the Stribeck law
+///   buffer           1–2 linear buffers (`buffers:`, with or without damping) against the ground
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
 /// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 

@@ -45,7 +45,7 @@
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
 ///
 /// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
-/// motions, buffers, drives or machines; releases only on free bodies without gears, at t_r > 0;
+/// motions, buffers other than linear, drives or machines; releases only on free bodies without gears, at t_r > 0;
 /// prescribed bodies only with contacts to free bodies (no ground friction, freewheel, stop or gear on
 /// them), a speed without jumps; at most two friction elements to the ground on a planetary gear's
 /// members (three would lock it redundantly, where the engine weights the joint's row in the share);
@@ -123,6 +123,10 @@ struct Link {
   double gap = 0.0, gap_start = 0.0;  ///< gap: Δ and the position inside it at δ = 0
   double flank = 0.0;          ///< one_sided: δ₊ (any sign); rope: the slack (≥ 0)
   bool elasto = false;         ///< flank_law: elasto-backlash
+  /// A linear buffer (docs/model-files.md, Buffers) is this one-sided law against the ground:
+  /// `max` x_b is [body, ground] with δ₊ = x_b, `min` x_b is [ground, body] with δ₊ = −x_b (the file
+  /// writes it under `buffers:`).
+  bool buffer = false;
   [[nodiscard]] bool has_flanks() const { return kind != Kind::plain; }
   [[nodiscard]] double hi() const { return kind == Kind::gap ? gap - gap_start : flank; }  ///< δ₊
   [[nodiscard]] double lo() const {  ///< δ₋ (−∞ for a one-sided link or rope)
