@@ -169,6 +169,9 @@ RefModel without_body(const RefModel& m, int i) {
     if (l.body != i) l.body = map(l.body), s.loads.push_back(l);
   for (auto f : m.frictions)
     if (f.a != i && f.b != i) f.a = map(f.a), f.b = map(f.b), s.frictions.push_back(f);
+  s.motors.clear();
+  for (auto M : m.motors)
+    if (M.body != i) M.body = map(M.body), s.motors.push_back(M);
   s.releases.clear();
   for (auto x : m.releases)
     if (x.body != i) x.body = map(x.body), s.releases.push_back(x);

@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor"};
   return f;
 }
 
@@ -497,6 +497,22 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       m.links.push_back(L);
     }
   }
+  // A DC motor (a linear motor on a translational body) driving the chain, its voltage a signal of
+  // every kind; with contacts to the ground.
+  if (family == "dc-motor") {
+    DcMotor M;
+    M.name = "motor", M.body = r.i(0, n - 1);
+    M.R = sig(r.log_u(0.5, 5.0)), M.L = sig(r.log_u(5e-3, 5e-2)), M.k = sig(r.log_u(5.0, 50.0));
+    M.i0 = r.p(0.3) ? sig(r.u(-1, 1) * force / M.k) : 0.0;
+    M.u = random_signal(r, m.t_end, sig(force * M.R / M.k), true);  // stall force k u/R about the force scale
+    m.motors.push_back(M);
+    for (int k = r.i(0, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1), f.b = kGround;
+      levels(f);
+      add(f);
+    }
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -649,6 +665,10 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
     y += "  " + L.name + ": {body: " + end_name(m, upper ? L.a : L.b) + (upper ? ", max: " + num(L.flank) : ", min: " + num(-L.flank)) + q +
          ", stiffness: " + num(L.c) + " " + U.c + (L.d > 0 ? ", damping: " + num(L.d) + " " + U.d : std::string()) + "}\n";
   }
+  if (!m.motors.empty()) y += "drives:\n";
+  for (const auto& M : m.motors)
+    y += "  " + M.name + ": {type: dc-motor, body: " + end_name(m, M.body) + ", resistance: " + num(M.R) + " ohm, inductance: " + num(M.L) +
+         " H, motor_constant: " + num(M.k) + " N/A, initial_current: " + num(M.i0) + " A, voltage: {" + signal_yaml(M.u, "V") + "}}\n";
   if (!m.releases.empty()) y += "releases:\n";
   for (const auto& x : m.releases)
     y += "  " + x.name + ": {body: " + end_name(m, x.body) + (m.rotational ? ", inertia: " + num(x.dm) + " kg*m^2" : ", mass: " + num(x.dm) + " kg") +

@@ -219,6 +219,9 @@ class Sim {
       if (f.b >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.b)].m);
       if (slope > 0.0) w = std::max(w, slope / ((f.a >= 0 && f.b >= 0) ? mm / 2 : mm));
     }
+    // A DC motor's electrical rates: R/L and the coupling k/√(L m).
+    for (const auto& M : m.motors)
+      w = std::max({w, M.R / M.L, M.k / std::sqrt(M.L * (m.bodies[static_cast<size_t>(M.body)].m - released_from(M.body)))});
     h_ = w > 0 ? std::min(o.h_max, o.omega_h / w) : o.h_max;
   }
 
@@ -391,6 +394,7 @@ class Sim {
     f_.assign(static_cast<size_t>(n_), 0.0);
     auto& f = f_;
     for (const auto& l : m_.loads) f[static_cast<size_t>(l.body)] += l.s.at(t);
+    for (size_t d = 0; d < m_.motors.size(); ++d) f[static_cast<size_t>(m_.motors[d].body)] += m_.motors[d].k * y[2 * n_ + static_cast<int>(d)];
     for (size_t k = 0; k < m_.links.size(); ++k) {
       const Link& L = m_.links[k];
       const double F = link_force(L, md.gap[k], qa(y, L.a) - qa(y, L.b), va(y, L.a) - va(y, L.b));
@@ -449,6 +453,13 @@ class Sim {
     lam_d_.resize(m_.frictions.size());
     for (int i = 0; i < n_; ++i) dy[static_cast<size_t>(i)] = y[static_cast<size_t>(n_ + i)];
     accel(t, y.data(), md, dy.data() + n_, lam_d_.data());
+    // DC motors: L di/dt = u(t) − R i − k v (the voltage's left limit at a step's end, as the loads).
+    const double tl = t == t_left_ ? std::nextafter(t, -HUGE_VAL) : t;
+    for (size_t d = 0; d < m_.motors.size(); ++d) {
+      const DcMotor& M = m_.motors[d];
+      const size_t s = static_cast<size_t>(2 * n_) + d;
+      dy[s] = (M.u.at(tl) - M.R * y[s] - M.k * y[static_cast<size_t>(n_ + M.body)]) / M.L;
+    }
   }
 
   std::vector<double> k1, k2, k3, k4, tmp, lam_d_;
@@ -561,7 +572,7 @@ class Sim {
       if (fr.b < 0) v(fr.a) = 0.0;
       else if (fr.a < 0) v(fr.b) = 0.0;
     }
-    for (int pass = 0; pass < 3; ++pass)
+    for (int pass = 0; pass < 3; ++pass) {
       for (int r = 0; r < s; ++r) {
         const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
         if (fr.a >= 0 && fr.b >= 0) {
@@ -574,6 +585,13 @@ class Sim {
           }
         }
       }
+      // A body held to the ground stays exactly at rest (the mean with a neighbour moved it by rounding).
+      for (int r = 0; r < s; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
+        if (fr.b < 0) v(fr.a) = 0.0;
+        else if (fr.a < 0) v(fr.b) = 0.0;
+      }
+    }
     follow_gears(y.data() + n_);
   }
 
@@ -769,7 +787,8 @@ class Sim {
 };
 
 RefResult Sim::run() {
-  std::vector<double> y(static_cast<size_t>(2 * n_));
+  std::vector<double> y(static_cast<size_t>(2 * n_) + m_.motors.size());
+  for (size_t d = 0; d < m_.motors.size(); ++d) y[static_cast<size_t>(2 * n_) + d] = m_.motors[d].i0;
   for (int i = 0; i < n_; ++i) {
     const Body& b = m_.bodies[static_cast<size_t>(i)];
     y[static_cast<size_t>(i)] = b.q0, y[static_cast<size_t>(n_ + i)] = b.motion == Body::Motion::speed ? b.prescribed.at(0.0) : b.v0;
@@ -799,6 +818,7 @@ RefResult Sim::run() {
   for (const auto& b : m_.bodies)
     if (b.motion != Body::Motion::free) b.prescribed.breakpoints(bps, m_.t_end);
   for (const auto& r : m_.releases) bps.push_back(r.t);
+  for (const auto& M : m_.motors) M.u.breakpoints(bps, m_.t_end);
   for (const auto& f : m_.frictions) f.breakpoints(bps, m_.t_end);
   std::sort(bps.begin(), bps.end());
   bps.erase(std::remove_if(bps.begin(), bps.end(), [&](double b) { return !(b > 0.0 && b < m_.t_end); }), bps.end());
@@ -809,7 +829,7 @@ RefResult Sim::run() {
   auto row = [&](double t) {
     res_.t.push_back(t);
     res_.q.emplace_back(y.begin(), y.begin() + n_);
-    res_.v.emplace_back(y.begin() + n_, y.end());
+    res_.v.emplace_back(y.begin() + n_, y.begin() + 2 * n_);
   };
   double t = 0.0;
   row(0.0), next_row = 1;

@@ -204,6 +204,15 @@ struct Release {
   double dm = 0.0, t = 0.0;  ///< kg (kg·m²), s
 };
 
+/// A DC motor (docs/model-files.md, Drives): L di/dt = u(t) − R i − k v, force k i on its body; the
+/// current i is a state of its own (after [q; v]).
+struct DcMotor {
+  std::string name;
+  int body = 0;
+  double R = 1.0, L = 0.01, k = 1.0, i0 = 0.0;  ///< Ω, H, N/A (= V·s/m), A
+  Signal u;                                     ///< V
+};
+
 struct RefModel {
   bool rotational = false;  ///< every body rotational (φ in rad, kg·m², N·m): the same equations
   std::vector<Body> bodies;
@@ -212,6 +221,7 @@ struct RefModel {
   std::vector<Load> loads;
   std::vector<Friction> frictions;
   std::vector<Release> releases;
+  std::vector<DcMotor> motors;
   double t_end = 1.0, dt_out = 0.01;
 };
 

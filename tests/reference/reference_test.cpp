@@ -226,7 +226,7 @@ TEST(ReferenceSimulator, ConvergesWithTheStepOnRandomModels) {
         wt = std::max(wt, std::abs(a.events[k].t - b.events[k].t));
       }
       for (size_t j = 0; j < m.bodies.size(); ++j) {
-        double scale = 1e-300;
+        double scale = 1e-12;  // m/s: a body at rest in both runs differs by rounding only
         for (size_t k = 0; k < a.t.size(); ++k) scale = std::max(scale, std::abs(a.v[k][j]));
         for (size_t k = 0; k < a.t.size(); ++k) wx = std::max(wx, std::abs(a.v[k][j] - b.v[k][j]) / scale);
       }
@@ -504,6 +504,30 @@ TEST(ReferenceSimulator, KineticTableOverTheSlidingSpeed) {
   for (size_t k = 0; k < r.t.size(); ++k) {
     const double t = r.t[k];
     EXPECT_NEAR(r.v[k][0], t < std::log(2.0) / 2 ? 2 * std::exp(-2 * t) - 1 : 0.0, 1e-10) << t;
+  }
+}
+
+
+// Claim: a DC (linear) motor R = 2 Ω, L = 0.1 H, k = 1 N/A on a free mass m = 1 kg at u = 12 V from
+// rest: x = [i; v], x' = A x + b with A = [[−R/L, −k/L], [k/m, 0]], b = [u/L; 0], so
+// x = x∞ + e^(At)(x0 − x∞), x∞ = [0; u/k]; A has the distinct real eigenvalues λ = −10 ± √90 and
+// e^(At) = (e^(λ1 t)(A − λ2 I) − e^(λ2 t)(A − λ1 I))/(λ1 − λ2) (Sylvester).
+TEST(ReferenceSimulator, DcMotorOnAFreeMassFollowsItsLinearSystem) {
+  RefModel m;
+  m.bodies = {{"slider", 1.0, 0.0, 0.0}};
+  DcMotor M;
+  M.name = "motor", M.body = 0, M.R = 2.0, M.L = 0.1, M.k = 1.0, M.u.value = 12.0;
+  m.motors = {M};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double A[2][2] = {{-20.0, -10.0}, {1.0, 0.0}}, l1 = -10 + std::sqrt(90.0), l2 = -10 - std::sqrt(90.0);
+  const double d0[2] = {0.0, -12.0};  // x0 − x∞
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], e1 = std::exp(l1 * t), e2 = std::exp(l2 * t);
+    // v = 12 + [e^(At) d0]_1
+    const double row1 = (e1 * (A[1][0] * d0[0] + (A[1][1] - l2) * d0[1]) - e2 * (A[1][0] * d0[0] + (A[1][1] - l1) * d0[1])) / (l1 - l2);
+    EXPECT_NEAR(r.v[k][0], 12.0 + row1, 1e-9) << t;
   }
 }
 
