@@ -31,6 +31,8 @@
 ///   kinetic          1–3 contacts with a kinetic level over the sliding speed: a table from speed
 ///                    0 or the Stribeck law
 ///   buffer           1–2 linear buffers (`buffers:`, with or without damping) against the ground
+///   dc-motor         a DC (linear) motor on a chain body, its voltage of every signal kind, with
+///                    0–2 ground contacts
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
 /// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 

@@ -45,7 +45,7 @@
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
 ///
 /// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
-/// motions, buffers other than linear, drives or machines; releases only on free bodies without gears, at t_r > 0;
+/// motions, buffers other than linear, drives other than the DC motor, machines; releases only on free bodies without gears, at t_r > 0;
 /// prescribed bodies only with contacts to free bodies (no ground friction, freewheel, stop or gear on
 /// them), a speed without jumps; at most two friction elements to the ground on a planetary gear's
 /// members (three would lock it redundantly, where the engine weights the joint's row in the share);
