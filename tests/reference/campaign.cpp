@@ -130,8 +130,8 @@ Outcome compare(const RefModel& m, const std::string& integrator, const RefResul
     return {Outcome::Kind::state_mismatch, "output rows: engine " + std::to_string(ts ? ts->size() : 0) + ", reference " + std::to_string(ref.t.size()), 0.0};
   for (size_t i = 0; i < m.bodies.size(); ++i)
     for (int w = 0; w < 2; ++w) {
-      const std::string name = m.bodies[i].name + (w == 0 ? (m.rotational ? ".position_rad" : ".position_m")
-                                                          : (m.rotational ? ".velocity_rad_s" : ".velocity_m_s"));
+      const bool rot = m.rotational && !m.bodies[i].linear;
+      const std::string name = m.bodies[i].name + (w == 0 ? (rot ? ".position_rad" : ".position_m") : (rot ? ".velocity_rad_s" : ".velocity_m_s"));
       const auto* c = col(name);
       if (c == nullptr) return {Outcome::Kind::state_mismatch, "no column " + name, 0.0};
       double scale = 0.0;

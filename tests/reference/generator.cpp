@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor", "drum"};
   return f;
 }
 
@@ -185,7 +185,7 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
            (signals && (fs == "ground-friction" || fs == "brake" || fs == "clutch") && r.p(0.4));
   };
   const int n = family == "planetary" ? r.i(3, 6) : r.i(2, 6);
-  m.rotational = family == "planetary";
+  m.rotational = family == "planetary" || family == "drum";
   m.t_end = sig(r.u(0.4, 1.2), 2);
   m.dt_out = m.t_end / 200;
   for (int i = 0; i < n; ++i) m.bodies.push_back({named("b", i), sig(r.log_u(1.0, 20.0)), 0.0, 0.0});
@@ -355,18 +355,22 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
     }
   // Ideal gears: 1–2 bodies slaved to chain bodies (q_master = i q_slave), with loads and links
   // from the slave (its first end) back into the chain or to the ground; friction on the masters.
-  if (family == "gear") {
+  // The family `drum`: the same with a rotational chain and translational slaves (a rope drum and its
+  // hook: q_drum = i x, i = 1/R in rad/m), links from the hook to the ground only.
+  const bool drum = family == "drum";
+  if (family == "gear" || drum) {
     for (int k = r.i(1, 2); k > 0; --k) {
       const int master = r.i(0, n - 1), slave = static_cast<int>(m.bodies.size());
-      const double i = sig((r.p(0.3) ? -1 : 1) * r.log_u(0.3, 3.0));
-      m.bodies.push_back({named("g", slave - n), sig(r.log_u(0.5, 10.0)), 0.0, 0.0});
+      const double i = drum ? sig(1.0 / r.u(0.1, 0.5)) : sig((r.p(0.3) ? -1 : 1) * r.log_u(0.3, 3.0));
+      m.bodies.push_back({named("g", slave - n), drum ? sig(r.log_u(10.0, 500.0)) : sig(r.log_u(0.5, 10.0)), 0.0, 0.0});
+      m.bodies.back().linear = drum;
       m.gears.push_back({named("G", slave - n), master, slave, i});
-      if (r.p(0.6)) m.loads.push_back({named("Pg", slave - n), slave, random_signal(r, m.t_end, force, true)});
+      if (r.p(0.6)) m.loads.push_back({named("Pg", slave - n), slave, random_signal(r, m.t_end, drum ? sig(force * i) : force, true)});
       if (r.p(0.6)) {
         Link L;
         L.name = named("kg", slave - n);
-        L.a = slave, L.b = r.p(0.3) ? kGround : r.i(0, n - 1);
-        L.c = sig(r.log_u(2e3, 5e4));
+        L.a = slave, L.b = drum || r.p(0.3) ? kGround : r.i(0, n - 1);
+        L.c = drum ? sig(r.log_u(1e4, 1e6)) : sig(r.log_u(2e3, 5e4));
         L.d = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.1) * 2 * std::sqrt(L.c * m.bodies[static_cast<size_t>(slave)].m));
         if (L.b == master) L.b = kGround;  // a link inside the rigid group is an input error
         m.links.push_back(L);
@@ -375,7 +379,8 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
     if (r.p(0.5)) {
       Friction f;
       f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = m.gears[0].a, f.b = kGround;
-      levels(f);
+      if (drum) f.Fs = sig(r.log_u(0.2, 2.0) * force), f.Fk = sig(f.Fs * r.u(0.5, 1.0));  // levels: no radius needed
+      else levels(f);
       add(f);
     }
     if (r.p(0.3)) {
@@ -584,12 +589,13 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   std::string y = header;
   const Units U = units_of(m);
   const std::string q = std::string(" ") + U.q, F = std::string(" ") + U.F;
+  auto lin = [&](int i) { return i >= 0 && m.bodies[static_cast<size_t>(i)].linear; };  // a hook in a rotational model
   y += "name: random reference model\nbodies:\n";
   for (const auto& b : m.bodies)
-    y += "  " + b.name + (m.rotational ? ": {type: rotational, inertia: " + num(b.m) + " kg*m^2"
-                                       : ": {type: translational, mass: " + num(b.m) + " kg") +
-         ", position: " + num(b.q0) + q +
-         (b.motion == Body::Motion::speed ? std::string() : ", velocity: " + num(b.v0) + " " + U.v) +
+    y += "  " + b.name + (m.rotational && !b.linear ? ": {type: rotational, inertia: " + num(b.m) + " kg*m^2"
+                                                    : ": {type: translational, mass: " + num(b.m) + " kg") +
+         ", position: " + num(b.q0) + (b.linear ? std::string(" m") : q) +
+         (b.motion == Body::Motion::speed ? std::string() : ", velocity: " + num(b.v0) + " " + (b.linear ? "m/s" : U.v)) +
          (b.motion == Body::Motion::free ? std::string()
           : b.motion == Body::Motion::speed ? std::string(", motion: {speed: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s" : "m/s") + "}}"
                                             : std::string(", motion: {acceleration: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s^2" : "m/s^2") + "}}") +
@@ -602,14 +608,15 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       y += "  " + g.name + ": {type: planetary-gear, sun: " + end_name(m, g.a) + ", ring: " + end_name(m, g.b) + ", carrier: " +
            end_name(m, g.c) + ", ratio: " + num(g.ratio) + "}\n";
     else
-      y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) + "}\n";
+      y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) +
+           (m.bodies[static_cast<size_t>(g.b)].linear ? " rad/m" : "") + "}\n";
   }
   for (const auto& L : m.links) {
     if (L.buffer) continue;  // under buffers:
     const bool rope = L.kind == Link::Kind::rope;
     y += "  " + L.name + ": {type: " + (rope ? "rope" : L.d > 0 || L.kind != Link::Kind::plain ? "spring-damper" : "spring") +
-         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " " + U.c;
-    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " " + U.d;
+         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " " + (lin(L.a) ? "N/m" : U.c);
+    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " " + (lin(L.a) ? "N*s/m" : U.d);
     if (L.kind == Link::Kind::gap) y += ", gap: " + num(L.gap) + q + ", gap_start: " + num(L.gap_start) + q;
     if (L.kind == Link::Kind::one_sided) y += ", flank: " + num(L.flank) + q;
     if (rope) y += ", slack: " + num(L.flank) + q;
@@ -617,7 +624,7 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
     y += "}\n";
   }
   if (!m.loads.empty()) y += "loads:\n";
-  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, U.F) + "}\n";
+  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, lin(l.body) ? "N" : U.F) + "}\n";
   auto section = [&](Friction::Kind k, const char* title) {
     bool first = true;
     for (const auto& f : m.frictions) {

@@ -33,6 +33,9 @@
 ///   buffer           1–2 linear buffers (`buffers:`, with or without damping) against the ground
 ///   dc-motor         a DC (linear) motor on a chain body, its voltage of every signal kind, with
 ///                    0–2 ground contacts
+///   drum             rotational bodies (drums) with translational bodies (hooks) slaved by ideal
+///                    gears in rad/m (i = 1/R, R = 0.1–0.5 m), hook loads in N, hook links to the
+///                    ground, a contact and a brake on the drums
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
 /// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 

@@ -39,7 +39,8 @@
 /// solves (G P Gᵀ) λ = G P f̃.
 ///
 /// Planetary gears are the Willis row e_sun + z e_ring − (1 + z) e_carrier of J (every member with
-/// inertia). A model's bodies are all translational or all rotational (the same equations).
+/// inertia). A model's bodies are all translational or all rotational (the same equations), but for
+/// `linear` bodies of a rotational model: hooks slaved to drums by ideal gears in rad/m.
 ///
 /// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
@@ -106,6 +107,7 @@ struct Body {
   Body(std::string name_, double m_, double q0_, double v0_) : name(std::move(name_)), m(m_), q0(q0_), v0(v0_) {}
   std::string name;
   double m = 1.0, q0 = 0.0, v0 = 0.0;  ///< kg, m, m/s
+  bool linear = false;  ///< translational in a rotational model (a rope drum's hook: m, N)
   enum class Motion { free, acceleration, speed } motion = Motion::free;
   Signal prescribed;
   [[nodiscard]] double prescribed_acceleration(double t) const {
