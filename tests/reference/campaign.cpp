@@ -130,7 +130,8 @@ Outcome compare(const RefModel& m, const std::string& integrator, const RefResul
     return {Outcome::Kind::state_mismatch, "output rows: engine " + std::to_string(ts ? ts->size() : 0) + ", reference " + std::to_string(ref.t.size()), 0.0};
   for (size_t i = 0; i < m.bodies.size(); ++i)
     for (int w = 0; w < 2; ++w) {
-      const std::string name = m.bodies[i].name + (w == 0 ? ".position_m" : ".velocity_m_s");
+      const bool rot = m.rotational && !m.bodies[i].linear;
+      const std::string name = m.bodies[i].name + (w == 0 ? (rot ? ".position_rad" : ".position_m") : (rot ? ".velocity_rad_s" : ".velocity_m_s"));
       const auto* c = col(name);
       if (c == nullptr) return {Outcome::Kind::state_mismatch, "no column " + name, 0.0};
       double scale = 0.0;
@@ -168,6 +169,15 @@ RefModel without_body(const RefModel& m, int i) {
     if (l.body != i) l.body = map(l.body), s.loads.push_back(l);
   for (auto f : m.frictions)
     if (f.a != i && f.b != i) f.a = map(f.a), f.b = map(f.b), s.frictions.push_back(f);
+  s.motors.clear();
+  for (auto M : m.motors)
+    if (M.body != i) M.body = map(M.body), s.motors.push_back(M);
+  s.releases.clear();
+  for (auto x : m.releases)
+    if (x.body != i) x.body = map(x.body), s.releases.push_back(x);
+  s.gears.clear();
+  for (auto g : m.gears)
+    if (g.a != i && g.b != i && g.c != i) g.a = map(g.a), g.b = map(g.b), g.c = map(g.c), s.gears.push_back(g);
   return s;
 }
 
@@ -205,6 +215,11 @@ RefModel shrink(const RefModel& m0, const std::string& integrator, Outcome::Kind
     for (size_t k = best.frictions.size(); k-- > 0;) {
       RefModel c = best;
       c.frictions.erase(c.frictions.begin() + static_cast<long>(k));
+      if (still_fails(c)) best = c, changed = true;
+    }
+    for (size_t k = best.releases.size(); k-- > 0;) {
+      RefModel c = best;
+      c.releases.erase(c.releases.begin() + static_cast<long>(k));
       if (still_fails(c)) best = c, changed = true;
     }
     for (size_t k = best.loads.size(); k-- > 0;) {

@@ -10,7 +10,7 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor", "drum"};
   return f;
 }
 
@@ -39,9 +39,50 @@ double sig(double x, int d = 3) {
   return std::round(x * e) / e;
 }
 
-Signal random_signal(Rng& r, double t_end, double scale) {
+/// A random table: 3–5 points over the run (the first sometimes after 0, sometimes a jump: two
+/// points at one time), values from `value(r)`; outside held or extrapolated.
+template <class V>
+Signal random_table(Rng& r, double t_end, V value, bool may_extrapolate) {
   Signal s;
-  switch (r.i(0, 3)) {
+  s.kind = Signal::Kind::table;
+  const int n = r.i(3, 5);
+  double t = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.3) * t_end);
+  for (int k = 0; k < n; ++k) {
+    s.points.emplace_back(t, value(r));
+    // A jump: never at the ends (an extrapolated table needs end segments of positive length).
+    if (k + 2 < n && r.p(0.2) && k >= 1) s.points.emplace_back(t, value(r)), ++k;
+    t = sig(t + r.u(0.05, 0.35) * t_end);
+  }
+  s.extrapolate = may_extrapolate && r.p(0.4);
+  return s;
+}
+
+/// A random pulse train from `start` with `count` pulses (or no end).
+Signal random_pulse(Rng& r, double t_end, double low, double high) {
+  Signal s;
+  s.kind = Signal::Kind::pulse, s.before = low, s.value = high;
+  s.period = sig(r.u(0.1, 0.5) * t_end);
+  s.width = sig(s.period * r.u(0.2, 0.7));
+  s.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.4) * t_end);
+  s.count = r.p(0.5) ? -1 : r.i(1, 4);
+  return s;
+}
+
+/// A random expression c0 + c1 t + A sin(2π f t + phase) + B exp(−t/τ) of magnitude about `scale`.
+Signal random_expression(Rng& r, double t_end, double scale) {
+  Signal s;
+  s.kind = Signal::Kind::expression;
+  s.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale);
+  s.slope = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * scale / t_end);
+  if (r.p(0.7)) s.amplitude = sig(r.u(0.2, 1) * scale), s.frequency_hz = sig(r.u(0.5, 6.0), 2), s.phase = sig(r.u(0, 3));
+  if (r.p(0.5)) s.decay = sig(r.u(-1, 1) * scale), s.tau = sig(r.u(0.05, 0.5) * t_end);
+  return s;
+}
+
+/// A load signal of every kind of docs/model-files.md (but sum and file), magnitude about `scale`.
+Signal random_signal(Rng& r, double t_end, double scale, bool every_kind) {
+  Signal s;
+  switch (every_kind ? r.i(0, 6) : r.i(0, 3)) {
     case 0: s.kind = Signal::Kind::constant, s.value = sig(r.u(-1, 1) * scale); break;
     case 1:
       s.kind = Signal::Kind::step, s.value = sig(r.u(-1, 1) * scale), s.before = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * scale);
@@ -51,10 +92,62 @@ Signal random_signal(Rng& r, double t_end, double scale) {
       s.kind = Signal::Kind::ramp, s.value = sig(r.u(-1, 1) * scale), s.before = r.p(0.6) ? 0.0 : sig(r.u(-1, 1) * scale);
       s.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.5) * t_end);
       break;
-    default:
+    case 3:
       s.kind = Signal::Kind::sine, s.amplitude = sig(r.u(0.2, 1) * scale), s.frequency_hz = sig(r.u(0.5, 6.0), 2);
       s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale);
       s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+    case 4: s = random_table(r, t_end, [&](Rng& g) { return sig(g.u(-1, 1) * scale); }, true); break;
+    case 5: s = random_pulse(r, t_end, r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale), sig(r.u(-1, 1) * scale)); break;
+    default: s = random_expression(r, t_end, scale); break;
+  }
+  return s;
+}
+
+/// A brake's application r(t) ∈ [0, 1] of every kind that stays there: a step or ramp up (or a ramp
+/// down: released), a table applying and releasing, a pulse, a sine about ½, 1 − e^(−t/τ).
+Signal random_application(Rng& r, double t_end) {
+  Signal s;
+  switch (r.i(0, 5)) {
+    case 0: s.kind = Signal::Kind::step, s.value = r.p(0.7) ? 1.0 : sig(r.u(0.3, 1.0)), s.t0 = sig(r.u(0.0, 0.6) * t_end); break;
+    case 1:
+      s.kind = Signal::Kind::ramp, s.t0 = sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.4) * t_end);
+      s.value = 1.0;
+      if (r.p(0.3)) std::swap(s.value, s.before);  // released over the ramp
+      break;
+    case 2: s = random_table(r, t_end, [](Rng& g) { return g.p(0.3) ? 0.0 : g.p(0.5) ? 1.0 : sig(g.u(0.0, 1.0)); }, false); break;
+    case 3: s = random_pulse(r, t_end, 0.0, r.p(0.6) ? 1.0 : sig(r.u(0.3, 1.0))); break;
+    case 4:
+      s.kind = Signal::Kind::sine, s.offset = 0.55, s.amplitude = sig(r.u(0.1, 0.45)), s.frequency_hz = sig(r.u(0.5, 4.0), 2);
+      s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+    default: s.kind = Signal::Kind::expression, s.offset = 1.0, s.decay = -1.0, s.tau = sig(r.u(0.02, 0.3) * t_end); break;
+  }
+  return s;
+}
+
+/// A normal force of about `fN` N of every kind; with `may_open` it may fall to zero or below (a
+/// clutch opening: a sine through zero, a table or pulse to 0, a ramp down), else it stays ≥ fN/5.
+Signal random_normal(Rng& r, double t_end, double fN, bool may_open) {
+  Signal s;
+  const double lo = may_open && r.p(0.5) ? 0.0 : sig(0.2 * fN);
+  switch (r.i(0, 6)) {
+    case 0: s.kind = Signal::Kind::constant, s.value = fN; break;
+    case 1: s.kind = Signal::Kind::step, s.value = fN, s.before = lo, s.t0 = sig(r.u(0.0, 0.5) * t_end); break;
+    case 2:
+      s.kind = Signal::Kind::ramp, s.value = fN, s.before = lo, s.t0 = sig(r.u(0.0, 0.4) * t_end), s.t1 = sig(s.t0 + r.u(0.05, 0.4) * t_end);
+      if (may_open && r.p(0.25)) std::swap(s.value, s.before);
+      break;
+    case 3:
+      s.kind = Signal::Kind::sine, s.amplitude = sig(r.u(0.2, 1.0) * fN), s.frequency_hz = sig(r.u(0.5, 4.0), 2);
+      s.offset = may_open ? sig(r.u(-0.3, 1.0) * fN) : sig(s.amplitude + r.u(0.2, 1.0) * fN);
+      s.phase = r.p(0.5) ? 0.0 : sig(r.u(0, 3)), s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
+      break;
+    case 4: s = random_table(r, t_end, [&](Rng& g) { return g.p(0.3) ? lo : sig(g.u(0.2, 1.0) * fN); }, false); break;
+    case 5: s = random_pulse(r, t_end, lo, fN); break;
+    default:
+      s.kind = Signal::Kind::expression, s.offset = fN, s.decay = -sig(r.u(0.0, 0.8) * fN), s.tau = sig(r.u(0.02, 0.3) * t_end);
+      if (r.p(0.5)) s.amplitude = sig(r.u(0.0, 0.15) * fN), s.frequency_hz = sig(r.u(0.5, 4.0), 2);
       break;
   }
   return s;
@@ -80,9 +173,19 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
   Rng r{seed * 0x2545F4914F6CDD1Dull + index * 0x9E3779B97F4A7C15ull + fnv(family)};
   for (int k = 0; k < 4; ++k) r.next();
   RefModel m;
-  const bool mixed = family == "mixed";
-  auto has = [&](const char* f) { return family == f || (mixed && r.p(0.35)); };
-  const int n = r.i(2, 6);
+  const bool mixed = family == "mixed", signals = family == "signals";
+  // Every signal kind (tables, pulses, expressions besides constants, steps, ramps and sines; brake
+  // applications and normal forces as signals) in the families that were added with them; the
+  // first families keep their random streams (and models) as they were.
+  const bool every_kind = !(family == "chain" || family == "gap" || family == "one-sided" || family == "ground-friction" ||
+                            family == "body-friction" || family == "freewheel" || family == "stop");
+  auto has = [&](const char* f) {
+    const std::string fs = f;
+    return family == fs || (mixed && r.p(0.35)) ||
+           (signals && (fs == "ground-friction" || fs == "brake" || fs == "clutch") && r.p(0.4));
+  };
+  const int n = family == "planetary" ? r.i(3, 6) : r.i(2, 6);
+  m.rotational = family == "planetary" || family == "drum";
   m.t_end = sig(r.u(0.4, 1.2), 2);
   m.dt_out = m.t_end / 200;
   for (int i = 0; i < n; ++i) m.bodies.push_back({named("b", i), sig(r.log_u(1.0, 20.0)), 0.0, 0.0});
@@ -112,8 +215,8 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
     m.links.push_back(L);
   }
   // Loads.
-  const int nl = r.i(1, 2);
-  for (int k = 0; k < nl; ++k) m.loads.push_back({named("P", k), r.i(0, n - 1), random_signal(r, m.t_end, force)});
+  const int nl = signals ? r.i(1, 3) : r.i(1, 2);
+  for (int k = 0; k < nl; ++k) m.loads.push_back({named("P", k), r.i(0, n - 1), random_signal(r, m.t_end, force, every_kind)});
 
   // Gaps and one-sided links replace chain links.
   auto pick_link = [&]() -> Link* {
@@ -155,6 +258,7 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       f.normal = sig(r.log_u(200.0, 3000.0));
       f.mu_s = Fs / f.normal * (1 + 1e-3 * r.u());  // many digits: the last bits of F_s = N μ_s matter
       f.mu_k = f.mu_s * (r.p(0.2) ? 1.0 : r.u(0.5, 1.0));
+      if (every_kind && r.p(0.4)) f.fN = random_normal(r, m.t_end, f.normal, false);  // a normal force that varies
     } else {
       f.Fs = Fs;
       f.Fk = r.p(0.2) ? Fs : sig(Fs * r.u(0.5, 1.0));
@@ -187,6 +291,7 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       f.Fk = r.p(0.3) ? f.Fs : sig(f.Fs * r.u(0.6, 1.0));
       f.time = r.p(0.3) ? 0.0 : sig(r.u(0.05, 0.6) * m.t_end);
       f.ramp = r.p(0.4) ? 0.0 : sig(r.u(0.02, 0.3) * m.t_end);
+      if (every_kind && r.p(0.5)) f.with_application = true, f.application = random_application(r, m.t_end);
       add(f);
     }
   if (has("clutch"))
@@ -197,10 +302,14 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       const double fN = sig(r.log_u(200.0, 3000.0));
       f.mu_s = sig(r.log_u(0.2, 2.0) * force / fN);
       f.mu_k = r.p(0.2) ? f.mu_s : sig(f.mu_s * r.u(0.5, 1.0));
-      f.fN.value = fN;
-      if (r.p(0.5)) f.fN.kind = Signal::Kind::step, f.fN.t0 = sig(r.u(0.0, 0.5) * m.t_end);
-      else f.fN.kind = Signal::Kind::ramp, f.fN.t0 = sig(r.u(0.0, 0.4) * m.t_end), f.fN.t1 = sig(f.fN.t0 + r.u(0.05, 0.4) * m.t_end);
-      if (f.fN.kind == Signal::Kind::step && f.fN.t0 == 0.0) f.fN.kind = Signal::Kind::constant;
+      if (!every_kind || r.p(0.5)) {  // the step or ramp that closes it
+        f.fN.value = fN;
+        if (r.p(0.5)) f.fN.kind = Signal::Kind::step, f.fN.t0 = sig(r.u(0.0, 0.5) * m.t_end);
+        else f.fN.kind = Signal::Kind::ramp, f.fN.t0 = sig(r.u(0.0, 0.4) * m.t_end), f.fN.t1 = sig(f.fN.t0 + r.u(0.05, 0.4) * m.t_end);
+        if (f.fN.kind == Signal::Kind::step && f.fN.t0 == 0.0) f.fN.kind = Signal::Kind::constant;
+      } else {
+        f.fN = random_normal(r, m.t_end, fN, true);
+      }
       pair_used.insert({std::min(f.a, f.b), std::max(f.a, f.b)});
       body_friction_on.insert(f.a), body_friction_on.insert(f.b);
       // A clutch closing on a running pair: give one side a speed.
@@ -244,6 +353,173 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
         break;
       }
     }
+  // Ideal gears: 1–2 bodies slaved to chain bodies (q_master = i q_slave), with loads and links
+  // from the slave (its first end) back into the chain or to the ground; friction on the masters.
+  // The family `drum`: the same with a rotational chain and translational slaves (a rope drum and its
+  // hook: q_drum = i x, i = 1/R in rad/m), links from the hook to the ground only.
+  const bool drum = family == "drum";
+  if (family == "gear" || drum) {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      const int master = r.i(0, n - 1), slave = static_cast<int>(m.bodies.size());
+      const double i = drum ? sig(1.0 / r.u(0.1, 0.5)) : sig((r.p(0.3) ? -1 : 1) * r.log_u(0.3, 3.0));
+      m.bodies.push_back({named("g", slave - n), drum ? sig(r.log_u(10.0, 500.0)) : sig(r.log_u(0.5, 10.0)), 0.0, 0.0});
+      m.bodies.back().linear = drum;
+      m.gears.push_back({named("G", slave - n), master, slave, i});
+      if (r.p(0.6)) m.loads.push_back({named("Pg", slave - n), slave, random_signal(r, m.t_end, drum ? sig(force * i) : force, true)});
+      if (r.p(0.6)) {
+        Link L;
+        L.name = named("kg", slave - n);
+        L.a = slave, L.b = drum || r.p(0.3) ? kGround : r.i(0, n - 1);
+        L.c = drum ? sig(r.log_u(1e4, 1e6)) : sig(r.log_u(2e3, 5e4));
+        L.d = r.p(0.5) ? 0.0 : sig(r.u(0.0, 0.1) * 2 * std::sqrt(L.c * m.bodies[static_cast<size_t>(slave)].m));
+        if (L.b == master) L.b = kGround;  // a link inside the rigid group is an input error
+        m.links.push_back(L);
+      }
+    }
+    if (r.p(0.5)) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = m.gears[0].a, f.b = kGround;
+      if (drum) f.Fs = sig(r.log_u(0.2, 2.0) * force), f.Fk = sig(f.Fs * r.u(0.5, 1.0));  // levels: no radius needed
+      else levels(f);
+      add(f);
+    }
+    if (r.p(0.3)) {
+      Friction f;
+      f.kind = Friction::Kind::brake, f.name = fname("B"), f.a = m.gears.back().a, f.b = kGround;
+      f.Fs = sig(r.log_u(0.3, 3.0) * force), f.Fk = sig(f.Fs * r.u(0.6, 1.0)), f.time = sig(r.u(0.05, 0.6) * m.t_end);
+      add(f);
+    }
+  }
+  // A planetary gear among three chain members (rotational bodies: inertias, torques), with a contact
+  // and a brake to the ground on two of them (at most two: three would lock the gear redundantly).
+  if (family == "planetary") {
+    std::vector<int> idx(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) idx[static_cast<size_t>(k)] = k;
+    for (int k = 0; k < 3; ++k) std::swap(idx[static_cast<size_t>(k)], idx[static_cast<size_t>(r.i(k, n - 1))]);
+    Gear g;
+    g.name = "PG", g.planetary = true, g.a = idx[0], g.b = idx[1], g.c = idx[2], g.ratio = sig(r.u(1.5, 5.0));
+    m.gears.push_back(g);
+    if (r.p(0.5)) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = idx[static_cast<size_t>(r.i(0, 2))], f.b = kGround;
+      f.Fs = sig(r.log_u(0.2, 2.0) * force), f.Fk = r.p(0.2) ? f.Fs : sig(f.Fs * r.u(0.5, 1.0));
+      add(f);
+    }
+    if (r.p(0.4)) {
+      Friction f;
+      f.kind = Friction::Kind::brake, f.name = fname("B"), f.a = idx[static_cast<size_t>(r.i(0, 2))], f.b = kGround;
+      f.Fs = sig(r.log_u(0.3, 3.0) * force), f.Fk = sig(f.Fs * r.u(0.6, 1.0));
+      f.time = sig(r.u(0.05, 0.6) * m.t_end), f.ramp = r.p(0.5) ? 0.0 : sig(r.u(0.02, 0.3) * m.t_end);
+      if (r.p(0.4)) f.with_application = true, f.application = random_application(r, m.t_end);
+      add(f);
+    }
+  }
+  // A prescribed motion (speed or acceleration of every kind that keeps the speed continuous) on one
+  // chain body, with friction contacts from it to free neighbours (a stuck one makes the neighbour
+  // follow the motion).
+  if (family == "motion") {
+    const int p = r.i(0, n - 1);
+    Body& b = m.bodies[static_cast<size_t>(p)];
+    const double vs = sig(r.u(0.1, 1.0));
+    if (r.p(0.6)) {
+      b.motion = Body::Motion::speed;
+      switch (r.i(0, 3)) {  // a speed without jumps: a ramp, a sine from its zero, a table, an expression
+        case 0:
+          b.prescribed.kind = Signal::Kind::ramp, b.prescribed.value = sig(r.u(-1, 1) * vs), b.prescribed.before = r.p(0.5) ? 0.0 : sig(r.u(-1, 1) * vs);
+          b.prescribed.t0 = sig(r.u(0.0, 0.4) * m.t_end), b.prescribed.t1 = sig(b.prescribed.t0 + r.u(0.05, 0.5) * m.t_end);
+          break;
+        case 1:
+          b.prescribed.kind = Signal::Kind::sine, b.prescribed.amplitude = vs, b.prescribed.frequency_hz = sig(r.u(0.5, 5.0), 2);
+          b.prescribed.offset = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * vs), b.prescribed.t0 = r.p(0.5) ? 0.0 : sig(r.u(0.05, 0.5) * m.t_end);
+          break;
+        case 2: {
+          b.prescribed = random_table(r, m.t_end, [&](Rng& g) { return sig(g.u(-1, 1) * vs); }, r.p(0.3));
+          auto& pts = b.prescribed.points;  // no jumps in a speed
+          pts.erase(std::unique(pts.begin(), pts.end(), [](const auto& x, const auto& y) { return x.first == y.first; }), pts.end());
+          break;
+        }
+        default: b.prescribed = random_expression(r, m.t_end, vs); break;
+      }
+    } else {
+      b.motion = Body::Motion::acceleration;
+      b.prescribed = random_signal(r, m.t_end, sig(r.u(1.0, 10.0)), true);
+    }
+    for (int k = r.i(0, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = p, f.b = (p + r.i(1, n - 1)) % n;
+      levels(f);
+      add(f);
+    }
+  }
+  // Releases: 1–2 chain bodies lose 20–80 % of their mass at an instant of the run, with contacts to
+  // the ground and between bodies (a stuck one is decided again with the new mass).
+  if (family == "release") {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      const int b = r.i(0, n - 1);
+      double left = m.bodies[static_cast<size_t>(b)].m;
+      for (const auto& x : m.releases)
+        if (x.body == b) left -= x.dm;
+      m.releases.push_back({named("R", static_cast<int>(m.releases.size())), b, sig(r.u(0.2, 0.6) * left), sig(r.u(0.05, 0.8) * m.t_end)});
+    }
+    for (int k = r.i(0, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = m.releases[0].body, f.b = r.p(0.6) ? kGround : (f.a + r.i(1, n - 1)) % n;
+      levels(f);
+      add(f);
+    }
+  }
+  // Kinetic levels over the sliding speed: 1–3 contacts (to the ground and between bodies) with a
+  // table from speed 0 (F_k(0) ≤ F_s, rising or falling) or the Stribeck law.
+  if (family == "kinetic") {
+    for (int k = r.i(1, 3); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1), f.b = r.p(0.6) ? kGround : (f.a + r.i(1, n - 1)) % n;
+      f.Fs = sig(r.log_u(0.2, 2.0) * force);
+      f.Fk = sig(f.Fs * r.u(0.3, 0.9));
+      if (r.p(0.5)) {
+        double sp = 0.0;
+        f.kinetic_table.emplace_back(0.0, r.p(0.3) ? f.Fs : sig(f.Fs * r.u(0.5, 1.0)));
+        for (int j = r.i(1, 3); j > 0; --j) sp = sig(sp + r.log_u(0.01, 0.3)), f.kinetic_table.emplace_back(sp, sig(f.Fs * r.u(0.3, 1.2)));
+      } else {
+        f.stribeck_speed = sig(r.log_u(0.01, 0.3));
+        f.stribeck_exponent = r.p(0.5) ? 1.0 : sig(r.u(1.0, 2.5), 2);
+      }
+      add(f);
+    }
+  }
+  // Linear buffers against the ground (one-sided springs with damping) on 1–2 chain bodies, placed
+  // a little off the start so the loads drive the bodies onto them.
+  if (family == "buffer") {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      Link L;
+      L.kind = Link::Kind::one_sided, L.buffer = true, L.name = named("U", k);
+      const int b = r.i(0, n - 1);
+      const double xb = sig(r.log_u(5e-4, 1e-2));
+      if (r.p(0.5)) L.a = b, L.b = kGround, L.flank = xb;     // max: x_b above
+      else L.a = kGround, L.b = b, L.flank = -(-xb);          // min at −x_b: δ = −x ≥ x_b
+      L.c = sig(r.log_u(1e4, 2e5));
+      L.d = r.p(0.4) ? 0.0 : sig(r.u(0.0, 0.3) * 2 * std::sqrt(L.c * m.bodies[static_cast<size_t>(b)].m));
+      m.links.push_back(L);
+    }
+  }
+  // A DC motor (a linear motor on a translational body) driving the chain, its voltage a signal of
+  // every kind; with contacts to the ground.
+  if (family == "dc-motor") {
+    DcMotor M;
+    M.name = "motor", M.body = r.i(0, n - 1);
+    M.R = sig(r.log_u(0.5, 5.0)), M.L = sig(r.log_u(5e-3, 5e-2)), M.k = sig(r.log_u(5.0, 50.0));
+    M.i0 = r.p(0.3) ? sig(r.u(-1, 1) * force / M.k) : 0.0;
+    M.u = random_signal(r, m.t_end, sig(force * M.R / M.k), true);  // stall force k u/R about the force scale
+    m.motors.push_back(M);
+    for (int k = r.i(0, 2); k > 0; --k) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1), f.b = kGround;
+      levels(f);
+      add(f);
+    }
+  }
+  for (const auto& g : m.gears)
+    if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
 }
 
@@ -255,8 +531,29 @@ std::string num(double x) {
 }
 std::string end_name(const RefModel& m, int i) { return i < 0 ? "ground" : m.bodies[static_cast<size_t>(i)].name; }
 
+/// A contact's kinetic level: a number, a table over the sliding speed (plain SI numbers), or the
+/// Coulomb level with the Stribeck law's speed and exponent.
+std::string kinetic_yaml(const Friction& f, const std::string& F) {
+  if (!f.kinetic_table.empty()) {
+    std::string y = "[";
+    for (size_t k = 0; k < f.kinetic_table.size(); ++k)
+      y += (k ? ", [" : "[") + num(f.kinetic_table[k].first) + ", " + num(f.kinetic_table[k].second) + "]";
+    return y + "]";
+  }
+  if (f.stribeck_speed > 0.0) return num(f.Fk) + F + ", stribeck_speed: " + num(f.stribeck_speed) + " m/s, stribeck_exponent: " + num(f.stribeck_exponent);
+  return num(f.Fk) + F;
+}
+
+/// The units of a model's bodies: translational (m, N) or rotational (rad, N·m).
+struct Units {
+  const char *q, *v, *F, *c, *d;
+};
+Units units_of(const RefModel& m) {
+  return m.rotational ? Units{"rad", "rad/s", "N*m", "N*m/rad", "N*m*s/rad"} : Units{"m", "m/s", "N", "N/m", "N*s/m"};
+}
+
 std::string signal_yaml(const Signal& s, const char* unit) {
-  const std::string u = std::string(" ") + unit;
+  const std::string u = *unit != 0 ? std::string(" ") + unit : std::string();
   switch (s.kind) {
     case Signal::Kind::constant: return "type: constant, value: " + num(s.value) + u;
     case Signal::Kind::step:
@@ -267,6 +564,22 @@ std::string signal_yaml(const Signal& s, const char* unit) {
     case Signal::Kind::sine:
       return "type: sine, amplitude: " + num(s.amplitude) + u + ", frequency: " + num(s.frequency_hz) +
              " Hz, phase: " + num(s.phase) + ", offset: " + num(s.offset) + u + ", start: " + num(s.t0) + " s";
+    case Signal::Kind::table: {
+      std::string y = "type: table, points: [";  // plain numbers: SI
+      for (size_t k = 0; k < s.points.size(); ++k) y += (k ? ", [" : "[") + num(s.points[k].first) + ", " + num(s.points[k].second) + "]";
+      return y + "], outside: " + (s.extrapolate ? "extrapolate" : "hold");
+    }
+    case Signal::Kind::pulse:
+      return "type: pulse, high: " + num(s.value) + u + ", low: " + num(s.before) + u + ", period: " + num(s.period) + " s, width: " +
+             num(s.width) + " s, start: " + num(s.t0) + " s" + (s.count >= 0 ? ", count: " + std::to_string(s.count) : std::string());
+    case Signal::Kind::expression: {
+      // c0 + c1 t + A sin(2 pi f t + phase) + B exp(-t/tau), in SI (the expression language's text).
+      std::string e = num(s.offset);
+      if (s.slope != 0.0) e += " + " + num(s.slope) + "*t";
+      if (s.amplitude != 0.0) e += " + " + num(s.amplitude) + "*sin(2*pi*" + num(s.frequency_hz) + "*t + " + num(s.phase) + ")";
+      if (s.decay != 0.0) e += " + " + num(s.decay) + "*exp(-t/" + num(s.tau) + ")";
+      return "type: expression, expression: '" + e + "'";
+    }
   }
   return "";
 }
@@ -274,24 +587,44 @@ std::string signal_yaml(const Signal& s, const char* unit) {
 
 std::string to_yaml(const RefModel& m, const std::string& integrator, const std::string& header) {
   std::string y = header;
+  const Units U = units_of(m);
+  const std::string q = std::string(" ") + U.q, F = std::string(" ") + U.F;
+  auto lin = [&](int i) { return i >= 0 && m.bodies[static_cast<size_t>(i)].linear; };  // a hook in a rotational model
   y += "name: random reference model\nbodies:\n";
   for (const auto& b : m.bodies)
-    y += "  " + b.name + ": {type: translational, mass: " + num(b.m) + " kg, position: " + num(b.q0) +
-         " m, velocity: " + num(b.v0) + " m/s}\n";
-  if (!m.links.empty()) y += "links:\n";
+    y += "  " + b.name + (m.rotational && !b.linear ? ": {type: rotational, inertia: " + num(b.m) + " kg*m^2"
+                                                    : ": {type: translational, mass: " + num(b.m) + " kg") +
+         ", position: " + num(b.q0) + (b.linear ? std::string(" m") : q) +
+         (b.motion == Body::Motion::speed ? std::string() : ", velocity: " + num(b.v0) + " " + (b.linear ? "m/s" : U.v)) +
+         (b.motion == Body::Motion::free ? std::string()
+          : b.motion == Body::Motion::speed ? std::string(", motion: {speed: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s" : "m/s") + "}}"
+                                            : std::string(", motion: {acceleration: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s^2" : "m/s^2") + "}}") +
+         "}\n";
+  bool first_link = true;
+  if (!m.links.empty()) y += "links:\n", first_link = false;
+  for (const auto& g : m.gears) {
+    if (first_link) y += "links:\n", first_link = false;
+    if (g.planetary)
+      y += "  " + g.name + ": {type: planetary-gear, sun: " + end_name(m, g.a) + ", ring: " + end_name(m, g.b) + ", carrier: " +
+           end_name(m, g.c) + ", ratio: " + num(g.ratio) + "}\n";
+    else
+      y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) +
+           (m.bodies[static_cast<size_t>(g.b)].linear ? " rad/m" : "") + "}\n";
+  }
   for (const auto& L : m.links) {
+    if (L.buffer) continue;  // under buffers:
     const bool rope = L.kind == Link::Kind::rope;
     y += "  " + L.name + ": {type: " + (rope ? "rope" : L.d > 0 || L.kind != Link::Kind::plain ? "spring-damper" : "spring") +
-         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " N/m";
-    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " N*s/m";
-    if (L.kind == Link::Kind::gap) y += ", gap: " + num(L.gap) + " m, gap_start: " + num(L.gap_start) + " m";
-    if (L.kind == Link::Kind::one_sided) y += ", flank: " + num(L.flank) + " m";
-    if (rope) y += ", slack: " + num(L.flank) + " m";
+         ", between: [" + end_name(m, L.a) + ", " + end_name(m, L.b) + "], stiffness: " + num(L.c) + " " + (lin(L.a) ? "N/m" : U.c);
+    if (L.d > 0 || (L.kind != Link::Kind::plain && !rope)) y += ", damping: " + num(L.d) + " " + (lin(L.a) ? "N*s/m" : U.d);
+    if (L.kind == Link::Kind::gap) y += ", gap: " + num(L.gap) + q + ", gap_start: " + num(L.gap_start) + q;
+    if (L.kind == Link::Kind::one_sided) y += ", flank: " + num(L.flank) + q;
+    if (rope) y += ", slack: " + num(L.flank) + q;
     if (L.elasto) y += ", flank_law: elasto-backlash";
     y += "}\n";
   }
   if (!m.loads.empty()) y += "loads:\n";
-  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, "N") + "}\n";
+  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, lin(l.body) ? "N" : U.F) + "}\n";
   auto section = [&](Friction::Kind k, const char* title) {
     bool first = true;
     for (const auto& f : m.frictions) {
@@ -301,22 +634,26 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       switch (k) {
         case Friction::Kind::contact:
           y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], ";
-          y += f.via_mu ? "normal_force: " + num(f.normal) + " N, mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k)
-                        : "static: " + num(f.Fs) + " N, kinetic: " + num(f.Fk) + " N";
+          y += !f.via_mu ? "static: " + num(f.Fs) + F + ", kinetic: " + kinetic_yaml(f, F)
+               : "normal_force: " + (f.fN.kind == Signal::Kind::constant && f.fN.value == 0.0
+                                         ? num(f.normal) + " N"
+                                         : "{" + signal_yaml(f.fN, "N") + "}") +
+                     ", mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k);
           break;
         case Friction::Kind::brake:
-          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + " N, braking: " + num(f.Fk) + " N, time: " + num(f.time) +
-               " s, ramp: " + num(f.ramp) + " s";
+          y += "body: " + end_name(m, f.a) + ", holding: " + num(f.Fs) + F + ", braking: " + num(f.Fk) + F + ", " +
+               (f.with_application ? "application: {" + signal_yaml(f.application, "") + "}"
+                                   : "time: " + num(f.time) + " s, ramp: " + num(f.ramp) + " s");
           break;
         case Friction::Kind::clutch:
           y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], normal_force: {" + signal_yaml(f.fN, "N") +
                "}, mu_s: " + num(f.mu_s) + ", mu_k: " + num(f.mu_k);
           break;
         case Friction::Kind::freewheel:
-          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], drag: " + num(f.drag) + " N";
+          y += "between: [" + end_name(m, f.a) + ", " + end_name(m, f.b) + "], drag: " + num(f.drag) + F;
           break;
         case Friction::Kind::stop:
-          y += "body: " + end_name(m, f.a) + (f.stop_max ? ", max: " : ", min: ") + num(f.stop_pos) + " m, restitution: " + num(f.e);
+          y += "body: " + end_name(m, f.a) + (f.stop_max ? ", max: " : ", min: ") + num(f.stop_pos) + q + ", restitution: " + num(f.e);
           break;
       }
       y += "}\n";
@@ -327,6 +664,22 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   section(Friction::Kind::clutch, "clutches");
   section(Friction::Kind::freewheel, "freewheels");
   section(Friction::Kind::stop, "stops");
+  bool first_buffer = true;
+  for (const auto& L : m.links) {
+    if (!L.buffer) continue;
+    if (first_buffer) y += "buffers:\n", first_buffer = false;
+    const bool upper = L.b == kGround;  // [body, ground]: max at δ₊; [ground, body]: min at −δ₊
+    y += "  " + L.name + ": {body: " + end_name(m, upper ? L.a : L.b) + (upper ? ", max: " + num(L.flank) : ", min: " + num(-L.flank)) + q +
+         ", stiffness: " + num(L.c) + " " + U.c + (L.d > 0 ? ", damping: " + num(L.d) + " " + U.d : std::string()) + "}\n";
+  }
+  if (!m.motors.empty()) y += "drives:\n";
+  for (const auto& M : m.motors)
+    y += "  " + M.name + ": {type: dc-motor, body: " + end_name(m, M.body) + ", resistance: " + num(M.R) + " ohm, inductance: " + num(M.L) +
+         " H, motor_constant: " + num(M.k) + " N/A, initial_current: " + num(M.i0) + " A, voltage: {" + signal_yaml(M.u, "V") + "}}\n";
+  if (!m.releases.empty()) y += "releases:\n";
+  for (const auto& x : m.releases)
+    y += "  " + x.name + ": {body: " + end_name(m, x.body) + (m.rotational ? ", inertia: " + num(x.dm) + " kg*m^2" : ", mass: " + num(x.dm) + " kg") +
+         ", time: " + num(x.t) + " s}\n";
   y += "simulation: {t_end: " + num(m.t_end) + " s, dt_out: " + num(m.dt_out) + " s, rtol: 1e-10, atol: 1e-12, max_steps: 500000, integrator: " +
        integrator + "}\n";
   return y;

@@ -4,8 +4,8 @@
 /// both the engine's model file (to_yaml) and the reference simulator's input are made, so the two
 /// see the very same numbers (every value written with 17 significant digits).
 ///
-/// Families (each model has a chain of 2–6 bodies with springs, spring-dampers and 1–2 loads of every
-/// signal kind, plus the family's elements):
+/// Families (each model has a chain of 2–6 bodies with springs, spring-dampers and 1–2 loads, plus
+/// the family's elements):
 ///   chain            springs and dampers only
 ///   gap              gap links, both flank laws (linear, elasto-backlash)
 ///   one-sided        one-sided links (`flank`) and ropes with slack
@@ -16,6 +16,28 @@
 ///   freewheel        freewheels between bodies and backstops, with and without drag
 ///   stop             end stops, plastic and with restitution
 ///   mixed            a bit of everything above
+///   signals          1–3 loads of every signal kind (tables with jumps, pulses, expressions besides
+///                    constants, steps, ramps, sines), contacts with a varying normal force, brakes
+///                    with an application signal, clutches opened and closed by their normal force
+///   gear             bodies slaved to the chain by ideal gears (ratio ±0.3–3), with loads and
+///                    links of their own, a contact and a brake on the masters
+///   planetary        rotational bodies (inertias, torques) with a planetary gear among three of
+///                    them (z = 1.5–5), a contact and a brake (time, ramp or application) on members
+///   motion           a chain body moved by a prescribed speed (ramp, sine from its zero, table
+///                    without jumps, expression) or acceleration (every kind), with 0–2 contacts
+///                    from it to free bodies
+///   release          1–2 chain bodies losing 20–60 % of their mass at an instant, with 0–2 contacts
+///                    on the first (to the ground or another body)
+///   kinetic          1–3 contacts with a kinetic level over the sliding speed: a table from speed
+///                    0 or the Stribeck law
+///   buffer           1–2 linear buffers (`buffers:`, with or without damping) against the ground
+///   dc-motor         a DC (linear) motor on a chain body, its voltage of every signal kind, with
+///                    0–2 ground contacts
+///   drum             rotational bodies (drums) with translational bodies (hooks) slaved by ideal
+///                    gears in rad/m (i = 1/R, R = 0.1–0.5 m), hook loads in N, hook links to the
+///                    ground, a contact and a brake on the drums
+/// The first seven families draw their loads from constant, step, ramp and sine only (their models
+/// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 
 #include <cstdint>
 #include <string>

@@ -22,13 +22,93 @@ double Signal::at(double t) const {
       return before + (value - before) * (t - t0) / (t1 - t0);
     case Kind::sine:
       return t < t0 ? offset : offset + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * (t - t0) + phase);
+    case Kind::table: {
+      const size_t n = points.size();
+      if (n == 0) return 0.0;
+      auto line = [&](size_t i, size_t j) {  // the line through points i and j at t
+        const auto [ta, sa] = points[i];
+        const auto [tb, sb] = points[j];
+        return tb == ta ? sb : sa + (sb - sa) * (t - ta) / (tb - ta);
+      };
+      if (t < points.front().first) return extrapolate && n > 1 ? line(0, 1) : points.front().second;
+      if (t >= points.back().first) return extrapolate && n > 1 ? line(n - 2, n - 1) : points.back().second;
+      // The last point at or before t (of two at one time, the second: the value after the jump).
+      size_t i = 0;
+      while (i + 1 < n && points[i + 1].first <= t) ++i;
+      return line(i, i + 1);
+    }
+    case Kind::pulse: {
+      if (t < t0) return before;
+      // The period index k with t0 + kP ≤ t < t0 + (k+1)P, the edges computed as the breakpoints
+      // are (the quotient alone can round an edge into the period before).
+      double k = std::floor((t - t0) / period);
+      if (t >= t0 + (k + 1) * period) k += 1;
+      else if (t < t0 + k * period) k -= 1;
+      if (count >= 0 && k >= static_cast<double>(count)) return before;
+      return t < t0 + k * period + width ? value : before;  // the falling edge as its breakpoint
+    }
+    case Kind::expression:
+      return offset + slope * t + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * t + phase) + decay * std::exp(-t / tau);
   }
   return 0.0;
 }
 
-void Signal::breakpoints(std::vector<double>& out) const {
-  if (kind == Kind::step || kind == Kind::sine) out.push_back(t0);
-  if (kind == Kind::ramp) out.push_back(t0), out.push_back(t1);
+double Signal::slope_at(double t) const {
+  const double w = 2 * std::numbers::pi * frequency_hz;
+  switch (kind) {
+    case Kind::constant:
+    case Kind::step:
+    case Kind::pulse: return 0.0;
+    case Kind::ramp: return t >= t0 && t < t1 ? (value - before) / (t1 - t0) : 0.0;
+    case Kind::sine: return t < t0 ? 0.0 : amplitude * w * std::cos(w * (t - t0) + phase);
+    case Kind::table: {
+      const size_t n = points.size();
+      if (n < 2) return 0.0;
+      auto seg = [&](size_t i) { return (points[i + 1].second - points[i].second) / (points[i + 1].first - points[i].first); };
+      if (t < points.front().first) return extrapolate ? seg(0) : 0.0;
+      if (t >= points.back().first) return extrapolate ? seg(n - 2) : 0.0;
+      size_t i = 0;
+      while (i + 1 < n && points[i + 1].first <= t) ++i;
+      return seg(i);
+    }
+    case Kind::expression: return slope + amplitude * w * std::cos(w * t + phase) - decay / tau * std::exp(-t / tau);
+  }
+  return 0.0;
+}
+
+void Signal::breakpoints(std::vector<double>& out, double t_end, bool zeros) const {
+  switch (kind) {
+    case Kind::constant:
+    case Kind::expression: break;
+    case Kind::step: out.push_back(t0); break;
+    case Kind::ramp: out.push_back(t0), out.push_back(t1); break;
+    case Kind::sine: out.push_back(t0); break;
+    case Kind::table:
+      for (const auto& p : points) out.push_back(p.first);
+      break;
+    case Kind::pulse:
+      for (long k = 0; (count < 0 || k < count) && t0 + static_cast<double>(k) * period <= t_end; ++k)
+        out.push_back(t0 + static_cast<double>(k) * period), out.push_back(t0 + static_cast<double>(k) * period + width);
+      break;
+  }
+  if (!zeros) return;
+  // Zero crossings inside the pieces: a ramp's and a table's segments (linear), a sine's (closed form).
+  auto segment = [&](double ta, double sa, double tb, double sb) {
+    if (tb > ta && ((sa < 0 && sb > 0) || (sa > 0 && sb < 0))) out.push_back(ta + (tb - ta) * sa / (sa - sb));
+  };
+  if (kind == Kind::ramp) segment(t0, before, t1, value);
+  if (kind == Kind::table)
+    for (size_t i = 0; i + 1 < points.size(); ++i) segment(points[i].first, points[i].second, points[i + 1].first, points[i + 1].second);
+  if (kind == Kind::sine && amplitude != 0.0 && std::abs(offset) < std::abs(amplitude)) {
+    // offset + A sin(x) = 0, x = ω (t − t0) + phase: x = asin(c) + 2πk or π − asin(c) + 2πk, c = −offset/A.
+    const double w = 2 * std::numbers::pi * frequency_hz, c = std::asin(-offset / amplitude);
+    for (double x0 : {c, std::numbers::pi - c})
+      for (double k = std::floor((phase - x0) / (2 * std::numbers::pi)); ; k += 1.0) {
+        const double t = t0 + (x0 + 2 * std::numbers::pi * k - phase) / w;
+        if (t > t_end) break;
+        if (t > t0) out.push_back(t);
+      }
+  }
 }
 
 namespace {
@@ -41,17 +121,28 @@ double ramp01(double t, double t0, double dt) {
 
 double Friction::static_limit(double t) const {
   switch (kind) {
-    case Kind::contact: return via_mu ? normal * mu_s : Fs;
-    case Kind::brake: return ramp01(t, time, ramp) * Fs;
+    case Kind::contact: return via_mu ? normal_at(t) * mu_s : Fs;
+    case Kind::brake: return application_at(t) * Fs;
     case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_s;
     default: return HUGE_VAL;
   }
 }
 
-double Friction::kinetic_level(double t) const {
+double Friction::kinetic_level(double t, double speed) const {
   switch (kind) {
-    case Kind::contact: return via_mu ? normal * mu_k : Fk;
-    case Kind::brake: return ramp01(t, time, ramp) * Fk;
+    case Kind::contact:
+      if (via_mu) return normal_at(t) * mu_k;
+      if (!kinetic_table.empty()) {  // linear in the sliding speed, the end values held
+        const auto& T = kinetic_table;
+        if (speed <= T.front().first) return T.front().second;
+        if (speed >= T.back().first) return T.back().second;
+        size_t i = 0;
+        while (T[i + 1].first <= speed) ++i;
+        return T[i].second + (T[i + 1].second - T[i].second) * (speed - T[i].first) / (T[i + 1].first - T[i].first);
+      }
+      if (stribeck_speed > 0.0) return Fk + (Fs - Fk) * std::exp(-std::pow(speed / stribeck_speed, stribeck_exponent));  // Stribeck
+      return Fk;
+    case Kind::brake: return application_at(t) * Fk;
     case Kind::clutch: return std::max(0.0, fN.at(t)) * mu_k;
     case Kind::freewheel: return drag;
     case Kind::stop: return 0.0;
@@ -59,15 +150,23 @@ double Friction::kinetic_level(double t) const {
   return 0.0;
 }
 
+// r(t) = max(0, s(t)): an application below 0 is released (docs/model-files.md, Brakes).
+double Friction::application_at(double t) const { return with_application ? std::max(0.0, application.at(t)) : ramp01(t, time, ramp); }
+
 bool Friction::engaged(double t) const {
-  if (kind == Kind::brake) return t >= time;  // from `time` on the ramp rises (or the step is full)
-  if (kind == Kind::clutch) return fN.at(t) > 0.0 || fN.at(t + 1e-9 * std::max(1.0, t)) > 0.0;
+  // Engaged where the level is positive just after t (a step or ramp starting at t engages at t;
+  // the engine decides its levels on the right of a breakpoint, docs/hybrid.md).
+  const double tr = t + 1e-9 * std::max(1.0, t);
+  if (kind == Kind::brake) return with_application ? application.at(tr) > 0.0 : t >= time;
+  if (kind == Kind::clutch) return fN.at(tr) > 0.0;
   return true;
 }
 
-void Friction::breakpoints(std::vector<double>& out) const {
-  if (kind == Kind::brake) out.push_back(time), out.push_back(time + ramp);
-  if (kind == Kind::clutch) fN.breakpoints(out);
+void Friction::breakpoints(std::vector<double>& out, double t_end) const {
+  if (kind == Kind::brake && with_application) application.breakpoints(out, t_end, true);
+  else if (kind == Kind::brake) out.push_back(time), out.push_back(time + ramp);
+  if (kind == Kind::clutch) fN.breakpoints(out, t_end, true);
+  if (kind == Kind::contact && via_mu) fN.breakpoints(out, t_end);
 }
 
 namespace {
@@ -86,33 +185,96 @@ struct Modes {
 class Sim {
  public:
   Sim(const RefModel& m, const RefOptions& o) : m_(m), o_(o), n_(static_cast<int>(m.bodies.size())) {
-    for (const auto& b : m.bodies) im_.push_back(1.0 / b.m);
+    for (const auto& b : m.bodies) mass_.push_back(b.m);
+    build_P();
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
     // The force scale of the model (the thresholds of the switching functions are relative to it).
-    for (const auto& l : m.loads) fscale_ = std::max({fscale_, std::abs(l.s.value), std::abs(l.s.before),
-                                                      std::abs(l.s.amplitude) + std::abs(l.s.offset)});
-    for (const auto& f : m.frictions)
-      if (!f.one_sided()) fscale_ = std::max(fscale_, f.static_limit(1e300));
+    // (sampled over the run: every signal kind, its largest magnitude up to a sample's spacing).
+    for (int i = 0; i <= 2000; ++i) {
+      const double t = m.t_end * i / 2000.0;
+      for (const auto& l : m.loads) fscale_ = std::max(fscale_, std::abs(l.s.at(t)));
+      for (const auto& f : m.frictions)
+        if (!f.one_sided()) fscale_ = std::max(fscale_, f.static_limit(t));
+    }
     // The fastest rate: √(c/m) and d/m of every link over its lighter body.
     double w = 0.0;
     for (const auto& l : m.links) {
       double mm = HUGE_VAL;
-      if (l.a >= 0) mm = std::min(mm, m.bodies[l.a].m);
-      if (l.b >= 0) mm = std::min(mm, m.bodies[l.b].m);
+      if (l.a >= 0) mm = std::min(mm, m.bodies[l.a].m - released_from(l.a));
+      if (l.b >= 0) mm = std::min(mm, m.bodies[l.b].m - released_from(l.b));
       const double meff = (l.a >= 0 && l.b >= 0) ? mm / 2 : mm;
       w = std::max({w, std::sqrt(l.c / meff), l.d / meff});
     }
+    // A kinetic level falling or rising with the sliding speed is a damper of rate |dF_k/ds|/m: the
+    // Stribeck law's steepest slope (F_s − F_k)/w_s (at s = 0 for δ = 1, below it for δ > 1), a
+    // table's steepest segment.
+    for (const auto& f : m.frictions) {
+      double slope = f.stribeck_speed > 0.0 ? (f.Fs - f.Fk) / f.stribeck_speed : 0.0;
+      for (size_t j = 1; j < f.kinetic_table.size(); ++j)
+        slope = std::max(slope, std::abs(f.kinetic_table[j].second - f.kinetic_table[j - 1].second) /
+                                    (f.kinetic_table[j].first - f.kinetic_table[j - 1].first));
+      double mm = HUGE_VAL;
+      if (f.a >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.a)].m);
+      if (f.b >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.b)].m);
+      if (slope > 0.0) w = std::max(w, slope / ((f.a >= 0 && f.b >= 0) ? mm / 2 : mm));
+    }
+    // A DC motor's electrical rates: R/L and the coupling k/√(L m).
+    for (const auto& M : m.motors)
+      w = std::max({w, M.R / M.L, M.k / std::sqrt(M.L * (m.bodies[static_cast<size_t>(M.body)].m - released_from(M.body)))});
     h_ = w > 0 ? std::min(o.h_max, o.omega_h / w) : o.h_max;
   }
 
   RefResult run();
+
+  /// The mass all releases of body i take away.
+  double released_from(int i) const {
+    double dm = 0.0;
+    for (const auto& r : m_.releases)
+      if (r.body == i) dm += r.dm;
+    return dm;
+  }
 
  private:
   const RefModel& m_;
   const RefOptions& o_;
   int n_;
   std::vector<double> im_;
+  Eigen::MatrixXd P_;  // the inverse mass under the gears' rows (M⁻¹ without gears)
+
+  std::vector<double> mass_;  // the bodies' current masses (releases lower them)
+
+  /// M⁻¹ and P from the current masses (at the start and after every release; the stuck sets' A,
+  /// formed from P, are formed again).
+  void build_P() {
+    im_.clear();
+    for (double mi : mass_) im_.push_back(1.0 / mi);
+    // The inverse mass under the ideal gears' rows J (q_a = i q_b: the row e_a − i e_b, held in
+    // every mode): P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹, so a = P f is the motion the gears allow and
+    // the gears' forces never need to be known. Without gears P = M⁻¹.
+    // A prescribed body weighs nothing here: its acceleration is the signal's (set in accel).
+    for (int i = 0; i < n_; ++i)
+      if (m_.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) im_[static_cast<size_t>(i)] = 0.0;
+    P_ = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(im_.data(), n_)).asDiagonal();
+    if (!m_.gears.empty()) {
+      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(static_cast<long>(m_.gears.size()), n_);
+      for (size_t g = 0; g < m_.gears.size(); ++g) {
+        const Gear& G = m_.gears[g];
+        const auto r = static_cast<long>(g);
+        if (G.planetary) J(r, G.a) += 1.0, J(r, G.b) += G.ratio, J(r, G.c) -= 1.0 + G.ratio;  // Willis
+        else J(r, G.a) += 1.0, J(r, G.b) -= G.ratio;                                          // q_a = i q_b
+      }
+      const Eigen::MatrixXd Mi = P_;
+      P_ = Mi - Mi * J.transpose() * (J * Mi * J.transpose()).inverse() * J * Mi;
+    }
+    sets_.clear();
+  }
+
+  /// Slaved bodies follow their gear exactly: x_b = x_a / i (the rounding of P's projection).
+  void follow_gears(double* x) const {
+    for (const auto& g : m_.gears)
+      if (!g.planetary) x[g.b] = x[g.a] / g.ratio;
+  }
   Modes md_;
   double fscale_ = 1.0, h_ = 1e-3;
   RefResult res_;
@@ -161,8 +323,7 @@ class Sim {
       if (fr.a >= 0) S.G(r, fr.a) += 1.0;
       if (fr.b >= 0) S.G(r, fr.b) -= 1.0;
     }
-    const Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(im_.data(), n_);
-    S.A = S.G * im.asDiagonal() * S.G.transpose();
+    S.A = S.G * P_ * S.G.transpose();
     Eigen::FullPivLU<Eigen::MatrixXd> lu(S.A);
     lu.setThreshold(1e-12);
     S.full = lu.rank() == s;
@@ -233,6 +394,7 @@ class Sim {
     f_.assign(static_cast<size_t>(n_), 0.0);
     auto& f = f_;
     for (const auto& l : m_.loads) f[static_cast<size_t>(l.body)] += l.s.at(t);
+    for (size_t d = 0; d < m_.motors.size(); ++d) f[static_cast<size_t>(m_.motors[d].body)] += m_.motors[d].k * y[2 * n_ + static_cast<int>(d)];
     for (size_t k = 0; k < m_.links.size(); ++k) {
       const Link& L = m_.links[k];
       const double F = link_force(L, md.gap[k], qa(y, L.a) - qa(y, L.b), va(y, L.a) - va(y, L.b));
@@ -244,15 +406,17 @@ class Sim {
       const Friction& fr = m_.frictions[k];
       lam[k] = 0.0;
       if (sliding(md.fr[k])) {
-        const double F = sign_of(md.fr[k]) * fr.kinetic_level(t);
+        const double F = sign_of(md.fr[k]) * fr.kinetic_level(t, std::abs(rel_u(fr, y)));
         if (fr.b >= 0) f[static_cast<size_t>(fr.b)] += F;
         if (fr.a >= 0) f[static_cast<size_t>(fr.a)] -= F;
       } else if (md.fr[k] == FMode::stuck) {
         mask |= 1u << k;
       }
     }
-    for (int i = 0; i < n_; ++i) a[i] = f[static_cast<size_t>(i)] * im_[static_cast<size_t>(i)];
-    if (mask == 0) return;
+    Eigen::Map<Eigen::VectorXd>(a, n_) = P_ * Eigen::Map<const Eigen::VectorXd>(f.data(), n_);
+    for (int i = 0; i < n_; ++i)  // P has no row for a prescribed body: its motion is the signal's
+      if (m_.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) a[i] = m_.bodies[static_cast<size_t>(i)].prescribed_acceleration(t);
+    if (mask == 0) return follow_gears(a);
     const StuckSet& S = stuck_set(mask);
     const int s = static_cast<int>(S.rows.size());
     // b = G M⁻¹ f (the free accelerations' row differences); G M⁻¹ Gᵀ λ = b.
@@ -273,8 +437,7 @@ class Sim {
       const int k = S.rows[static_cast<size_t>(r)];
       const Friction& fr = m_.frictions[static_cast<size_t>(k)];
       const double l = lamv_[static_cast<size_t>(r)];
-      if (fr.a >= 0) a[fr.a] -= im_[static_cast<size_t>(fr.a)] * l;
-      if (fr.b >= 0) a[fr.b] += im_[static_cast<size_t>(fr.b)] * l;
+      for (int i = 0; i < n_; ++i) a[i] -= l * ((fr.a >= 0 ? P_(i, fr.a) : 0.0) - (fr.b >= 0 ? P_(i, fr.b) : 0.0));
       lam[k] = l;
     }
     // Bodies held together get exactly equal accelerations (a stuck pair's rounding).
@@ -283,12 +446,20 @@ class Sim {
       if (fr.a >= 0 && fr.b < 0) a[fr.a] = 0.0;
       else if (fr.b >= 0 && fr.a < 0) a[fr.b] = 0.0;
     }
+    follow_gears(a);
   }
 
   void deriv(double t, const std::vector<double>& y, const Modes& md, std::vector<double>& dy) {
     lam_d_.resize(m_.frictions.size());
     for (int i = 0; i < n_; ++i) dy[static_cast<size_t>(i)] = y[static_cast<size_t>(n_ + i)];
     accel(t, y.data(), md, dy.data() + n_, lam_d_.data());
+    // DC motors: L di/dt = u(t) − R i − k v (the voltage's left limit at a step's end, as the loads).
+    const double tl = t == t_left_ ? std::nextafter(t, -HUGE_VAL) : t;
+    for (size_t d = 0; d < m_.motors.size(); ++d) {
+      const DcMotor& M = m_.motors[d];
+      const size_t s = static_cast<size_t>(2 * n_) + d;
+      dy[s] = (M.u.at(tl) - M.R * y[s] - M.k * y[static_cast<size_t>(n_ + M.body)]) / M.L;
+    }
   }
 
   std::vector<double> k1, k2, k3, k4, tmp, lam_d_;
@@ -355,6 +526,10 @@ class Sim {
         else out.push_back({f.static_limit(t) - std::abs(lam[k]), 1e-13 * f.static_limit(t) + eps_f, -1, fi});
       } else {
         out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
+        // The kinks of a kinetic table over the sliding speed: located (no mode changes there), so
+        // no fixed step runs across a change of slope of the friction force.
+        for (size_t j = 1; j < f.kinetic_table.size(); ++j)
+          out.push_back({std::abs(rel_u(f, y.data())) - f.kinetic_table[j].first, 0.0, -1, fi, true});
       }
     }
     return out;
@@ -385,12 +560,11 @@ class Sim {
       if (fr.a >= 0) G(r, fr.a) += 1.0;
       if (fr.b >= 0) G(r, fr.b) -= 1.0;
     }
-    Eigen::VectorXd im = Eigen::Map<const Eigen::VectorXd>(im_.data(), n_);
     Eigen::Map<Eigen::VectorXd> v(y.data() + n_, n_);
-    const Eigen::MatrixXd A = G * im.asDiagonal() * G.transpose();
+    const Eigen::MatrixXd A = G * P_ * G.transpose();
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
     cod.setThreshold(1e-12);
-    const Eigen::VectorXd dv = im.asDiagonal() * (G.transpose() * (cod.pseudoInverse() * (G * v)));
+    const Eigen::VectorXd dv = P_ * (G.transpose() * (cod.pseudoInverse() * (G * v)));
     v -= dv;
     // Exactly equal speeds: the mean of each stuck pair (rounding of the projection).
     for (int r = 0; r < s; ++r) {
@@ -398,15 +572,27 @@ class Sim {
       if (fr.b < 0) v(fr.a) = 0.0;
       else if (fr.a < 0) v(fr.b) = 0.0;
     }
-    for (int pass = 0; pass < 3; ++pass)
+    for (int pass = 0; pass < 3; ++pass) {
       for (int r = 0; r < s; ++r) {
         const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
         if (fr.a >= 0 && fr.b >= 0) {
-          const double ma = 1.0 / im_[static_cast<size_t>(fr.a)], mb = 1.0 / im_[static_cast<size_t>(fr.b)];
-          const double vm = (ma * v(fr.a) + mb * v(fr.b)) / (ma + mb);
-          v(fr.a) = v(fr.b) = vm;
+          if (im_[static_cast<size_t>(fr.a)] == 0.0) v(fr.b) = v(fr.a);  // a prescribed body leads
+          else if (im_[static_cast<size_t>(fr.b)] == 0.0) v(fr.a) = v(fr.b);
+          else {
+            const double ma = 1.0 / im_[static_cast<size_t>(fr.a)], mb = 1.0 / im_[static_cast<size_t>(fr.b)];
+            const double vm = (ma * v(fr.a) + mb * v(fr.b)) / (ma + mb);
+            v(fr.a) = v(fr.b) = vm;
+          }
         }
       }
+      // A body held to the ground stays exactly at rest (the mean with a neighbour moved it by rounding).
+      for (int r = 0; r < s; ++r) {
+        const Friction& fr = m_.frictions[static_cast<size_t>(rows[static_cast<size_t>(r)])];
+        if (fr.b < 0) v(fr.a) = 0.0;
+        else if (fr.a < 0) v(fr.b) = 0.0;
+      }
+    }
+    follow_gears(y.data() + n_);
   }
 
   /// Decides the friction elements at zero sliding speed (`zero`: their indices) by enumeration;
@@ -601,8 +787,12 @@ class Sim {
 };
 
 RefResult Sim::run() {
-  std::vector<double> y(static_cast<size_t>(2 * n_));
-  for (int i = 0; i < n_; ++i) y[static_cast<size_t>(i)] = m_.bodies[static_cast<size_t>(i)].q0, y[static_cast<size_t>(n_ + i)] = m_.bodies[static_cast<size_t>(i)].v0;
+  std::vector<double> y(static_cast<size_t>(2 * n_) + m_.motors.size());
+  for (size_t d = 0; d < m_.motors.size(); ++d) y[static_cast<size_t>(2 * n_) + d] = m_.motors[d].i0;
+  for (int i = 0; i < n_; ++i) {
+    const Body& b = m_.bodies[static_cast<size_t>(i)];
+    y[static_cast<size_t>(i)] = b.q0, y[static_cast<size_t>(n_ + i)] = b.motion == Body::Motion::speed ? b.prescribed.at(0.0) : b.v0;
+  }
   // Initial modes: gaps by δ(0), stops off unless on the stop, friction by u(0) (zero: decided).
   for (size_t k = 0; k < m_.links.size(); ++k) {
     const Link& L = m_.links[k];
@@ -624,8 +814,12 @@ RefResult Sim::run() {
   bool g0_valid = true;
 
   std::vector<double> bps;
-  for (const auto& l : m_.loads) l.s.breakpoints(bps);
-  for (const auto& f : m_.frictions) f.breakpoints(bps);
+  for (const auto& l : m_.loads) l.s.breakpoints(bps, m_.t_end);
+  for (const auto& b : m_.bodies)
+    if (b.motion != Body::Motion::free) b.prescribed.breakpoints(bps, m_.t_end);
+  for (const auto& r : m_.releases) bps.push_back(r.t);
+  for (const auto& M : m_.motors) M.u.breakpoints(bps, m_.t_end);
+  for (const auto& f : m_.frictions) f.breakpoints(bps, m_.t_end);
   std::sort(bps.begin(), bps.end());
   bps.erase(std::remove_if(bps.begin(), bps.end(), [&](double b) { return !(b > 0.0 && b < m_.t_end); }), bps.end());
   bps.erase(std::unique(bps.begin(), bps.end()), bps.end());
@@ -635,7 +829,7 @@ RefResult Sim::run() {
   auto row = [&](double t) {
     res_.t.push_back(t);
     res_.q.emplace_back(y.begin(), y.begin() + n_);
-    res_.v.emplace_back(y.begin() + n_, y.end());
+    res_.v.emplace_back(y.begin() + n_, y.begin() + 2 * n_);
   };
   double t = 0.0;
   row(0.0), next_row = 1;
@@ -734,6 +928,12 @@ RefResult Sim::run() {
       g0 = std::move(g1);
       if (ib < bps.size() && t == bps[ib]) {
         ++ib;
+        // Releases at t: the mass drops, position and velocity are continuous (the released part
+        // leaves with the body's velocity); the stuck ones are decided again with the new masses.
+        bool released = false;
+        for (const auto& r : m_.releases)
+          if (r.t == t) mass_[static_cast<size_t>(r.body)] -= r.dm, released = true, record(t, "release", r.name);
+        if (released) build_P();
         engage(t, y, false);
         decide(t, y, {});
         restart(t, y, g0);

@@ -34,37 +34,85 @@
 ///   consistent ones give different accelerations the run says so (`ambiguous_from`): the physics
 ///   is not unique there and a comparison after it is not meaningful.
 ///
-/// Limits (what the generator respects): translational bodies, link ratio 1, no gears (ideal, lossy,
-/// planetary), prescribed motions, releases, buffers, drives or machines; signals constant, step,
-/// ramp and sine only; constant friction levels (no tables, Stribeck or moving surfaces); end stops only on bodies without friction to another body (an impact through
-/// a stuck contact would need an impulsive friction law); brakes and clutches are applied, never
-/// released again; a freewheel is the only friction element on its pair of bodies.
+/// Ideal gears (q_a = i q_b) are held as rows J of the inverse mass: a = P f with
+/// P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹ (no reduction to a master, as compile does); the stuck set's λ
+/// solves (G P Gᵀ) λ = G P f̃.
+///
+/// Planetary gears are the Willis row e_sun + z e_ring − (1 + z) e_carrier of J (every member with
+/// inertia). A model's bodies are all translational or all rotational (the same equations), but for
+/// `linear` bodies of a rotational model: hooks slaved to drums by ideal gears in rad/m.
+///
+/// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
+/// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
+///
+/// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
+/// motions, buffers other than linear, drives other than the DC motor, machines; releases only on free bodies without gears, at t_r > 0;
+/// prescribed bodies only with contacts to free bodies (no ground friction, freewheel, stop or gear on
+/// them), a speed without jumps; at most two friction elements to the ground on a planetary gear's
+/// members (three would lock it redundantly, where the engine weights the joint's row in the share);
+/// signals of every kind but `sum` and `file` (expressions only of the form c0 + c1 t + A sin(2π f t +
+/// φ) + B e^(−t/τ)); speed-dependent kinetic levels (tables, Stribeck) only on contacts given by levels,
+/// no moving surfaces; a contact's normal force stays positive; end stops only on bodies without
+/// friction to another body and without gears (an impact through a stuck contact would need an impulsive
+/// friction law); an ideal gear's slave carries no friction element and is the first end of its links; a
+/// freewheel is the only friction element on its pair of bodies.
 
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace machdyn::reference {
 
-/// A signal of time: the load and normal-force kinds of docs/model-files.md the generator uses.
+/// A signal of time: every kind of docs/model-files.md ("Signals") but `sum` and `file`.
+///   constant  value
+///   step      `before` for t < t0, `value` from t0 on
+///   ramp      `before` until t0, linear to `value` at t1
+///   sine      `offset` before t0, then offset + A sin(2π f (t − t0) + phase)
+///   table     piecewise linear through `points` (two points at one time: a jump, the second value
+///             from that time on); outside the end values held, or with `extrapolate` the end
+///             segments continued
+///   pulse     `value` (high) for `width` at the start of each period P from t0, `count` times
+///             (−1: no end), `before` (low) otherwise
+///   expression  c0 + c1 t + A sin(ω t + phase) + B exp(−t/τ) (written as the expression language's
+///             text; no breakpoints)
 struct Signal {
-  enum class Kind { constant, step, ramp, sine } kind = Kind::constant;
-  double value = 0.0;   ///< constant, step's and ramp's final value
-  double before = 0.0;  ///< step and ramp: the value before
-  double t0 = 0.0;      ///< step's time, ramp's start, sine's start
+  enum class Kind { constant, step, ramp, sine, table, pulse, expression } kind = Kind::constant;
+  double value = 0.0;   ///< constant, step's and ramp's final value, pulse's high
+  double before = 0.0;  ///< step and ramp: the value before; pulse: low
+  double t0 = 0.0;      ///< step's time, ramp's start, sine's and pulse's start
   double t1 = 0.0;      ///< ramp's end
-  double amplitude = 0.0, frequency_hz = 0.0, phase = 0.0, offset = 0.0;  ///< sine
+  double amplitude = 0.0, frequency_hz = 0.0, phase = 0.0, offset = 0.0;  ///< sine (expression: A, ω/(2π), phase, c0)
+  std::vector<std::pair<double, double>> points;  ///< table: (t, s), t non-decreasing
+  bool extrapolate = false;                       ///< table: `outside: extrapolate`
+  double period = 0.0, width = 0.0;               ///< pulse
+  long count = -1;                                ///< pulse: −1 = no end
+  double slope = 0.0, decay = 0.0, tau = 1.0;     ///< expression: c1, B, τ
   [[nodiscard]] double at(double t) const;
-  /// The times where the signal jumps or kinks (the stepper ends a step there).
-  void breakpoints(std::vector<double>& out) const;
+  /// ds/dt on the right of t (a ramp's, a table segment's slope; 0 for steps and pulses).
+  [[nodiscard]] double slope_at(double t) const;
+  /// The times in [0, t_end] where the signal jumps or kinks (the stepper ends a step there); with
+  /// `zeros`, also where it crosses zero (a clutch's or brake's normal force opening and closing).
+  void breakpoints(std::vector<double>& out, double t_end, bool zeros = false) const;
 };
 
 constexpr int kGround = -1;
 
+/// A body; with `motion` a prescribed motion (docs/model-files.md, "Prescribed motion"): q'' = a(t)
+/// (`acceleration`, from q0, v0) or q' = v(t) (`speed`: q'' = dv/dt on the right, v(0) the start).
+/// Its mass then weighs nothing (P has no row or column for it): every element on it still acts.
 struct Body {
+  Body() = default;
+  Body(std::string name_, double m_, double q0_, double v0_) : name(std::move(name_)), m(m_), q0(q0_), v0(v0_) {}
   std::string name;
   double m = 1.0, q0 = 0.0, v0 = 0.0;  ///< kg, m, m/s
+  bool linear = false;  ///< translational in a rotational model (a rope drum's hook: m, N)
+  enum class Motion { free, acceleration, speed } motion = Motion::free;
+  Signal prescribed;
+  [[nodiscard]] double prescribed_acceleration(double t) const {
+    return motion == Motion::acceleration ? prescribed.at(t) : prescribed.slope_at(t);
+  }
 };
 
 /// A spring-damper link between bodies a and b (either may be kGround): δ = q_a − q_b, the load F
@@ -77,6 +125,10 @@ struct Link {
   double gap = 0.0, gap_start = 0.0;  ///< gap: Δ and the position inside it at δ = 0
   double flank = 0.0;          ///< one_sided: δ₊ (any sign); rope: the slack (≥ 0)
   bool elasto = false;         ///< flank_law: elasto-backlash
+  /// A linear buffer (docs/model-files.md, Buffers) is this one-sided law against the ground:
+  /// `max` x_b is [body, ground] with δ₊ = x_b, `min` x_b is [ground, body] with δ₊ = −x_b (the file
+  /// writes it under `buffers:`).
+  bool buffer = false;
   [[nodiscard]] bool has_flanks() const { return kind != Kind::plain; }
   [[nodiscard]] double hi() const { return kind == Kind::gap ? gap - gap_start : flank; }  ///< δ₊
   [[nodiscard]] double lo() const {  ///< δ₋ (−∞ for a one-sided link or rope)
@@ -96,15 +148,23 @@ struct Friction {
   enum class Kind { contact, brake, clutch, freewheel, stop } kind = Kind::contact;
   std::string name;
   int a = 0, b = kGround;
-  // contact: levels, given directly or as normal force and coefficients (F = N μ)
+  // contact: levels, given directly or as normal force and coefficients (F = N μ); the normal force
+  // N(t) = `normal` when fN is a constant 0 signal, else fN (a signal kept positive by the generator)
   bool via_mu = false;
   double Fs = 0.0, Fk = 0.0, normal = 0.0, mu_s = 0.0, mu_k = 0.0;
-  // brake on body a: holding = Fs, braking = Fk, applied over r(t) = 0 → 1 from `time` over `ramp`
+  // brake on body a: holding = Fs, braking = Fk, applied over r(t) = 0 → 1 from `time` over `ramp`,
+  // or (with_application) by the signal r(t) = `application` (0 released, 1 full levels)
   double time = 0.0, ramp = 0.0;
+  bool with_application = false;
+  Signal application;
   // clutch between a and b: F = μ f_N(t) (f_N ≤ 0 opens it)
   Signal fN;
   // freewheel [a, b] (a may be kGround: a backstop on b): holds while λ ≥ 0, overruns with u < 0
   double drag = 0.0;
+  // contact with levels: F_k0(s) a table [(s, F)] from s = 0 (held beyond its ends), or the Stribeck
+  // law F_k0(s) = F_k + (F_s − F_k) exp(−(s/w_s)^δ) (stribeck_speed w_s > 0)
+  std::vector<std::pair<double, double>> kinetic_table;
+  double stribeck_speed = 0.0, stribeck_exponent = 1.0;
   // stop on body a: `min` (stop_max false) or `max` at stop_pos, restitution e
   bool stop_max = false;
   double stop_pos = 0.0, e = 0.0;
@@ -112,17 +172,58 @@ struct Friction {
   [[nodiscard]] bool one_sided() const { return kind == Kind::freewheel || kind == Kind::stop; }
   /// The static limit F_s(t) and kinetic level F_k(t) (∞ / the drag for one-sided elements).
   [[nodiscard]] double static_limit(double t) const;
-  [[nodiscard]] double kinetic_level(double t) const;
+  /// F_k(t, s) at sliding speed s ≥ 0 (a contact's table or Stribeck law; the others constant in s).
+  [[nodiscard]] double kinetic_level(double t, double speed = 0.0) const;
   /// Whether a brake or clutch is engaged at t (r > 0 or about to rise: the right limit).
   [[nodiscard]] bool engaged(double t) const;
-  void breakpoints(std::vector<double>& out) const;
+  /// A brake's application r(t) ∈ [0, 1].
+  [[nodiscard]] double application_at(double t) const;
+  /// A contact's normal force N(t).
+  [[nodiscard]] double normal_at(double t) const {
+    return fN.kind == Signal::Kind::constant && fN.value == 0.0 ? normal : fN.at(t);
+  }
+  void breakpoints(std::vector<double>& out, double t_end) const;
+};
+
+/// An ideal gear (docs/model-files.md, "Ideal gears"): q_a = i q_b, rigid, no losses. Body b is
+/// slaved to a (later in the file than a, no friction element on it, links on it only as their
+/// first end, no other gear on it; a is no slave).
+/// With `planetary`: a planetary gear (Willis) among sun a, ring b and carrier c, all with inertia:
+/// ω_a + z ω_b − (1 + z) ω_c = 0, z = `ratio` > 1 (nobody slaved: a row of P like the ideal gear's).
+struct Gear {
+  std::string name;
+  int a = 0, b = 1;
+  double ratio = 1.0;  ///< i ≠ 0 (planetary: z = z_ring/z_sun > 1)
+  bool planetary = false;
+  int c = -1;          ///< planetary: the carrier
+};
+
+/// A release (docs/model-files.md, "Releases"): body `body` loses Δm at t_r > 0, its position and
+/// velocity continuous.
+struct Release {
+  std::string name;
+  int body = 0;
+  double dm = 0.0, t = 0.0;  ///< kg (kg·m²), s
+};
+
+/// A DC motor (docs/model-files.md, Drives): L di/dt = u(t) − R i − k v, force k i on its body; the
+/// current i is a state of its own (after [q; v]).
+struct DcMotor {
+  std::string name;
+  int body = 0;
+  double R = 1.0, L = 0.01, k = 1.0, i0 = 0.0;  ///< Ω, H, N/A (= V·s/m), A
+  Signal u;                                     ///< V
 };
 
 struct RefModel {
+  bool rotational = false;  ///< every body rotational (φ in rad, kg·m², N·m): the same equations
   std::vector<Body> bodies;
+  std::vector<Gear> gears;
   std::vector<Link> links;
   std::vector<Load> loads;
   std::vector<Friction> frictions;
+  std::vector<Release> releases;
+  std::vector<DcMotor> motors;
   double t_end = 1.0, dt_out = 0.01;
 };
 

@@ -1,5 +1,6 @@
 // The reference simulator itself against closed forms (so a later mismatch with the engine can be
 // trusted to be the engine's), its convergence with the step, and the generator's files compiling.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <gtest/gtest.h>
@@ -225,7 +226,7 @@ TEST(ReferenceSimulator, ConvergesWithTheStepOnRandomModels) {
         wt = std::max(wt, std::abs(a.events[k].t - b.events[k].t));
       }
       for (size_t j = 0; j < m.bodies.size(); ++j) {
-        double scale = 1e-300;
+        double scale = 1e-12;  // m/s: a body at rest in both runs differs by rounding only
         for (size_t k = 0; k < a.t.size(); ++k) scale = std::max(scale, std::abs(a.v[k][j]));
         for (size_t k = 0; k < a.t.size(); ++k) wx = std::max(wx, std::abs(a.v[k][j] - b.v[k][j]) / scale);
       }
@@ -258,6 +259,276 @@ TEST(ReferenceCampaign, ComparisonDetectsADifferentModel) {
   RefModel other = m;
   other.bodies[0].m *= 1.01;
   EXPECT_EQ(compare(other, "dopri5", ref).kind, Outcome::Kind::state_mismatch);
+}
+
+}  // namespace
+}  // namespace machdyn::reference
+
+namespace machdyn::reference {
+namespace {
+
+// Claim: the signal kinds read as docs/model-files.md ("Signals") states them. A free mass m = 2 kg
+// under three loads — a pulse (high 10 N, low 2 N, period 0.2 s, width 0.05 s, from 0.1 s, 3 times),
+// a table with a jump ([0, 0], [0.2, 10], [0.2, −5], [0.5, 5], extrapolated: the last segment's slope
+// 10/0.3 continues) and an expression 1 + 3 t + 4 sin(2π·1.5 t + 0.3) − 2 e^(−t/0.1) — moves with
+// v(t) = (1/m) ∫₀ᵗ ΣP: the pulse's integral counts its pieces, the table's is the trapezoids up to t,
+// the expression's is t + 1.5 t² − (4/ω)(cos(ωt + 0.3) − cos 0.3) − 0.2 (1 − e^(−t/0.1)), ω = 3π.
+TEST(ReferenceSimulator, SignalKindsIntegrateToTheirClosedForms) {
+  Signal pulse, table, expr;
+  pulse.kind = Signal::Kind::pulse, pulse.value = 10.0, pulse.before = 2.0, pulse.period = 0.2, pulse.width = 0.05, pulse.t0 = 0.1;
+  pulse.count = 3;
+  table.kind = Signal::Kind::table, table.points = {{0.0, 0.0}, {0.2, 10.0}, {0.2, -5.0}, {0.5, 5.0}}, table.extrapolate = true;
+  expr.kind = Signal::Kind::expression, expr.offset = 1.0, expr.slope = 3.0, expr.amplitude = 4.0, expr.frequency_hz = 1.5;
+  expr.phase = 0.3, expr.decay = -2.0, expr.tau = 0.1;
+  EXPECT_EQ(table.at(0.2), -5.0);  // the jump: the second value from its time on
+  EXPECT_EQ(table.at(0.1), 5.0);
+  EXPECT_NEAR(table.at(0.8), 5.0 + 10.0 / 0.3 * 0.3, 1e-12);
+  EXPECT_EQ(pulse.at(0.1), 10.0);
+  EXPECT_EQ(pulse.at(0.16), 2.0);
+  EXPECT_EQ(pulse.at(0.5), 10.0);  // the third pulse, 0.5 = 0.1 + 2·0.2
+  EXPECT_EQ(pulse.at(0.7), 2.0);   // no fourth
+  RefModel m;
+  m.bodies = {{"m", 2.0, 0.0, 0.0}};
+  m.loads = {{"P", 0, pulse}, {"T", 0, table}, {"E", 0, expr}};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  auto pulse_int = [](double t) {  // 2 t plus 8 N over the high parts
+    double s = 2.0 * t;
+    for (int k = 0; k < 3; ++k) s += 8.0 * std::clamp(t - (0.1 + 0.2 * k), 0.0, 0.05);
+    return s;
+  };
+  auto table_int = [](double t) {
+    if (t <= 0.2) return 25.0 * t * t;                      // 50 t
+    const double u = t - 0.2;                               // −5 + (10/0.3) u
+    return 1.0 + (-5.0 * u + 0.5 * (10.0 / 0.3) * u * u);   // extrapolated beyond 0.5 on the same line
+  };
+  const double w = 2 * std::numbers::pi * 1.5;
+  auto expr_int = [&](double t) {
+    return t + 1.5 * t * t - 4.0 / w * (std::cos(w * t + 0.3) - std::cos(0.3)) - 0.2 * (1 - std::exp(-t / 0.1));
+  };
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    EXPECT_NEAR(r.v[k][0], (pulse_int(t) + table_int(t) + expr_int(t)) / 2.0, 1e-9) << t;
+  }
+}
+
+// Claim: a brake released by its application signal r(t) (1 until 0.2 s, a ramp to 0 at 0.6 s)
+// holding 100 N, braking 80 N, on a block m = 5 kg pushed by 50 N: stuck while 100 r ≥ 50, so it
+// slips at r = ½, t* = 0.4 s; then 5 a = 50 − 80 r(t), r = (0.6 − t)/0.4 until 0.6 s, 0 after
+// (released there): v(t) = [50 (t − t*) − 200 ∫_{t*}^{min(t, 0.6)} (0.6 − s) ds]/5.
+TEST(ReferenceSimulator, BrakeReleasedByItsApplicationSignal) {
+  RefModel m;
+  m.bodies = {{"block", 5.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 0, P.s.value = 50.0;
+  m.loads = {P};
+  Friction b;
+  b.kind = Friction::Kind::brake, b.name = "B", b.a = 0, b.b = kGround, b.Fs = 100.0, b.Fk = 80.0;
+  b.with_application = true;
+  b.application.kind = Signal::Kind::ramp, b.application.before = 1.0, b.application.value = 0.0;
+  b.application.t0 = 0.2, b.application.t1 = 0.6;
+  m.frictions = {b};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  EXPECT_NEAR(slip[0].t, 0.4, 1e-11);
+  ASSERT_EQ(of_kind(r, "released").size(), 1u);
+  EXPECT_NEAR(of_kind(r, "released")[0].t, 0.6, 1e-12);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], te = std::min(t, 0.6);
+    const double v = t <= 0.4 ? 0.0 : (50 * (t - 0.4) - 200 * (0.6 * (te - 0.4) - 0.5 * (te * te - 0.16))) / 5;
+    EXPECT_NEAR(r.v[k][0], v, 1e-10) << t;
+  }
+}
+
+// Claim: a clutch's normal force as a sine through zero has its zeros as breakpoints: each found
+// root t_z of 100 + 300 sin(2π·2 (t − 0.1) + 0.5) satisfies it to rounding, and they alternate
+// falling and rising, every half period apart in pairs (4 roots per second at 2 Hz).
+TEST(ReferenceSimulator, SineNormalForceZerosAreBreakpoints) {
+  Signal s;
+  s.kind = Signal::Kind::sine, s.offset = 100.0, s.amplitude = 300.0, s.frequency_hz = 2.0, s.phase = 0.5, s.t0 = 0.1;
+  std::vector<double> bp;
+  s.breakpoints(bp, 1.1, true);
+  std::vector<double> zeros;
+  for (double t : bp)
+    if (t > 0.1) zeros.push_back(t);
+  ASSERT_EQ(zeros.size(), 4u);  // 1 s of a 2 Hz sine: two falling, two rising zeros
+  std::sort(zeros.begin(), zeros.end());
+  for (double t : zeros) EXPECT_NEAR(s.at(t), 0.0, 1e-10) << t;
+  EXPECT_NEAR(zeros[2] - zeros[0], 0.5, 1e-12);
+  EXPECT_NEAR(zeros[3] - zeros[1], 0.5, 1e-12);
+}
+
+// Claim: an ideal gear q_a = i q_b (i = 2) slaving m_b = 1 kg to m_a = 3 kg reduces to one body of
+// mass m_a + m_b/i² = 3.25 kg on which a load P_b on b acts as P_b/i (virtual work). With P = 100 t
+// on a, P_b = −4 N on b and a ground contact F_s = 20 N, F_k = 15 N on a, the group stays stuck until
+// 100 t − 2 = 20, t* = 0.22 s, then 3.25 a = 100 t − 2 − 15: v_a = [50 (t² − t*²) − 17 (t − t*)]/3.25
+// and v_b = v_a/2 throughout.
+TEST(ReferenceSimulator, IdealGearReducesTheMassAndTheLoads) {
+  RefModel m;
+  m.bodies = {{"a", 3.0, 0.0, 0.0}, {"b", 1.0, 0.0, 0.0}};
+  m.gears = {{"G", 0, 1, 2.0}};
+  Load P, Pb;
+  P.name = "P", P.body = 0, P.s.kind = Signal::Kind::ramp, P.s.value = 100.0, P.s.t0 = 0.0, P.s.t1 = 1.0;
+  Pb.name = "Pb", Pb.body = 1, Pb.s.value = -4.0;
+  m.loads = {P, Pb};
+  Friction f;
+  f.name = "f", f.a = 0, f.b = kGround, f.Fs = 20.0, f.Fk = 15.0;
+  m.frictions = {f};
+  m.t_end = 0.8, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  EXPECT_NEAR(slip[0].t, 0.22, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], v = t <= 0.22 ? 0.0 : (50 * (t * t - 0.0484) - 17 * (t - 0.22)) / 3.25;
+    EXPECT_NEAR(r.v[k][0], v, 1e-10) << t;
+    EXPECT_NEAR(r.v[k][1], v / 2, 1e-10) << t;
+    EXPECT_NEAR(r.q[k][1], r.q[k][0] / 2, 1e-12) << t;
+  }
+}
+
+
+// Claim: a planetary gear ω_s + z ω_r − (1 + z) ω_c = 0 (z = 3) among a sun J_s = 0.5, a ring
+// J_r = 4 and a carrier J_c = 2 kg·m², a torque M = 10 N·m on the sun. Free: the gear's load λ (on
+// the sun −λ, the ring −z λ, the carrier +(1 + z) λ) keeps the row's accelerations at 0:
+// (M − λ)/J_s − z² λ/J_r − (1 + z)² λ/J_c = 0, λ = (M/J_s)/(1/J_s + z²/J_r + (1 + z)²/J_c), every
+// acceleration constant (φ = a t²/2). With the ring held by a contact (F_s = 1e4 N·m) the sun turns
+// the carrier at 1/(1 + z): a_s = M/(J_s + J_c/(1 + z)²), the ring stays at rest.
+TEST(ReferenceSimulator, PlanetaryGearSharesTheSunTorqueByWillis) {
+  RefModel m;
+  m.rotational = true;
+  m.bodies = {{"sun", 0.5, 0.0, 0.0}, {"ring", 4.0, 0.0, 0.0}, {"carrier", 2.0, 0.0, 0.0}};
+  Gear g;
+  g.name = "PG", g.planetary = true, g.a = 0, g.b = 1, g.c = 2, g.ratio = 3.0;
+  m.gears = {g};
+  Load M;
+  M.name = "M", M.body = 0, M.s.value = 10.0;
+  m.loads = {M};
+  m.t_end = 0.5, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double lam = (10.0 / 0.5) / (1 / 0.5 + 9.0 / 4.0 + 16.0 / 2.0);
+  const double a[3] = {(10.0 - lam) / 0.5, -3.0 * lam / 4.0, 4.0 * lam / 2.0};
+  for (size_t k = 0; k < r.t.size(); ++k)
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(r.v[k][static_cast<size_t>(i)], a[i] * r.t[k], 1e-11) << r.t[k];
+      EXPECT_NEAR(r.q[k][static_cast<size_t>(i)], 0.5 * a[i] * r.t[k] * r.t[k], 1e-11) << r.t[k];
+    }
+  Friction hold;
+  hold.name = "hold", hold.a = 1, hold.b = kGround, hold.Fs = 1e4, hold.Fk = 1e4;
+  m.frictions = {hold};
+  const RefResult h = simulate_reference(m);
+  ASSERT_TRUE(h.error.empty()) << h.error;
+  EXPECT_TRUE(h.events.empty());
+  const double as = 10.0 / (0.5 + 2.0 / 16.0);
+  for (size_t k = 0; k < h.t.size(); ++k) {
+    EXPECT_NEAR(h.v[k][0], as * h.t[k], 1e-11) << h.t[k];
+    EXPECT_EQ(h.v[k][1], 0.0) << h.t[k];
+    EXPECT_NEAR(h.v[k][2], as * h.t[k] / 4.0, 1e-11) << h.t[k];
+  }
+}
+
+
+// Claim: a body moved by a prescribed acceleration a_p = 10 t (m/s², from rest) carries a block
+// m = 3 kg on a contact F_s = 4.5 N, F_k = 3 N. Stuck, the contact gives the block m a_p = 30 t, so
+// it slips at t* = 4.5/30 = 0.15 s; then the block accelerates at F_k/m = 1 m/s² while the body
+// runs ahead: v_p = 5 t², v_b = 5 t*² + (t − t*). The prescribed body follows its signal whatever
+// the contact does (q_p = 5 t³/3).
+TEST(ReferenceSimulator, PrescribedAccelerationDragsABlockUntilItSlips) {
+  RefModel m;
+  m.bodies = {{"p", 50.0, 0.0, 0.0}, {"b", 3.0, 0.0, 0.0}};
+  m.bodies[0].motion = Body::Motion::acceleration;
+  m.bodies[0].prescribed.kind = Signal::Kind::ramp, m.bodies[0].prescribed.value = 10.0, m.bodies[0].prescribed.t1 = 1.0;
+  Friction f;
+  f.name = "f", f.a = 0, f.b = 1, f.Fs = 4.5, f.Fk = 3.0;
+  m.frictions = {f};
+  m.t_end = 0.6, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto slip = of_kind(r, "slip");
+  ASSERT_EQ(slip.size(), 1u);
+  EXPECT_NEAR(slip[0].t, 0.15, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    EXPECT_NEAR(r.v[k][0], 5 * t * t, 1e-12) << t;
+    EXPECT_NEAR(r.q[k][0], 5 * t * t * t / 3, 1e-12) << t;
+    EXPECT_NEAR(r.v[k][1], t <= 0.15 ? 5 * t * t : 5 * 0.0225 + (t - 0.15), 1e-10) << t;
+  }
+}
+
+
+// Claim: a block m = 4 kg pushed by 8 N from rest that releases Δm = 1 kg at 0.5 s keeps its
+// position and velocity there and accelerates at 8/3 m/s² after: v = 2 t until 0.5 s, then
+// v = 1 + (8/3)(t − 0.5); x = t² until 0.5 s, then 0.25 + (t − 0.5) + (4/3)(t − 0.5)².
+TEST(ReferenceSimulator, ReleaseKeepsTheVelocityAndChangesTheAcceleration) {
+  RefModel m;
+  m.bodies = {{"block", 4.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 0, P.s.value = 8.0;
+  m.loads = {P};
+  m.releases = {{"R", 0, 1.0, 0.5}};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(of_kind(r, "release").size(), 1u);
+  EXPECT_EQ(of_kind(r, "release")[0].t, 0.5);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], u = t - 0.5;
+    EXPECT_NEAR(r.v[k][0], t <= 0.5 ? 2 * t : 1 + 8.0 / 3 * u, 1e-12) << t;
+    EXPECT_NEAR(r.q[k][0], t <= 0.5 ? t * t : 0.25 + u + 4.0 / 3 * u * u, 1e-12) << t;
+  }
+}
+
+
+// Claim: a block m = 5 kg sliding at v0 = 1 m/s on a ground contact whose kinetic level is the table
+// F_k(s) = 10 + 10 s N (points [0, 10], [2, 30]; F_s = 20 N) decelerates by m v' = −(10 + 10 v):
+// v = 2 e^(−2t) − 1, which reaches 0 at t* = ln 2 / 2 = 0.34657 s, where it sticks (no load).
+TEST(ReferenceSimulator, KineticTableOverTheSlidingSpeed) {
+  RefModel m;
+  m.bodies = {{"block", 5.0, 0.0, 1.0}};
+  Friction f;
+  f.name = "f", f.a = 0, f.b = kGround, f.Fs = 20.0, f.Fk = 10.0;
+  f.kinetic_table = {{0.0, 10.0}, {2.0, 30.0}};
+  m.frictions = {f};
+  m.t_end = 0.6, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const auto stick = of_kind(r, "stick");
+  ASSERT_EQ(stick.size(), 1u);
+  EXPECT_NEAR(stick[0].t, std::log(2.0) / 2, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    EXPECT_NEAR(r.v[k][0], t < std::log(2.0) / 2 ? 2 * std::exp(-2 * t) - 1 : 0.0, 1e-10) << t;
+  }
+}
+
+
+// Claim: a DC (linear) motor R = 2 Ω, L = 0.1 H, k = 1 N/A on a free mass m = 1 kg at u = 12 V from
+// rest: x = [i; v], x' = A x + b with A = [[−R/L, −k/L], [k/m, 0]], b = [u/L; 0], so
+// x = x∞ + e^(At)(x0 − x∞), x∞ = [0; u/k]; A has the distinct real eigenvalues λ = −10 ± √90 and
+// e^(At) = (e^(λ1 t)(A − λ2 I) − e^(λ2 t)(A − λ1 I))/(λ1 − λ2) (Sylvester).
+TEST(ReferenceSimulator, DcMotorOnAFreeMassFollowsItsLinearSystem) {
+  RefModel m;
+  m.bodies = {{"slider", 1.0, 0.0, 0.0}};
+  DcMotor M;
+  M.name = "motor", M.body = 0, M.R = 2.0, M.L = 0.1, M.k = 1.0, M.u.value = 12.0;
+  m.motors = {M};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double A[2][2] = {{-20.0, -10.0}, {1.0, 0.0}}, l1 = -10 + std::sqrt(90.0), l2 = -10 - std::sqrt(90.0);
+  const double d0[2] = {0.0, -12.0};  // x0 − x∞
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k], e1 = std::exp(l1 * t), e2 = std::exp(l2 * t);
+    // v = 12 + [e^(At) d0]_1
+    const double row1 = (e1 * (A[1][0] * d0[0] + (A[1][1] - l2) * d0[1]) - e2 * (A[1][0] * d0[0] + (A[1][1] - l1) * d0[1])) / (l1 - l2);
+    EXPECT_NEAR(r.v[k][0], 12.0 + row1, 1e-9) << t;
+  }
 }
 
 }  // namespace
