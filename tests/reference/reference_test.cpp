@@ -265,7 +265,7 @@ TEST(ReferenceCampaign, ComparisonDetectsADifferentModel) {
 }  // namespace machdyn::reference
 
 namespace machdyn::reference {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 // Claim: the signal kinds read as docs/model-files.md ("Signals") states them. A free mass m = 2 kg
 // under three loads — a pulse (high 10 N, low 2 N, period 0.2 s, width 0.05 s, from 0.1 s, 3 times),
