@@ -350,6 +350,7 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   r_.resize(ns);
   lam_.resize(ns);
   stuck_machine_ = false;
+  timed_share_ = false;
   one_sided_.clear();
   masked_.clear();
   if (ns >= 2)
@@ -371,15 +372,27 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
     if (auto it = projector_cache_.find(key); it != projector_cache_.end()) {
       P_ = it->second.P;
       Pproj_ = it->second.Pproj;
+      timed_share_ = it->second.timed;
       return;
     }
   }
-  form_stuck_solution(inv_mass_.data());
+  form_stuck_solution(inv_mass_.data(), 0.0);
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   cod.setThreshold(1e-12);
   cod.compute(stuck_matrix(inv_mass_.data()));
   Pproj_ = cod.pseudoInverse();
-  if (cacheable) projector_cache_[key] = {P_, Pproj_};
+  // A redundant set (two contacts lock one motion) shares its load by the limits at the instant: with
+  // a brake or clutch among them (r(t) F_s0) the share changes with t. Shared by F_s0, two clutches
+  // in parallel ramped at different rates broke away at F_s1 + F_k2 instead of F_s1 + F_s2 (issue 27:
+  // the one with the smaller r took more than its limit, was released and slid at u ≡ 0 beside the other).
+  if (cod.rank() < ns)
+    for (int k : stuck_) timed_share_ = timed_share_ || contacts_[static_cast<size_t>(k)].applied;
+  if (cacheable) projector_cache_[key] = {P_, Pproj_, timed_share_};
+}
+
+double DriveSystem::share_weight(int k, double t) const {
+  const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+  return c.applied && !c.joint && c.lock == 0 ? std::sqrt(c.holding_limit(t)) : c.share_weight();
 }
 
 Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {
@@ -398,7 +411,7 @@ Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {
   return A;
 }
 
-void DriveSystem::form_stuck_solution(const double* im) {
+void DriveSystem::form_stuck_solution(const double* im, double t) {
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   const Eigen::MatrixXd A = stuck_matrix(im);
   if (ns == 1 && stuck_machine_) {  // one stuck contact: λ = r / (1/I_a + 1/I_b), no decomposition
@@ -408,15 +421,15 @@ void DriveSystem::form_stuck_solution(const double* im) {
   }
   Eigen::VectorXd w(ns);
   for (Eigen::Index i = 0; i < ns; ++i)
-    w(i) = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].share_weight();
-  // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s0).
+    w(i) = share_weight(stuck_[static_cast<size_t>(i)], t);
+  // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s(t)).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   cod.setThreshold(1e-12);
   cod.compute(A * w.asDiagonal());
   P_ = w.asDiagonal() * cod.pseudoInverse();
 }
 
-void DriveSystem::share_one_sided(const double* im) {
+void DriveSystem::share_one_sided(const double* im, double t) {
   // The one-sided contacts whose least-norm share pulls against their lock.
   uint64_t mask = 0;
   for (Eigen::Index j : one_sided_) {
@@ -425,14 +438,14 @@ void DriveSystem::share_one_sided(const double* im) {
   }
   if (mask == 0) return;
   auto it = masked_.find(mask);
-  if (it == masked_.end() || stuck_machine_) {
+  if (it == masked_.end() || stuck_machine_ || timed_share_) {
     // λ = D z, min ‖z‖ subject to A D z = r, with weight 0 for the masked contacts; used only if the
     // others carry every load alone (rank A D = rank A), else (empty) the plain share stands.
     const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
     const Eigen::MatrixXd A = stuck_matrix(im);
     Eigen::VectorXd w(ns);
     for (Eigen::Index i = 0; i < ns; ++i)
-      w(i) = (mask >> i & 1) != 0 ? 0.0 : contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].share_weight();
+      w(i) = (mask >> i & 1) != 0 ? 0.0 : share_weight(stuck_[static_cast<size_t>(i)], t);
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> full, cod;
     full.setThreshold(1e-12);
     cod.setThreshold(1e-12);
@@ -574,9 +587,10 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
   for (size_t j = 0; j < stuck_.size(); ++j)
     r_(static_cast<Eigen::Index>(j)) = contacts_[static_cast<size_t>(stuck_[j])].sliding_acceleration(t, acc);
   if constexpr (kMach)
-    if (stuck_machine_) form_stuck_solution(im);
+    if (stuck_machine_) form_stuck_solution(im, t);
+  if (timed_share_) [[unlikely]] form_stuck_solution(im, t);
   mat_vec(P_, r_, lam_);
-  if (!one_sided_.empty()) share_one_sided(im);
+  if (!one_sided_.empty()) share_one_sided(im, t);
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));

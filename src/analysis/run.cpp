@@ -74,6 +74,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const auto& s = m_.simulation;
     out_.hybrid.active = sys_.energy_books();
     out_.hybrid.breakpoints = m_.breakpoints(s.t_end);
+    next_breakpoint(0.0);
     const Method method = choose_method(m_, &out_.method_reason);
     if (method == Method::dopri5) peaks_.set_dense_degree(4);  // its dense output (solve/stepper.hpp)
     sys_.initial_state(y_.data());
@@ -141,6 +142,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the event system the driver integrates: the drive system in its current modes ----
   [[nodiscard]] int size() const override { return sys_.size(); }
   void rhs(double t, const double* y, double* dydt) override {
+    // A step never crosses a breakpoint; one that ends on it sees the signals' left limits there (a
+    // load, a brake's application or a surface that jumps at t_b has its old value on the whole
+    // step): the stages of the step at its end (dopri5's c = 1, BDF's implicit t_n) used to take the
+    // value after the jump, an error of O(h ΔF) in the state the next piece starts from — a brake
+    // applied on a body at rest set it sliding at 1e-11 m/s, BDF's stops and rests came 1e-6 s off.
+    if (t == bp_next_) [[unlikely]] t = std::nextafter(t, -std::numeric_limits<double>::infinity());
     last_t_ = t, last_y_ = y;  // the integrator's own buffer: where a failure was met (state_name)
     sys_.rhs(t, y, dydt);
   }
@@ -172,6 +179,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   [[nodiscard]] double sampling_step(double, double t_end) const override { return machdyn::sampling_step(m_, t_end); }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
+    next_breakpoint(t);
     // The driver hands back every event function a decision left negative and asks again at the
     // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
     // there mean no consistent mode exists — an error naming the element, never a disarmed event.
@@ -239,6 +247,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
+    if (st.t() >= bp_next_) [[unlikely]] next_breakpoint(st.t());
     if (audit_) [[unlikely]] audit_->settle();
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
@@ -823,6 +832,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     p.finished = finished;
     opt_.progress(p);
   }
+
+  /// bp_next_ = the first breakpoint after t (rhs() takes the signals' left limits there).
+  void next_breakpoint(double t) {
+    const std::vector<double>& b = out_.hybrid.breakpoints;
+    const auto it = std::upper_bound(b.begin(), b.end(), t);
+    bp_next_ = it == b.end() ? std::numeric_limits<double>::infinity() : *it;
+  }
+  double bp_next_ = std::numeric_limits<double>::infinity();
 
   // ---- re-decisions at one instant ----
   /// The modes of every element and the state, before a re-decision.
