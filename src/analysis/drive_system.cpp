@@ -392,7 +392,9 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
 
 double DriveSystem::share_weight(int k, double t) const {
   const ContactLaw& c = contacts_[static_cast<size_t>(k)];
-  return c.applied && !c.joint && c.lock == 0 ? std::sqrt(c.holding_limit(t)) : c.share_weight();
+  // Only a redundant set's share depends on the weights (a full-rank set has one λ): its limits at t
+  // when one of them varies (timed_share_), else the constant F_s0 of the mode's cached pseudo-inverse.
+  return timed_share_ && c.applied && !c.joint && c.lock == 0 ? std::sqrt(c.holding_limit(t)) : c.share_weight();
 }
 
 Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {

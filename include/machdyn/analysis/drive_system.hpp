@@ -299,7 +299,8 @@ class DriveSystem final : public OdeSystem {
   /// redundant set with a limit varying in t: at every evaluation).
   void form_stuck_solution(const double* im, double t);
   /// The weight of stuck contact k in the share of a locked load at t: √F_s(t), the static limit at t
-  /// (a brake's or clutch's r(t) F_s0 with the rule's allowance, never 0), so a load locked by several
+  /// (a brake's or clutch's r(t) F_s0 with the rule's allowance, never 0; only in a redundant set with
+  /// such a limit, timed_share_: elsewhere √F_s0, the weights do not change λ), so a load locked by several
   /// contacts is shared in proportion to their limits at that instant and stays locked exactly while it
   /// is within Σ F_s,k(t); a freewheel or end stop 1, a gear joint 1e3.
   [[nodiscard]] double share_weight(int k, double t) const;

@@ -1,0 +1,126 @@
+// Engine defects the random campaign found (issue 27, tests/reference): each claim is the class of a
+// shrunk campaign model, checked against a closed form derived in its comment, on both integrators.
+#include "machdyn/analysis/simulate.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/compile.hpp"
+#include "support/events.hpp"
+#include "support/support.hpp"
+
+namespace machdyn {
+namespace {
+
+using test::at;
+using test::events_of;
+using test::series;
+
+Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
+
+std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
+  return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
+}
+class CampaignDefects : public ::testing::TestWithParam<IntegratorChoice> {};
+INSTANTIATE_TEST_SUITE_P(Integrators, CampaignDefects,
+                         ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf), integrator_name);
+
+SimulationResult run(Model m, IntegratorChoice ic) {
+  m.simulation.integrator = ic;
+  return simulate(m);
+}
+
+// Claim: a free body of 1 kg at rest under a force step 0 → 1 N at t = 0.5 s stays exactly at rest up
+// to the step and then moves as x = ½ (t − 0.5)², v = t − 0.5. A step of the integrator that ends on
+// the breakpoint sees the load's left limit there (0 N): the value after the jump on its last stage
+// (dopri5's c = 1, BDF's implicit end point) used to start the body moving before the step, an error
+// of O(h ΔF/m) in the state the next piece starts from (campaign: a brake applied at a step on a body
+// at rest set it sliding at 1e-11 m/s and logged `applied` + `stick` 2e-12 s apart).
+TEST_P(CampaignDefects, AStepLoadActsFromItsBreakpointOnly) {
+  const Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg}}
+loads: {P: {type: step, body: m, value: 1 N, before: 0 N, time: 0.5 s}}
+contacts: {c: {between: [m, ground], static: 2 N, kinetic: 0 N}}
+simulation: {t_end: 1 s, dt_out: 0.25 s, rtol: 1e-10, atol: 1e-12}
+)");
+  // With the contact (F_s = 2 N > 1 N) the body stays stuck: the step must not move it at all.
+  const SimulationResult r = run(m, GetParam());
+  EXPECT_EQ(at(r, "m.velocity_m_s", 0.5), 0.0);
+  EXPECT_EQ(at(r, "m.position_m", 1.0), 0.0);
+  EXPECT_EQ(events_of(r, "c").size(), 0u);  // no event after the initial mode
+  // Without it: x(1) = ½ 0.5² = 0.125 m, v(1) = 0.5 m/s; exactly at rest at the step.
+  const SimulationResult f = run(model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg}}
+loads: {P: {type: step, body: m, value: 1 N, before: 0 N, time: 0.5 s}}
+simulation: {t_end: 1 s, dt_out: 0.25 s, rtol: 1e-10, atol: 1e-12}
+)"),
+                                 GetParam());
+  EXPECT_EQ(at(f, "m.velocity_m_s", 0.5), 0.0);
+  EXPECT_EQ(at(f, "m.position_m", 0.5), 0.0);
+  EXPECT_NEAR(at(f, "m.position_m", 1.0), 0.125, 1e-9);
+  EXPECT_NEAR(at(f, "m.velocity_m_s", 1.0), 0.5, 1e-9);
+}
+
+// Claim: a brake applied (a step at 0.3 s) on a body at rest holds it silently — no event: the brake
+// rests as its body did (docs/hybrid.md: applied at u = 0 it is decided with the others, stuck without
+// an event, or an `applied` event into its slide). A load step of 15 N at 0.6 s beyond its holding
+// force 10 N starts the slide there: one `slip` at 0.6 s, then m v' = 15 − 8 (braking 8 N), so
+// v(1) = 7/2 · 0.4 = 1.4 m/s.
+TEST_P(CampaignDefects, ABrakeAppliedOnABodyAtRestHoldsItWithoutAnEvent) {
+  const Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 2 kg}}
+loads: {P: {type: step, body: m, value: 15 N, before: 0 N, time: 0.6 s}}
+brakes: {B: {body: m, holding: 10 N, braking: 8 N, time: 0.3 s}}
+simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  const auto ev = events_of(r, "B");
+  ASSERT_EQ(ev.size(), 1u);  // after the initial `released`: the slip at the load step only
+  EXPECT_EQ(ev[0].kind, "slip");
+  EXPECT_EQ(ev[0].from, "stuck");
+  EXPECT_DOUBLE_EQ(ev[0].t, 0.6);
+  EXPECT_EQ(at(r, "m.velocity_m_s", 0.6), 0.0);
+  EXPECT_NEAR(at(r, "m.velocity_m_s", 1.0), 1.4, 1e-9);
+}
+
+// Claim: two brakes on one body, ramped at different rates (B1: 10 N over 1 s, F_s1 = 10 t; B2: 10 N
+// over 0.1 s, F_s2 = min(100 t, 10)), hold it against a ramp load F = 24 t while F ≤ F_s1 + F_s2: the
+// load locked by both is shared by their limits at the instant (docs/hybrid.md), so both break away
+// together at 24 t* = 10 t* + 10, t* = 5/7 s. Then m v' = 24 t − 5 t − 10 (kinetic 5 t and 10 N):
+// v(1) = 9.5 (1 − t*²) − 10 (1 − t*). (Shared by the full limits F_s0 — 12 t each — B1 was overloaded
+// from the start, released, and slid at u ≡ 0 beside B2 with its kinetic 5 t: the pair broke away at
+// F_s2 + F_k1, 19 t = 10, t = 0.526 s. Campaign: two clutches in parallel, `clutch` seed 1 model 1.)
+// Never stuck beyond its limit at the instant.
+TEST_P(CampaignDefects, ParallelBrakesRampedAtDifferentRatesShareByTheirLimitsAtTheInstant) {
+  const Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg}}
+loads: {P: {type: ramp, body: m, value: 48 N, before: 0 N, start: 0 s, end: 2 s}}
+brakes:
+  B1: {body: m, holding: 10 N, braking: 5 N, time: 0 s, ramp: 1 s}
+  B2: {body: m, holding: 10 N, braking: 10 N, time: 0 s, ramp: 0.1 s}
+simulation: {t_end: 1 s, dt_out: 0.001 s, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  const double ts = 5.0 / 7.0;
+  for (const char* b : {"B1", "B2"}) {
+    const auto slips = events_of(r, b, "slip");
+    ASSERT_EQ(slips.size(), 1u) << b;
+    EXPECT_NEAR(slips[0].t, ts, 1e-9) << b;
+  }
+  EXPECT_NEAR(at(r, "m.velocity_m_s", 1.0), 9.5 * (1 - ts * ts) - 10 * (1 - ts), 1e-8);
+  const auto& t = series(r, "t_s");
+  for (const char* b : {"B1", "B2"}) {
+    const auto& F = series(r, std::string(b) + ".force_N");
+    const auto& md = series(r, std::string(b) + ".mode");
+    const double T = std::string(b) == "B1" ? 1.0 : 0.1;
+    for (size_t i = 0; i < t.size(); ++i)
+      if (md[i] == 0.0) {
+        EXPECT_LE(std::abs(F[i]), 10.0 * std::min(1.0, t[i] / T) * (1 + 1e-9) + 1e-12) << b << " " << t[i];
+      }
+  }
+}
+
+}  // namespace
+}  // namespace machdyn
