@@ -1269,6 +1269,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void contact_time_event(double t) {
+    // The bodies tied by the stuck contacts on one velocity per cluster first (their u exactly 0, as
+    // every decision leaves them): BDF's Newton corrections mix the states, so a stuck pair's speeds
+    // drift apart by rounding over a piece, and a clutch applied beside a stuck one read u = 1e-17 and
+    // was set sliding at u ≡ 0 instead of being decided at rest (`contact.locked_slide`).
+    if (nc_ > 0) sys_.project_velocities(t, y_.data());
     // A jump of a speed reference may carry the command across the torque limit.
     for (int d = 0; d < nd_; ++d)
       if (sys_.drive(d).has_events()) set_drive_mode(d, t, sys_.natural_drive_mode(d, t, y_.data()), false);
