@@ -122,5 +122,32 @@ simulation: {t_end: 1 s, dt_out: 0.001 s, rtol: 1e-10, atol: 1e-12}
   }
 }
 
+// Claim: a clutch applied beside a stuck one on the same pair of moving bodies is decided at rest:
+// it sticks silently (no event), the pair moving as one body. a (1 kg, on a spring of 300 N/m to the
+// ground) and b (2 kg) start together at 1 m/s with K1 (1000 N) holding them: x = (v0/ω) sin ωt,
+// ω = √(300/3) = 10 rad/s, and K1 carries b's inertia force 2 ẍ, |λ| ≤ 20 N. K0, ramped from 0.24 s,
+// finds u = 0 and holds with it. (On BDF the Newton corrections mixed the states: the stuck pair's
+// speeds drifted apart by 1e-17 over a piece, K0 read u ≠ 0 at its application and was set sliding at
+// u ≡ 0 beside K1 — the audit's `contact.locked_slide`; campaign `clutch` seed 1 model 44.)
+TEST_P(CampaignDefects, AClutchAppliedBesideAStuckOneOnAMovingPairSticksSilently) {
+  const Model m = model_of(R"(
+bodies:
+  a: {type: translational, mass: 1 kg, velocity: 1 m/s}
+  b: {type: translational, mass: 2 kg, velocity: 1 m/s}
+links: {k: {type: spring, between: [ground, a], stiffness: 300 N/m}}
+contacts: {K1: {between: [a, b], static: 1000 N, kinetic: 800 N}}
+clutches:
+  K0: {between: [b, a], normal_force: {type: ramp, value: 100 N, before: 0 N, start: 0.24 s, end: 0.4 s}, mu_s: 0.5, mu_k: 0.3}
+simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  EXPECT_EQ(events_of(r, "K0").size(), 0u);
+  EXPECT_EQ(events_of(r, "K1").size(), 0u);
+  for (const double t : {0.3, 0.6, 1.0}) {
+    EXPECT_NEAR(at(r, "a.position_m", t), 0.1 * std::sin(10 * t), 1e-8) << t;
+    EXPECT_NEAR(at(r, "b.velocity_m_s", t), std::cos(10 * t), 1e-7) << t;
+  }
+}
+
 }  // namespace
 }  // namespace machdyn
