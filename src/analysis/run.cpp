@@ -184,13 +184,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
     // there mean no consistent mode exists — an error naming the element, never a disarmed event.
     if (t == decided_at_ && !fired.empty()) {
-      // Contacts, end stops, flanks and ropes are decided again. Speed drives, lossy gears and
-      // stepwise gears keep their decision: their functions wait until they are ≥ 0 at a step end
-      // (a speed drive leaving its limit with the command exactly at M_max; a lossy gear with
-      // friction on its bodies) — their decisions are not yet formed from their events' computation.
-      if (std::all_of(fired.begin(), fired.end(), [&](int f) {
-            return f >= sys_.event_slots() || sys_.slot_is_drive(f) || sys_.slot_is_gear(f);
-          }))
+      // Contacts, end stops, flanks, ropes and elements with states (a speed drive: its switch puts
+      // its state on the surface, Element::on_switch) are decided again. Lossy gears and stepwise
+      // gears keep their decision: their functions wait until they are ≥ 0 at a step end (a lossy
+      // gear with friction on its bodies) — their decisions are not yet formed from their events'
+      // computation.
+      if (std::all_of(fired.begin(), fired.end(), [&](int f) { return f >= sys_.event_slots() || sys_.slot_is_gear(f); }))
         return false;
       if (++redecisions_ > kMaxRedecisions)
         throw SolverError(slot_name(fired.front()), t,
@@ -944,10 +943,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// Whether contact k belongs to a gear lock (decided with its gear, not by decide_contacts).
   bool gear_owned(int k) const { return sys_.gear_locks().owner[static_cast<size_t>(k)] >= 0; }
   /// Sets the mode of element d (with states of its own) and records the switch in its words.
-  void set_drive_mode(int d, double t, int now, bool initial) {
+  /// `located`: the switch of one of its own event functions (else its natural mode): its states are
+  /// put on the switching surface, on the new mode's side (Element::on_switch).
+  void set_drive_mode(int d, double t, int now, bool initial, bool located = false) {
     const int old = sys_.drive_mode(d);
     if (!initial && now == old) return;
     sys_.set_drive_mode(d, now);
+    if (!initial) sys_.drive(d).on_switch(t, sys_.drive_speed(d, y_.data()), y_.data() + sys_.drive_offset(d), old, now, located);
     const Element& e = sys_.drive(d);
     record(t, initial ? "initial" : e.switch_kind(now), nl_ + nc_ + d, initial ? "" : e.mode_name(old),
            e.mode_name(now));
@@ -1190,7 +1192,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (sys_.slot_is_gear(slot)) continue;
       if (sys_.slot_is_drive(slot)) {  // an element's own event (a speed drive at its torque limit)
         const int now = sys_.drive(e).mode_after(sys_.drive_mode(e), slot % 2);
-        set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false);
+        set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false, true);
       } else if (sys_.slot_is_link(slot)) {
         const GapMode old = sys_.gap_mode(e);
         const GapMode now = LinkLaw::mode_after(old, slot % 2);
