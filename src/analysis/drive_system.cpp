@@ -770,6 +770,18 @@ void DriveSystem::enforce_stuck_weighted(double t, double* acc, const double* im
 }
 
 const DriveSystem::AffineMode& DriveSystem::compile_affine() {
+  // A redundant stuck set with a bounded contact shares its load by the bounded split (bound_share),
+  // piecewise linear in y: it has no affine map, and the run takes the general path from here on.
+  if (stuck_.size() >= 2 && std::any_of(stuck_.begin(), stuck_.end(), [&](int k) { return !contacts_[static_cast<size_t>(k)].joint; })) {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-12);
+    cod.compute(stuck_matrix(inv_mass_.data()));
+    if (cod.rank() < static_cast<Eigen::Index>(stuck_.size())) {
+      affine_eligible_ = false;
+      static const AffineMode none;
+      return none;
+    }
+  }
   std::string key;
   for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
   key += '/';
@@ -834,6 +846,11 @@ void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
   // The mode's map may have been compiled already by contact_forces (a decision's λ, the event
   // functions): its small kernel is taken here too, not only where this call compiled it.
   if (!affine_) use_affine();
+  if (!affine_eligible_) {  // the mode has no affine map (compile_affine)
+    mode_changed();
+    rhs_other(t, y, dydt);
+    return;
+  }
   if (affine_->dense.kernel) {  // from now on inline (rhs)
     fast_ = &affine_->dense;
     rhs(t, y, dydt);
@@ -1028,6 +1045,11 @@ void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double
 void DriveSystem::contact_forces_other(double t, const double* y, double* fc) {
   if (affine_eligible_ && !dense_) {  // the mode's affine rows (compile_affine)
     if (!affine_) use_affine();
+    if (!affine_eligible_) {  // the mode has no affine map (compile_affine)
+      mode_changed();
+      evaluate(t, y, f_.data(), fc);
+      return;
+    }
     const AffineMode& a = *affine_;
     if (a.force_dense.kernel) {
       a.force_dense.apply(y, fc);

@@ -149,5 +149,98 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
   }
 }
 
+// The bounded split of a redundant stuck set (docs/hybrid.md "Redundant locks"): the weighted
+// least-norm share, and where it leaves a contact beyond its limit the least-norm share within every
+// contact's bounds; a contact slides only when no share within the bounds exists.
+void expect_at_rest_and_stuck(const SimulationResult& r, std::initializer_list<const char*> bodies,
+                              std::initializer_list<const char*> contacts) {
+  for (const char* c : contacts) {
+    EXPECT_EQ(events_of(r, c).size(), 0u) << c;
+    for (const double md : series(r, std::string(c) + ".mode")) ASSERT_EQ(md, 0.0) << c;
+  }
+  for (const char* b : bodies)
+    for (const double v : series(r, std::string(b) + ".velocity_m_s")) ASSERT_EQ(v, 0.0) << b;
+}
+
+// Claim: a brake (holding 10 N) beside a stopped backstop on a body of 1 kg holds it at rest under a
+// load P = −30 min(t, 1) N against the backstop: B and S share λ_B + λ_S = P by the least Σ λ²/w²
+// (w² = F_s = 10 for B, 1 for S), λ_B = 10 P/11, while |λ_B| ≤ 10 (|P| ≤ 11 N); beyond, the bounded
+// split holds B at its limit and the backstop, unbounded in its locking direction, carries the rest:
+// λ_B = −10, λ_S = P + 10. (The weighted share gave B 10/11 of the load; from P = −11 N it was beyond
+// its limit, B was released and slid at u ≡ 0 beside the backstop that held the body.)
+TEST_P(CampaignDefects, ABrakeBesideAStoppedBackstopHoldsUpToItsLimitAndTheLockCarriesTheRest) {
+  const Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg}}
+loads: {P: {type: ramp, body: m, value: -30 N, before: 0 N, start: 0 s, end: 1 s}}
+brakes: {B: {body: m, holding: 10 N}}
+freewheels: {S: {between: [ground, m]}}
+simulation: {t_end: 2 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  expect_at_rest_and_stuck(r, {"m"}, {"B", "S"});
+  const auto& t = series(r, "t_s");
+  const auto &FB = series(r, "B.force_N"), &FS = series(r, "S.force_N");
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double P = -30.0 * std::min(t[i], 1.0), lb = std::max(10.0 * P / 11.0, -10.0);
+    EXPECT_NEAR(FB[i], lb, 1e-9) << t[i];
+    EXPECT_NEAR(FS[i], P - lb, 1e-9) << t[i];
+  }
+}
+
+// Claim: a loop of stuck contacts with one weak brake holds: body b (2 kg) is braked to the ground by
+// B2 (1 N) and held through K (100 N, b against a) and B1 (100 N, a to the ground), under
+// P = 80 min(t, 1) N on b. The load goes to the ground by B2 (x) or by K and B1 in series (P − x); the
+// least x²/1 + 2 (P − x)²/100 gives x = P/51 while x ≤ 1 N (P ≤ 51 N); beyond, B2 stays at its limit
+// 1 N and K, B1 carry P − 1 (≤ 79 N, within their 100 N). (The weighted share overloaded B2 from
+// P = 51 N, t = 0.6375 s: it slid at u ≡ 0, the audit's `contact.locked_slide`.)
+TEST_P(CampaignDefects, ALoopOfStuckContactsWithOneWeakBrakeHoldsItAtItsLimit) {
+  const Model m = model_of(R"(
+bodies: {a: {type: translational, mass: 1 kg}, b: {type: translational, mass: 2 kg}}
+loads: {P: {type: ramp, body: b, value: 80 N, before: 0 N, start: 0 s, end: 1 s}}
+brakes:
+  B1: {body: a, holding: 100 N}
+  B2: {body: b, holding: 1 N}
+  K: {body: b, housing: a, holding: 100 N}
+simulation: {t_end: 2 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  expect_at_rest_and_stuck(r, {"a", "b"}, {"B1", "B2", "K"});
+  const auto& t = series(r, "t_s");
+  const auto &F1 = series(r, "B1.force_N"), &F2 = series(r, "B2.force_N"), &FK = series(r, "K.force_N");
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double P = 80.0 * std::min(t[i], 1.0), x = std::min(P / 51.0, 1.0);
+    EXPECT_NEAR(F2[i], x, 1e-9) << t[i];
+    EXPECT_NEAR(F1[i], P - x, 1e-9) << t[i];
+    EXPECT_NEAR(FK[i], P - x, 1e-9) << t[i];
+  }
+}
+
+// Claim: as above with constant levels on a spring (the affine path of models without time-varying
+// terms): m (1 kg) held by a contact (10 N) and a backstop, n (1 kg) on a spring of 100 N/m from m
+// under −30 N from rest. m at rest: x_n = −0.3 (1 − cos 10 t), the spring pulls m with
+// −c(t), c = 30 (1 − cos 10 t) N up to 60 N; λ_B = −min(10 c/11, 10), λ_S = −c − λ_B. (The affine map
+// of the mode was compiled with the one-sided rule's split at its probes: B carried all of c while
+// S was unloaded, then slid at u ≡ 0 from c = 10 N.)
+TEST_P(CampaignDefects, AContactBesideABackstopOnTheAffinePathHoldsUpToItsLimit) {
+  const Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg}, n: {type: translational, mass: 1 kg}}
+links: {c: {type: spring, between: [m, n], stiffness: 100 N/m}}
+loads: {P: {type: constant, body: n, value: -30 N}}
+contacts: {B: {between: [m, ground], static: 10 N, kinetic: 10 N}}
+freewheels: {S: {between: [ground, m]}}
+simulation: {t_end: 2 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+)");
+  const SimulationResult r = run(m, GetParam());
+  expect_at_rest_and_stuck(r, {"m"}, {"B", "S"});
+  const auto& t = series(r, "t_s");
+  const auto &xn = series(r, "n.position_m"), &FB = series(r, "B.force_N"), &FS = series(r, "S.force_N");
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double c = 30.0 * (1.0 - std::cos(10.0 * t[i])), lb = -std::min(10.0 * c / 11.0, 10.0);
+    EXPECT_NEAR(xn[i], -0.3 * (1.0 - std::cos(10.0 * t[i])), 1e-8) << t[i];
+    EXPECT_NEAR(FB[i], lb, 1e-6) << t[i];
+    EXPECT_NEAR(FS[i], -c - lb, 1e-6) << t[i];
+  }
+}
+
 }  // namespace
 }  // namespace machdyn
