@@ -77,7 +77,9 @@ std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eig
       if (lam(i) < lo(i) - slack || lam(i) > hi(i) + slack) return false;
     return true;
   };
-  if (within(lam0)) return lam0;
+  bool inside = true;  // exactly: a share in the rounding band beyond a bound is moved onto it
+  for (Eigen::Index i = 0; i < n; ++i) inside = inside && lam0(i) >= lo(i) && lam0(i) <= hi(i);
+  if (inside) return lam0;
   const Eigen::Index k = n - rank;
   if (k == 0) return std::nullopt;  // one split only, and it is beyond a bound
   const Eigen::MatrixXd N = svd.matrixV().rightCols(k);

@@ -45,7 +45,8 @@ void stuck_bounds(const ContactLaw& c, double t, double* lo, double* hi) {
 }
 
 /// The share rule of a redundant stuck set (docs/hybrid.md "Redundant locks"): when the weighted
-/// least-norm share lam (with the one-sided rule) leaves a contact beyond what it holds, the bounded
+/// least-norm share lam (with the one-sided rule) leaves a contact beyond what it holds (strictly,
+/// without the rounding allowance: the decision judges a contact whose event fired so), the bounded
 /// split (analysis/bounded_split.hpp) with the same weights replaces it if a split within every
 /// contact's bounds exists; else lam stays and the mode decision releases the overloaded one. A
 /// share within the bounds is not touched.
@@ -54,7 +55,7 @@ void bound_share(const std::vector<int>& stuck, const std::vector<ContactLaw>& c
                  const Eigen::VectorXd& r, Matrix matrix, Weight weight) {
   const auto ns = static_cast<Eigen::Index>(stuck.size());
   bool holds = true;
-  for (Eigen::Index j = 0; j < ns && holds; ++j) holds = contacts[static_cast<size_t>(stuck[static_cast<size_t>(j)])].holds(lam(j), t, false);
+  for (Eigen::Index j = 0; j < ns && holds; ++j) holds = contacts[static_cast<size_t>(stuck[static_cast<size_t>(j)])].holds(lam(j), t, true);
   if (holds) return;
   Eigen::VectorXd w(ns), lo(ns), hi(ns);
   for (Eigen::Index j = 0; j < ns; ++j) {
