@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "analysis/affine_kernels.hpp"
-#include "machdyn/analysis/bounded_split.hpp"
+#include "analysis/bounded_share.hpp"
 #include "common/compiler.hpp"
 #include "machdyn/model/machine.hpp"
 
@@ -33,38 +33,6 @@ void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd
   }
 }
 
-/// The bounds of stuck contact c's load at t, as its stick rule (elements/contact.hpp holds(),
-/// strict) states them: a friction contact or brake ±F_s(t); a freewheel or end stop lock·λ ≥ −F_d,
-/// unbounded in its locking direction; a joint unbounded.
-void stuck_bounds(const ContactLaw& c, double t, double* lo, double* hi) {
-  *lo = -HUGE_VAL, *hi = HUGE_VAL;
-  if (c.joint) return;
-  if (c.lock > 0) *lo = -c.free_limit();
-  else if (c.lock < 0) *hi = c.free_limit();
-  else *hi = c.static_limit(t), *lo = -*hi;
-}
-
-/// The share rule of a redundant stuck set (docs/hybrid.md "Redundant locks"): when the weighted
-/// least-norm share lam (with the one-sided rule) leaves a contact beyond what it holds (strictly,
-/// without the rounding allowance: the decision judges a contact whose event fired so), the bounded
-/// split (analysis/bounded_split.hpp) with the same weights replaces it if a split within every
-/// contact's bounds exists; else lam stays and the mode decision releases the overloaded one. A
-/// share within the bounds is not touched.
-template <class Matrix, class Weight>
-void bound_share(const std::vector<int>& stuck, const std::vector<ContactLaw>& contacts, double t, Eigen::VectorXd& lam,
-                 const Eigen::VectorXd& r, Matrix matrix, Weight weight) {
-  const auto ns = static_cast<Eigen::Index>(stuck.size());
-  bool holds = true;
-  for (Eigen::Index j = 0; j < ns && holds; ++j) holds = contacts[static_cast<size_t>(stuck[static_cast<size_t>(j)])].holds(lam(j), t, true);
-  if (holds) return;
-  Eigen::VectorXd w(ns), lo(ns), hi(ns);
-  for (Eigen::Index j = 0; j < ns; ++j) {
-    const int k = stuck[static_cast<size_t>(j)];
-    w(j) = weight(k);
-    stuck_bounds(contacts[static_cast<size_t>(k)], t, &lo(j), &hi(j));
-  }
-  if (const auto split = bounded_split(matrix(), r, w, lo, hi)) lam = *split;
-}
 }  // namespace
 
 namespace {
@@ -627,7 +595,7 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
   if (timed_share_) [[unlikely]] form_stuck_solution(im, t);
   mat_vec(P_, r_, lam_);
   if (!one_sided_.empty()) share_one_sided(im, t);
-  if (stuck_.size() >= 2) bound_share(stuck_, contacts_, t, lam_, r_, [&] { return stuck_matrix(im); },
+  if (stuck_.size() >= 2) detail::bound_share(stuck_, contacts_, t, lam_, r_, [&] { return stuck_matrix(im); },
               [&](int k) { return share_weight(k, t); });
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
