@@ -45,11 +45,12 @@ void register_examples(CLI::App& app, int& exit_code) {
     exit_code = guarded([] {
       const auto dir = examples_dir();
       std::vector<std::filesystem::path> files;
-      for (const auto& e : std::filesystem::directory_iterator(dir))
+      for (const auto& e : std::filesystem::recursive_directory_iterator(dir))  // with crane/, msl/, ...
         if (e.path().extension() == ".yaml") files.push_back(e.path());
       std::sort(files.begin(), files.end());
       std::cout << fmt::format("examples in {}:\n", dir.string());
-      for (const auto& f : files) std::cout << fmt::format("  {:<28} {}\n", f.filename().string(), describe(f));
+      for (const auto& f : files)
+        std::cout << fmt::format("  {:<28} {}\n", std::filesystem::relative(f, dir).generic_string(), describe(f));
       return 0;
     });
   });
