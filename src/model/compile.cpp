@@ -271,8 +271,8 @@ const std::vector<std::string>& load_types() {
   return k;
 }
 
-/// Whether a motor's `on` is a bare number or a yes/no word (0, 1, 1.0, true, off, ...): a time
-/// needs its unit there, since `on: 0` reads as "off" as often as "closes at t = 0".
+/// Whether a motor's `on` is a bare 0 or 1 or a yes/no word (0, 1, 1.0, true, off, ...): such a time
+/// needs its unit, since `on: 0` reads as "off" as often as "closes at t = 0" (`on: 0.5` is 0.5 s).
 bool bare_switch_word(const std::string& text) {
   static const std::vector<std::string> words = {"true", "false", "yes", "no", "on", "off"};
   std::string low;
@@ -280,8 +280,8 @@ bool bare_switch_word(const std::string& text) {
   if (std::find(words.begin(), words.end(), low) != words.end()) return true;
   if (low.empty()) return false;
   char* end = nullptr;
-  std::strtod(low.c_str(), &end);
-  return end && *end == '\0';
+  const double x = std::strtod(low.c_str(), &end);
+  return end && *end == '\0' && (x == 0.0 || x == 1.0);
 }
 
 /// A switching signal of a motor: `on`/`off` times or an `on` signal of 0 and 1; `direction` +1/−1
