@@ -52,7 +52,7 @@ simulation: {t_end: 5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
   ASSERT_TRUE(d.t_applied && d.t_stopped && d.stopping_time);
   EXPECT_NEAR(*d.t_applied, 0.1005, 1e-12);
   EXPECT_NEAR(*d.stopping_time, 4.0, 1e-8);
-  ASSERT_EQ(d.travel.size(), 3u);  // the wheel, then the translational bodies
+  ASSERT_EQ(d.travel.size(), 1u);  // the wheel (no translational body is joined to it)
   EXPECT_EQ(d.travel[0].body, "wheel");
   EXPECT_EQ(d.travel[0].unit, "rad");
   EXPECT_NEAR(d.travel[0].value, 200.0, 1e-6);
@@ -65,7 +65,7 @@ simulation: {t_end: 5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13}
   const BrakeStop& s = stops[1];
   ASSERT_TRUE(s.stopping_time);
   EXPECT_NEAR(*s.stopping_time, 2.0, 1e-6);
-  ASSERT_EQ(s.travel.size(), 2u);  // the cart, then the load
+  ASSERT_EQ(s.travel.size(), 2u);  // the cart, then the load joined to it by the mount
   EXPECT_EQ(s.travel[0].body, "cart");
   EXPECT_EQ(s.travel[1].body, "load");
   EXPECT_NEAR(s.travel[0].value, 2.0, 1e-5);

@@ -302,15 +302,17 @@ simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
 // 981 N·m twists the shaft [gout, drum] by T_d/k_s; the gear (i = 20) passes Y = T_d/i = 49.05 N·m to
 // its input side as X = η_mf2 Y = 39.24 N·m, which the coupling [motor, gin] carries with the twist
 // X/k_c (q_gin = q_motor − X/k_c) and the brake holds (not the ideal gear's 49.05 N·m). The run stays
-// at rest.
+// at rest. (The chain is given unstretched: held there, the gear would start backward, the load
+// driving it; given with the coupling wound up, it would start forward and rest on that verge, X =
+// Y/η_mf1: the direction is the one it would start in from the given positions.)
 TEST_P(Equilibrium, BrakeHoldsALossyGearThatDoesNotSelfLock) {
   Model m = model_of(R"(
 gravity: 9.81 m/s^2
 bodies:
   motor: {inertia: 0.5 kg*m^2, position: 0.1 rad}
-  gin: {inertia: 0.1 kg*m^2}
-  gout: {inertia: 5 kg*m^2}
-  drum: {inertia: 50 kg*m^2}
+  gin: {inertia: 0.1 kg*m^2, position: 0.1 rad}
+  gout: {inertia: 5 kg*m^2, position: 0.005 rad}
+  drum: {inertia: 50 kg*m^2, position: 0.005 rad}
   load: {type: translational, mass: 1000 kg, vertical: up}
 links:
   coupling: {type: spring, between: [motor, gin], stiffness: 1e4 N*m/rad}
@@ -339,9 +341,9 @@ simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
 gravity: 9.81 m/s^2
 bodies:
   motor: {inertia: 0.5 kg*m^2, position: 0.1 rad}
-  gin: {inertia: 0.1 kg*m^2}
-  gout: {inertia: 5 kg*m^2}
-  drum: {inertia: 50 kg*m^2}
+  gin: {inertia: 0.1 kg*m^2, position: 0.1 rad}
+  gout: {inertia: 5 kg*m^2, position: 0.005 rad}
+  drum: {inertia: 50 kg*m^2, position: 0.005 rad}
   load: {type: translational, mass: 1000 kg, vertical: up}
 links:
   coupling: {type: spring, between: [motor, gin], stiffness: 1e4 N*m/rad}

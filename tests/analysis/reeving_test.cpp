@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 #include <string>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/equilibrium.hpp"
@@ -86,9 +87,9 @@ TEST_P(Reeving, PartAtTheDrumHoistingAndLowering) {
   for (const Case c : {Case{4, kEta, 2.0}, Case{4, kEta, -2.0}, Case{6, 0.95, 2.0}}) {
     const double i = (c.falls / 2) / 0.25, cr = 4e6, mg = kMass * kG, v = c.omega / i;
     const std::string yaml =
-        "gravity: 9.81 m/s^2\nbodies:\n  drum: {inertia: 1e12 kg*m^2, velocity: " + std::to_string(c.omega) +
-        " rad/s}\n  hook: {type: translational, mass: 12 t, vertical: up, position: " + std::to_string(-mg / cr) +
-        " m, velocity: " + std::to_string(v) + " m/s}\nlinks:\n  rope: {type: rope, between: [drum, hook], ratio: "
+        "gravity: 9.81 m/s^2\nbodies:\n  drum: {inertia: 1e12 kg*m^2, velocity: " + fmt::format("{:.17g}", c.omega) +
+        " rad/s}\n  hook: {type: translational, mass: 12 t, vertical: up, position: " + fmt::format("{:.17g}", -mg / cr) +
+        " m, velocity: " + fmt::format("{:.17g}", v) + " m/s}\nlinks:\n  rope: {type: rope, between: [drum, hook], ratio: "
         "4 rad/m, falls: " + std::to_string(c.falls) + ", rope_ends: 2, sheave_efficiency: " + std::to_string(c.eta) +
         ", stiffness: 4e6 N/m}\nsimulation: {t_end: 0.2 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-13}\n";
     Model m = model_of(yaml);
@@ -191,15 +192,14 @@ TEST(ReevingFile, BadReevingIsLocated) {
   const std::string head = "bodies:\n  drum: {inertia: 50 kg*m^2}\n  hook: {type: translational, mass: 1 t}\nlinks:\n";
   const std::string a = error_of(head + "  rope: {type: rope, between: [drum, hook], ratio: 4 rad/m, falls: 3, "
                                         "rope_ends: 2, stiffness: 1e6 N/m}\n");
-  EXPECT_NE(a.find("reeving.yaml:5:85: error: link 'rope': the 3 falls must be shared equally by the 2 rope ends"),
+  EXPECT_NE(a.find("reeving.yaml:5:82: error: link 'rope': the 3 falls must be shared equally by the 2 rope ends"),
             std::string::npos) << a;
   const std::string b = error_of(head + "  rope: {type: rope, between: [drum, hook], ratio: 4 rad/m, falls: 4, "
                                         "sheave_efficiency: 1.2, stiffness: 1e6 N/m}\n");
-  EXPECT_NE(b.find("reeving.yaml:5:94: error: link 'rope': field 'sheave_efficiency' must lie in (0, 1]"),
+  EXPECT_NE(b.find("reeving.yaml:5:90: error: link 'rope': field 'sheave_efficiency' must lie in (0, 1]"),
             std::string::npos) << b;
   const std::string c = error_of(head + "  rope: {type: rope, between: [ground, hook], falls: 2, rope_ends: 2, "
                                         "stiffness: 1e6 N/m}\n");
-  EXPECT_NE(c.find("field 'rope_ends'"), std::string::npos);
   EXPECT_NE(c.find("'rope_ends' are wound on a drum"), std::string::npos) << c;
   const std::string d = error_of(head + "  s: {type: spring, between: [drum, hook], ratio: 4 rad/m, rope_ends: 2, "
                                         "stiffness: 1e6 N/m}\n");
