@@ -25,8 +25,9 @@ std::optional<Table> brake_stops_table(const Model& m, const SimulationResult& r
                       s.thermal ? fmt::format("{} at {} s", num(s.temperature_max_degC), num(s.t_temperature_max)) : "–",
                       s.thermal ? num(s.temperature_end_degC) : "–"});
   }
-  t.note = "From the brake's application to its body at rest; the travel of the braked body and of every translational "
-           "body (the load) in that time; the energy is the brake's friction heat over the whole run.";
+  t.note = "From the first application that meets its body moving to its body at rest; the travel of the braked body and of "
+           "every translational body joined to it (the load) in that time; the energy is the brake's friction heat over the "
+           "whole run.";
   return t;
 }
 
