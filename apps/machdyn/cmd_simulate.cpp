@@ -45,6 +45,15 @@ struct SimulateArgs {
 
 /// A dynamic factor for the tables: "–" where it has no meaning (NaN: no quasi-static load, a buffer).
 std::string factor_text(double f) { return std::isfinite(f) ? fmt::format("{:.4g}", f) : std::string("–"); }
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> out;
+  for (size_t a = 0, b; a < text.size(); a = b + 1) {
+    b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    out.push_back(text.substr(a, b - a));
+  }
+  return out;
+}
 
 void print_simulation_table(const Model& m, const SimulationResult& r, std::ostream& os) {
   os << fmt::format("model: {} ({})\n", m.name, m.source);
@@ -64,6 +73,7 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
     os << fmt::format("hybrid: {} mode events, {} slip phases; energy balance residual {:.3g} J of {:.6g} J source work\n",
                       events, r.hybrid.slip_phases.size(), r.hybrid.energy.residual(), r.hybrid.energy.source_work);
   }
+  os << brake_stops_text(brake_stops(m, r));  // each brake's stop (analysis/brake_summary.hpp)
   for (const auto& x : r.machines) {
     if (x.jumps > 0)
       os << fmt::format("{}: {} velocity jumps (stepwise ratio), {:.6g} J lost in them\n", x.body, x.jumps, x.jump_loss);
@@ -138,6 +148,7 @@ int run_all_cases(const SimulateArgs& a) {
   // A failure while writing (disk full) removes what this run wrote, so no half set is left.
   std::vector<std::filesystem::path> written;
   std::set<std::string> figure_names;  // --plot: the figure files written in the cases' folders
+  std::string brake_lines;  // each case's brake stops, printed under the table
   try {
     for (size_t c = 0; c < names.size(); ++c) {
       const Model& m = models[c];
@@ -158,6 +169,8 @@ int run_all_cases(const SimulateArgs& a) {
         }
       }
       all.push_back(summary);
+      for (const auto& line : split_lines(brake_stops_text(brake_stops(m, r))))
+        brake_lines += fmt::format("case {}: {}\n", names[c], line);
       long events = 0;
       for (const auto& e : r.hybrid.events) events += e.kind != "initial";
       for (size_t l = 0; l < m.links.size(); ++l) {
@@ -181,7 +194,7 @@ int run_all_cases(const SimulateArgs& a) {
   } else {
     std::cout << fmt::format("model: {} ({}), {} cases\n", models[0].name.substr(0, models[0].name.rfind(" [")),
                              model_path, names.size())
-              << table
+              << table << brake_lines
               << fmt::format("wrote {0}/CASE/timeseries.csv, {0}/CASE/summary.json, {0}/cases.json\n", out_dir.string());
     if (!figure_names.empty())
       std::cout << fmt::format("figures: {}/CASE/{{{}}}\n", out_dir.string(), fmt::join(figure_names, ","));

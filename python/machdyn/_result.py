@@ -80,7 +80,8 @@ class Result:
     ``r.t``: output times, s. ``r[name]``: a series as a read-only numpy array (a view of the C++
     result, no copy); ``name`` is a column name (``"c1.load_N_m"``) or the same without its unit
     (``"c1.load"``). ``r.columns``: every column name. ``r.summary``: the dict of summary.json
-    (link peaks, their times, static loads, dynamic factors, solver statistics). ``r.events``: the
+    (link peaks, their times, static loads, dynamic factors, solver statistics). ``r.brakes``: each
+    brake's stop (stopping time, travel, energy, peak power, temperature). ``r.events``: the
     mode events of an event-driven run (t_s, kind, element, from, to).
     """
 
@@ -133,6 +134,14 @@ class Result:
     def events(self) -> list[dict]:
         """Mode events (gap closed/opened, stick, slip, reversal) in time order; empty for a smooth run."""
         return self._core.events
+
+    @property
+    def brakes(self) -> dict:
+        """Each brake's stop in this run (summary.json ``brakes``): ``applied_at_s``, ``stopped_at_s``,
+        ``stopping_time_s``, ``travel`` ({body: {value, unit}}: the braked body and every translational
+        body, the load), ``energy_J``, ``peak_power_W`` and, with a thermal model, ``temperature_max_degC``
+        and ``temperature_end_degC``; empty without brakes (docs/model-files.md, Brakes)."""
+        return dict(self.summary.get("brakes", {}))
 
     @property
     def warnings(self) -> list[str]:

@@ -274,3 +274,24 @@ def test_bouncing_ball_rests_at_the_accumulation_point_with_a_warning():
     assert len(rest) == 1 and abs(rest[0]["t_s"] - 3 * t1) < 1e-9
     assert len(r.warnings) == 1 and "accumulate" in r.warnings[0]
     assert r.warnings == r.summary["warnings"]
+
+
+# A flywheel I = 2 kg m^2 at 100 rad/s stopped by a brake of constant braking torque 50 N m applied at
+# 0.1005 s: by hand it stops after w0 I / M = 4 s, turning w0^2 I / (2 M) = 200 rad, the brake taking
+# 1/2 I w0^2 = 10 kJ at a peak power of M w0 = 5 kW; its adiabatic disc (1 kJ/K) ends 10 K warmer.
+def test_brake_stop_in_the_result_follows_the_hand_calculation():
+    model = {
+        "name": "brake stop",
+        "bodies": {"wheel": {"type": "rotational", "inertia": 2.0, "velocity": 100.0}},
+        "brakes": {"disc": {"body": "wheel", "holding": "60 N*m", "braking": "50 N*m", "time": "0.1005 s",
+                            "thermal": {"heat_capacity": "1 kJ/K", "ambient": "20 degC"}}},
+        "simulation": {"t_end": 5.0, "dt_out": 1e-3, "rtol": 1e-11, "atol": 1e-13},
+    }
+    r = machdyn.simulate(machdyn.from_dict(model))
+    b = r.brakes["disc"]
+    assert b == r.summary["brakes"]["disc"]
+    assert b["stopping_time_s"] == pytest.approx(4.0, rel=1e-8)
+    assert b["travel"]["wheel"]["value"] == pytest.approx(200.0, rel=1e-8)
+    assert b["energy_J"] == pytest.approx(1e4, rel=1e-8)
+    assert b["peak_power_W"] == pytest.approx(5e3, rel=1e-8)
+    assert b["temperature_end_degC"] == pytest.approx(30.0, abs=1e-6)

@@ -57,10 +57,12 @@ struct State {
   Eigen::MatrixXd J;      // ∂g/∂q
 };
 
-}  // namespace
-
-EquilibriumStart static_equilibrium(const Model& m) {
-  check_supported(m);
+/// The equilibrium for the gears' modes `verge`: stuck (holding both sides at rest), or, for a gear
+/// that cannot hold its sides alone, at rest on the verge of rolling in the direction it would start
+/// (a rolling mode: its ratio row and its rolling relation at v = 0, the reaction H μ + f0 of
+/// elements/lossy_gear.hpp reaction()) — allowed where a brake or stop holds its group. A stuck gear
+/// that cannot hold is recorded in `starts` (the rolling mode it would start in) and is an error.
+EquilibriumStart solve_equilibrium(const Model& m, const std::vector<GearMode>& verge, std::vector<GearMode>* starts) {
   const int n = m.dof();
   const auto nl = m.links.size();
   std::vector<LinkLaw> laws;
@@ -82,10 +84,17 @@ EquilibriumStart static_equilibrium(const Model& m) {
     ContactLaw::of(m.contacts[static_cast<size_t>(k)], m).add_linear(ContactMode::stuck, true, 0.0, 0.0, coupled);
   std::vector<LossyGearLaw> gears;
   LinearModel geared(n);  // the gears' rows, two per gear (ratio, rest)
-  for (const auto& g : m.lossy_gears) {
-    gears.push_back(LossyGearLaw::of(g));
-    gears.back().add_linear(GearMode::stuck, geared);
+  std::vector<Eigen::Index> gear_row;  // each gear's first row in geared.G (two stuck, one on the verge)
+  for (size_t k = 0; k < m.lossy_gears.size(); ++k) {
+    gears.push_back(LossyGearLaw::of(m.lossy_gears[k]));
+    gear_row.push_back(static_cast<Eigen::Index>(geared.G.size()));
+    gears.back().add_linear(verge[k], geared);
   }
+  // The gears on the verge: their reactions are not along their rows (H μ + f0, lossy_gear.hpp).
+  std::vector<int> verge_of_row(geared.G.size(), -1);
+  for (size_t k = 0; k < gears.size(); ++k)
+    if (verge[k] != GearMode::stuck) verge_of_row[static_cast<size_t>(gear_row[k])] = static_cast<int>(k);
+  auto reaction_of = [&](int g) { return gears[static_cast<size_t>(g)].reaction(verge[static_cast<size_t>(g)], 0.0); };
   ConstraintRows tying = geared.G;  // every row that ties bodies: the gears', then the couplings'
   tying.insert(tying.end(), coupled.G.begin(), coupled.G.end());
 
@@ -170,10 +179,10 @@ EquilibriumStart static_equilibrium(const Model& m) {
       if (held[k]) p.push_back(m.contacts[k].a);
     return p;
   };
-  auto independent_couplings = [&](const std::vector<int>& pins) {
+  auto independent_couplings = [&](const std::vector<int>& pins, std::vector<size_t>* index) {
     ConstraintRows before, rows;
     for (int p : pins) before.push_back({{p, 1.0}});
-    for (size_t k : detail::independent_rows(before, tying)) rows.push_back(tying[k]);
+    for (size_t k : detail::independent_rows(before, tying)) rows.push_back(tying[k]), index->push_back(k);
     return rows;
   };
 
@@ -226,16 +235,27 @@ EquilibriumStart static_equilibrium(const Model& m) {
     // [K MR Gᵀ; (MR)ᵀ 0 0; G 0 0] [Δ; μ; λ] = [g − MR a''; RᵀM (q_given − q); 0], K = −∂g/∂q, G the
     // gears' and couplings' rows (G Δ = 0: a gear holds its sides, a clutch keeps the given relative
     // position); a held body's row pins it.
-    const ConstraintRows G = independent_couplings(pinned());
+    std::vector<size_t> g_index;  // each row's place in `tying`
+    const ConstraintRows G = independent_couplings(pinned(), &g_index);
     const auto nc = static_cast<Eigen::Index>(G.size());
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + r + nc, n + r + nc);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + r + nc);
     A.topLeftCorner(n, n) = -s.J;
     A.block(0, n, n, r) = MR;
     A.block(n, 0, r, n) = MR.transpose();
-    for (Eigen::Index k = 0; k < nc; ++k)
-      for (const auto& [j, w] : G[static_cast<size_t>(k)]) A(n + r + k, j) += w, A(j, n + r + k) += w;
     rhs.head(n) = s.g - MR * acc;
+    for (Eigen::Index k = 0; k < nc; ++k) {
+      const size_t row = g_index[static_cast<size_t>(k)];
+      const int vg = row < verge_of_row.size() ? verge_of_row[row] : -1;
+      for (const auto& [j, w] : G[static_cast<size_t>(k)]) A(n + r + k, j) += w;
+      if (vg < 0) {
+        for (const auto& [j, w] : G[static_cast<size_t>(k)]) A(j, n + r + k) += w;
+      } else {  // a gear on the verge puts H μ + f0 on its bodies
+        const LossyGearLaw::Reaction re = reaction_of(vg);
+        for (const auto& [j, w] : re.H) A(j, n + r + k) -= w;
+        rhs(gears[static_cast<size_t>(vg)].a) += re.f0_a;
+      }
+    }
     rhs.segment(n, r) = MR.transpose() * (q_given - q);
     auto pin = [&](int body, double to) {
       A.row(body).setZero();
@@ -297,7 +317,18 @@ EquilibriumStart static_equilibrium(const Model& m) {
   for (size_t k = 0; k < m.contacts.size(); ++k)
     if (held[k]) brake_row[k] = static_cast<int>(H.size()), H.push_back({{m.contacts[k].a, 1.0}});
   const auto first_gear = static_cast<Eigen::Index>(H.size());
-  H.insert(H.end(), geared.G.begin(), geared.G.end());
+  std::vector<double> f0(static_cast<size_t>(n), 0.0);  // the gears on the verge: H μ + f0, as a held row −H
+  for (size_t k = 0; k < geared.G.size(); ++k) {
+    if (verge_of_row[k] < 0) {
+      H.push_back(geared.G[k]);
+      continue;
+    }
+    const LossyGearLaw::Reaction re = reaction_of(verge_of_row[k]);
+    std::vector<std::pair<int, double>> row;
+    for (const auto& [j, w] : re.H) row.emplace_back(j, -w);
+    H.push_back(row);
+    f0[static_cast<size_t>(gears[static_cast<size_t>(verge_of_row[k])].a)] += re.f0_a;
+  }
   const auto first_coupling = static_cast<Eigen::Index>(H.size());
   H.insert(H.end(), coupled.G.begin(), coupled.G.end());
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(H.size()));
@@ -306,6 +337,7 @@ EquilibriumStart static_equilibrium(const Model& m) {
     for (size_t k = 0; k < H.size(); ++k)
       for (const auto& [j, w] : H[k]) Ht(j, static_cast<Eigen::Index>(k)) += w;
     Eigen::VectorXd rest = s.g;
+    for (int j = 0; j < n; ++j) rest(j) += f0[static_cast<size_t>(j)];
     if (R.cols() > 0) {
       const Eigen::MatrixXd MR = M.asDiagonal() * R;
       rest -= MR * (R.transpose() * MR).ldlt().solve(R.transpose() * s.g);
@@ -332,14 +364,26 @@ EquilibriumStart static_equilibrium(const Model& m) {
   }
   for (size_t g = 0; g < gears.size(); ++g) {
     // Stuck, the gear holds X = F_a and Y = −F_b/i (elements/lossy_gear.hpp): F_a, F_b are what its
-    // two rows hold on its bodies, Σ_k w_kj λ_k.
+    // two rows hold on its bodies, Σ_k w_kj λ_k. On the verge its relation holds by construction;
+    // its group must be held (by a brake or a stop: no rigid motion of its bodies is left).
     const LossyGearLaw& law = gears[g];
+    if (verge[g] != GearMode::stuck) {
+      bool held_group = true;
+      for (Eigen::Index k = 0; k < R.cols(); ++k) held_group = held_group && R(law.a, k) == 0.0 && R(law.b, k) == 0.0;
+      if (!held_group)
+        diag.error(m.where(law.spec->name), fmt::format("{} lossy gear '{}' cannot hold at rest and nothing holds its "
+                                                        "group (a brake applied at t = 0); start with 'initial: given'",
+                                                        pre, law.spec->name));
+      continue;
+    }
     double Fa = 0.0, Fb = 0.0;
-    for (Eigen::Index k = first_gear + 2 * static_cast<Eigen::Index>(g); k < first_gear + 2 * static_cast<Eigen::Index>(g) + 2; ++k)
+    const Eigen::Index g0 = first_gear + gear_row[g];
+    for (Eigen::Index k = g0; k < g0 + 2; ++k)
       for (const auto& [j, w] : H[static_cast<size_t>(k)]) (j == law.a ? Fa : Fb) += w * lambda(k);
     const double Ia = m.bodies[static_cast<size_t>(law.a)].inertia, Ib = m.bodies[static_cast<size_t>(law.b)].inertia;
     const GearMode md = law.decide(Fa, Fb, Ia, Ib, 0.0, law.allowance(Fa, Fb));
     if (md == GearMode::stuck) continue;
+    if (starts) (*starts)[g] = md;
     const int dir = direction(md);
     const std::string& a = m.bodies[static_cast<size_t>(law.a)].name;
     const std::string& b = m.bodies[static_cast<size_t>(law.b)].name;
@@ -388,6 +432,29 @@ EquilibriumStart static_equilibrium(const Model& m) {
   out.q0.assign(q.data(), q.data() + n);
   out.v0.assign(v.data(), v.data() + n);
   return out;
+}
+
+}  // namespace
+
+EquilibriumStart static_equilibrium(const Model& m) {
+  check_supported(m);
+  // First every lossy gear stuck. A gear that cannot hold its sides alone starts moving unless a brake
+  // holds its group: then the equilibrium has it at rest on the verge of the motion it would start,
+  // its torques in that rolling mode's relation at v = 0 (the load drives it back through its
+  // efficiency η_mf2, docs/model-files.md "initial: equilibrium"), and the brake holds the rest.
+  std::vector<GearMode> verge(m.lossy_gears.size(), GearMode::stuck), starts = verge;
+  try {
+    return solve_equilibrium(m, verge, &starts);
+  } catch (const InputError&) {
+    if (starts == verge) throw;
+    try {
+      return solve_equilibrium(m, starts, nullptr);
+    } catch (const InputError& e) {
+      // Nothing holds the gear's group: the first answer (the gear cannot hold) says why.
+      if (std::string(e.what()).find("nothing holds its group") == std::string::npos) throw;
+    }
+    return solve_equilibrium(m, verge, nullptr);
+  }
 }
 
 Model with_equilibrium_start(const Model& m) {

@@ -25,6 +25,7 @@
 #include "machdyn/analysis/load_history.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
+#include "machdyn/elements/reeving.hpp"
 #include "analysis/heat.hpp"
 #include "analysis/impact.hpp"
 #include "analysis/machine_jumps.hpp"
@@ -353,6 +354,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (!is_rope_with_falls(l)) continue;
       names.push_back(l.name + ".fall_tension_N");
       if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
+      if (has_reeving(l)) names.push_back(l.name + ".rope_force_N");  // the part at the drum (elements/reeving.hpp)
       rope_links_.push_back(k);
     }
     for (int k = 0; k < nl_; ++k)
@@ -497,6 +499,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       const Link& lk = m_.links[static_cast<size_t>(l)];
       put(loads_[static_cast<size_t>(l)] / lk.falls);
       if (lk.EA > 0.0) put(sys_.link(l).free_length(sys_.link(l).drum(y)));
+      if (has_reeving(lk))  // the drum's rope speed: q̇_a / i > 0 winds in (hoists)
+        put(Reeving{lk.falls, lk.rope_ends, lk.sheave_efficiency}
+                .drum_part_force(loads_[static_cast<size_t>(l)], sys_.link(l).drum(y + n_) * sys_.link(l).inv_ratio));
     }
     for (const auto& sl : m_.slaves) {  // slaved bodies: q = ρ q_master (+ ρ₂ q_master2), likewise v
       put(sl.ratio * y[sl.master] + (sl.master2 >= 0 ? sl.ratio2 * y[sl.master2] : 0.0));

@@ -11,6 +11,7 @@
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/linear_results.hpp"
+#include "io/report_brakes.hpp"
 
 namespace machdyn::report {
 
@@ -346,6 +347,7 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
       run.tables.push_back(events_table(r));
       if (!r.hybrid.slip_phases.empty()) run.tables.push_back(slip_phases_table(m, r));
     }
+    if (auto brakes = brake_stops_table(m, r)) run.tables.push_back(std::move(*brakes));  // io/report_brakes.hpp
     if (c.topologies) run.tables.push_back(topology_modes_table(m, *c.topologies));
     else if (c.modes) run.tables.push_back(modes_table(m, *c.modes));
     Section plots;

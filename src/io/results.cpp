@@ -1,5 +1,6 @@
 #include "machdyn/io/results.hpp"
 
+#include "machdyn/analysis/brake_summary.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/csv.hpp"
 
@@ -111,6 +112,51 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
 }
 }  // namespace
 
+nlohmann::json brake_stops_json(const std::vector<BrakeStop>& stops) {
+  auto opt = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  nlohmann::json j = nlohmann::json::object();
+  for (const BrakeStop& s : stops) {
+    nlohmann::json travel = nlohmann::json::object();
+    for (const auto& x : s.travel) travel[x.body] = {{"value", x.value}, {"unit", x.unit}};
+    nlohmann::json e = {{"applied_at_s", opt(s.t_applied)},
+                        {"stopped_at_s", opt(s.t_stopped)},
+                        {"stopped", s.t_stopped.has_value()},
+                        {"stopping_time_s", opt(s.stopping_time)},
+                        {"travel", travel},
+                        {"energy_J", s.energy_J},
+                        {"peak_power_W", s.peak_power_W},
+                        {"t_peak_power_s", s.t_peak_power},
+                        {"unit", s.unit}};
+    if (s.thermal) {
+      e["temperature_max_degC"] = s.temperature_max_degC;
+      e["t_temperature_max_s"] = s.t_temperature_max;
+      e["temperature_end_degC"] = s.temperature_end_degC;
+    }
+    j[s.brake] = e;
+  }
+  return j;
+}
+
+std::string brake_stops_text(const std::vector<BrakeStop>& stops) {
+  std::string out;
+  for (const BrakeStop& s : stops) {
+    std::string line = fmt::format("brake {}: ", s.brake);
+    if (!s.t_applied) {
+      line += "not applied in the run";
+    } else {
+      line += fmt::format("applied at {:.6g} s, ", *s.t_applied);
+      line += s.t_stopped ? fmt::format("stopped after {:.6g} s", *s.stopping_time) : std::string("not at rest by t_end");
+      for (const auto& x : s.travel) line += fmt::format(", {} {:.6g} {}", x.body, x.value, x.unit);
+    }
+    line += fmt::format("; energy {:.6g} J, peak power {:.6g} W at {:.6g} s", s.energy_J, s.peak_power_W, s.t_peak_power);
+    if (s.thermal)
+      line += fmt::format("; temperature max {:.5g} degC at {:.6g} s, {:.5g} degC at the end", s.temperature_max_degC,
+                          s.t_temperature_max, s.temperature_end_degC);
+    out += line + "\n";
+  }
+  return out;
+}
+
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   nlohmann::json j;
   j["model"] = m.name;
@@ -136,6 +182,7 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   }
   j["links"] = links;
   if (r.hybrid.active) add_hybrid_summary(m, r, j);
+  if (const auto stops = brake_stops(m, r); !stops.empty()) j["brakes"] = brake_stops_json(stops);
   if (!r.machines.empty()) {
     nlohmann::json ms = nlohmann::json::object();
     for (const auto& x : r.machines) {

@@ -1,7 +1,9 @@
 #include "machdyn/model/compile.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string_view>
 #include <unordered_map>
@@ -228,7 +230,7 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     // A rope with a free length (model/model.hpp Link::EA; law: elements/link.hpp): c = n E A / L_f.
     if (rope) needs_c = !detail::compile_rope_length(f, l, ld, qd, side, ends_ok ? m.bodies : std::vector<Body>{});
     else
-      for (const char* k : {"EA", "elastic_modulus", "area", "length", "falls"})
+      for (const char* k : {"EA", "elastic_modulus", "area", "length", "falls", "rope_ends", "sheave_efficiency", "frame"})
         if (type && f.map().is_map() && f.map().find(k)) {
           f.error_at(k, fmt::format("field '{}' belongs to a rope (type: rope)", k));
           f.node(k);
@@ -269,6 +271,19 @@ const std::vector<std::string>& load_types() {
   return k;
 }
 
+/// Whether a motor's `on` is a bare 0 or 1 or a yes/no word (0, 1, 1.0, true, off, ...): such a time
+/// needs its unit, since `on: 0` reads as "off" as often as "closes at t = 0" (`on: 0.5` is 0.5 s).
+bool bare_switch_word(const std::string& text) {
+  static const std::vector<std::string> words = {"true", "false", "yes", "no", "on", "off"};
+  std::string low;
+  for (char ch : text) low += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (std::find(words.begin(), words.end(), low) != words.end()) return true;
+  if (low.empty()) return false;
+  char* end = nullptr;
+  const double x = std::strtod(low.c_str(), &end);
+  return end && *end == '\0' && (x == 0.0 || x == 1.0);
+}
+
 /// A switching signal of a motor: `on`/`off` times or an `on` signal of 0 and 1; `direction` +1/−1
 /// (or `reverse: TIME`). Sets ld.on, ld.direction, ld.switched.
 void compile_motor_switching(FieldReader& f, Load& ld) {
@@ -288,6 +303,13 @@ void compile_motor_switching(FieldReader& f, Load& ld) {
       ld.on = *s;
     }
     if (off && *off >= 0.0) f.error_at("off", "field 'off' is a time; with an 'on' signal, give the opening in it");
+  } else if (on && on->is_scalar() && bare_switch_word(on->scalar)) {
+    // `on: 0` (or 1, true, off, ...) reads as "off"/"on" as often as "closes at t = 0": refused, with
+    // both explicit forms (docs/model-files.md, Signals: `on`).
+    diag.error(on->loc, fmt::format("{}: field 'on' is the time the contactor closes, and '{}' without a unit is "
+                                    "ambiguous: write 'on: 0 s' for a contactor that closes at t = 0, or 'on: {{type: "
+                                    "constant, value: 0}}' for a motor that stays off", f.what(), on->scalar));
+    ok = false;
   } else if (on) {
     std::string e;
     t_on = on->is_scalar() ? parse_as(on->scalar, dim::time, &e) : std::nullopt;

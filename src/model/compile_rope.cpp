@@ -13,7 +13,43 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
   const bool is_map = map.is_map();
   auto has = [&](const char* k) { return is_map && map.find(k) != nullptr; };
   l.falls = static_cast<int>(f.integer("falls", 1, 1000, 1).value_or(1));
-  if (l.falls > 1 && l.a != kGround) l.ratio *= l.falls;  // drum 1/R → n/R: drum angle per metre of hook travel
+  // Reeving as drawn (elements/reeving.hpp): n_e rope ends on the drum, each feeding n/n_e falls.
+  l.rope_ends = static_cast<int>(f.integer("rope_ends", 1, 1000, 1).value_or(1));
+  if (l.rope_ends > 1 && l.a == kGround)
+    f.error_at("rope_ends", "'rope_ends' are wound on a drum: the rope's first end (body a) must be the drum");
+  else if (l.falls % l.rope_ends != 0)
+    f.error_at("rope_ends", fmt::format("the {} falls must be shared equally by the {} rope ends on the drum (falls a "
+                                        "multiple of rope_ends, e.g. 4/2 reeving: falls: 4, rope_ends: 2)",
+                                        l.falls, l.rope_ends));
+  if (l.falls % l.rope_ends != 0) l.rope_ends = 1;
+  if (auto eta = f.quantity("sheave_efficiency", dim::none, 1.0)) {
+    if (!(*eta > 0.0 && *eta <= 1.0)) f.error_at("sheave_efficiency", "field 'sheave_efficiency' must lie in (0, 1]");
+    else l.sheave_efficiency = *eta;
+  }
+  // drum 1/R → (n/n_e)/R: drum angle per metre of hook travel
+  if (l.falls > 1 && l.a != kGround) l.ratio *= static_cast<double>(l.falls / l.rope_ends);
+  // The body the drum and the reeving's upper sheaves sit on (a trolley on an elastic girder): the
+  // rope's deflection gains its position, δ = q_a/i − x_b + x_frame, and its load pulls it down with
+  // −F (Link::third, weight 1; law: elements/link.hpp, a third body).
+  if (const SpecNode* fr = f.node("frame")) {
+    int frame = -1;
+    for (size_t k = 0; k < bodies.size(); ++k)
+      if (fr->is_scalar() && bodies[k].name == fr->scalar) frame = static_cast<int>(k);
+    if (!fr->is_scalar() || (frame < 0 && !bodies.empty()))
+      f.error_at("frame", "field 'frame' expected the name of a translational body (the trolley or girder the drum hangs from)");
+    else if (frame >= 0 && bodies[static_cast<size_t>(frame)].kind != BodyKind::translational)
+      f.error_at("frame", fmt::format("the frame '{}' must be a translational body (the girder's vertical deflection, m)", fr->scalar));
+    else if (frame >= 0 && (frame == l.a || frame == l.b))
+      f.error_at("frame", "the frame must be a third body, not an end of the rope");
+    else if (frame >= 0 && side != BodyKind::translational)
+      f.error_at("frame", "a rope with a 'frame' needs a translational hook (body b)");
+    else if (frame >= 0 && (has("length") || l.a_point || l.b_point))
+      f.error_at("frame", "a rope with a 'frame' takes a constant 'stiffness' (not a 'length') and ends at bodies");
+    else if (frame >= 0) {
+      l.third = frame;
+      l.third_weight = 1.0;
+    }
+  }
   const bool given = has("length") || has("EA") || has("elastic_modulus") || has("area");
   if (!given) {
     if (l.falls > 1 && !has("stiffness"))

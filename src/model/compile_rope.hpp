@@ -1,5 +1,6 @@
 #pragma once
-// Compiler part for a rope's free length (`length`, `EA` or `elastic_modulus` + `area`, `falls`).
+// Compiler part for a rope's reeving and free length (`falls`, `rope_ends`, `sheave_efficiency`, `frame`,
+// `length`, `EA` or `elastic_modulus` + `area`).
 // Called from compile.cpp for `type: rope`; the law is elements/link.hpp.
 #include <vector>
 
@@ -8,9 +9,12 @@
 
 namespace machdyn::detail {
 
-/// Reads a rope's `falls` (n, default 1) and, if given, its free length: `length` (L_f0, one fall,
-/// in b's position unit) with `EA` (N) or `elastic_modulus` (Pa) and `area` (m²). With n falls the
-/// link's ratio becomes n × the file's drum ratio (1/R) and c = n E A / L_f0 (N/m at the hook).
+/// Reads a rope's reeving — `falls` (n, default 1), `rope_ends` (n_e on the drum, default 1, n a
+/// multiple of it), `sheave_efficiency` (η, default 1; elements/reeving.hpp) — its `frame` (a third,
+/// translational body the drum hangs from: Link::third with weight 1) and, if given, its free
+/// length: `length` (L_f0, one fall, in b's position unit) with `EA` (N) or `elastic_modulus` (Pa)
+/// and `area` (m²). The link's ratio becomes (n/n_e) × the file's drum ratio (1/R) and
+/// c = n E A / L_f0 (N/m at the hook).
 /// Sets l.falls, l.EA, l.length, l.drum_q0 (body a's initial position), l.c. Reports located errors:
 /// `length` without EA (or the reverse), both EA and elastic_modulus, `stiffness` beside `length`,
 /// a machine's output point as an end, a rotational hook. `bodies` is empty when the ends are invalid.

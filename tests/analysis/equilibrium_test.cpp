@@ -294,6 +294,70 @@ simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
   EXPECT_LT(max_deviation(series(r, "rope.load_N"), W), 1e-6 * W);
 }
 
+// Claim: a lossy gear that does not self-lock (η_mf2 = 0.8) cannot hold the hanging load alone, but a
+// brake on the motor holds the chain, and the equilibrium is determined: the gear at rest on the verge
+// of the motion it would start — the load drives it backward (side b drives), so its torques follow
+// that mode's relation at v = 0, X = η_mf2 Y (docs/model-files.md, "initial: equilibrium"). By hand:
+// rope (δ = q_d/i_r − x) F_r = m g = 9810 N, x = q_d/i_r − m g/c_r; drum torque T_d = F_r/i_r =
+// 981 N·m twists the shaft [gout, drum] by T_d/k_s; the gear (i = 20) passes Y = T_d/i = 49.05 N·m to
+// its input side as X = η_mf2 Y = 39.24 N·m, which the coupling [motor, gin] carries with the twist
+// X/k_c (q_gin = q_motor − X/k_c) and the brake holds (not the ideal gear's 49.05 N·m). The run stays
+// at rest. (The chain is given unstretched: held there, the gear would start backward, the load
+// driving it; given with the coupling wound up, it would start forward and rest on that verge, X =
+// Y/η_mf1: the direction is the one it would start in from the given positions.)
+TEST_P(Equilibrium, BrakeHoldsALossyGearThatDoesNotSelfLock) {
+  Model m = model_of(R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 0.5 kg*m^2, position: 0.1 rad}
+  gin: {inertia: 0.1 kg*m^2, position: 0.1 rad}
+  gout: {inertia: 5 kg*m^2, position: 0.005 rad}
+  drum: {inertia: 50 kg*m^2, position: 0.005 rad}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links:
+  coupling: {type: spring, between: [motor, gin], stiffness: 1e4 N*m/rad}
+  gear: {type: lossy-gear, between: [gin, gout], ratio: 20, efficiency: 0.9, efficiency_reverse: 0.8}
+  shaft: {type: spring, between: [gout, drum], stiffness: 1e6 N*m/rad}
+  rope: {type: rope, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}
+brakes: {hold: {body: motor, holding: 100 N*m}}
+simulation: {t_end: 0.2 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equilibrium}
+)");
+  m.simulation.integrator = GetParam();
+  const double W = 1000 * 9.81, Td = W / 10, X = 0.8 * Td / 20;
+  const double q_gin = 0.1 - X / 1e4, q_gout = q_gin / 20, q_d = q_gout - Td / 1e6, x = q_d / 10 - W / 2e6;
+  const EquilibriumStart e = static_equilibrium(m);
+  EXPECT_EQ(e.q0[0], 0.1);
+  EXPECT_NEAR(e.q0[1], q_gin, 1e-13);
+  EXPECT_NEAR(e.q0[2], q_gout, 1e-14);
+  EXPECT_NEAR(e.q0[3], q_d, 1e-13);
+  EXPECT_NEAR(e.q0[4], x, 1e-14);
+  const SimulationResult r = simulate(m);
+  EXPECT_LT(max_deviation(series(r, "coupling.load_N_m"), X), 1e-6 * X);
+  EXPECT_LT(max_deviation(series(r, "shaft.load_N_m"), Td), 1e-6 * Td);
+  EXPECT_LT(max_deviation(series(r, "rope.load_N"), W), 1e-6 * W);
+  EXPECT_LT(max_abs(series(r, "load.velocity_m_s")), 1e-6);
+  // A brake too weak for the 39.24 N·m the gear passes is a located error naming that reaction.
+  const std::string yaml = R"(
+gravity: 9.81 m/s^2
+bodies:
+  motor: {inertia: 0.5 kg*m^2, position: 0.1 rad}
+  gin: {inertia: 0.1 kg*m^2, position: 0.1 rad}
+  gout: {inertia: 5 kg*m^2, position: 0.005 rad}
+  drum: {inertia: 50 kg*m^2, position: 0.005 rad}
+  load: {type: translational, mass: 1000 kg, vertical: up}
+links:
+  coupling: {type: spring, between: [motor, gin], stiffness: 1e4 N*m/rad}
+  gear: {type: lossy-gear, between: [gin, gout], ratio: 20, efficiency: 0.9, efficiency_reverse: 0.8}
+  shaft: {type: spring, between: [gout, drum], stiffness: 1e6 N*m/rad}
+  rope: {type: rope, between: [drum, load], ratio: 10 rad/m, stiffness: 2e6 N/m}
+brakes: {hold: {body: motor, holding: 30 N*m}}
+simulation: {initial: equilibrium}
+)";
+  const std::string err = error_of(yaml, true);
+  EXPECT_NE(err.find("brake 'hold' would have to hold 39.24 N*m, more than its static limit 30 N*m"), std::string::npos)
+      << err;
+}
+
 // Claim: a clutch applied at t = 0 ties its two bodies: a brake holds the motor, the clutch the drum
 // to it at the given relative angle, and the load hangs (x = q_d/i − m g/c by hand). The clutch carries
 // m g / i = 981 N·m. The run stays at rest.

@@ -141,6 +141,29 @@ TEST(SignalCompile, BadFieldsAreLocatedAndListedTogether) {
   EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 6) << all;  // seven problems, one line each
 }
 
+// Claim: a motor's bare `on: 0` or `on: 1` (which read as "off"/"on" as often as "closes at t = 0",
+// "at 1 s") or a yes/no word is a located error that names both explicit forms; `on: 0 s` closes the contactor
+// at t = 0 (the motor drives from the start) and `on: {type: constant, value: 0}` keeps it off.
+TEST(SignalCompile, BareOnIsAmbiguousAndRefused) {
+  for (const char* v : {"0", "1", "false", "off"}) {
+    const std::string all = errors_of("bare-on.yaml", std::string("  m: {type: motor-linear, body: R, stall_torque: 10 N*m, "
+                                                                  "no_load_speed: 10 rad/s, on: ") + v + "}\n");
+    EXPECT_NE(all.find("bare-on.yaml:5:87: error: load 'm': field 'on' is the time the contactor closes"),
+              std::string::npos) << v << "\n" << all;
+    EXPECT_NE(all.find("'on: 0 s'"), std::string::npos) << all;
+    EXPECT_NE(all.find("'on: {type: constant, value: 0}'"), std::string::npos) << all;
+  }
+  auto torque = [](const char* on, double t = 0.0) {
+    const Model m = compile_text("on.yaml", std::string("  m: {type: motor-linear, body: R, stall_torque: 10 N*m, "
+                                                         "no_load_speed: 10 rad/s, on: ") + on + "}\n");
+    return test::load_at(m.loads[0], t, 0.0, 0.0);
+  };
+  EXPECT_DOUBLE_EQ(torque("0 s"), 10.0);  // closed at t = 0: the stall torque at rest
+  EXPECT_DOUBLE_EQ(torque("{type: constant, value: 0}"), 0.0);
+  EXPECT_DOUBLE_EQ(torque("0.5"), 0.0);  // any other bare number is seconds, as before: closes at 0.5 s
+  EXPECT_DOUBLE_EQ(torque("0.5", 1.0), 10.0);
+}
+
 // Claim: through the CLI a bad signal exits with code 2 and writes nothing.
 TEST(SignalCompile, CliExitsTwoAndWritesNothing) {
   const auto path = test::write_temp("bad-cli.yaml", "bodies:\n  R: {inertia: 1}\nloads:\n"

@@ -17,7 +17,9 @@
 /// t = 0 ties its two bodies at their given relative position (a constraint row G Δ = 0, its stuck row
 /// of elements/contact.hpp; within its static limit); a lossy gear is at rest (stuck,
 /// elements/lossy_gear.hpp) and holds both its sides where they are, if its locking range holds the
-/// torques on them (a self-locking worm gear holds a hanging load); each held element's reaction λ
+/// torques on them (a self-locking worm gear holds a hanging load); one that cannot, in a group a brake
+/// or stop holds, is at rest on the verge of the motion it would start (that rolling mode's relation
+/// at v = 0: under a hanging load X = η_mf2 Y, the brake holding the rest); each held element's reaction λ
 /// solves Hᵀ λ = g − M R a'' over the rows H of everything held; a free group whose loads do not balance moves as a
 /// whole until the first open rope, gap flank or stop takes it up: an active-set iteration decides these modes,
 /// each step one dense linear solve (O(n³); the modes settle in a few steps).

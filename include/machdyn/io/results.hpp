@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "machdyn/analysis/brake_summary.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/io/output_file.hpp"
@@ -26,7 +27,14 @@ void write_timeseries_csv(const std::filesystem::path& path, const SimulationRes
 /// static_at_min, peak, t_peak, static, dynamic_factor, unit}}, solver: {method, reason, steps,
 /// rejected_steps, rhs_evals, jac_evals, wall_time_s}}`. `static` is the quasi-static load at the
 /// peak and dynamic_factor = peak / static (LinkSummary), null when the static load is ~0.
+/// A model with brakes adds `brakes: {NAME: {applied_at_s, stopped_at_s, stopped, stopping_time_s,
+/// travel: {BODY: {value, unit}}, energy_J, peak_power_W, t_peak_power_s, unit[, temperature_max_degC,
+/// t_temperature_max_s, temperature_end_degC]}}` (analysis/brake_summary.hpp; null where not reached).
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
+
+/// The `brakes` object of the summary, and the lines `simulate` prints for it (one per brake).
+nlohmann::json brake_stops_json(const std::vector<BrakeStop>& stops);
+std::string brake_stops_text(const std::vector<BrakeStop>& stops);
 
 // `modes` writes its JSON with io/linear_results.hpp (every topology).
 

@@ -94,6 +94,10 @@ struct Link {
   /// length of one fall is L_f(q_a) = L_f0 − (q_a − q_a0)/i: positive q_a winds the rope up (hoists).
   /// The hook stiffness c(q_a) = n E A / L_f(q_a); `c` holds its value at q_a0. EA = 0: constant c.
   int falls = 1;           ///< n, the number of falls carrying b, >= 1
+  /// Reeving as drawn (elements/reeving.hpp): n_e rope ends wound on the drum (4/2 reeving: n = 4,
+  /// n_e = 2; `ratio` is then (n/n_e)/R) and the efficiency η of one sheave (1: frictionless).
+  int rope_ends = 1;              ///< n_e >= 1, n a multiple of n_e
+  double sheave_efficiency = 1.0; ///< η in (0, 1]
   double EA = 0.0;         ///< axial stiffness E·A of the rope, N (0: a rope of constant stiffness c)
   double length = 0.0;     ///< L_f0, the free length of one fall at q_a = q_a0, m (> 0 when EA > 0)
   double drum_q0 = 0.0;    ///< q_a0: the drum's position (body a's initial position) where L_f = L_f0
@@ -549,6 +553,11 @@ Model model_after_releases(const Model& m, std::size_t count);
 /// Whether link l is a rope with falls (n > 1) or a free length (EA > 0): its runs add the columns
 /// "NAME.fall_tension_N" (T = F/n) and, with a length, "NAME.fall_length_m" (L_f).
 [[nodiscard]] inline bool is_rope_with_falls(const Link& l) { return l.tension_only && (l.falls > 1 || l.EA > 0.0); }
+/// Whether a rope states its reeving beyond the falls (`rope_ends` > 1 or a `sheave_efficiency`): its
+/// runs add "NAME.rope_force_N", the force in the rope part at the drum (elements/reeving.hpp).
+[[nodiscard]] inline bool has_reeving(const Link& l) {
+  return l.tension_only && (l.rope_ends > 1 || l.sheave_efficiency < 1.0);
+}
 
 /// The name of body `body` for display, or `given` (the name the file wrote, Link::given_a etc.) when
 /// not empty; "ground" for kGround.
