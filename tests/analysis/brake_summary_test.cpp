@@ -12,7 +12,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "brake.yaml"), "brake.yaml"); }
 

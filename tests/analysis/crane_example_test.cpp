@@ -16,7 +16,7 @@
 #include "support/support.hpp"
 
 namespace machdyn {
-namespace {
+namespace MACHDYN_UNITY_ID {
 
 const std::string kFile = std::string(MACHDYN_SOURCE_DIR) + "/examples/crane/overhead-crane-32t.yaml";
 constexpr double kG = 9.81;
