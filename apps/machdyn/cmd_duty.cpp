@@ -30,14 +30,8 @@ struct DutyArgs {
 
 int run_duty_command(const DutyArgs& a) {
   MpiSession mpi;  // MPI only under a multi-rank launcher
-  // Other ranks stay silent and write nothing: rank 0 reports errors and results once.
   const bool root = MpiSession::rank() == 0;
-  std::streambuf* cerr_buf = std::cerr.rdbuf();
-  if (!root) std::cerr.rdbuf(nullptr);
-  struct Restore {
-    std::streambuf* buf;
-    ~Restore() { std::cerr.rdbuf(buf); }
-  } restore{cerr_buf};
+  const SilentOtherRanks silent(root);  // other ranks write nothing
   if (a.plot && root) plot::find_gnuplot();  // said before the runs, not after
   const std::unique_ptr<DutyRanks> ranks = MpiSession::size() > 1 ? mpi_duty_ranks() : nullptr;
   const DutyResult r = run_duty(a.model, a.duty, a.sets, a.jobs, ranks.get());

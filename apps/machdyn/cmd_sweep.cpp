@@ -53,13 +53,7 @@ std::string clock_text(double s) {
 int run_sweep_command(const SweepArgs& a) {
   MpiSession mpi;  // MPI only under a multi-rank launcher
   const bool root = MpiSession::rank() == 0;
-  // Other ranks stay silent: rank 0 reports errors and results once.
-  std::streambuf* cerr_buf = std::cerr.rdbuf();
-  if (!root) std::cerr.rdbuf(nullptr);
-  struct Restore {
-    std::streambuf* buf;
-    ~Restore() { std::cerr.rdbuf(buf); }
-  } restore{cerr_buf};
+  const SilentOtherRanks silent(root);  // other ranks write nothing
 
   SweepRequest req;
   req.model_path = a.model;

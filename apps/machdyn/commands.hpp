@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,21 @@
 #include "machdyn/io/plot.hpp"
 
 namespace machdyn::cli {
+
+/// Under a multi-rank MPI launch, ranks other than 0 stay silent (rank 0 reports errors and results
+/// once): stderr is muted on them for the object's lifetime.
+class SilentOtherRanks {
+ public:
+  explicit SilentOtherRanks(bool root) : buf_(std::cerr.rdbuf()) {
+    if (!root) std::cerr.rdbuf(nullptr);
+  }
+  ~SilentOtherRanks() { std::cerr.rdbuf(buf_); }
+  SilentOtherRanks(const SilentOtherRanks&) = delete;
+  SilentOtherRanks& operator=(const SilentOtherRanks&) = delete;
+
+ private:
+  std::streambuf* buf_;
+};
 
 /// Runs `body`, turning exceptions into a message on stderr and an exit code:
 /// InputError → 2 (every diagnostic on its own line), SolverError → 3, anything else → 1.

@@ -1,6 +1,7 @@
 // The elasto-backlash flank law (elements/link.hpp, `flank_law: elasto-backlash`): a mass striking a
 // spring–damper flank, checked phase by phase against the closed forms derived below, on both
 // integrators.
+#include "support/models.hpp"
 #include "support/support.hpp"
 #include "machdyn/analysis/simulate.hpp"
 
@@ -14,10 +15,11 @@
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::model_of;
+
 using test::at;
 using test::series;
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
 class ElastoBacklash : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, ElastoBacklash, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),

@@ -14,11 +14,14 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/model/compile.hpp"
 #include "machdyn/model/machine.hpp"
+#include "support/models.hpp"
 #include "support/events.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
+
+using test::integrator_name;
 
 using test::events_of;
 using test::column;
@@ -42,9 +45,6 @@ double gauss(const std::function<double(double)>& f, double a, double b, int pan
 const std::string kCrank = test::kCrankSliderBody;
 
 // Every claim holds on both integrators (BDF with the finite-difference Jacobian of the machine).
-std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
-  return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
-}
 class HybridMachine : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, HybridMachine,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),

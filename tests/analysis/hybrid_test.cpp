@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/models.hpp"
 #include "support/travel_start.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/model_file.hpp"
@@ -19,16 +20,15 @@
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::model_of;
+using test::integrator_name;
+
 using test::events_of;
 using test::at;
 using test::series;
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
 // Every event-driven claim holds on both integrators: the test is parameterized over them.
-std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
-  return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
-}
 class Hybrid : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Hybrid, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          integrator_name);

@@ -12,21 +12,21 @@
 
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "support/models.hpp"
 #include "support/events.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::model_of;
+using test::integrator_name;
+
 using test::at;
 using test::events_of;
 using test::series;
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
-std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
-  return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
-}
 class MissedEvents : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, MissedEvents, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          integrator_name);

@@ -19,14 +19,16 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "support/models.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::model_of;
+
 using test::series;
 
-Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
 class Rope : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Rope, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),

@@ -1,0 +1,20 @@
+#pragma once
+// Helpers shared by the tests: a model from YAML text, and the integrator names of parameterized tests.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "machdyn/io/yaml_reader.hpp"
+#include "machdyn/model/compile.hpp"
+
+namespace machdyn::test {
+
+/// The model of `yaml` (errors located in "test.yaml").
+inline Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
+
+/// "dopri5" / "bdf": the suffix of a test parameterized over the integrators.
+inline std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
+  return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
+}
+
+}  // namespace machdyn::test
