@@ -336,7 +336,8 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
       continue;
     }
     if (is_slave(l.a)) l.ratio /= rho[static_cast<size_t>(l.a)];  // δ = ρ q_M / i − q_b
-    l.a = to(l.a), l.b = to(l.b);
+    if (l.third >= 0 && is_slave(l.third)) l.third_weight *= rho[static_cast<size_t>(l.third)];  // w_e q_e = w_e ρ q_M
+    l.a = to(l.a), l.b = to(l.b), l.third = to(l.third);
     if (l.a == l.b && l.a >= 0)
       diag.error(m.where(l.name), fmt::format("link '{}': both ends move rigidly together through ideal gears, so "
                                               "its deflection never changes; remove it or one of the gears", l.name));

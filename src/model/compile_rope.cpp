@@ -89,8 +89,16 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
 
 // A rope as the file wrote it: falls, EA, free length, the drum's 1/R, and the hook stiffness they give.
 std::string describe_rope(const Model& m, const Link& l) {
-  const double n = l.falls, per_m = shown_ratio(m, l) / n;  // the file's drum ratio 1/R, rad/m
+  // the file's drum ratio 1/R, rad/m: the link's ratio is (n/n_e)/R, divided by ρ when an ideal gear
+  // slaves the drum (shown_ratio multiplies it back, but leaves links with a third body alone)
+  double ratio = shown_ratio(m, l);
+  if (l.third != kGround)
+    for (const RigidSlave& s : m.slaves)
+      if (s.name == l.given_a && s.master == l.a) ratio = l.ratio * s.ratio;
+  const double n = l.falls, per_m = ratio * l.rope_ends / n;
   std::string t = fmt::format("{} fall{}", l.falls, l.falls == 1 ? "" : "s");
+  if (l.rope_ends > 1) t += fmt::format(" from {} rope ends on the drum ({}/{} reeving)", l.rope_ends, l.falls, l.rope_ends);
+  if (l.sheave_efficiency < 1.0) t += fmt::format(", sheave efficiency η = {}", describe_number(l.sheave_efficiency));
   if (l.EA > 0.0)
     t += fmt::format(", EA = {} N, free length L = {} m per fall at the start, drum 1/R = {} rad/m (R = {} m); "
                      "hook stiffness n·EA/L = {} N/m at the start (changes as the drum winds)",
@@ -101,6 +109,8 @@ std::string describe_rope(const Model& m, const Link& l) {
                      describe_number(l.c));
   if (l.d > 0.0) t += fmt::format(", damping d = {} N·s/m", describe_number(l.d));
   if (l.gap > 0.0) t += fmt::format(", slack {} m", describe_number(l.gap));
+  if (l.third != kGround)
+    t += fmt::format(", hung from the frame '{}'", m.bodies[static_cast<std::size_t>(l.third)].name);
   return t + "; tension only";
 }
 

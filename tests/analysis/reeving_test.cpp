@@ -171,6 +171,25 @@ TEST_P(Reeving, GirderAndHookBlockInSeriesWithTheRope) {
   EXPECT_NEAR(series(r, "rope.load_N").back(), W, 1e-6 * W);
 }
 
+// Claim: the frame is the body the file names also when ideal gears slave bodies listed before it
+// (compile reduces the slaves away and renumbers the bodies: the frame is renumbered with the rope's
+// ends). Two geared inertias on a torsion spring precede the crane of the test above; statically
+// by hand the girder still sits at −(m_h + m_l) g/c_g and the load where it sat there.
+TEST_P(Reeving, FrameNamedAfterGearedBodiesIsStillTheGirder) {
+  std::string yaml = kGirderCrane;
+  yaml.replace(yaml.find("  girder: {"), 0, "  a: {inertia: 2 kg*m^2}\n  b: {inertia: 1 kg*m^2}\n");
+  yaml.replace(yaml.find("  girder_spring:"), 0,
+               "  tie: {type: spring, between: [ground, a], stiffness: 100 N*m/rad}\n"
+               "  gear: {type: ideal-gear, between: [a, b], ratio: 3}\n");
+  Model m = model_of(yaml);
+  m.simulation.integrator = GetParam();
+  const double W = (kMh + kMl) * kG, x_g = -W / kCg, x_h = x_g - W / kCr, x_l = x_h - kMl * kG / kCs;
+  const SimulationResult r = simulate(m);
+  EXPECT_NEAR(series(r, "girder.position_m").back(), x_g, 1e-9);
+  EXPECT_NEAR(series(r, "hook.position_m").back(), x_h, 1e-9);
+  EXPECT_NEAR(series(r, "load.position_m").back(), x_l, 1e-9);
+}
+
 // Claim: a file without `rope_ends` means what it meant: `falls: 4` is one rope end feeding four
 // falls (i = 4/R), one part carries F/4, and no rope_force column is added (the frictionless reeving).
 TEST(ReevingFile, FallsAloneKeepTheirMeaning) {

@@ -96,6 +96,30 @@ TEST(ReportElements, EveryElementAsTheFileWroteIt) {
   EXPECT_EQ(ideal[1], "ideal gear");
 }
 
+// Claim: a 4/2 reeving with sheave losses hung from a girder is shown as written: 4 falls from 2 rope
+// ends, η = 0.98, the drum's 1/R = 4 rad/m as the file gave it (the link's own ratio is (n/n_e)/R =
+// 8 rad/m, elements/reeving.hpp), and the frame body by name.
+TEST(ReportElements, ReevingAndFrameAsTheFileWroteThem) {
+  std::string yaml = kHoist;
+  const std::string old_rope = "  rope: {type: rope, between: [drum, hook], ratio: 4 rad/m, falls: 4, EA: 2.4e7 N, length: 12 m}\n";
+  const auto at = yaml.find(old_rope);
+  ASSERT_NE(at, std::string::npos);
+  yaml.replace(at, old_rope.size(),
+               "  rope: {type: rope, between: [drum, hook], ratio: 4 rad/m, falls: 4, rope_ends: 2, "
+               "sheave_efficiency: 0.98, stiffness: 8e6 N/m, frame: girder}\n"
+               "  girder_spring: {type: spring, between: [ground, girder], stiffness: 5e7 N/m}\n");
+  yaml.replace(yaml.find("  hook:"), 0, "  girder: {type: translational, mass: 5 t, vertical: up}\n");
+  const Model m = test::model_text(yaml);
+  const auto rope = row_of(m, "Links", "rope");
+  ASSERT_GE(rope.size(), 7u);
+  const std::string rd = rope[6];
+  EXPECT_EQ(rope[1], "rope") << rd;
+  EXPECT_TRUE(has(rd, "4 falls from 2 rope ends on the drum (4/2 reeving)")) << rd;
+  EXPECT_TRUE(has(rd, "sheave efficiency η = 0.98")) << rd;
+  EXPECT_TRUE(has(rd, "drum 1/R = 4 rad/m")) << rd;
+  EXPECT_TRUE(has(rd, "hung from the frame 'girder'")) << rd;
+}
+
 // Claim: a progressive buffer is described by its side, position and F = c sⁿ with c = F/sⁿ
 // (200 kN at 0.1 m, n = 2.5: c = 2e5 / 0.1^2.5 computed here), and has no dynamic factor (its
 // reference is φ7's rigid-body peak): NaN in the summary, "–" in the printout.
