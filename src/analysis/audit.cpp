@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <string_view>
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "machdyn/analysis/drive_system.hpp"
@@ -101,6 +102,23 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
     fail(name, t, "contact.sliding_direction",
          fmt::format("mode {} but the sliding velocity is u = {:.17g}: the friction force {:.17g} drives the motion",
                      mode_name(x.mode), x.u, x.F));
+}
+
+void check_locked_slide(const std::string& name, double t, ContactMode mode, double u,
+                        const std::vector<std::vector<double>>& stuck_rows, const std::vector<double>& row) {
+  if (mode == ContactMode::stuck || u != 0.0 || stuck_rows.empty()) return;
+  const auto n = static_cast<Eigen::Index>(row.size()), s = static_cast<Eigen::Index>(stuck_rows.size());
+  Eigen::MatrixXd G(s + 1, n);
+  for (Eigen::Index i = 0; i <= s; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) G(i, j) = (i < s ? stuck_rows[static_cast<size_t>(i)] : row)[static_cast<size_t>(j)];
+  Eigen::FullPivLU<Eigen::MatrixXd> with(G), without(G.topRows(s));
+  with.setThreshold(1e-9);
+  without.setThreshold(1e-9);
+  if (with.rank() != without.rank()) return;  // its motion is free of the stuck set
+  fail(name, t, "contact.locked_slide",
+       fmt::format("labelled sliding ({}) at u = 0 while the stuck contacts beside it lock its motion (u ≡ 0): it is "
+                   "stuck, its load within the limits of the set",
+                   mode_name(mode)));
 }
 
 void check_link(const LinkLaw& law, const std::string& name, double t, const LinkValues& x) {
@@ -302,6 +320,24 @@ void Audit::check_at(double t, const double* y) {
       x.resolution = kGlobal * (m_.simulation.atol + m_.simulation.rtol * x.speed_scale);
       x.position_resolution = m_.simulation.atol + m_.simulation.rtol * std::abs(x.q);
       audit::check_contact(law, m_.contacts[static_cast<size_t>(k)].name, t, x);
+    }
+    // A friction contact sliding at u = 0 exactly: is its motion locked by the stuck ones beside it?
+    for (int k = 0; k < nc; ++k) {
+      const ContactLaw& law = sys_.contact(k);
+      if (sys_.contact_mode(k) == ContactMode::stuck || law.lock != 0 || law.joint || law.kinematic ||
+          (law.applied && law.spec->released(t)) || law.sliding_velocity(t, v) != 0.0)
+        continue;
+      auto dense = [&](const ContactLaw& c) {
+        std::vector<double> r(static_cast<size_t>(n), 0.0);
+        for (int j = 0; j < c.row.terms; ++j) r[static_cast<size_t>(c.row.body[j])] += c.row.w[j];
+        return r;
+      };
+      std::vector<std::vector<double>> rows;
+      for (int j = 0; j < nc; ++j) {
+        const ContactLaw& c = sys_.contact(j);
+        if (sys_.contact_mode(j) == ContactMode::stuck && c.lock == 0 && !c.joint && !c.kinematic) rows.push_back(dense(c));
+      }
+      audit::check_locked_slide(m_.contacts[static_cast<size_t>(k)].name, t, sys_.contact_mode(k), 0.0, rows, dense(law));
     }
   }
   // Gap links and ropes.

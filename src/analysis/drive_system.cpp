@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "analysis/affine_kernels.hpp"
+#include "analysis/bounded_share.hpp"
 #include "common/compiler.hpp"
 #include "machdyn/model/machine.hpp"
 
@@ -31,6 +32,7 @@ void mat_vec(const Eigen::MatrixXd& A, const Eigen::VectorXd& x, Eigen::VectorXd
     y(i) = s;
   }
 }
+
 }  // namespace
 
 namespace {
@@ -350,6 +352,7 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
   r_.resize(ns);
   lam_.resize(ns);
   stuck_machine_ = false;
+  timed_share_ = false;
   one_sided_.clear();
   masked_.clear();
   if (ns >= 2)
@@ -371,15 +374,29 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
     if (auto it = projector_cache_.find(key); it != projector_cache_.end()) {
       P_ = it->second.P;
       Pproj_ = it->second.Pproj;
+      timed_share_ = it->second.timed;
       return;
     }
   }
-  form_stuck_solution(inv_mass_.data());
+  form_stuck_solution(inv_mass_.data(), 0.0);
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   cod.setThreshold(1e-12);
   cod.compute(stuck_matrix(inv_mass_.data()));
   Pproj_ = cod.pseudoInverse();
-  if (cacheable) projector_cache_[key] = {P_, Pproj_};
+  // A redundant set (two contacts lock one motion) shares its load by the limits at the instant: with
+  // a brake or clutch among them (r(t) F_s0) the share changes with t. Shared by F_s0, two clutches
+  // in parallel ramped at different rates broke away at F_s1 + F_k2 instead of F_s1 + F_s2 (issue 27:
+  // the one with the smaller r took more than its limit, was released and slid at u ≡ 0 beside the other).
+  if (cod.rank() < ns)
+    for (int k : stuck_) timed_share_ = timed_share_ || contacts_[static_cast<size_t>(k)].applied;
+  if (cacheable) projector_cache_[key] = {P_, Pproj_, timed_share_};
+}
+
+double DriveSystem::share_weight(int k, double t) const {
+  const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+  // Only a redundant set's share depends on the weights (a full-rank set has one λ): its limits at t
+  // when one of them varies (timed_share_), else the constant F_s0 of the mode's cached pseudo-inverse.
+  return timed_share_ && c.applied && !c.joint && c.lock == 0 ? std::sqrt(c.holding_limit(t)) : c.share_weight();
 }
 
 Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {
@@ -398,7 +415,7 @@ Eigen::MatrixXd DriveSystem::stuck_matrix(const double* im) const {
   return A;
 }
 
-void DriveSystem::form_stuck_solution(const double* im) {
+void DriveSystem::form_stuck_solution(const double* im, double t) {
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   const Eigen::MatrixXd A = stuck_matrix(im);
   if (ns == 1 && stuck_machine_) {  // one stuck contact: λ = r / (1/I_a + 1/I_b), no decomposition
@@ -408,15 +425,15 @@ void DriveSystem::form_stuck_solution(const double* im) {
   }
   Eigen::VectorXd w(ns);
   for (Eigen::Index i = 0; i < ns; ++i)
-    w(i) = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].share_weight();
-  // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s0).
+    w(i) = share_weight(stuck_[static_cast<size_t>(i)], t);
+  // Weighted least norm: λ = D z, min ‖z‖ subject to A D z = r, D = diag(√F_s(t)).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   cod.setThreshold(1e-12);
   cod.compute(A * w.asDiagonal());
   P_ = w.asDiagonal() * cod.pseudoInverse();
 }
 
-void DriveSystem::share_one_sided(const double* im) {
+void DriveSystem::share_one_sided(const double* im, double t) {
   // The one-sided contacts whose least-norm share pulls against their lock.
   uint64_t mask = 0;
   for (Eigen::Index j : one_sided_) {
@@ -425,14 +442,14 @@ void DriveSystem::share_one_sided(const double* im) {
   }
   if (mask == 0) return;
   auto it = masked_.find(mask);
-  if (it == masked_.end() || stuck_machine_) {
+  if (it == masked_.end() || stuck_machine_ || timed_share_) {
     // λ = D z, min ‖z‖ subject to A D z = r, with weight 0 for the masked contacts; used only if the
     // others carry every load alone (rank A D = rank A), else (empty) the plain share stands.
     const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
     const Eigen::MatrixXd A = stuck_matrix(im);
     Eigen::VectorXd w(ns);
     for (Eigen::Index i = 0; i < ns; ++i)
-      w(i) = (mask >> i & 1) != 0 ? 0.0 : contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])].share_weight();
+      w(i) = (mask >> i & 1) != 0 ? 0.0 : share_weight(stuck_[static_cast<size_t>(i)], t);
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> full, cod;
     full.setThreshold(1e-12);
     cod.setThreshold(1e-12);
@@ -574,9 +591,12 @@ __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, 
   for (size_t j = 0; j < stuck_.size(); ++j)
     r_(static_cast<Eigen::Index>(j)) = contacts_[static_cast<size_t>(stuck_[j])].sliding_acceleration(t, acc);
   if constexpr (kMach)
-    if (stuck_machine_) form_stuck_solution(im);
+    if (stuck_machine_) form_stuck_solution(im, t);
+  if (timed_share_) [[unlikely]] form_stuck_solution(im, t);
   mat_vec(P_, r_, lam_);
-  if (!one_sided_.empty()) share_one_sided(im);
+  if (!one_sided_.empty()) share_one_sided(im, t);
+  if (stuck_.size() >= 2) detail::bound_share(stuck_, contacts_, t, lam_, r_, [&] { return stuck_matrix(im); },
+              [&](int k) { return share_weight(k, t); });
   for (size_t j = 0; j < stuck_.size(); ++j) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[j])];
     const double lam = lam_(static_cast<Eigen::Index>(j));
@@ -719,6 +739,18 @@ void DriveSystem::enforce_stuck_weighted(double t, double* acc, const double* im
 }
 
 const DriveSystem::AffineMode& DriveSystem::compile_affine() {
+  // A redundant stuck set with a bounded contact shares its load by the bounded split (bound_share),
+  // piecewise linear in y: it has no affine map, and the run takes the general path from here on.
+  if (stuck_.size() >= 2 && std::any_of(stuck_.begin(), stuck_.end(), [&](int k) { return !contacts_[static_cast<size_t>(k)].joint; })) {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-12);
+    cod.compute(stuck_matrix(inv_mass_.data()));
+    if (cod.rank() < static_cast<Eigen::Index>(stuck_.size())) {
+      affine_eligible_ = false;
+      static const AffineMode none;
+      return none;
+    }
+  }
   std::string key;
   for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
   key += '/';
@@ -783,6 +815,11 @@ void DriveSystem::rhs_other(double t, const double* y, double* dydt) {
   // The mode's map may have been compiled already by contact_forces (a decision's λ, the event
   // functions): its small kernel is taken here too, not only where this call compiled it.
   if (!affine_) use_affine();
+  if (!affine_eligible_) {  // the mode has no affine map (compile_affine)
+    mode_changed();
+    rhs_other(t, y, dydt);
+    return;
+  }
   if (affine_->dense.kernel) {  // from now on inline (rhs)
     fast_ = &affine_->dense;
     rhs(t, y, dydt);
@@ -977,6 +1014,11 @@ void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double
 void DriveSystem::contact_forces_other(double t, const double* y, double* fc) {
   if (affine_eligible_ && !dense_) {  // the mode's affine rows (compile_affine)
     if (!affine_) use_affine();
+    if (!affine_eligible_) {  // the mode has no affine map (compile_affine)
+      mode_changed();
+      evaluate(t, y, f_.data(), fc);
+      return;
+    }
     const AffineMode& a = *affine_;
     if (a.force_dense.kernel) {
       a.force_dense.apply(y, fc);

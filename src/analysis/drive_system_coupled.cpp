@@ -50,7 +50,7 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
   Eigen::VectorXd w(ns);
   for (Eigen::Index i = 0; i < ns; ++i) {
     const ContactLaw& ci = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])];
-    w(i) = ci.share_weight();
+    w(i) = share_weight(stuck_[static_cast<size_t>(i)], t);
     r_(i) = ci.sliding_acceleration(t, acc);  // acc = C f + c_0: the gears already solved without λ
     for (Eigen::Index j = 0; j < ns; ++j) {
       const VelocityRow& rj = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].row;

@@ -74,6 +74,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const auto& s = m_.simulation;
     out_.hybrid.active = sys_.energy_books();
     out_.hybrid.breakpoints = m_.breakpoints(s.t_end);
+    next_breakpoint(0.0);
     const Method method = choose_method(m_, &out_.method_reason);
     if (method == Method::dopri5) peaks_.set_dense_degree(4);  // its dense output (solve/stepper.hpp)
     sys_.initial_state(y_.data());
@@ -141,6 +142,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the event system the driver integrates: the drive system in its current modes ----
   [[nodiscard]] int size() const override { return sys_.size(); }
   void rhs(double t, const double* y, double* dydt) override {
+    // A step never crosses a breakpoint; one that ends on it sees the signals' left limits there (a
+    // load, a brake's application or a surface that jumps at t_b has its old value on the whole
+    // step): the stages of the step at its end (dopri5's c = 1, BDF's implicit t_n) used to take the
+    // value after the jump, an error of O(h ΔF) in the state the next piece starts from — a brake
+    // applied on a body at rest set it sliding at 1e-11 m/s, BDF's stops and rests came 1e-6 s off.
+    if (t == bp_next_) [[unlikely]] t = std::nextafter(t, -std::numeric_limits<double>::infinity());
     last_t_ = t, last_y_ = y;  // the integrator's own buffer: where a failure was met (state_name)
     sys_.rhs(t, y, dydt);
   }
@@ -172,17 +179,17 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   [[nodiscard]] double sampling_step(double, double t_end) const override { return machdyn::sampling_step(m_, t_end); }
   bool handle_events(double t, double* y, const std::vector<int>& fired) override {
+    next_breakpoint(t);
     // The driver hands back every event function a decision left negative and asks again at the
     // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
     // there mean no consistent mode exists — an error naming the element, never a disarmed event.
     if (t == decided_at_ && !fired.empty()) {
-      // Contacts, end stops, flanks and ropes are decided again. Speed drives, lossy gears and
-      // stepwise gears keep their decision: their functions wait until they are ≥ 0 at a step end
-      // (a speed drive leaving its limit with the command exactly at M_max; a lossy gear with
-      // friction on its bodies) — their decisions are not yet formed from their events' computation.
-      if (std::all_of(fired.begin(), fired.end(), [&](int f) {
-            return f >= sys_.event_slots() || sys_.slot_is_drive(f) || sys_.slot_is_gear(f);
-          }))
+      // Contacts, end stops, flanks, ropes and elements with states (a speed drive: its switch puts
+      // its state on the surface, Element::on_switch) are decided again. Lossy gears and stepwise
+      // gears keep their decision: their functions wait until they are ≥ 0 at a step end (a lossy
+      // gear with friction on its bodies) — their decisions are not yet formed from their events'
+      // computation.
+      if (std::all_of(fired.begin(), fired.end(), [&](int f) { return f >= sys_.event_slots() || sys_.slot_is_gear(f); }))
         return false;
       if (++redecisions_ > kMaxRedecisions)
         throw SolverError(slot_name(fired.front()), t,
@@ -239,6 +246,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
+    if (st.t() >= bp_next_) [[unlikely]] next_breakpoint(st.t());
     if (audit_) [[unlikely]] audit_->settle();
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
@@ -824,6 +832,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     opt_.progress(p);
   }
 
+  /// bp_next_ = the first breakpoint after t (rhs() takes the signals' left limits there).
+  void next_breakpoint(double t) {
+    const std::vector<double>& b = out_.hybrid.breakpoints;
+    const auto it = std::upper_bound(b.begin(), b.end(), t);
+    bp_next_ = it == b.end() ? std::numeric_limits<double>::infinity() : *it;
+  }
+  double bp_next_ = std::numeric_limits<double>::infinity();
+
   // ---- re-decisions at one instant ----
   /// The modes of every element and the state, before a re-decision.
   void remember_decision(const double* y) {
@@ -927,10 +943,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// Whether contact k belongs to a gear lock (decided with its gear, not by decide_contacts).
   bool gear_owned(int k) const { return sys_.gear_locks().owner[static_cast<size_t>(k)] >= 0; }
   /// Sets the mode of element d (with states of its own) and records the switch in its words.
-  void set_drive_mode(int d, double t, int now, bool initial) {
+  /// `located`: the switch of one of its own event functions (else its natural mode): its states are
+  /// put on the switching surface, on the new mode's side (Element::on_switch).
+  void set_drive_mode(int d, double t, int now, bool initial, bool located = false) {
     const int old = sys_.drive_mode(d);
     if (!initial && now == old) return;
     sys_.set_drive_mode(d, now);
+    if (!initial) sys_.drive(d).on_switch(t, sys_.drive_speed(d, y_.data()), y_.data() + sys_.drive_offset(d), old, now, located);
     const Element& e = sys_.drive(d);
     record(t, initial ? "initial" : e.switch_kind(now), nl_ + nc_ + d, initial ? "" : e.mode_name(old),
            e.mode_name(now));
@@ -1173,7 +1192,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (sys_.slot_is_gear(slot)) continue;
       if (sys_.slot_is_drive(slot)) {  // an element's own event (a speed drive at its torque limit)
         const int now = sys_.drive(e).mode_after(sys_.drive_mode(e), slot % 2);
-        set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false);
+        set_drive_mode(e, t, sys_.settle_drive_mode(e, t, y_.data(), now), false, true);
       } else if (sys_.slot_is_link(slot)) {
         const GapMode old = sys_.gap_mode(e);
         const GapMode now = LinkLaw::mode_after(old, slot % 2);
@@ -1252,6 +1271,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void contact_time_event(double t) {
+    // The bodies tied by the stuck contacts on one velocity per cluster first (their u exactly 0, as
+    // every decision leaves them): BDF's Newton corrections mix the states, so a stuck pair's speeds
+    // drift apart by rounding over a piece, and a clutch applied beside a stuck one read u = 1e-17 and
+    // was set sliding at u ≡ 0 instead of being decided at rest (`contact.locked_slide`).
+    if (nc_ > 0) sys_.project_velocities(t, y_.data());
     // A jump of a speed reference may carry the command across the torque limit.
     for (int d = 0; d < nd_; ++d)
       if (sys_.drive(d).has_events()) set_drive_mode(d, t, sys_.natural_drive_mode(d, t, y_.data()), false);

@@ -86,7 +86,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       if (!changed) {
         // The system keeps its decision (it reports nothing changed): its last word. Such a
         // function is armed again only once it is ≥ 0 at a step end (the rule of old; the hybrid
-        // run keeps it for speed drives and lossy gears alone, docs/hybrid.md "The restart rule").
+        // run keeps it for lossy gears and stepwise gears alone, docs/hybrid.md "The restart rule").
         sys.event_functions(t, ys, g_prev.data());
         for (size_t k = 0; k < ne; ++k)
           if (!(g_prev[k] >= 0.0)) off[k] = -std::numeric_limits<double>::infinity(), any_off = true;

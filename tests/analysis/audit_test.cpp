@@ -100,6 +100,23 @@ TEST(AuditChecks, StuckContactBeyondItsStaticLimit) {
   expect_violation([&] { audit::check_contact(law, "k", 0.5, x); }, "contact.static_limit", "k", 0.5, "1.09 F_s");
 }
 
+// Claim: a contact labelled sliding at u = 0 whose motion the stuck contacts beside it lock is
+// reported: two clutches between bodies 0 and 1 (rows e0 − e1 and e1 − e0), one stuck, the other
+// "sliding" (the campaign's parallel clutches, released by a share of the full limits, slid at u ≡ 0
+// with their kinetic force). Free of the stuck set (row e1 − e2, or u ≠ 0) it is no violation.
+TEST(AuditChecks, ASlideTheStuckContactsLockIsStuck) {
+  const std::vector<std::vector<double>> stuck = {{1.0, -1.0, 0.0}};
+  expect_violation([&] { audit::check_locked_slide("K1", 0.3, ContactMode::slip_neg, 0.0, stuck, {-1.0, 1.0, 0.0}); },
+                   "contact.locked_slide", "K1", 0.3, "slip-");
+  // A loop: b0–ground and b0–b1 stuck lock b1–ground too.
+  expect_violation([&] {
+    audit::check_locked_slide("B", 0.1, ContactMode::slip_pos, 0.0, {{1.0, 0.0, 0.0}, {1.0, -1.0, 0.0}}, {0.0, 1.0, 0.0});
+  }, "contact.locked_slide", "B", 0.1, "slip+");
+  EXPECT_NO_THROW(audit::check_locked_slide("K2", 0.3, ContactMode::slip_neg, 0.0, stuck, {0.0, 1.0, -1.0}));
+  EXPECT_NO_THROW(audit::check_locked_slide("K1", 0.3, ContactMode::slip_neg, -1e-3, stuck, {-1.0, 1.0, 0.0}));
+  EXPECT_NO_THROW(audit::check_locked_slide("K1", 0.3, ContactMode::stuck, 0.0, stuck, {-1.0, 1.0, 0.0}));
+}
+
 // Claim: a brake's limit is its application r(t) F_s0: before its time (r = 0, released) it carries
 // nothing, halfway up its ramp (t = 1.5 s: r = 0.5) at most 50 N.
 TEST(AuditChecks, BrakeLimitFollowsItsApplication) {

@@ -41,6 +41,8 @@
 ///                            states of the same integration; an error of the integrator is O(rtol) per
 ///                            unit energy, O(atol) J absolute, and accumulates over the steps, a lost
 ///                            or invented energy is O(1))
+///   contact.locked_slide     a friction contact sliding at u = 0 exactly whose row the stuck friction
+///                            contacts beside it lock (u ≡ 0): it is stuck (check_locked_slide)
 ///   events.mode_columns      the mode columns of every output row equal the modes the event list
 ///                            says (its last `to` before the row), for contacts and gap links
 /// A released brake or clutch (application 0) has F_s = 0: it may carry nothing (1e-12 F_s0), and
@@ -98,6 +100,15 @@ struct ContactValues {
 };
 /// Checks contact `law` named `name` at t (limits at t: the caller passes t⁻ in a mode).
 void check_contact(const ContactLaw& law, const std::string& name, double t, const ContactValues& x);
+
+/// contact.locked_slide: a friction contact labelled sliding (mode) with its sliding velocity u
+/// exactly 0, whose velocity row `row` (over the bodies, size n) lies in the span of the rows
+/// `stuck_rows` of the stuck friction contacts beside it (not freewheels, stops or joints): they hold
+/// u ≡ 0, so it cannot slide — it is stuck, and the load it would carry stays locked up to the sum of
+/// its and their limits (a contact released by a wrong share slid at u ≡ 0 with its kinetic force, and
+/// its set broke away at F_s1 + F_k2 instead of F_s1 + F_s2). Exact (a rank test to 1e-9).
+void check_locked_slide(const std::string& name, double t, ContactMode mode, double u,
+                        const std::vector<std::vector<double>>& stuck_rows, const std::vector<double>& row);
 
 /// One link's values: its mode, deflection δ, rate δ̇, load F and the drum position q_a (ropes).
 struct LinkValues {

@@ -295,11 +295,18 @@ class DriveSystem final : public OdeSystem {
   void inverse_inertias(const double* y, double* im) const;
   /// G M⁻¹ Gᵀ of the stuck set for the inverse inertias `im`.
   [[nodiscard]] Eigen::MatrixXd stuck_matrix(const double* im) const;
-  /// P_ for the inverse inertias `im` (machines in the stuck set: at every evaluation).
-  void form_stuck_solution(const double* im);
+  /// P_ for the inverse inertias `im` and the share weights at t (machines in the stuck set, or a
+  /// redundant set with a limit varying in t: at every evaluation).
+  void form_stuck_solution(const double* im, double t);
+  /// The weight of stuck contact k in the share of a locked load at t: √F_s(t), the static limit at t
+  /// (a brake's or clutch's r(t) F_s0 with the rule's allowance, never 0; only in a redundant set with
+  /// such a limit, timed_share_: elsewhere √F_s0, the weights do not change λ), so a load locked by several
+  /// contacts is shared in proportion to their limits at that instant and stays locked exactly while it
+  /// is within Σ F_s,k(t); a freewheel or end stop 1, a gear joint 1e3.
+  [[nodiscard]] double share_weight(int k, double t) const;
   /// The one-sided rule of the share (header): moves the share of a redundant freewheel or end stop
   /// loaded against its lock to the other stuck contacts (lam_ from r_).
-  void share_one_sided(const double* im);
+  void share_one_sided(const double* im, double t);
   /// Solves every lossy gear in its mode on the forces f (before the inertias divide them) and adds
   /// its torques; adds the losses to *p_fric (if given).
   void apply_gears(double t, const double* y, double* f, double* p_fric);
@@ -414,6 +421,7 @@ class DriveSystem final : public OdeSystem {
   bool has_machines_ = false;
   bool general_ = false;                 // machines or drives: the kMach = true instantiations
   bool stuck_machine_ = false;           // a stuck contact touches a machine: P_ per evaluation
+  bool timed_share_ = false;  // a redundant stuck set with a limit varying in t (a brake, a clutch): P_ per evaluation
   std::vector<double> im_;               // I(q)⁻¹ of the last evaluation (machines)
   std::vector<double> q_lo_, q_hi_;      // evaluation windows of the machines (±inf: none)
   bool windows_ = false;                 // some window is set
@@ -441,6 +449,7 @@ class DriveSystem final : public OdeSystem {
   // few mode combinations recur at every stick–slip cycle.
   struct Projectors {
     Eigen::MatrixXd P, Pproj;
+    bool timed = false;  // timed_share_ of this stuck set
   };
   std::unordered_map<uint64_t, Projectors> projector_cache_;
   Eigen::MatrixXd P_;         // λ = P_ r (weighted least norm)

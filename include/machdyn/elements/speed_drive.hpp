@@ -147,6 +147,26 @@ class SpeedDrive final : public Element {
   [[nodiscard]] int settle(double t, double omega, int old, int now, double omega_dot) const override {
     return static_cast<int>(settle_limit(LimitMode(old), LimitMode(now), ref.value(t) - omega, ref.slope(t) - omega_dot));
   }
+  /// A switch to or from the limit happens with the command on it, M_c = s M_max: located by its own
+  /// event (g₀ or g₁ just crossed 0), or leaving an on-limit mode (which keeps M_c = s M_max through
+  /// x_I' = −K_p ė, an integrated invariant that drifts: on bdf DriveOnLimit left the limit with
+  /// M_max − M_c = −3.8e-10 N·m). x_I is put on K_p e + x_I = s M_max, then the few ulps to the side of
+  /// `now` its events read: |M_c| ≤ M_max linear, s (M_c − s M_max) ≥ 0 limited± (on-limit: on it).
+  void on_switch(double t, double omega, double* x, int old, int now, bool located) const override {
+    const LimitMode o = LimitMode(old), n = LimitMode(now);
+    if (!limited() || (!located && !on_limit(o))) return;
+    const int s = limit_side(o) != 0 ? limit_side(o) : limit_side(n);
+    if (s == 0) return;
+    const double Kpe = Kp * (ref.value(t) - omega);  // as command() forms it
+    auto holds = [&](double xI) {
+      const double Mc = Kpe + xI;
+      return n == LimitMode::linear ? std::abs(Mc) <= M_max : on_limit(n) || s * (Mc - s * M_max) >= 0.0;
+    };
+    double xI = s * M_max - Kpe;
+    const double toward = n == LimitMode::linear ? -s : s;  // inside for linear, outside for limited±
+    for (int i = 0; i < 8 && !holds(xI); ++i) xI = std::nextafter(xI, toward * HUGE_VAL);
+    x[0] = xI;
+  }
   /// Off the limit: the command's mode; on it, a jump of ω_ref' (a ramp's end) may end the on-limit
   /// motion: its event functions decide.
   [[nodiscard]] int natural_mode(double t, double omega, const double* x, int current, double omega_dot) const override;

@@ -86,6 +86,14 @@ class Element {
   [[nodiscard]] virtual int settle(double /*t*/, double /*omega*/, int /*old*/, int now, double /*omega_dot*/) const {
     return now;
   }
+  /// After a switch old → now made on its switching surface (`located`: one of its own event functions
+  /// crossed 0; else a switch its natural_mode() found): puts its states x exactly on that surface, on
+  /// the side of mode `now`, so that the new mode's event functions start ≥ 0 — there the function is 0
+  /// only up to an error (rounding, or the drift of an invariant the mode integrates), and a function
+  /// negative at a restart would be decided again (docs/hybrid.md, "The restart rule"). A switch off
+  /// the surface (a jump of a signal at a breakpoint) changes nothing. Default: nothing to put.
+  virtual void on_switch(double /*t*/, double /*omega*/, double* /*x*/, int /*old*/, int /*now*/,
+                         bool /*located*/) const {}
   /// The mode its state implies on its own (initial state, after a time event); `current` its mode.
   [[nodiscard]] virtual int natural_mode(double /*t*/, double /*omega*/, const double* /*x*/, int current,
                                          double /*omega_dot*/) const {
