@@ -335,53 +335,96 @@ class Sim {
   /// bv_ holds G M⁻¹ f.
   void redundant_lambda(const StuckSet& S, double t) {
     const int s = static_cast<int>(S.rows.size());
-    // Two stuck elements lock one motion: the weighted least-norm λ = W A (A W A)⁺ b, weights the
-    // static limits (a one-sided element: 1 N); a one-sided element whose share would be against
-    // its lock takes none if the others carry every load alone (docs/hybrid.md).
+    // Two stuck elements lock one motion (docs/hybrid.md, "Redundant locks: the bounded split"):
+    // the weighted least-norm λ = W A (A W A)⁺ b, min Σ λ²/W, W the static limits F_s(t) (a
+    // one-sided element: 1); a one-sided element whose share would be against its lock takes none
+    // if the others carry every load alone. Where that share leaves an element beyond its bounds
+    // (a friction element |λ| ≤ F_s(t), a one-sided one lock·λ ≥ −F_drag), λ is the bounded
+    // weighted least-norm split; only where no split within the bounds exists is the share kept (and
+    // the element beyond its bound breaks away).
     const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(bv_.data(), s);
-    auto weighted = [&](const std::vector<bool>& masked) {
-      Eigen::VectorXd w(s);
-      for (int r = 0; r < s; ++r) {
-        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-        w(r) = masked[static_cast<size_t>(r)] ? 0.0 : fr.one_sided() ? 1.0 : std::max(fr.static_limit(t), 1e-300);
+    Eigen::VectorXd W(s), lo(s), hi(s);
+    for (int r = 0; r < s; ++r) {
+      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
+      if (fr.one_sided()) {
+        W(r) = 1.0;
+        const double d = fr.kinetic_level(t);
+        lo(r) = lock(fr) > 0 ? -d : -HUGE_VAL;
+        hi(r) = lock(fr) > 0 ? HUGE_VAL : d;
+      } else {
+        const double Fs = fr.static_limit(t);
+        W(r) = std::max(Fs, 1e-300);
+        lo(r) = -Fs, hi(r) = Fs;
       }
+    }
+    const double btol = 1e-9 * (b.norm() + 1e-300);
+    // The weighted least-norm λ over the rows not `fixed`, those held at `val`.
+    auto weighted = [&](const std::vector<bool>& fixed, const Eigen::VectorXd& val) {
+      Eigen::VectorXd w = W, l = Eigen::VectorXd::Zero(s);
+      for (int r = 0; r < s; ++r)
+        if (fixed[static_cast<size_t>(r)]) w(r) = 0.0, l(r) = val(r);
+      const Eigen::VectorXd rhs = b - S.A * l;
       const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
       Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
       cod.setThreshold(1e-12);
-      return Eigen::VectorXd(w.asDiagonal() * S.A * (cod.pseudoInverse() * b));
+      const Eigen::VectorXd lf = w.asDiagonal() * S.A * (cod.pseudoInverse() * rhs);
+      for (int r = 0; r < s; ++r)
+        if (!fixed[static_cast<size_t>(r)]) l(r) = lf(r);
+      return l;
     };
-    // A lock first: where the one-sided elements alone carry every load in their hold directions,
-    // the friction elements beside them carry nothing (a backstop holds, the brake beside it is
-    // not loaded); the documented rule has no share for a lock in its hold direction.
-    std::vector<bool> masked(static_cast<size_t>(s), false);
-    bool has_lock = false;
-    for (int r = 0; r < s; ++r) {
-      const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-      masked[static_cast<size_t>(r)] = !fr.one_sided();
-      has_lock = has_lock || fr.one_sided();
-    }
-    if (has_lock) {
-      const Eigen::VectorXd l0 = weighted(masked);
-      bool holds = (S.A * l0 - b).norm() <= 1e-9 * (b.norm() + 1e-300);
-      for (int r = 0; r < s && holds; ++r) {
-        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-        if (fr.one_sided() && lock(fr) * l0(r) < 0.0) holds = false;
+    // Within the bounds and solving A λ = b to rounding (a looser residual would hold a set a
+    // little beyond its limits: 1e-9 ‖b‖ delayed a breakaway by 1e-8 N).
+    const double anorm = S.A.cwiseAbs().rowwise().sum().maxCoeff();
+    auto within = [&](const Eigen::VectorXd& l) {
+      if ((S.A * l - b).norm() > 1e-11 * (b.norm() + anorm * l.cwiseAbs().maxCoeff()) + 1e-300) return false;
+      for (int r = 0; r < s; ++r) {
+        const double tol = 1e-12 * (std::abs(l(r)) + fscale_);
+        if (l(r) < lo(r) - tol || l(r) > hi(r) + tol) return false;
       }
-      if (holds) {
-        for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = l0(r);
-        return;
-      }
-    }
-    std::fill(masked.begin(), masked.end(), false);
-    Eigen::VectorXd lv = weighted(masked);
+      return true;
+    };
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s);
+    std::vector<bool> fixed(static_cast<size_t>(s), false);
+    Eigen::VectorXd lv = weighted(fixed, zero);
     bool any = false;
     for (int r = 0; r < s; ++r) {
       const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-      if (fr.one_sided() && lock(fr) * lv(r) < 0.0) masked[static_cast<size_t>(r)] = true, any = true;
+      if (fr.one_sided() && lock(fr) * lv(r) < 0.0) fixed[static_cast<size_t>(r)] = true, any = true;
     }
     if (any) {
-      const Eigen::VectorXd l2 = weighted(masked);
-      if ((S.A * l2 - b).norm() <= 1e-9 * (b.norm() + 1e-300)) lv = l2;
+      const Eigen::VectorXd l2 = weighted(fixed, zero);
+      if ((S.A * l2 - b).norm() <= btol) lv = l2;
+    }
+    if (!within(lv) && s <= 10) {
+      // The bounded split by brute force: every assignment of each row to {free, at its lower
+      // bound, at its upper bound} (finite bounds only), the free rows' weighted least-norm
+      // solution; the feasible candidate of least Σ λ²/W is the optimum (a strictly convex
+      // objective on a convex set: the optimum's own active set is among the candidates, and its
+      // free rows solve that candidate's equality-constrained problem).
+      std::vector<int> choice(static_cast<size_t>(s), 0);
+      Eigen::VectorXd best = lv, val(s);
+      double best_obj = HUGE_VAL;
+      for (;;) {
+        bool ok = true;
+        for (int r = 0; r < s && ok; ++r) {
+          const int c = choice[static_cast<size_t>(r)];
+          fixed[static_cast<size_t>(r)] = c != 0;
+          val(r) = c == 1 ? lo(r) : c == 2 ? hi(r) : 0.0;
+          if (!std::isfinite(val(r))) ok = false;
+        }
+        if (ok) {
+          const Eigen::VectorXd l = weighted(fixed, val);
+          if (within(l)) {
+            double obj = 0.0;
+            for (int r = 0; r < s; ++r) obj += l(r) * l(r) / W(r);
+            if (obj < best_obj) best_obj = obj, best = l;
+          }
+        }
+        int r = 0;
+        while (r < s && ++choice[static_cast<size_t>(r)] == 3) choice[static_cast<size_t>(r++)] = 0;
+        if (r == s) break;
+      }
+      lv = best;
     }
     for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
   }
@@ -830,6 +873,9 @@ RefResult Sim::run() {
     res_.t.push_back(t);
     res_.q.emplace_back(y.begin(), y.begin() + n_);
     res_.v.emplace_back(y.begin() + n_, y.begin() + 2 * n_);
+    std::vector<double> acc(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    accel(t, y.data(), md_, acc.data(), lam.data());
+    res_.lam.push_back(std::move(lam));
   };
   double t = 0.0;
   row(0.0), next_row = 1;

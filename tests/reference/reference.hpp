@@ -242,6 +242,7 @@ struct RefOptions {
 struct RefResult {
   std::vector<double> t;                  ///< the output rows k dt_out, k = 0 … round(t_end/dt_out)
   std::vector<std::vector<double>> q, v;  ///< [row][body]
+  std::vector<std::vector<double>> lam;  ///< [row][friction element] its stuck load λ (0 unless stuck)
   std::vector<RefEvent> events;
   /// Where the consistent mode combinations gave different accelerations (the documented rule chose
   /// one): +∞ when never. Compare only before it.
