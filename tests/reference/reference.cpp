@@ -305,12 +305,16 @@ class Sim {
     Eigen::MatrixXd G, A;    // rows e_a − e_b; A = G M⁻¹ Gᵀ
     bool full = false;       // A regular
     Eigen::MatrixXd Ainv;
+    // The bounded split's candidates (each row free 0, at its lower bound 1 or upper bound 2),
+    // fewest bounds first, and the one that solved the last evaluation (tried first).
+    std::vector<std::vector<int>> choices;
+    std::vector<int> last;
   };
   std::map<unsigned, StuckSet> sets_;
   double t_left_ = -1.0;  // the end of the current step (its signals' left limits)
   std::vector<double> f_, lamv_, bv_;
 
-  const StuckSet& stuck_set(unsigned mask) {
+  StuckSet& stuck_set(unsigned mask) {
     auto it = sets_.find(mask);
     if (it != sets_.end()) return it->second;
     StuckSet S;
@@ -333,7 +337,7 @@ class Sim {
 
   /// λ of a stuck set whose rows are dependent (two stuck elements lock one motion), into lamv_;
   /// bv_ holds G M⁻¹ f.
-  void redundant_lambda(const StuckSet& S, double t) {
+  void redundant_lambda(StuckSet& S, double t) {
     const int s = static_cast<int>(S.rows.size());
     // Two stuck elements lock one motion (docs/hybrid.md, "Redundant locks: the bounded split"):
     // the weighted least-norm λ = W A (A W A)⁺ b, min Σ λ²/W, W the static limits F_s(t) (a
@@ -358,24 +362,30 @@ class Sim {
       }
     }
     const double btol = 1e-9 * (b.norm() + 1e-300);
-    // The weighted least-norm λ over the rows not `fixed`, those held at `val`.
+    // The weighted least-norm λ over the rows not `fixed`, those held at `val`; g = A μ, μ the
+    // multipliers of A λ = b (the free rows have λ = W g).
+    Eigen::VectorXd g(s);
     auto weighted = [&](const std::vector<bool>& fixed, const Eigen::VectorXd& val) {
       Eigen::VectorXd w = W, l = Eigen::VectorXd::Zero(s);
       for (int r = 0; r < s; ++r)
         if (fixed[static_cast<size_t>(r)]) w(r) = 0.0, l(r) = val(r);
       const Eigen::VectorXd rhs = b - S.A * l;
-      const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
-      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
-      cod.setThreshold(1e-12);
-      const Eigen::VectorXd lf = w.asDiagonal() * S.A * (cod.pseudoInverse() * rhs);
+      g.setZero();  // every row fixed: μ = 0 (the pseudo-inverse of a zero matrix is not formed)
+      if (w.cwiseAbs().maxCoeff() > 0.0) {
+        const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
+        cod.setThreshold(1e-12);
+        g = S.A * (cod.pseudoInverse() * rhs);
+      }
       for (int r = 0; r < s; ++r)
-        if (!fixed[static_cast<size_t>(r)]) l(r) = lf(r);
+        if (!fixed[static_cast<size_t>(r)]) l(r) = w(r) * g(r);
       return l;
     };
     // Within the bounds and solving A λ = b to rounding (a looser residual would hold a set a
     // little beyond its limits: 1e-9 ‖b‖ delayed a breakaway by 1e-8 N).
     const double anorm = S.A.cwiseAbs().rowwise().sum().maxCoeff();
     auto within = [&](const Eigen::VectorXd& l) {
+      if (!l.allFinite()) return false;
       if ((S.A * l - b).norm() > 1e-11 * (b.norm() + anorm * l.cwiseAbs().maxCoeff()) + 1e-300) return false;
       for (int r = 0; r < s; ++r) {
         const double tol = 1e-12 * (std::abs(l(r)) + fscale_);
@@ -396,34 +406,49 @@ class Sim {
       if ((S.A * l2 - b).norm() <= btol) lv = l2;
     }
     if (!within(lv) && s <= 10) {
-      // The bounded split by brute force: every assignment of each row to {free, at its lower
-      // bound, at its upper bound} (finite bounds only), the free rows' weighted least-norm
-      // solution; the feasible candidate of least Σ λ²/W is the optimum (a strictly convex
-      // objective on a convex set: the optimum's own active set is among the candidates, and its
-      // free rows solve that candidate's equality-constrained problem).
-      std::vector<int> choice(static_cast<size_t>(s), 0);
+      // The bounded split min Σ λ²/W, A λ = b, lo ≤ λ ≤ hi, by its active sets: every assignment of
+      // each row to {free, at its lower bound, at its upper bound} (finite bounds only), the free
+      // rows' weighted least-norm solution. A feasible candidate whose bound multipliers
+      // ν = ±(g − λ/W) are ≥ 0 satisfies the KKT conditions: it is the optimum (strictly convex
+      // objective, convex set). Failing that (rounding in g), the feasible candidate of least
+      // Σ λ²/W is the optimum too: the optimum's own active set is among the candidates.
+      if (S.choices.empty()) {
+        std::vector<int> c(static_cast<size_t>(s), 0);
+        for (;;) {
+          S.choices.push_back(c);
+          int r = 0;
+          while (r < s && ++c[static_cast<size_t>(r)] == 3) c[static_cast<size_t>(r++)] = 0;
+          if (r == s) break;
+        }
+        auto nfix = [](const std::vector<int>& v) { return std::count_if(v.begin(), v.end(), [](int x) { return x != 0; }); };
+        std::stable_sort(S.choices.begin(), S.choices.end(), [&](const auto& x, const auto& y) { return nfix(x) < nfix(y); });
+      }
       Eigen::VectorXd best = lv, val(s);
       double best_obj = HUGE_VAL;
-      for (;;) {
-        bool ok = true;
-        for (int r = 0; r < s && ok; ++r) {
+      auto try_choice = [&](const std::vector<int>& choice) {  // true: the optimum
+        for (int r = 0; r < s; ++r) {
           const int c = choice[static_cast<size_t>(r)];
           fixed[static_cast<size_t>(r)] = c != 0;
           val(r) = c == 1 ? lo(r) : c == 2 ? hi(r) : 0.0;
-          if (!std::isfinite(val(r))) ok = false;
+          if (!std::isfinite(val(r))) return false;
         }
-        if (ok) {
-          const Eigen::VectorXd l = weighted(fixed, val);
-          if (within(l)) {
-            double obj = 0.0;
-            for (int r = 0; r < s; ++r) obj += l(r) * l(r) / W(r);
-            if (obj < best_obj) best_obj = obj, best = l;
-          }
+        const Eigen::VectorXd l = weighted(fixed, val);
+        if (!within(l) || !g.allFinite()) return false;
+        double obj = 0.0;
+        bool kkt = true;
+        for (int r = 0; r < s; ++r) {
+          obj += l(r) * l(r) / W(r);
+          const int c = choice[static_cast<size_t>(r)];
+          const double nu = c == 2 ? g(r) - l(r) / W(r) : c == 1 ? l(r) / W(r) - g(r) : 0.0;
+          if (nu < -1e-9 * (std::abs(g(r)) + std::abs(l(r) / W(r)) + 1e-300)) kkt = false;
         }
-        int r = 0;
-        while (r < s && ++choice[static_cast<size_t>(r)] == 3) choice[static_cast<size_t>(r++)] = 0;
-        if (r == s) break;
-      }
+        if (obj < best_obj) best_obj = obj, best = l;
+        if (kkt) best = l;
+        return kkt;
+      };
+      bool done = !S.last.empty() && try_choice(S.last);
+      for (size_t k = 0; k < S.choices.size() && !done; ++k)
+        if (try_choice(S.choices[k])) done = true, S.last = S.choices[k];
       lv = best;
     }
     for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
@@ -460,7 +485,7 @@ class Sim {
     for (int i = 0; i < n_; ++i)  // P has no row for a prescribed body: its motion is the signal's
       if (m_.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) a[i] = m_.bodies[static_cast<size_t>(i)].prescribed_acceleration(t);
     if (mask == 0) return follow_gears(a);
-    const StuckSet& S = stuck_set(mask);
+    StuckSet& S = stuck_set(mask);
     const int s = static_cast<int>(S.rows.size());
     // b = G M⁻¹ f (the free accelerations' row differences); G M⁻¹ Gᵀ λ = b.
     bv_.assign(static_cast<size_t>(s), 0.0);
