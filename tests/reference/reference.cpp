@@ -305,12 +305,16 @@ class Sim {
     Eigen::MatrixXd G, A;    // rows e_a − e_b; A = G M⁻¹ Gᵀ
     bool full = false;       // A regular
     Eigen::MatrixXd Ainv;
+    // The bounded split's candidates (each row free 0, at its lower bound 1 or upper bound 2),
+    // fewest bounds first, and the one that solved the last evaluation (tried first).
+    std::vector<std::vector<int>> choices;
+    std::vector<int> last;
   };
   std::map<unsigned, StuckSet> sets_;
   double t_left_ = -1.0;  // the end of the current step (its signals' left limits)
   std::vector<double> f_, lamv_, bv_;
 
-  const StuckSet& stuck_set(unsigned mask) {
+  StuckSet& stuck_set(unsigned mask) {
     auto it = sets_.find(mask);
     if (it != sets_.end()) return it->second;
     StuckSet S;
@@ -333,55 +337,119 @@ class Sim {
 
   /// λ of a stuck set whose rows are dependent (two stuck elements lock one motion), into lamv_;
   /// bv_ holds G M⁻¹ f.
-  void redundant_lambda(const StuckSet& S, double t) {
+  void redundant_lambda(StuckSet& S, double t) {
     const int s = static_cast<int>(S.rows.size());
-    // Two stuck elements lock one motion: the weighted least-norm λ = W A (A W A)⁺ b, weights the
-    // static limits (a one-sided element: 1 N); a one-sided element whose share would be against
-    // its lock takes none if the others carry every load alone (docs/hybrid.md).
+    // Two stuck elements lock one motion (docs/hybrid.md, "Redundant locks: the bounded split"):
+    // the weighted least-norm λ = W A (A W A)⁺ b, min Σ λ²/W, W the static limits F_s(t) (a
+    // one-sided element: 1); a one-sided element whose share would be against its lock takes none
+    // if the others carry every load alone. Where that share leaves an element beyond its bounds
+    // (a friction element |λ| ≤ F_s(t), a one-sided one lock·λ ≥ −F_drag), λ is the bounded
+    // weighted least-norm split; only where no split within the bounds exists is the share kept (and
+    // the element beyond its bound breaks away).
     const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(bv_.data(), s);
-    auto weighted = [&](const std::vector<bool>& masked) {
-      Eigen::VectorXd w(s);
-      for (int r = 0; r < s; ++r) {
-        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-        w(r) = masked[static_cast<size_t>(r)] ? 0.0 : fr.one_sided() ? 1.0 : std::max(fr.static_limit(t), 1e-300);
-      }
-      const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
-      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
-      cod.setThreshold(1e-12);
-      return Eigen::VectorXd(w.asDiagonal() * S.A * (cod.pseudoInverse() * b));
-    };
-    // A lock first: where the one-sided elements alone carry every load in their hold directions,
-    // the friction elements beside them carry nothing (a backstop holds, the brake beside it is
-    // not loaded); the documented rule has no share for a lock in its hold direction.
-    std::vector<bool> masked(static_cast<size_t>(s), false);
-    bool has_lock = false;
+    Eigen::VectorXd W(s), lo(s), hi(s);
     for (int r = 0; r < s; ++r) {
       const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-      masked[static_cast<size_t>(r)] = !fr.one_sided();
-      has_lock = has_lock || fr.one_sided();
-    }
-    if (has_lock) {
-      const Eigen::VectorXd l0 = weighted(masked);
-      bool holds = (S.A * l0 - b).norm() <= 1e-9 * (b.norm() + 1e-300);
-      for (int r = 0; r < s && holds; ++r) {
-        const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-        if (fr.one_sided() && lock(fr) * l0(r) < 0.0) holds = false;
-      }
-      if (holds) {
-        for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = l0(r);
-        return;
+      if (fr.one_sided()) {
+        W(r) = 1.0;
+        const double d = fr.kinetic_level(t);
+        lo(r) = lock(fr) > 0 ? -d : -HUGE_VAL;
+        hi(r) = lock(fr) > 0 ? HUGE_VAL : d;
+      } else {
+        const double Fs = fr.static_limit(t);
+        W(r) = std::max(Fs, 1e-300);
+        lo(r) = -Fs, hi(r) = Fs;
       }
     }
-    std::fill(masked.begin(), masked.end(), false);
-    Eigen::VectorXd lv = weighted(masked);
+    const double btol = 1e-9 * (b.norm() + 1e-300);
+    // The weighted least-norm λ over the rows not `fixed`, those held at `val`; g = A μ, μ the
+    // multipliers of A λ = b (the free rows have λ = W g).
+    Eigen::VectorXd g(s);
+    auto weighted = [&](const std::vector<bool>& fixed, const Eigen::VectorXd& val) {
+      Eigen::VectorXd w = W, l = Eigen::VectorXd::Zero(s);
+      for (int r = 0; r < s; ++r)
+        if (fixed[static_cast<size_t>(r)]) w(r) = 0.0, l(r) = val(r);
+      const Eigen::VectorXd rhs = b - S.A * l;
+      g.setZero();  // every row fixed: μ = 0 (the pseudo-inverse of a zero matrix is not formed)
+      if (w.cwiseAbs().maxCoeff() > 0.0) {
+        const Eigen::MatrixXd AWA = S.A * w.asDiagonal() * S.A;
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(AWA);
+        cod.setThreshold(1e-12);
+        g = S.A * (cod.pseudoInverse() * rhs);
+      }
+      for (int r = 0; r < s; ++r)
+        if (!fixed[static_cast<size_t>(r)]) l(r) = w(r) * g(r);
+      return l;
+    };
+    // Within the bounds and solving A λ = b to rounding (a looser residual would hold a set a
+    // little beyond its limits: 1e-9 ‖b‖ delayed a breakaway by 1e-8 N).
+    const double anorm = S.A.cwiseAbs().rowwise().sum().maxCoeff();
+    auto within = [&](const Eigen::VectorXd& l) {
+      if (!l.allFinite()) return false;
+      if ((S.A * l - b).norm() > 1e-11 * (b.norm() + anorm * l.cwiseAbs().maxCoeff()) + 1e-300) return false;
+      for (int r = 0; r < s; ++r) {
+        const double tol = 1e-12 * (std::abs(l(r)) + fscale_);
+        if (l(r) < lo(r) - tol || l(r) > hi(r) + tol) return false;
+      }
+      return true;
+    };
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s);
+    std::vector<bool> fixed(static_cast<size_t>(s), false);
+    Eigen::VectorXd lv = weighted(fixed, zero);
     bool any = false;
     for (int r = 0; r < s; ++r) {
       const Friction& fr = m_.frictions[static_cast<size_t>(S.rows[static_cast<size_t>(r)])];
-      if (fr.one_sided() && lock(fr) * lv(r) < 0.0) masked[static_cast<size_t>(r)] = true, any = true;
+      if (fr.one_sided() && lock(fr) * lv(r) < 0.0) fixed[static_cast<size_t>(r)] = true, any = true;
     }
     if (any) {
-      const Eigen::VectorXd l2 = weighted(masked);
-      if ((S.A * l2 - b).norm() <= 1e-9 * (b.norm() + 1e-300)) lv = l2;
+      const Eigen::VectorXd l2 = weighted(fixed, zero);
+      if ((S.A * l2 - b).norm() <= btol) lv = l2;
+    }
+    if (!within(lv) && s <= 10) {
+      // The bounded split min Σ λ²/W, A λ = b, lo ≤ λ ≤ hi, by its active sets: every assignment of
+      // each row to {free, at its lower bound, at its upper bound} (finite bounds only), the free
+      // rows' weighted least-norm solution. A feasible candidate whose bound multipliers
+      // ν = ±(g − λ/W) are ≥ 0 satisfies the KKT conditions: it is the optimum (strictly convex
+      // objective, convex set). Failing that (rounding in g), the feasible candidate of least
+      // Σ λ²/W is the optimum too: the optimum's own active set is among the candidates.
+      if (S.choices.empty()) {
+        std::vector<int> c(static_cast<size_t>(s), 0);
+        for (;;) {
+          S.choices.push_back(c);
+          int r = 0;
+          while (r < s && ++c[static_cast<size_t>(r)] == 3) c[static_cast<size_t>(r++)] = 0;
+          if (r == s) break;
+        }
+        auto nfix = [](const std::vector<int>& v) { return std::count_if(v.begin(), v.end(), [](int x) { return x != 0; }); };
+        std::stable_sort(S.choices.begin(), S.choices.end(), [&](const auto& x, const auto& y) { return nfix(x) < nfix(y); });
+      }
+      Eigen::VectorXd best = lv, val(s);
+      double best_obj = HUGE_VAL;
+      auto try_choice = [&](const std::vector<int>& choice) {  // true: the optimum
+        for (int r = 0; r < s; ++r) {
+          const int c = choice[static_cast<size_t>(r)];
+          fixed[static_cast<size_t>(r)] = c != 0;
+          val(r) = c == 1 ? lo(r) : c == 2 ? hi(r) : 0.0;
+          if (!std::isfinite(val(r))) return false;
+        }
+        const Eigen::VectorXd l = weighted(fixed, val);
+        if (!within(l) || !g.allFinite()) return false;
+        double obj = 0.0;
+        bool kkt = true;
+        for (int r = 0; r < s; ++r) {
+          obj += l(r) * l(r) / W(r);
+          const int c = choice[static_cast<size_t>(r)];
+          const double nu = c == 2 ? g(r) - l(r) / W(r) : c == 1 ? l(r) / W(r) - g(r) : 0.0;
+          if (nu < -1e-9 * (std::abs(g(r)) + std::abs(l(r) / W(r)) + 1e-300)) kkt = false;
+        }
+        if (obj < best_obj) best_obj = obj, best = l;
+        if (kkt) best = l;
+        return kkt;
+      };
+      bool done = !S.last.empty() && try_choice(S.last);
+      for (size_t k = 0; k < S.choices.size() && !done; ++k)
+        if (try_choice(S.choices[k])) done = true, S.last = S.choices[k];
+      lv = best;
     }
     for (int r = 0; r < s; ++r) lamv_[static_cast<size_t>(r)] = lv(r);
   }
@@ -417,7 +485,7 @@ class Sim {
     for (int i = 0; i < n_; ++i)  // P has no row for a prescribed body: its motion is the signal's
       if (m_.bodies[static_cast<size_t>(i)].motion != Body::Motion::free) a[i] = m_.bodies[static_cast<size_t>(i)].prescribed_acceleration(t);
     if (mask == 0) return follow_gears(a);
-    const StuckSet& S = stuck_set(mask);
+    StuckSet& S = stuck_set(mask);
     const int s = static_cast<int>(S.rows.size());
     // b = G M⁻¹ f (the free accelerations' row differences); G M⁻¹ Gᵀ λ = b.
     bv_.assign(static_cast<size_t>(s), 0.0);
@@ -830,6 +898,9 @@ RefResult Sim::run() {
     res_.t.push_back(t);
     res_.q.emplace_back(y.begin(), y.begin() + n_);
     res_.v.emplace_back(y.begin() + n_, y.begin() + 2 * n_);
+    std::vector<double> acc(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    accel(t, y.data(), md_, acc.data(), lam.data());
+    res_.lam.push_back(std::move(lam));
   };
   double t = 0.0;
   row(0.0), next_row = 1;

@@ -8,10 +8,11 @@
 /// - state y = [q; v] of n ≤ 8 bodies (SI: m, m/s, kg, N); in a mode
 ///     M a = f(t, q, v) − Σ_sliding r_k s_k F_k(t) − Gᵀ λ,   G a = 0,
 ///   r_k = e_A − e_B the element's row (the ground left out), G the rows of the stuck elements;
-///   λ = (G M⁻¹ Gᵀ)⁻¹ G M⁻¹ f̃; where two stuck elements lock one motion the one-sided ones (locks)
-///   carry it alone if they can in their hold directions, else the weighted least norm (weights
-///   F_s,k: docs/hybrid.md, the locked load shared in proportion to the static limits; a lock
-///   loaded against its hold direction takes no share);
+///   λ = (G M⁻¹ Gᵀ)⁻¹ G M⁻¹ f̃; where two stuck elements lock one motion the weighted least norm
+///   min Σ λ²/W (W = F_s,k(t), a lock 1: the locked load shared in proportion to the static
+///   limits; a lock loaded against its hold direction takes no share), and where that leaves an
+///   element beyond its bounds (|λ| ≤ F_s, lock·λ ≥ −F_drag) the same problem within the bounds,
+///   solved by enumerating its active sets (docs/hybrid.md, "Redundant locks: the bounded split");
 /// - classical fixed-step RK4 with h = `omega_h`/ω_max (ω_max: the fastest spring or damper rate),
 ///   every step ending on the breakpoints of the signals and on the output rows;
 /// - after every step every switching function is evaluated (gaps: distance or flank force; stuck
@@ -242,6 +243,7 @@ struct RefOptions {
 struct RefResult {
   std::vector<double> t;                  ///< the output rows k dt_out, k = 0 … round(t_end/dt_out)
   std::vector<std::vector<double>> q, v;  ///< [row][body]
+  std::vector<std::vector<double>> lam;  ///< [row][friction element] its stuck load λ (0 unless stuck)
   std::vector<RefEvent> events;
   /// Where the consistent mode combinations gave different accelerations (the documented rule chose
   /// one): +∞ when never. Compare only before it.

@@ -175,21 +175,23 @@ TEST(ReferenceSimulator, BackstopWithDragOverrunsWhenTheLoadPassesTheDrag) {
   }
 }
 
-// Claim: a lock carries a redundantly locked load before the friction beside it: a block held by a
-// backstop and a brake (holding 5 N) under a backward load of 20 N stays at rest with the brake
-// unloaded — no brake event, where a split by weights would overload it at once — and when the load
-// turns forward (P = −20 + 40 t N) the backstop takes no share against its lock (docs/hybrid.md), so
-// the brake holds alone until P = 5 N at t = 0.625 s, where the block breaks away forward and the
-// backstop overruns.
-TEST(ReferenceSimulator, ALockCarriesTheLoadBeforeTheBrakeBesideIt) {
+// Claim (docs/hybrid.md, "Redundant locks: the bounded split"): a block (1 kg) held by a backstop
+// (weight 1, lock·λ ≥ 0) and a brake (F_s = F_k = 10 N, weight 10) under P = −30 + 60 t N. Statics,
+// λ_fw the backstop's push on the block, λ_br the brake's pull: λ_br − λ_fw = P. The weighted
+// least-norm split min λ_fw² + λ_br²/10 gives λ_br = 10P/11, λ_fw = −P/11; backward (P < 0) that is
+// within the bounds while 10|P|/11 ≤ 10, beyond it the bounded split holds the brake at its limit:
+// λ_br = max(10P/11, −10), the backstop the rest. Forward (P > 0) the backstop's share would be
+// against its lock, so it takes none: λ_br = P, until P = 10 N at t = 2/3 s, where the block
+// breaks away forward and the backstop overruns (a brake event nowhere before).
+TEST(ReferenceSimulator, ABrakeBesideAStoppedBackstopHoldsItsWeightedShareUpToItsLimit) {
   RefModel m;
   m.bodies = {{"block", 1.0, 0.0, 0.0}};
   Load P;
-  P.name = "P", P.body = 0, P.s.kind = Signal::Kind::ramp, P.s.before = -20.0, P.s.value = 20.0, P.s.t0 = 0.0, P.s.t1 = 1.0;
+  P.name = "P", P.body = 0, P.s.kind = Signal::Kind::ramp, P.s.before = -30.0, P.s.value = 30.0, P.s.t0 = 0.0, P.s.t1 = 1.0;
   m.loads = {P};
   Friction fw, br;
   fw.kind = Friction::Kind::freewheel, fw.name = "backstop", fw.a = kGround, fw.b = 0;
-  br.kind = Friction::Kind::brake, br.name = "brake", br.a = 0, br.b = kGround, br.Fs = 5.0, br.Fk = 5.0;
+  br.kind = Friction::Kind::brake, br.name = "brake", br.a = 0, br.b = kGround, br.Fs = 10.0, br.Fk = 10.0;
   m.frictions = {fw, br};
   m.t_end = 0.8, m.dt_out = 0.01;
   const RefResult r = simulate_reference(m);
@@ -197,11 +199,57 @@ TEST(ReferenceSimulator, ALockCarriesTheLoadBeforeTheBrakeBesideIt) {
   ASSERT_EQ(r.events.size(), 2u);
   for (const auto& e : r.events) {
     EXPECT_EQ(e.kind, "slip") << e.element;
-    EXPECT_NEAR(e.t, 0.625, 1e-10) << e.element;
+    EXPECT_NEAR(e.t, 2.0 / 3.0, 1e-10) << e.element;
   }
   EXPECT_NE(r.events[0].element, r.events[1].element);
-  EXPECT_EQ(r.v[static_cast<size_t>(std::lround(0.62 / 0.01))][0], 0.0);
+  ASSERT_EQ(r.lam.size(), r.t.size());
+  int clamped = 0, shared = 0;
+  for (size_t k = 0; k < r.t.size() && r.t[k] < 0.66; ++k) {
+    const double p = -30.0 + 60.0 * r.t[k];
+    const double br_want = p < 0.0 ? std::max(10.0 * p / 11.0, -10.0) : p;
+    EXPECT_NEAR(std::abs(r.lam[k][1]), std::abs(br_want), 1e-9) << r.t[k];
+    EXPECT_NEAR(std::abs(r.lam[k][0]), std::abs(br_want - p), 1e-9) << r.t[k];
+    EXPECT_EQ(r.v[k][0], 0.0) << r.t[k];
+    (p < -11.0 ? clamped : shared) += 1;
+  }
+  EXPECT_GT(clamped, 10);  // both branches of the split are checked
+  EXPECT_GT(shared, 10);
   EXPECT_GT(r.v.back()[0], 0.0);
+}
+
+// Claim (docs/hybrid.md, the bounded split): a loop of stuck contacts with one weak brake. Body b0
+// (1 kg) on the ground by a contact C1 (F_s = F_k = 100 N), body b1 (2 kg) on b0 by a contact C2
+// (100 N) and braked to the ground by a brake B (F_s = F_k = 1 N), P = 100 t N on b1. Statics: the
+// brake carries x, the chain C2–C1 carries P − x on both; the weighted least-norm split
+// min x²/1 + 2 (P − x)²/100 gives x = P/51, beyond the brake's limit from P = 51 N. The bounded split
+// holds the brake at 1 N and the chain the rest, so nothing moves until no split within the bounds
+// exists: P = 1 + 100 N, t* = 1.01 s (the weighted share alone would release the brake at 0.51 s).
+TEST(ReferenceSimulator, ALoopOfStuckContactsHoldsAWeakBrakeAtItsLimit) {
+  RefModel m;
+  m.bodies = {{"b0", 1.0, 0.0, 0.0}, {"b1", 2.0, 0.0, 0.0}};
+  Load P;
+  P.name = "P", P.body = 1, P.s.kind = Signal::Kind::ramp, P.s.value = 200.0, P.s.t0 = 0.0, P.s.t1 = 2.0;
+  m.loads = {P};
+  Friction c1, c2, br;
+  c1.name = "C1", c1.a = 0, c1.b = kGround, c1.Fs = 100.0, c1.Fk = 100.0;
+  c2.name = "C2", c2.a = 1, c2.b = 0, c2.Fs = 100.0, c2.Fk = 100.0;
+  br.kind = Friction::Kind::brake, br.name = "B", br.a = 1, br.b = kGround, br.Fs = 1.0, br.Fk = 1.0;
+  m.frictions = {c1, c2, br};
+  m.t_end = 1.1, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_FALSE(r.events.empty());
+  for (const auto& e : r.events) EXPECT_NEAR(e.t, 1.01, 1e-9) << e.kind << " " << e.element;
+  ASSERT_EQ(r.lam.size(), r.t.size());
+  for (size_t k = 0; k < r.t.size() && r.t[k] < 1.005; ++k) {
+    const double p = 100.0 * r.t[k], x = std::min(p / 51.0, 1.0);
+    EXPECT_NEAR(std::abs(r.lam[k][2]), x, 1e-9) << r.t[k];
+    EXPECT_NEAR(std::abs(r.lam[k][0]), p - x, 1e-9) << r.t[k];
+    EXPECT_NEAR(std::abs(r.lam[k][1]), p - x, 1e-9) << r.t[k];
+    EXPECT_EQ(r.v[k][0], 0.0) << r.t[k];
+    EXPECT_EQ(r.v[k][1], 0.0) << r.t[k];
+  }
+  EXPECT_GT(r.v.back()[1], 0.0);
 }
 
 // Claim: the reference converges: halving its step changes no event time by more than 1e-9 s (a
