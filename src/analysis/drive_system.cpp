@@ -739,6 +739,11 @@ void DriveSystem::enforce_stuck_weighted(double t, double* acc, const double* im
 }
 
 const DriveSystem::AffineMode& DriveSystem::compile_affine() {
+  std::string key;
+  for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
+  key += '/';
+  for (auto md : mode_) key += static_cast<char>('0' + static_cast<int>(md));
+  if (auto it = affine_cache_.find(key); it != affine_cache_.end()) return it->second;
   // A redundant stuck set with a bounded contact shares its load by the bounded split (bound_share),
   // piecewise linear in y: it has no affine map, and the run takes the general path from here on.
   if (stuck_.size() >= 2 && std::any_of(stuck_.begin(), stuck_.end(), [&](int k) { return !contacts_[static_cast<size_t>(k)].joint; })) {
@@ -751,11 +756,6 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
       return none;
     }
   }
-  std::string key;
-  for (auto g : gap_) key += static_cast<char>('0' + static_cast<int>(g));
-  key += '/';
-  for (auto md : mode_) key += static_cast<char>('0' + static_cast<int>(md));
-  if (auto it = affine_cache_.find(key); it != affine_cache_.end()) return it->second;
   const int N = size();
   AffineMode a;
   a.c.resize(N);
