@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include "machdyn/common/expression.hpp"
+#include "machdyn/model/model.hpp"
+#include "machdyn/model/shaper.hpp"
 
 namespace machdyn::detail {
 namespace {
@@ -78,11 +80,49 @@ std::optional<double> unit_factor(FieldReader& f, std::string_view key, const Di
   return q->value;
 }
 
+/// `type: shaped`: a reference `signal` shaped against an oscillation of `frequency` (or of a
+/// pendulum of `length`, ω² = g/L with standard gravity) and `damping` ζ (model/shaper.hpp).
+std::optional<Signal> read_shaped(FieldReader& f, const Dim& d, int depth) {
+  auto kind = f.word("shaper", {"zv", "zvd", "two-step"});
+  const bool by_length = f.node("length") != nullptr;
+  std::optional<double> omega;
+  if (by_length && f.map().find("frequency")) {
+    f.error_at("length", "give either 'frequency' or 'length' (a pendulum's, ω² = g/L), not both");
+  } else if (by_length) {
+    auto L = f.positive("length", dim::length);
+    if (L) omega = std::sqrt(kStandardGravity / *L);
+  } else {
+    omega = read_frequency(f);
+  }
+  const std::optional<double> damping = f.quantity("damping", dim::none, 0.0);
+  bool ok = damping.has_value();
+  const double zeta = damping.value_or(0.0);
+  if (ok && !(zeta >= 0.0 && zeta < 1.0)) {
+    f.error_at("damping", fmt::format("field 'damping' expected a damping ratio ζ in [0, 1), got {:g}", zeta));
+    ok = false;
+  } else if (ok && kind && *kind == "two-step" && zeta != 0.0) {
+    f.error_at("damping", "the two-step acceleration cancels an undamped swing only; for a damped one use zv or zvd");
+    ok = false;
+  }
+  const SpecNode* base = f.node("signal");
+  std::optional<Signal> s;
+  if (!base) f.error_at("signal", "missing field 'signal' (the reference to shape, e.g. {type: ramp, value: 1 m/s, end: 2 s})");
+  else s = compile_signal_at(*base, d, fmt::format("{}: field 'signal'", f.what()), f.diagnostics(), depth + 1);
+  if (!kind || !omega || !ok || !s) return std::nullopt;
+  try {
+    if (*kind == "two-step") return two_step_signal(*s, *omega);
+    return shaped_signal(*s, shaper_impulses(*kind == "zv" ? ShaperKind::zv : ShaperKind::zvd, *omega, zeta));
+  } catch (const std::invalid_argument& e) {
+    f.diagnostics().error(base->loc, fmt::format("{}: field 'signal': {}", f.what(), e.what()));
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& signal_types() {
   static const std::vector<std::string> k = {"constant", "step", "ramp",       "table", "sine",
-                                             "pulse",    "expression", "sum", "file"};
+                                             "pulse",    "expression", "sum", "shaped", "file"};
   return k;
 }
 
@@ -228,6 +268,7 @@ std::optional<Signal> read_signal_fields(FieldReader& f, const std::string& type
     if (!ok) return std::nullopt;
     return Signal::sum(std::move(parts));
   }
+  if (type == "shaped") return read_shaped(f, d, 1);
   if (type == "file") {
     // io reads the CSV before compiling (io/model_file.hpp): a `file` left here was not read.
     for (const auto& [k, v] : f.map().fields) f.node(k);
@@ -251,7 +292,7 @@ std::optional<Signal> compile_signal_at(const SpecNode& node, const Dim& d, cons
   }
   if (!node.is_map()) {
     diag.error(node.loc, fmt::format("{}: expected {} or a signal {{type: step|ramp|table|sine|pulse|expression|sum|"
-                                     "file, ...}}", what, describe(d)));
+                                     "shaped|file, ...}}", what, describe(d)));
     return std::nullopt;
   }
   if (depth > kMaxSignalNesting) {
@@ -276,6 +317,8 @@ std::optional<Signal> compile_signal_at(const SpecNode& node, const Dim& d, cons
       }
       if (ok) s = Signal::sum(std::move(parts));
     }
+  } else if (type && *type == "shaped") {
+    s = read_shaped(f, d, depth);
   } else if (type) {
     s = read_signal_fields(f, *type, d);
   } else {
