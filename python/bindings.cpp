@@ -32,6 +32,7 @@
 #include "machdyn/gears/synthesis.hpp"
 #include "machdyn/gears/tooth_profile.hpp"
 #include "machdyn/io/energy_results.hpp"
+#include "machdyn/io/figures.hpp"
 #include "machdyn/analysis/crane.hpp"
 #include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/duty.hpp"
@@ -238,6 +239,13 @@ PYBIND11_MODULE(_machdyn, mod) {
       .def_property_readonly("is_hybrid", [](const PyModel& p) { return p.model->is_hybrid(); })
       .def_property_readonly("bodies", [](const PyModel& p) { return bodies(*p.model); })
       .def_property_readonly("links", [](const PyModel& p) { return links(*p.model); })
+      // The links a plot(links=…) draws, checked as the CLI's --links (one message, io/figures.hpp).
+      .def("chosen_links",
+           [](const PyModel& p, const std::vector<std::string>& names) {
+             std::vector<std::string> out;
+             for (const std::size_t l : chosen_links(*p.model, names, "links=")) out.push_back(p.model->links[l].name);
+             return out;
+           })
       .def_property_readonly("loads", [](const PyModel& p) { return loads(*p.model); })
       .def_property_readonly("drives", [](const PyModel& p) { return drives(*p.model); })
       .def_property_readonly("contacts", [](const PyModel& p) { return contacts(*p.model); })
@@ -390,6 +398,7 @@ PYBIND11_MODULE(_machdyn, mod) {
     opt.frf.input = frf_input, opt.frf.outputs = frf_outputs, opt.frf.f_lo_hz = f_lo_hz, opt.frf.f_hi_hz = f_hi_hz;
     opt.frf.option_prefix = "frf_";
     opt.links = links;
+    opt.links_option = "links=";
     return nogil([&] {
       report::ReportRun run;
       run.name = p.load_case;

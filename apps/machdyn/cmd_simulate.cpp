@@ -73,7 +73,7 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
     os << fmt::format("hybrid: {} mode events, {} slip phases; energy balance residual {:.3g} J of {:.6g} J source work\n",
                       events, r.hybrid.slip_phases.size(), r.hybrid.energy.residual(), r.hybrid.energy.source_work);
   }
-  os << brake_stops_text(brake_stops(m, r));  // each brake's stop (analysis/brake_summary.hpp)
+  os << brake_stops_text(brake_summaries(m, r));  // each brake's stops (analysis/brake_summary.hpp)
   for (const auto& x : r.machines) {
     if (x.jumps > 0)
       os << fmt::format("{}: {} velocity jumps (stepwise ratio), {:.6g} J lost in them\n", x.body, x.jumps, x.jump_loss);
@@ -169,7 +169,7 @@ int run_all_cases(const SimulateArgs& a) {
         }
       }
       all.push_back(summary);
-      for (const auto& line : split_lines(brake_stops_text(brake_stops(m, r))))
+      for (const auto& line : split_lines(brake_stops_text(brake_summaries(m, r))))
         brake_lines += fmt::format("case {}: {}\n", names[c], line);
       long events = 0;
       for (const auto& e : r.hybrid.events) events += e.kind != "initial";

@@ -81,7 +81,7 @@ class Result:
     result, no copy); ``name`` is a column name (``"c1.load_N_m"``) or the same without its unit
     (``"c1.load"``). ``r.columns``: every column name. ``r.summary``: the dict of summary.json
     (link peaks, their times, static loads, dynamic factors, solver statistics). ``r.brakes``: each
-    brake's stop (stopping time, travel, energy, peak power, temperature). ``r.events``: the
+    brake's stops, one by one (stopping time, travel, energy, peak power, temperature rise). ``r.events``: the
     mode events of an event-driven run (t_s, kind, element, from, to).
     """
 
@@ -137,10 +137,13 @@ class Result:
 
     @property
     def brakes(self) -> dict:
-        """Each brake's stop in this run (summary.json ``brakes``): ``applied_at_s``, ``stopped_at_s``,
-        ``stopping_time_s``, ``travel`` ({body: {value, unit}}: the braked body and every translational
-        body, the load), ``energy_J``, ``peak_power_W`` and, with a thermal model, ``temperature_max_degC``
-        and ``temperature_end_degC``; empty without brakes (docs/model-files.md, Brakes)."""
+        """Each brake's stops in this run (summary.json ``brakes``): per brake ``stops``, a list with one
+        dict per stop (the brake applied, sliding, until its body is at rest or it is lifted):
+        ``applied_at_s``, ``ended_at_s``, ``end`` (stuck, released, t_end), ``stopping_time_s``,
+        ``travel`` ({body: {value, unit}}: the braked body and every translational body joined to it,
+        the load), ``energy_J``, ``peak_power_W`` and, with a thermal model, ``temperature_rise_K``;
+        and the run's ``energy_J``, ``peak_power_W``, ``temperature_max_degC`` and
+        ``temperature_end_degC``; empty without brakes (docs/model-files.md, Brakes)."""
         return dict(self.summary.get("brakes", {}))
 
     @property
@@ -159,12 +162,14 @@ class Result:
 
     def plot(self, ax=None, links: list[str] | None = None):
         """Draws the link loads against time with matplotlib, the quasi-static load at each peak
-        marked. Returns the Axes."""
+        marked. Returns the Axes. ``links``: the links drawn (default: all); a name the model does
+        not have raises InputError at ``links=`` listing the model's links."""
+        names = self.model._core.chosen_links(list(links or []))  # before matplotlib: a typo draws nothing
         import matplotlib.pyplot as plt
         if ax is None:
             _, ax = plt.subplots(figsize=(8, 4))
         s = self.summary["links"]
-        for name in links or list(s):
+        for name in names:
             line, = ax.plot(self.t, self[name + ".load"], label=f"{name} [{s[name]['unit']}]")
             ax.plot([s[name]["t_max"]], [s[name]["static"]], "o", mfc="none", color=line.get_color())
         ax.set_xlabel("t [s]")

@@ -82,3 +82,25 @@ def test_report_options_as_the_cli(tmp):
     with pytest.raises(machdyn.InputError, match="frf_input"):
         machdyn.report(m, tmp / "bad.html", frf_input="nothing")
     assert not (tmp / "bad.html").exists()
+
+
+def test_links_errors_name_the_python_argument(tmp):
+    # Issue 32 item 5: a link the model does not have is an error at `links=` in Python (plot and
+    # report), at `--links` on the command line — the same message (io/figures.hpp chosen_links).
+    import matplotlib
+    matplotlib.use("Agg")
+    path = example("hoist-3mass.yaml")
+    m = machdyn.load(path)
+    r = machdyn.simulate(m)
+    with pytest.raises(machdyn.InputError) as e:
+        r.plot(links=["c2", "nothing"])
+    assert "links=" in str(e.value) and "--links" not in str(e.value)
+    assert "no link 'nothing'; the model's links: c1, c2" in str(e.value)
+    with pytest.raises(machdyn.InputError) as e:
+        machdyn.report(m, tmp / "bad.html", links=["nothing"])
+    assert "links=" in str(e.value) and "--links" not in str(e.value)
+    assert not (tmp / "bad.html").exists()
+    cli = run_cli("report", path, "--quiet", "-o", tmp / "cli.html", "--links", "nothing", check=False)
+    assert cli.returncode == 2 and "--links" in cli.stderr and "no link 'nothing'; the model's links: c1, c2" in cli.stderr
+    # A known name draws that link only (its load and its static marker).
+    assert len(r.plot(links=["c2"]).get_lines()) == 2

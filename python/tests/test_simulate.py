@@ -288,10 +288,14 @@ def test_brake_stop_in_the_result_follows_the_hand_calculation():
         "simulation": {"t_end": 5.0, "dt_out": 1e-3, "rtol": 1e-11, "atol": 1e-13},
     }
     r = machdyn.simulate(machdyn.from_dict(model))
-    b = r.brakes["disc"]
-    assert b == r.summary["brakes"]["disc"]
+    assert r.brakes["disc"] == r.summary["brakes"]["disc"]
+    assert len(r.brakes["disc"]["stops"]) == 1
+    b = r.brakes["disc"]["stops"][0]
+    assert b["end"] == "stuck"
     assert b["stopping_time_s"] == pytest.approx(4.0, rel=1e-8)
     assert b["travel"]["wheel"]["value"] == pytest.approx(200.0, rel=1e-8)
     assert b["energy_J"] == pytest.approx(1e4, rel=1e-8)
     assert b["peak_power_W"] == pytest.approx(5e3, rel=1e-8)
     assert b["temperature_end_degC"] == pytest.approx(30.0, abs=1e-6)
+    assert b["temperature_rise_K"] == pytest.approx(10.0, abs=1e-6)
+    assert r.brakes["disc"]["temperature_end_degC"] == pytest.approx(30.0, abs=1e-6)

@@ -9,7 +9,7 @@ namespace {
 
 /// The output columns of one run by name, with values at the rows and, extended from the rows before
 /// an instant, at any time inside the grid (analysis/brake_summary.hpp: the motion is smooth up to an
-/// event, so q + v τ + ½ a τ² from the last row before it, a from the two rows before).
+/// event, so a polynomial through the last rows before it, none before the previous event `after`).
 struct Grid {
   const SimulationResult& r;
   const std::vector<double>& t;
@@ -18,22 +18,40 @@ struct Grid {
     const auto it = std::find(r.column_names.begin(), r.column_names.end(), name);
     return it == r.column_names.end() ? nullptr : &r.columns[static_cast<size_t>(it - r.column_names.begin())];
   }
-  /// The last row k with t_k ≤ tau (0 before the first).
-  size_t row_before(double tau) const {
-    const auto it = std::upper_bound(t.begin(), t.end(), tau);
-    return it == t.begin() ? 0 : static_cast<size_t>(it - t.begin()) - 1;
+  /// The rows k with after < t_k < tau, the last `n` of them (first, count).
+  std::pair<size_t, size_t> rows_before(double tau, double after, size_t n) const {
+    const auto hi = static_cast<size_t>(std::lower_bound(t.begin(), t.end(), tau) - t.begin());
+    const auto lo = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), after) - t.begin());
+    const size_t count = hi > lo ? std::min(n, hi - lo) : 0;
+    return {hi - count, count};
   }
-  /// A position at tau from its row before and the speeds there (exact for a uniform acceleration).
-  double position_at(const std::vector<double>& q, const std::vector<double>& v, double tau) const {
-    const size_t k = row_before(tau);
-    const double h = tau - t[k], a = k > 0 ? (v[k] - v[k - 1]) / (t[k] - t[k - 1]) : 0.0;
+  /// A position at tau from its last row before and the speeds there (q + v h + ½ a h², a from the
+  /// two rows before: exact for a uniform acceleration).
+  double position_at(const std::vector<double>& q, const std::vector<double>& v, double tau, double after) const {
+    const auto [k0, n] = rows_before(tau, after, 2);
+    if (n == 0) return value_at(q, tau, -HUGE_VAL);
+    const size_t k = k0 + n - 1;
+    const double h = tau - t[k], a = n == 2 ? (v[k] - v[k0]) / (t[k] - t[k0]) : 0.0;
     return q[k] + v[k] * h + 0.5 * a * h * h;
   }
-  /// A speed at tau from its row before (exact for a uniform acceleration).
-  double speed_at(const std::vector<double>& v, double tau) const {
-    const size_t k = row_before(tau);
-    const double a = k > 0 ? (v[k] - v[k - 1]) / (t[k] - t[k - 1]) : 0.0;
-    return v[k] + a * (tau - t[k]);
+  /// A smooth column at tau: the polynomial through its last (up to three) rows before tau after
+  /// `after` (exact for a quadratic in t); without such rows, linear between the rows around tau.
+  double value_at(const std::vector<double>& y, double tau, double after) const {
+    const auto [k0, n] = rows_before(tau, after, 3);
+    if (n == 0) {
+      const auto k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), tau) - t.begin());
+      if (k == 0) return y.front();
+      if (k >= t.size()) return y.back();
+      return y[k - 1] + (y[k] - y[k - 1]) * (tau - t[k - 1]) / (t[k] - t[k - 1]);
+    }
+    double sum = 0.0;  // Lagrange through rows k0 … k0 + n − 1
+    for (size_t i = k0; i < k0 + n; ++i) {
+      double w = 1.0;
+      for (size_t j = k0; j < k0 + n; ++j)
+        if (j != i) w *= (tau - t[j]) / (t[i] - t[j]);
+      sum += w * y[i];
+    }
+    return sum;
   }
 };
 
@@ -59,74 +77,144 @@ std::vector<int> joined(const Model& m, int body) {
 
 }  // namespace
 
-std::vector<BrakeStop> brake_stops(const Model& m, const SimulationResult& r) {
-  std::vector<BrakeStop> out;
+const char* start_name(BrakeStop::Start s) {
+  switch (s) {
+    case BrakeStop::Start::applied: return "applied";
+    case BrakeStop::Start::overcome: return "overcome";
+    case BrakeStop::Start::initial: return "initial";
+  }
+  return "";
+}
+
+const char* end_name(BrakeStop::End e) {
+  switch (e) {
+    case BrakeStop::End::stuck: return "stuck";
+    case BrakeStop::End::released: return "released";
+    case BrakeStop::End::run_end: return "t_end";
+  }
+  return "";
+}
+
+std::vector<BrakeSummary> brake_summaries(const Model& m, const SimulationResult& r) {
+  std::vector<BrakeSummary> out;
   const auto t_it = std::find(r.column_names.begin(), r.column_names.end(), "t_s");
   if (t_it == r.column_names.end() || r.columns.empty()) return out;
   const Grid g{r, r.columns[static_cast<size_t>(t_it - r.column_names.begin())]};
   if (g.t.empty()) return out;
   const double t_end = g.t.back();
+  const auto slipping = [](const std::string& md) { return md == "slip+" || md == "slip-"; };
   for (const FrictionContact& c : m.contacts) {
     if (!c.brake) continue;
     const Body& body = m.bodies[static_cast<size_t>(c.a)];
-    BrakeStop s;
+    BrakeSummary s;
     s.brake = c.name;
     s.unit = load_unit(body.kind);
     const auto* F = g.column(c.name + ".force_" + unit_suffix(load_unit(body.kind)));
     const auto* u = g.column(c.name + ".sliding_velocity_" + unit_suffix(velocity_unit(body.kind)));
     const auto* mode = g.column(c.name + ".mode");
     if (!F || !u || !mode) continue;
-    // The stop: the first application that meets its body moving (the brake's event out of
-    // `released` into slip±, or its initial mode slip± when applied from t = 0) to its next event into
-    // `stuck`. Without one, an application that met its body at rest (it holds it) is a stop of 0 s.
-    const auto slipping = [](const std::string& md) { return md == "slip+" || md == "slip-"; };
-    for (size_t k = 0; k < r.hybrid.events.size() && !s.t_applied; ++k) {
-      const ModeEvent& e = r.hybrid.events[k];
-      if (e.element != c.name || !slipping(e.to) || !(e.from == "released" || e.kind == "initial")) continue;
-      s.t_applied = e.t;
-      for (size_t j = k + 1; j < r.hybrid.events.size(); ++j)
-        if (r.hybrid.events[j].element == c.name && r.hybrid.events[j].to == "stuck") {
-          s.t_stopped = r.hybrid.events[j].t;
-          break;
-        }
+    std::vector<const ModeEvent*> events;  // the brake's own, in time order
+    for (const ModeEvent& e : r.hybrid.events)
+      if (e.element == c.name) events.push_back(&e);
+    // The stops: from an event into slip± (from released or stuck, or the initial mode) to the next
+    // event into stuck or released (or t_end).
+    for (const ModeEvent* e : events) {
+      const bool open = !s.stops.empty() && s.stops.back().end == BrakeStop::End::run_end;
+      if (!open && slipping(e->to)) {
+        BrakeStop st;
+        st.t_applied = e->t, st.t_end = t_end;
+        st.start = e->kind == "initial" ? BrakeStop::Start::initial
+                   : e->from == "stuck" ? BrakeStop::Start::overcome
+                                        : BrakeStop::Start::applied;
+        s.stops.push_back(st);
+      } else if (open && (e->to == "stuck" || e->to == "released")) {
+        BrakeStop& st = s.stops.back();
+        st.t_end = e->t;
+        st.end = e->to == "stuck" ? BrakeStop::End::stuck : BrakeStop::End::released;
+      }
     }
-    if (!s.t_applied && c.t_apply < t_end) s.t_applied = s.t_stopped = c.t_apply;
-    if (s.t_applied) {
-      if (s.t_stopped) s.stopping_time = *s.t_stopped - *s.t_applied;
+    // Never sliding, but applied in the run: it holds its body at rest, a stop of 0 s.
+    if (s.stops.empty() && c.t_apply < t_end && !c.released(c.t_apply)) {
+      BrakeStop st;
+      st.t_applied = st.t_end = c.t_apply;
+      st.end = BrakeStop::End::stuck;
+      s.stops.push_back(st);
+    }
+    // The previous event of the brake before tau (the rows before it are another smooth piece).
+    auto previous_event = [&](double tau) {
+      double p = -HUGE_VAL;
+      for (const ModeEvent* e : events)
+        if (e->t < tau && e->kind != "initial") p = e->t;
+      return p;
+    };
+    // The power P = |F u| on the rows, and on each side of each of the brake's events (the mode of
+    // that side: 0 when it is stuck or released; else F of the nearest row on that side).
+    std::vector<std::pair<double, double>> pts;  // (t, P), t non-decreasing
+    {
+      std::vector<double> cuts;
+      for (const ModeEvent* e : events)
+        if (e->kind != "initial" && e->t > g.t.front() && e->t < t_end) cuts.push_back(e->t);
+      auto is_cut = [&](double tk) { return std::find(cuts.begin(), cuts.end(), tk) != cuts.end(); };
+      size_t next = 0;
+      for (size_t k = 0; k < g.t.size(); ++k) {
+        for (; next < events.size(); ++next) {
+          const ModeEvent& e = *events[next];
+          if (e.kind == "initial" || !(e.t > g.t.front() && e.t < t_end)) continue;
+          if (e.t > g.t[k]) break;
+          const auto after = static_cast<size_t>(std::upper_bound(g.t.begin(), g.t.end(), e.t) - g.t.begin());
+          const auto before = static_cast<size_t>(std::lower_bound(g.t.begin(), g.t.end(), e.t) - g.t.begin());
+          const double speed = std::abs(g.value_at(*u, e.t, previous_event(e.t)));
+          const double left = slipping(e.from) && before > 0 ? std::abs((*F)[before - 1]) * speed : 0.0;
+          const double right = slipping(e.to) && after < g.t.size() ? std::abs((*F)[after]) * speed : 0.0;
+          pts.emplace_back(e.t, left);
+          pts.emplace_back(e.t, right);
+        }
+        if (!is_cut(g.t[k])) pts.emplace_back(g.t[k], std::abs((*F)[k] * (*u)[k]));
+      }
+    }
+    // Energy and peak power over [a, b] (the run's and each stop's).
+    auto integrate = [&](double a, double b, double& energy, double& peak, double& t_peak) {
+      energy = 0.0, peak = 0.0, t_peak = std::isfinite(a) ? a : pts.empty() ? 0.0 : pts.front().first;
+      for (size_t k = 0; k < pts.size(); ++k) {
+        if (pts[k].first < a || pts[k].first > b) continue;
+        if (pts[k].second > peak) peak = pts[k].second, t_peak = pts[k].first;
+        if (k > 0 && pts[k - 1].first >= a) energy += 0.5 * (pts[k].second + pts[k - 1].second) * (pts[k].first - pts[k - 1].first);
+      }
+    };
+    integrate(-HUGE_VAL, HUGE_VAL, s.energy_J, s.peak_power_W, s.t_peak_power);
+    const auto* T = g.column(c.name + ".temperature_degC");
+    const std::vector<int> group = joined(m, c.a);
+    for (BrakeStop& st : s.stops) {
+      if (st.end == BrakeStop::End::stuck) st.stopping_time = st.t_end - st.t_applied;
       // The travel of the braked body, then of every translational body joined to it (by links,
-      // lossy gears or contacts: the load it stops), from t_a to t_s.
-      const double t_to = s.t_stopped.value_or(t_end);
+      // lossy gears or contacts: the load it stops), from t_a to t_e.
       auto add_travel = [&](const Body& b) {
         const auto* q = g.column(b.name + ".position_" + unit_suffix(position_unit(b.kind)));
         const auto* v = g.column(b.name + ".velocity_" + unit_suffix(velocity_unit(b.kind)));
         if (!q || !v) return;
-        s.travel.push_back({b.name, position_unit(b.kind),
-                            g.position_at(*q, *v, t_to) - g.position_at(*q, *v, *s.t_applied)});
+        st.travel.push_back({b.name, position_unit(b.kind),
+                             g.position_at(*q, *v, st.t_end, previous_event(st.t_end)) -
+                                 g.position_at(*q, *v, st.t_applied, previous_event(st.t_applied))});
       };
       add_travel(body);
-      const std::vector<int> group = joined(m, c.a);
       for (size_t i = 0; i < m.bodies.size(); ++i)
         if (group[i] && m.bodies[i].kind == BodyKind::translational && static_cast<int>(i) != c.a) add_travel(m.bodies[i]);
-    }
-    // Energy and peak power of P = |F u| on the rows, cut at t_a (where P jumps from the released
-    // brake's 0 to |F(t_a⁺)| |u(t_a)|) and at t_s (P = 0).
-    std::vector<std::pair<double, double>> pts;  // (t, P), t increasing
-    const double ta = s.t_applied.value_or(HUGE_VAL), ts = s.t_stopped.value_or(HUGE_VAL);
-    for (size_t k = 0; k < g.t.size(); ++k) {
-      const double tk = g.t[k], tn = k + 1 < g.t.size() ? g.t[k + 1] : HUGE_VAL;
-      pts.emplace_back(tk, std::abs((*F)[k] * (*u)[k]));
-      if (ta >= tk && ta < tn && tn < HUGE_VAL) {
-        if (ta == tk) pts.back().second = 0.0;  // the row at t_a shows the released brake's 0 or the jump
-        pts.emplace_back(ta, 0.0);
-        pts.emplace_back(ta, std::abs((*F)[k + 1]) * std::abs(g.speed_at(*u, ta)));
+      double peak_any = 0.0;  // its peak below counts only the stop's own side of t_a and t_e
+      integrate(st.t_applied, st.t_end, st.energy_J, peak_any, st.t_peak_power);
+      st.peak_power_W = 0.0;
+      for (size_t k = 0; k < pts.size(); ++k) {
+        const bool inside = pts[k].first > st.t_applied && pts[k].first < st.t_end;
+        const bool first_right = pts[k].first == st.t_applied && (k + 1 == pts.size() || pts[k + 1].first != st.t_applied);
+        const bool last_left = pts[k].first == st.t_end && (k == 0 || pts[k - 1].first != st.t_end);
+        if ((inside || first_right || last_left) && pts[k].second > st.peak_power_W)
+          st.peak_power_W = pts[k].second, st.t_peak_power = pts[k].first;
       }
-      if (ts > tk && ts < tn && ts != ta) pts.emplace_back(ts, 0.0);
+      if (T) {
+        st.temperature_applied_degC = g.value_at(*T, st.t_applied, previous_event(st.t_applied));
+        st.temperature_end_degC = st.t_end >= t_end ? T->back() : g.value_at(*T, st.t_end, previous_event(st.t_end));
+      }
     }
-    for (size_t k = 0; k < pts.size(); ++k) {
-      if (pts[k].second > s.peak_power_W) s.peak_power_W = pts[k].second, s.t_peak_power = pts[k].first;
-      if (k > 0) s.energy_J += 0.5 * (pts[k].second + pts[k - 1].second) * (pts[k].first - pts[k - 1].first);
-    }
-    if (const auto* T = g.column(c.name + ".temperature_degC")) {
+    if (T) {
       s.thermal = true;
       const auto it = std::max_element(T->begin(), T->end());
       s.temperature_max_degC = *it;

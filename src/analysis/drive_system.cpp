@@ -506,7 +506,7 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
     const GapMode g = gap_[l];
     if (!k.transmits(g)) continue;
     if constexpr (kMach) {
-      if (k.point) {  // a machine's output point: forces −F j_a, +F j_b
+      if (k.point && !k.winding) {  // a machine's output point: forces −F j_a, +F j_b
         const LinkLaw::Kinematics s = k.kinematics(q, v);
         k.apply(k.load(s.delta, s.rate, g), s, f);
         damp += k.dissipation(s.delta, s.rate, g);
@@ -515,7 +515,7 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
     }
     if (k.winding) [[unlikely]] {  // c(q_a) and the winding term on the drum (elements/link.hpp)
       k.apply_at(q, v, g, f);
-      damp += k.dissipation(k.linear(q), k.linear(v), g, k.drum(q));
+      damp += k.dissipation(k.weighted(q), k.weighted(v), g, k.drum(q));  // δ over a frame too
       continue;
     }
     const double delta = k.linear(q), rate = k.linear(v), F = k.load(delta, rate, g);

@@ -84,10 +84,14 @@ double LinkLaw::shaped_energy(double e) const {
 
 double LinkLaw::general_load_rate(const double* q, const double* v, const double* acc, GapMode g) const {
   if (shaped) return shaped_slope(linear(q) - flank(g)) * linear(v) + damper_slope(linear(v)) * linear(acc);
-  if (winding) {  // d(c e)/dt = c δ̇ + c′ e q̇_a
-    const double qa = drum(q), rate = linear(v), Fc_rate = stiffness(qa) * rate + stiffness_slope(qa) * (linear(q) - flank(g)) * v[a];
-    if (capped && on_cap(linear(q), rate, g, qa)) return 2.0 * Fc_rate;
-    return Fc_rate + d * linear(acc);
+  // A winding rope hung from a frame (`frame:`, the third body e, w_e = 1: the girder the drum and
+  // the upper sheaves hang from): δ = s q_a − x + w_e x_e, c(q_a) follows the drum alone (the wound
+  // length), the load pulls e with −F w_e, and V gains the terms of x_e (elements/link.hpp jacobian):
+  //   ∂²V/∂x_e² = c w_e²,  ∂²V/∂x_e∂x = −c w_e,  ∂²V/∂q_a∂x_e = (c s + c′ e) w_e.
+  if (winding) {  // d(c e)/dt = c δ̇ + c′ e q̇_a (δ over the frame too: weighted)
+    const double qa = drum(q), rate = weighted(v), Fc_rate = stiffness(qa) * rate + stiffness_slope(qa) * (weighted(q) - flank(g)) * v[a];
+    if (capped && on_cap(weighted(q), rate, g, qa)) return 2.0 * Fc_rate;
+    return Fc_rate + d * weighted(acc);
   }
   // δ̇ = Σ ± p′ v (/i), δ̈ = Σ ± (p″ v² + p′ acc) (/i); a massless member's end: the linear form.
   double delta = 0, rate = 0, dd = 0, p, dp, ddp;
@@ -125,7 +129,7 @@ void LinkLaw::add_linear(const double* q, GapMode g, LinearModel& lin) const {
     return;
   }
   if (winding) {  // K: the Hessian of V (header), D: d j jᵀ
-    const int n = std::max(a, b) + 1;
+    const int n = std::max({a, b, third}) + 1;
     jacobian(n, g, false, q, [&](int r, int col, double v) {
       if (col < n) lin.K.emplace_back(r, col, -v);
       else lin.D.emplace_back(r, col - n, -v);
@@ -165,9 +169,10 @@ void LinkLaw::add_load_gradient(const double* q, const double* v, GapMode g, dou
   }
   if (winding) {  // F = c(q_a) e + d δ̇: ∂F/∂q_a = c s + c′ e, ∂F/∂x = −c
     const double qa = drum(q);
-    dFdq[a] += stiffness(qa) * inv_ratio + stiffness_slope(qa) * (linear(q) - flank(g));
+    dFdq[a] += stiffness(qa) * inv_ratio + stiffness_slope(qa) * (weighted(q) - flank(g));
     dFdv[a] += d * inv_ratio;
     if (b >= 0) dFdq[b] -= stiffness(qa), dFdv[b] -= d;
+    if (third >= 0) dFdq[third] += stiffness(qa) * w3, dFdv[third] += d * w3;  // the frame
     return;
   }
   auto end = [&](int body, const Machine* p_m, double sign) {

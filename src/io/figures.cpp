@@ -163,27 +163,37 @@ plot::Figure link_loads_figure(const Model& m, const SimulationResult& r) {
   return link_loads_panel(m, r, all_links(m), "link_loads", "link loads");
 }
 
-std::vector<std::vector<std::size_t>> link_load_groups(const Model& m, const SimulationResult& r,
-                                                       const std::vector<std::string>& links) {
+std::vector<std::size_t> chosen_links(const Model& m, const std::vector<std::string>& links, const std::string& option) {
+  if (links.empty()) return all_links(m);
   std::vector<std::size_t> chosen;
   for (const auto& name : links) {
     const auto it = std::find_if(m.links.begin(), m.links.end(), [&](const Link& l) { return l.name == name; });
     if (it == m.links.end()) {
       std::vector<std::string> known;
       for (const auto& l : m.links) known.push_back(l.name);
-      throw InputError(Location{"--links", 0, 0},
+      throw InputError(Location{option, 0, 0},
                        fmt::format("no link '{}'; the model's links: {}", name, fmt::join(known, ", ")));
     }
     const auto l = static_cast<std::size_t>(it - m.links.begin());
     if (std::find(chosen.begin(), chosen.end(), l) == chosen.end()) chosen.push_back(l);
   }
-  if (links.empty()) chosen = all_links(m);
+  return chosen;
+}
+
+std::vector<std::vector<std::size_t>> link_load_groups(const Model& m, const SimulationResult& r,
+                                                       const std::vector<std::string>& links) {
+  std::vector<std::size_t> chosen = chosen_links(m, links);
   // Per unit (N·m, N), in descending order of the peak magnitude; a link whose peak is below
   // 1/kPanelRatio of its panel's largest starts a new panel, so each panel's curves are readable.
   constexpr double kPanelRatio = 8.0;
   auto peak_of = [&](std::size_t l) {
     return l < r.links.size() ? std::max(std::abs(r.links[l].max), std::abs(r.links[l].min)) : 0.0;
   };
+  // Unless chosen by name, a link that carries nothing in the run (its load 0 throughout: a trolley's
+  // drive while the hoist lifts) gets no panel of its own; link_loads_figures names it.
+  if (links.empty() && std::any_of(chosen.begin(), chosen.end(), [&](std::size_t l) { return peak_of(l) > 0.0; }))
+    chosen.erase(std::remove_if(chosen.begin(), chosen.end(), [&](std::size_t l) { return !(peak_of(l) > 0.0); }),
+                 chosen.end());
   std::vector<std::vector<std::size_t>> groups;
   for (const char* unit : {"N*m", "N"}) {
     std::vector<std::size_t> of_unit;
@@ -208,16 +218,22 @@ std::vector<std::vector<std::size_t>> link_load_groups(const Model& m, const Sim
 std::vector<plot::Figure> link_loads_figures(const Model& m, const SimulationResult& r,
                                              const std::vector<std::string>& links) {
   const auto groups = link_load_groups(m, r, links);
+  // The links left out for carrying nothing, named in the first panel's title.
+  std::vector<std::string> idle;
+  for (std::size_t l = 0; l < m.links.size() && links.empty(); ++l)
+    if (std::none_of(groups.begin(), groups.end(), [&](const auto& g) { return std::find(g.begin(), g.end(), l) != g.end(); }))
+      idle.push_back(m.links[l].name);
   std::vector<plot::Figure> figs;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     std::vector<std::string> names;
     for (const std::size_t l : groups[g]) names.push_back(m.links[l].name);
-    const bool one = groups.size() == 1 && links.empty();
-    figs.push_back(link_loads_panel(m, r, groups[g], g == 0 ? "link_loads" : fmt::format("link_loads_{}", g + 1),
-                                    one                 ? std::string("link loads")
-                                    : groups.size() == 1 ? fmt::format("link loads ({})", fmt::join(names, ", "))
-                                                         : fmt::format("link loads ({}; panel {} of {})",
-                                                                       fmt::join(names, ", "), g + 1, groups.size())));
+    const bool one = groups.size() == 1 && links.empty() && idle.empty();
+    std::string what = one                  ? std::string("link loads")
+                       : groups.size() == 1 ? fmt::format("link loads ({})", fmt::join(names, ", "))
+                                            : fmt::format("link loads ({}; panel {} of {})", fmt::join(names, ", "), g + 1,
+                                                          groups.size());
+    if (g == 0 && !idle.empty()) what += fmt::format("; no load in this run: {}", fmt::join(idle, ", "));
+    figs.push_back(link_loads_panel(m, r, groups[g], g == 0 ? "link_loads" : fmt::format("link_loads_{}", g + 1), what));
   }
   return figs;
 }
@@ -337,9 +353,11 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind
   // The figure of the first contact's kind is `contacts`; the other kind (a brake in N·m beside a
   // wheel contact in N) gets its own, so no contact is left out for its unit.
   f.id = kind == first ? "contacts" : kind == BodyKind::rotational ? "contacts_torques" : "contacts_forces";
-  f.title = titled(m, "contacts: force (solid, left), sliding velocity (dashed, right)");
-  f.x = plot::make_axis("time t", "s");
   const bool rot = kind == BodyKind::rotational;
+  // A brake's torque is no force: the two figures of a model with both kinds differ in their titles.
+  f.title = titled(m, rot ? "contacts: torque (solid, left), sliding velocity (dashed, right)"
+                          : "contacts: force (solid, left), sliding velocity (dashed, right)");
+  f.x = plot::make_axis("time t", "s");
   double largest = 0.0;
   for (const auto& c : m.contacts)
     if (!c.joint && m.bodies[static_cast<std::size_t>(c.a)].kind == kind)

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include "machdyn/common/csv.hpp"
 
 namespace machdyn {
@@ -151,14 +152,29 @@ namespace {
 plot::Figure bode(const Model& m, const FrequencyResponse& r, const std::string& topology, bool phase) {
   plot::Figure f;
   f.id = phase ? "bode_phase" : "bode_magnitude";
-  f.title = fmt::format("{}: {} from {}{}", m.name, phase ? "phase" : "frequency response |H|", r.input.name,
-                        topology.empty() ? "" : " (" + topology + ")");
+  const Eigen::MatrixXd mag = r.magnitude(), ph = r.phase_deg();
+  // An output the input does not reach (another part of the machine, or held by a stuck brake) has
+  // |H| of the solve's rounding, 1e-13 beside 7: no curve (its log scale spanned 30 decades of
+  // noise), named in the title instead.
+  std::vector<double> top(r.outputs.size(), 0.0);
+  double largest = 0.0;
+  for (size_t k = 0; k < r.outputs.size(); ++k) {
+    for (Eigen::Index i = 0; i < r.omega.size(); ++i)
+      if (const double y = mag(i, static_cast<Eigen::Index>(k)); std::isfinite(y)) top[k] = std::max(top[k], y);
+    largest = std::max(largest, top[k]);
+  }
+  std::vector<std::string> quiet;
+  for (size_t k = 0; k < r.outputs.size(); ++k)
+    if (!(top[k] > 1e-9 * largest)) quiet.push_back(r.outputs[k].name);
+  f.title = fmt::format("{}: {} from {}{}{}", m.name, phase ? "phase" : "frequency response |H|", r.input.name,
+                        topology.empty() ? "" : " (" + topology + ")",
+                        quiet.empty() ? "" : fmt::format("; not excited: {}", fmt::join(quiet, ", ")));
   f.x = plot::make_axis("frequency f", "Hz");
   f.x.log = r.omega.size() > 1 && r.omega.minCoeff() > 0.0;
   f.y = phase ? plot::make_axis("phase", "°") : plot::make_axis("|H|", "output unit per " + plot::pretty_unit(r.input.unit));
   f.y.log = !phase;
-  const Eigen::MatrixXd mag = r.magnitude(), ph = r.phase_deg();
   for (size_t k = 0; k < r.outputs.size(); ++k) {
+    if (!(top[k] > 1e-9 * largest)) continue;
     plot::Series s = plot::make_series(fmt::format("{} ({}/{})", r.outputs[k].name, plot::pretty_unit(r.outputs[k].unit),
                                                    plot::pretty_unit(r.input.unit)),
                                        {}, {});

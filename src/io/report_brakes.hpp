@@ -1,6 +1,6 @@
 #pragma once
 // The report's table of the brakes' stops in one run (analysis/brake_summary.hpp), for
-// io/report_model.cpp: one row per brake, the same numbers as summary.json's `brakes`.
+// io/report_model.cpp: one row per stop of each brake, the same numbers as summary.json's `brakes`.
 #include <optional>
 
 #include "machdyn/analysis/brake_summary.hpp"

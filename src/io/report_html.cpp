@@ -170,6 +170,47 @@ constexpr const char* kPageScript = R"js(
     return counts;
   }
 
+  // Whether the laid-out text of el lies inside box (1 px of rounding): its words are not cut.
+  function inside(el, box) {
+    if (!el || !box) return false;
+    var r = document.createRange(); r.selectNodeContents(el);
+    var a = r.getBoundingClientRect(), b = box.getBoundingClientRect();
+    return a.width > 0 && a.left >= b.left - 1 && a.right <= b.right + 1 && a.top >= b.top - 1 && a.bottom <= b.bottom + 1;
+  }
+
+  // An axis title as uPlot draws it on the canvas, centred on the plotting area along its axis: it
+  // fits when half its width reaches neither end of the canvas (all in canvas pixels).
+  function axisTitle(u, ax) {
+    var label = ax.label || "", ctx = u.ctx;
+    ctx.save();
+    ctx.font = Array.isArray(ax.labelFont) ? ax.labelFont[0] : (ax.labelFont || "bold 12px sans-serif");
+    var w = ctx.measureText(label).width;
+    ctx.restore();
+    var horizontal = ax.side % 2 === 0;
+    var c = horizontal ? u.bbox.left + u.bbox.width / 2 : u.bbox.top + u.bbox.height / 2;
+    var total = horizontal ? ctx.canvas.width : ctx.canvas.height;
+    return { label: label, fits: label.length > 0 && w / 2 <= Math.min(c, total - c) + 1 };
+  }
+
+  // Whether series k lies under a series drawn after it on the same axis (within 1 % of the axis's
+  // span at 95 % of their common points): two bodies turning together show one curve, the first
+  // visible only where they part briefly (a coupling's switch-on swing).
+  function coveredBy(u, spec, k) {
+    var key = spec.series[k].axis === 2 ? "y2" : "y", sc = u.scales[key], tol = 0.01 * Math.abs(sc.max - sc.min);
+    var a = spec.data[k + 1];
+    for (var j = k + 1; j < spec.series.length; j++) {
+      if ((spec.series[j].axis === 2 ? "y2" : "y") !== key) continue;
+      var b = spec.data[j + 1], near = 0, common = 0;
+      for (var i = 0; i < a.length; i++) {
+        if (a[i] == null || b[i] == null) continue;
+        common++;
+        if (Math.abs(a[i] - b[i]) <= tol) near++;
+      }
+      if (common > 0 && near >= 0.95 * common) return true;
+    }
+    return false;
+  }
+
   function makeChart(spec) {
     var t0 = performance.now();
     var host = document.getElementById("chart-" + spec.id);
@@ -227,12 +268,25 @@ constexpr const char* kPageScript = R"js(
     window.addEventListener("resize", function () { u.setSize({ width: Math.max(480, host.clientWidth), height: 400 }); });
     // uPlot draws in a microtask after construction: record what was drawn at the first draw.
     var rec = { id: spec.id, series: spec.series.length, points: spec.data.slice(1).map(function (col) {
-      return col.filter(function (v) { return v != null; }).length; }), drawn: null, ms: null };
+      return col.filter(function (v) { return v != null; }).length; }), drawn: null, ms: null,
+      // A series of one value throughout (a link that carries nothing in this case) may lie under
+      // another or on the zero line: no pixels of its own is no defect then.
+      flat: spec.data.slice(1).map(function (col) {
+        var lo = Infinity, hi = -Infinity;
+        col.forEach(function (v) { if (v != null) { lo = Math.min(lo, v); hi = Math.max(hi, v); } });
+        return !(hi > lo);
+      }) };
     status.plots.push(rec);
     function firstDraw(uu) {
       if (rec.drawn !== null) return;
       rec.drawn = drawnPixels(uu, spec);
       rec.ms = Math.round(performance.now() - t0);
+      // What a reader sees of the words: the title (inside the page's column) and each axis title
+      // (inside the chart), as laid out — a title cut at an edge fails here.
+      rec.title = spec.title;
+      rec.title_fits = inside(host.parentNode.querySelector("h3"), document.querySelector("main"));
+      rec.axes = uu.axes.filter(function (ax) { return ax.show !== false; }).map(axisTitle.bind(null, uu));
+      rec.covered = spec.series.map(function (s, k) { return coveredBy(uu, spec, k); });
       status.done = status.plots.length === blocks.length && status.plots.every(function (p) { return p.drawn !== null; });
       writeStatus();
     }

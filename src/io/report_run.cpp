@@ -19,7 +19,7 @@ Case ReportRun::as_case() const {
 }
 
 void check_report_choices(const Model& m, const ReportOptions& opt) {
-  if (!opt.links.empty()) (void)link_load_groups(m, SimulationResult{}, opt.links);
+  if (!opt.links.empty()) (void)chosen_links(m, opt.links, opt.links_option);
   if (!opt.frf.input.empty()) (void)linear_input(m, opt.frf.input, Location{opt.frf.option_prefix + "input", 0, 0});
 }
 

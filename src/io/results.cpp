@@ -112,21 +112,35 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
 }
 }  // namespace
 
-nlohmann::json brake_stops_json(const std::vector<BrakeStop>& stops) {
-  auto opt = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+nlohmann::json brake_stops_json(const std::vector<BrakeSummary>& brakes) {
   nlohmann::json j = nlohmann::json::object();
-  for (const BrakeStop& s : stops) {
-    nlohmann::json travel = nlohmann::json::object();
-    for (const auto& x : s.travel) travel[x.body] = {{"value", x.value}, {"unit", x.unit}};
-    nlohmann::json e = {{"applied_at_s", opt(s.t_applied)},
-                        {"stopped_at_s", opt(s.t_stopped)},
-                        {"stopped", s.t_stopped.has_value()},
-                        {"stopping_time_s", opt(s.stopping_time)},
-                        {"travel", travel},
+  for (const BrakeSummary& s : brakes) {
+    nlohmann::json stops = nlohmann::json::array();
+    for (const BrakeStop& st : s.stops) {
+      nlohmann::json travel = nlohmann::json::object();
+      for (const auto& x : st.travel) travel[x.body] = {{"value", x.value}, {"unit", x.unit}};
+      nlohmann::json e = {{"applied_at_s", st.t_applied},
+                          {"start", start_name(st.start)},
+                          {"ended_at_s", st.t_end},
+                          {"end", end_name(st.end)},
+                          {"stopped", st.stopping_time.has_value()},
+                          {"stopping_time_s", st.stopping_time ? nlohmann::json(*st.stopping_time) : nlohmann::json()},
+                          {"travel", travel},
+                          {"energy_J", st.energy_J},
+                          {"peak_power_W", st.peak_power_W},
+                          {"t_peak_power_s", st.t_peak_power}};
+      if (s.thermal) {
+        e["temperature_applied_degC"] = st.temperature_applied_degC;
+        e["temperature_end_degC"] = st.temperature_end_degC;
+        e["temperature_rise_K"] = st.temperature_end_degC - st.temperature_applied_degC;
+      }
+      stops.push_back(e);
+    }
+    nlohmann::json e = {{"unit", s.unit},
                         {"energy_J", s.energy_J},
                         {"peak_power_W", s.peak_power_W},
                         {"t_peak_power_s", s.t_peak_power},
-                        {"unit", s.unit}};
+                        {"stops", stops}};
     if (s.thermal) {
       e["temperature_max_degC"] = s.temperature_max_degC;
       e["t_temperature_max_s"] = s.t_temperature_max;
@@ -137,22 +151,33 @@ nlohmann::json brake_stops_json(const std::vector<BrakeStop>& stops) {
   return j;
 }
 
-std::string brake_stops_text(const std::vector<BrakeStop>& stops) {
+std::string brake_stops_text(const std::vector<BrakeSummary>& brakes) {
   std::string out;
-  for (const BrakeStop& s : stops) {
+  for (const BrakeSummary& s : brakes) {
     std::string line = fmt::format("brake {}: ", s.brake);
-    if (!s.t_applied) {
-      line += "not applied in the run";
-    } else {
-      line += fmt::format("applied at {:.6g} s, ", *s.t_applied);
-      line += s.t_stopped ? fmt::format("stopped after {:.6g} s", *s.stopping_time) : std::string("not at rest by t_end");
-      for (const auto& x : s.travel) line += fmt::format(", {} {:.6g} {}", x.body, x.value, x.unit);
-    }
+    line += s.stops.empty() ? std::string("not applied in the run")
+                            : fmt::format("{} stop{}", s.stops.size(), s.stops.size() == 1 ? "" : "s");
     line += fmt::format("; energy {:.6g} J, peak power {:.6g} W at {:.6g} s", s.energy_J, s.peak_power_W, s.t_peak_power);
     if (s.thermal)
       line += fmt::format("; temperature max {:.5g} degC at {:.6g} s, {:.5g} degC at the end", s.temperature_max_degC,
                           s.t_temperature_max, s.temperature_end_degC);
     out += line + "\n";
+    for (size_t k = 0; k < s.stops.size(); ++k) {
+      const BrakeStop& st = s.stops[k];
+      line = fmt::format("  stop {}: {} {:.6g} s, ", k + 1,
+                         st.start == BrakeStop::Start::applied    ? "applied at"
+                         : st.start == BrakeStop::Start::overcome ? "overcome (sliding) at"
+                                                                  : "sliding from", st.t_applied);
+      switch (st.end) {
+        case BrakeStop::End::stuck: line += fmt::format("stopped after {:.6g} s", *st.stopping_time); break;
+        case BrakeStop::End::released: line += fmt::format("released after {:.6g} s", st.t_end - st.t_applied); break;
+        case BrakeStop::End::run_end: line += "not at rest by t_end"; break;
+      }
+      for (const auto& x : st.travel) line += fmt::format(", {} {:.6g} {}", x.body, x.value, x.unit);
+      line += fmt::format("; energy {:.6g} J, peak power {:.6g} W at {:.6g} s", st.energy_J, st.peak_power_W, st.t_peak_power);
+      if (s.thermal) line += fmt::format("; temperature +{:.4g} K", st.temperature_end_degC - st.temperature_applied_degC);
+      out += line + "\n";
+    }
   }
   return out;
 }
@@ -182,7 +207,7 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   }
   j["links"] = links;
   if (r.hybrid.active) add_hybrid_summary(m, r, j);
-  if (const auto stops = brake_stops(m, r); !stops.empty()) j["brakes"] = brake_stops_json(stops);
+  if (const auto brakes = brake_summaries(m, r); !brakes.empty()) j["brakes"] = brake_stops_json(brakes);
   if (!r.machines.empty()) {
     nlohmann::json ms = nlohmann::json::object();
     for (const auto& x : r.machines) {

@@ -43,8 +43,8 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
       f.error_at("frame", "the frame must be a third body, not an end of the rope");
     else if (frame >= 0 && side != BodyKind::translational)
       f.error_at("frame", "a rope with a 'frame' needs a translational hook (body b)");
-    else if (frame >= 0 && (has("length") || l.a_point || l.b_point))
-      f.error_at("frame", "a rope with a 'frame' takes a constant 'stiffness' (not a 'length') and ends at bodies");
+    else if (frame >= 0 && (l.a_point || l.b_point))
+      f.error_at("frame", "a rope with a 'frame' ends at bodies (not at a machine's output point)");
     else if (frame >= 0) {
       l.third = frame;
       l.third_weight = 1.0;

@@ -10,9 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/equilibrium.hpp"
+#include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/elements/linearize.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
 #include "support/support.hpp"
@@ -188,6 +190,108 @@ TEST_P(Reeving, FrameNamedAfterGearedBodiesIsStillTheGirder) {
   EXPECT_NEAR(series(r, "girder.position_m").back(), x_g, 1e-9);
   EXPECT_NEAR(series(r, "hook.position_m").back(), x_h, 1e-9);
   EXPECT_NEAR(series(r, "load.position_m").back(), x_l, 1e-9);
+}
+
+// The crane above with its rope given as drawn: 4/2 reeving on a 0.5 m drum held by its brake, EA =
+// 1.5e7 N, 10 m per fall at the start: c(L_f0) = 4 EA / L_f0 = 6e6 N/m = c_r of the chain above.
+const char* kGirderWindingCrane = R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {inertia: 50 kg*m^2}
+  girder: {type: translational, mass: 9 t}
+  hook: {type: translational, mass: 600 kg, vertical: up}
+  load: {type: translational, mass: 32 t, vertical: up}
+links:
+  girder_spring: {type: spring, between: [ground, girder], stiffness: 3.2e7 N/m}
+  rope: {type: rope, between: [drum, hook], frame: girder, ratio: 4 rad/m, falls: 4, rope_ends: 2, EA: 1.5e7 N, length: 10 m}
+  slings: {type: rope, between: [hook, load], stiffness: 2e7 N/m}
+brakes: {hold: {body: drum, holding: 1e6 N*m}}
+simulation: {t_end: 0.5 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equilibrium}
+)";
+
+// Claim: a rope given by its length and EA in series with the girder (`frame` with a winding rope,
+// issue 32 item 3). Drum held by its brake, the rope's stiffness is c(L_f0) = 4 EA/L_f0 = 6e6 N/m at
+// the initial length, so statically by hand x_g = −(m_h + m_l) g/c_g, x_h = x_g − (m_h + m_l) g/c(L_f0),
+// x_l = x_h − m_l g/c_s, and the three frequencies of the hanging crane (the drum held) are the roots
+// of det(K − ω² M) of the chain ground – c_g – m_g – c(L_f0) – m_h – c_s – m_l, to 1e-9; the run stays
+// at rest there on both integrators.
+TEST_P(Reeving, GirderInSeriesWithARopeGivenByLengthAndEA) {
+  Model m = model_of(kGirderWindingCrane);
+  m.simulation.integrator = GetParam();
+  ASSERT_EQ(m.links[1].third, 1);
+  EXPECT_DOUBLE_EQ(m.links[1].c, 4.0 * 1.5e7 / 10.0);
+  const double W = (kMh + kMl) * kG, x_g = -W / kCg, x_h = x_g - W / kCr, x_l = x_h - kMl * kG / kCs;
+  const EquilibriumStart st = static_equilibrium(m);
+  EXPECT_NEAR(st.q0[0], 0.0, 1e-12);  // the drum, held
+  EXPECT_NEAR(st.q0[1], x_g, 1e-12);
+  EXPECT_NEAR(st.q0[2], x_h, 1e-12);
+  EXPECT_NEAR(st.q0[3], x_l, 1e-12);
+  // The hanging crane's topology: the brake stuck holds the drum (a constraint row).
+  const Model me = with_equilibrium_start(m);
+  const TopologyModes tm = analyse_topology(me, initial_topology(me, 0.0));
+  EXPECT_EQ(tm.modes.constraints, 1);
+  std::vector<double> elastic;
+  for (Eigen::Index k = 0; k < tm.modes.omega.size(); ++k) elastic.push_back(tm.modes.omega(k));
+  ASSERT_EQ(elastic.size(), 3u);
+  const double bound = std::max({(kCg + 2 * kCr) / kMg, (2 * kCr + 2 * kCs) / kMh, 2 * kCs / kMl});
+  std::vector<double> roots;
+  const int steps = 200000;
+  for (int k = 0; k < steps; ++k) {
+    double lo = bound * k / steps, hi = bound * (k + 1) / steps;
+    if ((chain_determinant(lo) > 0) == (chain_determinant(hi) > 0)) continue;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      ((chain_determinant(lo) > 0) == (chain_determinant(mid) > 0) ? lo : hi) = mid;
+    }
+    roots.push_back(std::sqrt(0.5 * (lo + hi)));
+  }
+  ASSERT_EQ(roots.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(elastic[k], roots[k], 1e-9 * roots[k]) << k;
+  const SimulationResult r = simulate(m);
+  EXPECT_NEAR(series(r, "girder.position_m").back(), x_g, 1e-9);
+  EXPECT_NEAR(series(r, "hook.position_m").back(), x_h, 1e-9);
+  EXPECT_NEAR(series(r, "load.position_m").back(), x_l, 1e-9);
+  EXPECT_NEAR(series(r, "rope.load_N").back(), W, 1e-6 * W);
+}
+
+// Claim: hoisting on a rope given by length and EA whose drum hangs from the girder: the stiffness
+// follows the wound length. The drum turns at ω = 2 rad/s (prescribed), the hook (m = 12 t, the
+// rope's damping d = 2e4 N·s/m) rides steadily: by hand, with s = 1/i = 1/8 m/rad and L_f(t) = L_f0 −
+// s ω t, the hook does not accelerate, so F = c(t) e + d ė = m g, the girder sits at x_g = −m g/c_g,
+// and e = (m g − d ė) L_f/(n EA); with L̇_f = −s ω and ė constant, ė = −(m g − d ė) s ω/(n EA), so
+// m g − d ė = m g n EA/(n EA − d s ω) =: F_c and
+//   x_h(t) = x_g + s ω t − F_c L_f(t)/(n EA),   ẋ_h = s ω + F_c s ω/(n EA).
+// Started on that motion, the hook stays on it to 1e-7 m over 2 s (0.5 m hoisted of 10 m: c rises 5 %)
+// on both integrators.
+TEST_P(Reeving, HoistingOnAWindingRopeWithAFrame) {
+  const double mg = kMass * kG, n = 4.0, EA = 1.5e7, L0 = 10.0, s = 1.0 / 8.0, w = 2.0, d = 2e4, cg = 3.2e7;
+  const double x_g = -mg / cg, corr = mg * n * EA / (n * EA - d * s * w);
+  auto x_hook = [&](double t) { return x_g + s * w * t - corr * (L0 - s * w * t) / (n * EA); };
+  const double v_hook = s * w + corr * s * w / (n * EA);
+  const std::string yaml = fmt::format(R"(
+gravity: 9.81 m/s^2
+bodies:
+  drum: {{inertia: 50 kg*m^2, motion: {{speed: 2 rad/s}}}}
+  girder: {{type: translational, mass: 9 t, position: {:.17g} m}}
+  hook: {{type: translational, mass: 12 t, vertical: up, position: {:.17g} m, velocity: {:.17g} m/s}}
+links:
+  girder_spring: {{type: spring, between: [ground, girder], stiffness: 3.2e7 N/m}}
+  rope: {{type: rope, between: [drum, hook], frame: girder, ratio: 4 rad/m, falls: 4, rope_ends: 2, EA: 1.5e7 N,
+         length: 10 m, damping: 2e4 N*s/m}}
+simulation: {{t_end: 2 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-13}}
+)",
+                                       x_g, x_hook(0.0), v_hook);
+  Model m = model_of(yaml);
+  m.simulation.integrator = GetParam();
+  const SimulationResult r = simulate(m);
+  const auto &t = series(r, "t_s"), &xh = series(r, "hook.position_m"), &xg = series(r, "girder.position_m");
+  ASSERT_GT(t.size(), 100u);
+  for (size_t k = 0; k < t.size(); ++k) {
+    EXPECT_NEAR(xh[k], x_hook(t[k]), 1e-7) << t[k];
+    EXPECT_NEAR(xg[k], x_g, 1e-8) << t[k];
+  }
+  // The stiffness at the end: 4 EA / (L_f0 − s ω t_end), 5.3 % above the start's.
+  EXPECT_NEAR(series(r, "rope.fall_length_m").back(), L0 - s * w * 2.0, 1e-9);
 }
 
 // Claim: a file without `rope_ends` means what it meant: `falls: 4` is one rope end feeding four

@@ -16,6 +16,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/figures.hpp"
+#include "machdyn/io/linear_results.hpp"
 #include "machdyn/io/plot.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/model/describe.hpp"
@@ -203,6 +204,21 @@ TEST(ReportElements, LinkLoadsInPanelsByUnitAndSize) {
   const auto chosen = link_loads_figures(m, r, {"rope", "coupling"});
   ASSERT_EQ(chosen.size(), 2u);
   EXPECT_EQ(chosen[0].series.size(), 1u);
+  // A link that carries nothing in the run (a second machine at rest beside the hoist) gets no
+  // empty panel of zero lines: the first panel's title names it; chosen by name, it is drawn.
+  {
+    std::string yaml = kPanels;
+    yaml.replace(yaml.find("links:\n"), 7, "links:\n  idle: {type: spring, between: [ground, spare], stiffness: 1e3 N/m}\n");
+    yaml.replace(yaml.find("bodies:\n"), 8, "bodies:\n  spare: {type: translational, mass: 1 kg}\n");
+    const Model mi = test::model_text(yaml);
+    const SimulationResult ri = simulate(mi);
+    const auto panels = link_loads_figures(mi, ri);
+    ASSERT_EQ(panels.size(), 3u);
+    for (const auto& f : panels)
+      for (const auto& sr : f.series) EXPECT_FALSE(has(sr.name, "idle")) << f.title;
+    EXPECT_TRUE(has(panels[0].title, "no load in this run: idle")) << panels[0].title;
+    EXPECT_EQ(link_loads_figures(mi, ri, {"idle"}).size(), 1u);
+  }
   try {
     (void)link_load_groups(m, r, {"shaft"});
     FAIL() << "no error for an unknown link";
@@ -286,6 +302,42 @@ simulation: {t_end: 0.1 s}
   EXPECT_NEAR(named->omega(named->omega.size() - 1), 2 * std::numbers::pi * 20, 1e-9);
   choice.input = "nothing";
   EXPECT_THROW((void)default_frequency_response(m, list, &label, choice), InputError);
+}
+
+// Claim: an output the frequency response's input does not reach (a second machine beside the first,
+// no link between them) has |H| of the rounding (≤ 1e-9 of the reached outputs'): its Bode curves are
+// left out and the title names it, so the log axis spans the reached outputs only (the worked crane's
+// trolley case drew 1e-23 … 7 and the page's script failed on it). The reached output's curve stays:
+// a spring c to a mass m driven by a force has |H| of its spring load = c/|c − ω² m|, 1 at ω → 0.
+TEST(ReportElements, BodePlotsLeaveOutOutputsTheInputDoesNotReach) {
+  const Model m = test::model_text(R"(
+bodies:
+  a: {type: translational, mass: 10 kg}
+  b: {type: translational, mass: 20 kg}
+links:
+  sa: {type: spring, between: [ground, a], stiffness: 1e4 N/m}
+  sb: {type: spring, between: [ground, b], stiffness: 2e4 N/m}
+loads:
+  F: {type: constant, body: a, value: 1 N}
+simulation: {t_end: 0.01 s}
+)");
+  const auto list = run_topology_modes(m, simulate(m).hybrid, m.simulation.t_end);
+  std::string label;
+  FrfChoice choice;
+  choice.input = "F";
+  const auto frf = default_frequency_response(m, list, &label, choice);
+  ASSERT_TRUE(frf);
+  ASSERT_EQ(frf->outputs.size(), 2u);
+  for (const bool phase : {false, true}) {
+    const plot::Figure f = phase ? bode_phase_figure(m, *frf, label) : bode_magnitude_figure(m, *frf, label);
+    ASSERT_EQ(f.series.size(), 1u) << f.title;
+    EXPECT_TRUE(has(f.series[0].name, "sa.load")) << f.series[0].name;
+    EXPECT_TRUE(has(f.title, "not excited: sb.load")) << f.title;
+    if (!phase) {
+      const double w = 2 * std::numbers::pi * f.series[0].x.front();
+      EXPECT_NEAR(f.series[0].y.front(), 1e4 / std::abs(1e4 - w * w * 10), 1e-6);
+    }
+  }
 }
 
 // Claim: a brake never applied in the run draws no "applied" mark (it did at t_end) and its

@@ -261,11 +261,13 @@ struct LinkLaw {
     if (third >= 0) f[third] -= F * w3;
   }
   /// Adds all generalized forces of the link at positions q (velocities v) in mode g to f (n):
-  /// the load F (returned) and a winding rope's W. Plain links (no machine point).
+  /// the load F (returned) and a winding rope's W. Links without a machine point (a third body e, the
+  /// frame a winding rope's drum hangs from, takes −F w_e).
   double apply_at(const double* q, const double* v, GapMode g, double* f) const {
-    const double qa = drum(q), delta = linear(q), F = load(delta, linear(v), g, qa);
+    const double qa = drum(q), delta = weighted(q), F = load(delta, weighted(v), g, qa);
     if (a >= 0) f[a] -= F * inv_ratio + winding_force(delta, qa, g);
-    if (b >= 0) f[b] += F;
+    if (b >= 0) f[b] += F * wb;
+    if (third >= 0) f[third] -= F * w3;
     return F;
   }
   /// The load's weights over y = [q; v] (2n states) for a plain link in a transmitting mode:
@@ -308,19 +310,27 @@ struct LinkLaw {
     if (shaped) return jacobian(n, g, cap, q, nullptr, add);
     if (!winding) return jacobian(n, g, cap, add);
     if (!transmits(g)) return;
-    const double qa = drum(q), e = linear(q) - flank(g), s = inv_ratio;
+    // e = s q_a − x_b + w_e x_e − flank (the frame e: a third body with w_e = 1, or none).
+    const double qa = drum(q), e = weighted(q) - flank(g), s = inv_ratio;
     const double cq = stiffness(qa), c1 = stiffness_slope(qa), c2 = stiffness_curvature(qa);
     const double k = cap ? 2.0 : 1.0, ds = cap ? 0.0 : d;
-    // F = k (c e) + F_d: ∂F/∂q_a, ∂F/∂x, ∂F/∂v_a, ∂F/∂v_b.
-    const double Fa = k * (cq * s + c1 * e), Fb = -k * cq, Fva = ds * s, Fvb = -ds;
-    if (b >= 0) {
+    // F = k (c e) + F_d: ∂F/∂q_a, ∂F/∂x_b, ∂F/∂x_e and the same over the speeds.
+    const double Fa = k * (cq * s + c1 * e), Fb = -k * cq, Fe = k * cq * w3, Fva = ds * s, Fvb = -ds, Fve = ds * w3;
+    if (b >= 0) {  // f_b = +F
       if (a >= 0) add(b, a, Fa), add(b, n + a, Fva);
       add(b, b, Fb), add(b, n + b, Fvb);
+      if (third >= 0) add(b, third, Fe), add(b, n + third, Fve);
+    }
+    if (third >= 0) {  // f_e = −F w_e
+      if (a >= 0) add(third, a, -w3 * Fa), add(third, n + a, -w3 * Fva);
+      if (b >= 0) add(third, b, -w3 * Fb), add(third, n + b, -w3 * Fvb);
+      add(third, third, -w3 * Fe), add(third, n + third, -w3 * Fve);
     }
     if (a >= 0) {  // f_a = −F s − ½ c′ e²
       add(a, a, -(Fa * s + c1 * e * s + 0.5 * c2 * e * e));
       add(a, n + a, -Fva * s);
       if (b >= 0) add(a, b, -(Fb * s - c1 * e)), add(a, n + b, -Fvb * s);
+      if (third >= 0) add(a, third, -(Fe * s + c1 * e * w3)), add(a, n + third, -Fve * s);
     }
   }
   template <class Add>

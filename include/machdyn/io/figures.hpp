@@ -30,10 +30,18 @@ struct FigureOptions {
   std::vector<std::string> links;  ///< the links whose loads are drawn (`--links`); empty: all
 };
 
-/// The links `links` (all when empty; an unknown name is an InputError at `--links` listing the
-/// links) grouped into panels: per unit (N·m, then N), in descending order of the peak |load|, a
+/// The links `links` of `m` by index, in the given order without repeats (all when empty). An
+/// unknown name is an InputError at `option` — the option's name where the user wrote the list:
+/// `--links` on the command line, `links=` in Python — listing the model's links.
+std::vector<std::size_t> chosen_links(const Model& m, const std::vector<std::string>& links,
+                                      const std::string& option = "--links");
+
+/// The links `links` (all when empty; an unknown name is an InputError at `--links`, chosen_links)
+/// grouped into panels: per unit (N·m, then N), in descending order of the peak |load|, a
 /// link whose peak is below 1/8 of its panel's largest starts a new panel — a 0.37 kN·m coupling
 /// does not lie flat beside a 40 kN·m drum shaft. Each panel lists its links in the file's order.
+/// Unless the links are chosen, a link whose load is 0 throughout the run is in no panel (a panel of
+/// zero lines is empty); link_loads_figures names such links in its first panel's title.
 std::vector<std::vector<std::size_t>> link_load_groups(const Model& m, const SimulationResult& r,
                                                        const std::vector<std::string>& links = {});
 /// One link-loads figure per panel of link_load_groups (ids link_loads, link_loads_2, …; a title

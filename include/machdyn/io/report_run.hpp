@@ -28,6 +28,7 @@ struct ReportOptions {
   SimulateOptions simulate;
   FrfChoice frf;
   std::vector<std::string> links;  ///< empty: every link, in panels (io/figures.hpp link_load_groups)
+  std::string links_option = "--links";  ///< where `links` was written, for its errors (`links=` in Python)
 };
 
 /// Everything one case of a report holds; kept alive while the document is built (as_case() points

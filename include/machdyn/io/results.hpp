@@ -27,14 +27,17 @@ void write_timeseries_csv(const std::filesystem::path& path, const SimulationRes
 /// static_at_min, peak, t_peak, static, dynamic_factor, unit}}, solver: {method, reason, steps,
 /// rejected_steps, rhs_evals, jac_evals, wall_time_s}}`. `static` is the quasi-static load at the
 /// peak and dynamic_factor = peak / static (LinkSummary), null when the static load is ~0.
-/// A model with brakes adds `brakes: {NAME: {applied_at_s, stopped_at_s, stopped, stopping_time_s,
-/// travel: {BODY: {value, unit}}, energy_J, peak_power_W, t_peak_power_s, unit[, temperature_max_degC,
-/// t_temperature_max_s, temperature_end_degC]}}` (analysis/brake_summary.hpp; null where not reached).
+/// A model with brakes adds `brakes: {NAME: {unit, energy_J, peak_power_W, t_peak_power_s[,
+/// temperature_max_degC, t_temperature_max_s, temperature_end_degC], stops: [{applied_at_s,
+/// start (applied, overcome, initial), ended_at_s, end (stuck, released, t_end), stopped, stopping_time_s, travel: {BODY: {value, unit}},
+/// energy_J, peak_power_W, t_peak_power_s[, temperature_applied_degC, temperature_end_degC,
+/// temperature_rise_K]}, …]}}` (analysis/brake_summary.hpp; null where not reached).
 nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
 
-/// The `brakes` object of the summary, and the lines `simulate` prints for it (one per brake).
-nlohmann::json brake_stops_json(const std::vector<BrakeStop>& stops);
-std::string brake_stops_text(const std::vector<BrakeStop>& stops);
+/// The `brakes` object of the summary, and the lines `simulate` prints for it (per brake, one line
+/// for the run and one per stop).
+nlohmann::json brake_stops_json(const std::vector<BrakeSummary>& brakes);
+std::string brake_stops_text(const std::vector<BrakeSummary>& brakes);
 
 // `modes` writes its JSON with io/linear_results.hpp (every topology).
 
