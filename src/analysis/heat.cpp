@@ -56,7 +56,7 @@ void Heat::power(double t, const double* y, double* p) {
   }
   for (int g : gears_) p[j++] = LossyGearLaw::loss_power(sys_.gear_torques(g, t, y), y[n_ + sys_.lossy_gear(g).a]);
   for (int d : drives_)
-    p[j++] = sys_.drive(d).heat_power(t, sys_.drive_speed(d, y), y + sys_.drive_offset(d), sys_.drive_mode(d));
+    p[j++] = sys_.drive(d).heat_power(t, sys_.drive_motion(d, y), y + sys_.drive_offset(d), sys_.drive_mode(d));
 }
 
 void Heat::integrate(const Stepper& st, double ta, double tb, double* heat, double* temperature) {
