@@ -964,9 +964,18 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void set_drive_mode(int d, double t, int now, bool initial, bool located = false) {
     const int old = sys_.drive_mode(d);
     if (!initial && now == old) return;
+    const Element& e = sys_.drive(d);
+    // An element that stores energy may release some at a switch (a gear mesh leaving a flank off it,
+    // at zero force with its damper pulling): a loss, as a damped gap's release.
+    auto stored = [&] { return e.energy(sys_.drive_motion(d, y_.data()), y_.data() + sys_.drive_offset(d), sys_.drive_mode(d)); };
+    const double V_old = !initial && e.has_energy() ? stored() : 0.0;
     sys_.set_drive_mode(d, now);
     if (!initial) sys_.drive(d).on_switch(t, sys_.drive_motion(d, y_.data()), y_.data() + sys_.drive_offset(d), old, now, located);
-    const Element& e = sys_.drive(d);
+    if (!initial && e.has_energy()) {
+      const double released = V_old - stored();
+      release_loss_ += released, drive_released_ += released;
+      heat_.add_drive_release(d, released);
+    }
     record(t, initial ? "initial" : e.switch_kind(now), nl_ + nc_ + d, initial ? "" : e.mode_name(old),
            e.mode_name(now));
   }
@@ -1199,7 +1208,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     Z.clear();
     strict_.clear();
     rested_.clear();
-    const double V_before = sys_.elastic_energy(y_.data());
+    const double V_before = sys_.elastic_energy(y_.data()), drive_released = drive_released_;
     bool gap_changed = false, impacted = false;
     std::vector<ContactMode>& before = old_modes_;  // kept: no allocation per event
     before = sys_.contact_modes();
@@ -1227,7 +1236,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         strict_.push_back(e);  // breakaway
       }
     }
-    if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
+    if (gap_changed)  // the elements' releases at this event are booked by set_drive_mode
+      release_loss_ += V_before - sys_.elastic_energy(y_.data()) - (drive_released_ - drive_released);
     if (impacted) redecide_after_impact(t);
     for (int k = 0; k < nc_; ++k)
       if (decided_at_event(k, t)) Z.push_back(k);
@@ -1412,6 +1422,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
   double release_loss_ = 0.0;
+  double drive_released_ = 0.0;  // the part of release_loss_ elements released at their switches
   size_t released_ = 0;                        // releases applied so far (Model::releases order)
   std::vector<std::unique_ptr<Model>> stages_;  // the model after 1, 2, … releases
   std::vector<int> released_bodies_ = released_bodies(m_);  // their mass columns
