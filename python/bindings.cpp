@@ -146,6 +146,7 @@ py::list drives(const Model& m) {
     py::dict e;
     e["name"] = d.name, e["type"] = d.law->type();
     e["body"] = shown_body(m, d.body, d.given_body), e["states"] = d.states();
+    if (d.other >= 0) e["other"] = shown_body(m, d.other, d.given_other);  // an element between two bodies
     out.append(e);
   }
   return out;

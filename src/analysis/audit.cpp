@@ -373,6 +373,23 @@ void Audit::check_at(double t, const double* y) {
     audit::check_gear_loss(m_.lossy_gears[static_cast<size_t>(g)].name, t, T.X, T.Y, v[k.a],
                            std::abs(Fa) + std::abs(Fb), res);
   }
+  // Elements behind the interface: each checks its own law's invariants (Element::violated).
+  for (int d = 0; d < sys_.drive_count(); ++d) {
+    const Element& k = sys_.drive(d);
+    const ElementMotion b = sys_.drive_motion(d, y);
+    double M[ElementMotion::kMax] = {};
+    const double* x = y + sys_.drive_offset(d);
+    k.forces(t, b, x, sys_.drive_mode(d), M);
+    double scale = 0.0;
+    for (int p = 0; p < b.n; ++p) scale += std::abs(b.q[p]) + std::abs(b.v[p]);
+    const std::string why = k.violated(t, b, x, sys_.drive_mode(d), M, k.heat_power(t, b, x, sys_.drive_mode(d)),
+                                       m_.simulation.atol + m_.simulation.rtol * scale);
+    if (!why.empty()) {
+      const size_t bar = why.find('|');
+      throw AuditError(m_.drives[static_cast<size_t>(d)].name, t, why.substr(0, bar),
+                       bar == std::string::npos ? std::string() : why.substr(bar + 1));
+    }
+  }
   // The energy books.
   if (sys_.energy_books()) {
     const auto e = static_cast<size_t>(sys_.energy_index());

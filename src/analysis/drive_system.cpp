@@ -543,15 +543,20 @@ MACHDYN_NO_TREE_VECTORIZE void DriveSystem::forces(double t, const double* y, do
 // Out of line: the plain chain's loops stay as they were for models without drives.
 __attribute__((noinline)) double DriveSystem::drive_forces(double t, const double* y, double* f, double* loss) const {
   double src = 0.0;
-  for (int d = 0; d < nd_; ++d) {  // their torque from their own states (model/element.hpp)
+  for (int d = 0; d < nd_; ++d) {  // their forces from their bodies and states (model/element.hpp)
     const Element& k = drive(d);
     const double* x = y + drive_offset(d);
-    const double w = drive_speed(d, y);  // ω_X (model.hpp: Drive; the body's velocity on one body)
-    const double M = k.torque(t, w, x, drive_mode(d));
-    drive_place(d).spread(M, f);
-    // Its heat is a loss, not work taken out: the source work is M ω + heat (0 for a brake).
-    const double heat = k.heat_power(t, w, x, drive_mode(d));
-    src += M * w + heat;
+    const ElementMotion b = drive_motion(d, y);  // ω_X (model.hpp: Drive; the body's velocity on one body)
+    double M[ElementMotion::kMax] = {};
+    k.forces(t, b, x, drive_mode(d), M);
+    drive_place(d).spread_all(M, f);
+    // Its heat is a loss, not work taken out: the source work is Σ M v + heat (0 for a brake), plus
+    // the rate of the energy it stores (counted with the elastic energy).
+    const double heat = k.heat_power(t, b, x, drive_mode(d));
+    double P = M[0] * b.v[0];
+    for (int i = 1; i < b.n; ++i) P += M[i] * b.v[i];
+    src += P + heat;
+    if (k.has_energy()) src += k.stored_power(t, b, x, drive_mode(d));
     *loss += heat;
   }
   return src;
@@ -560,7 +565,7 @@ __attribute__((noinline)) double DriveSystem::drive_forces(double t, const doubl
 __attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* y, double* dydt) const {
   for (int d = 0; d < nd_; ++d) {
     const int o = drive_offset(d);
-    drive(d).rates(t, drive_speed(d, y), y + o, drive_mode(d), dydt + o, drive_place(d).own(dydt + n_));
+    drive(d).rates(t, drive_motion(d, y, dydt + n_), y + o, drive_mode(d), dydt + o);
   }
 }
 
@@ -909,23 +914,34 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
       trip.emplace_back(n_ + r, c, v * im(r));
     });
   }
-  // Elements with states (model/element.hpp): M(ω, x) on the body's acceleration, the state
-  // rates x'(ω, x).
+  // Elements (model/element.hpp): M_p(q, v, x) on their bodies' accelerations, the state rates
+  // x'(q, v, x); the q terms where the element reads positions (a fixed pattern either way).
   for (int d = 0; d < nd_; ++d) {
     const Element& k = drive(d);
     const int o = drive_offset(d), nx = k.states();
-    const ElementJacobian jd = k.jacobian(t, drive_speed(d, y), y + o, drive_mode(d));
-    int b[2];
-    double w[2];  // ω = Σ w_i v_i, f_i += w_i M (model.hpp: Drive)
-    const int nt = drive_place(d).terms(b, w);
-    for (int i = 0; i < nt; ++i) {
-      const int vb = n_ + b[i];
-      for (int c = 0; c < nt; ++c) trip.emplace_back(vb, n_ + b[c], w[i] * w[c] * jd.dM_domega * im(b[i]));
-      for (int j = 0; j < nx; ++j) {
-        trip.emplace_back(vb, o + j, w[i] * jd.dM_dx[j] * im(b[i]));
-        trip.emplace_back(o + j, vb, w[i] * jd.dx_domega[j]);
+    const bool pos = k.reads_positions();
+    const ElementJacobian jd = k.jacobian(t, drive_motion(d, y), y + o, drive_mode(d));
+    const Drive& place = drive_place(d);
+    const int np = place.ports();
+    int b[ElementMotion::kMax][2];
+    double w[ElementMotion::kMax][2];  // port p: ω_p = Σ w_i v_i, f_i += w_i M_p (model.hpp: Drive)
+    int nt[ElementMotion::kMax];
+    nt[0] = place.terms(b[0], w[0]);
+    if (np > 1) nt[1] = 1, b[1][0] = place.other, w[1][0] = place.other_ratio;
+    for (int p = 0; p < np; ++p)
+      for (int i = 0; i < nt[p]; ++i) {
+        const int vb = n_ + b[p][i];
+        for (int r = 0; r < np; ++r)
+          for (int c = 0; c < nt[r]; ++c) {
+            trip.emplace_back(vb, n_ + b[r][c], w[p][i] * w[r][c] * jd.dM_dv[p][r] * im(b[p][i]));
+            if (pos) trip.emplace_back(vb, b[r][c], w[p][i] * w[r][c] * jd.dM_dq[p][r] * im(b[p][i]));
+          }
+        for (int j = 0; j < nx; ++j) {
+          trip.emplace_back(vb, o + j, w[p][i] * jd.dM_dx[p][j] * im(b[p][i]));
+          trip.emplace_back(o + j, vb, w[p][i] * jd.dx_dv[j][p]);
+          if (pos) trip.emplace_back(o + j, b[p][i], w[p][i] * jd.dx_dq[j][p]);
+        }
       }
-    }
     for (int j = 0; j < nx; ++j)
       for (int c = 0; c < nx; ++c) trip.emplace_back(o + j, o + c, jd.dx_dx[j][c]);
   }
@@ -937,7 +953,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
 void DriveSystem::external_forces(double t, const double* y, const double* fc, double* f) const {
   for (int i = 0; i < n_; ++i) f[i] = 0.0;
   for (const auto& ld : m_.loads) ld.spread(ld.at(t, y, y + n_), f);
-  for (int d = 0; d < nd_; ++d) drive_place(d).spread(drive_torque(d, t, y), f);
+  for (int d = 0; d < nd_; ++d) drive_spread(d, t, y, f);
   const double* q = machine_positions(y);
   for (int i : machine_bodies_) f[i] += machine_[static_cast<size_t>(i)]->force(q[i]);
   for (int k = 0; k < nc_; ++k) contacts_[static_cast<size_t>(k)].apply(fc[k], f);
@@ -959,6 +975,8 @@ double DriveSystem::elastic_energy(const double* y) const {
   for (int l = 0; l < nl_; ++l)
     V += links_[static_cast<size_t>(l)].elastic_energy(link_kinematics(l, y).delta, gap_[static_cast<size_t>(l)],
                                                        links_[static_cast<size_t>(l)].drum(y));
+  for (int d = 0; d < nd_; ++d)  // elements that store energy (a gear mesh's teeth: model/element.hpp)
+    if (drive(d).has_energy()) V += drive(d).energy(drive_motion(d, y), y + drive_offset(d), drive_mode(d));
   return V;
 }
 
@@ -1077,20 +1095,17 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     if (!locks_.empty()) lock_event_functions(t, g);
   }
   for (int d = 0; d < nd_; ++d) {
-    drive(d).events(t, drive_speed(d, y), y + drive_offset(d), drive_mode(d),
-                    accelerations ? drive_place(d).own(f_.data()) : 0.0, g + 2 * (nl_ + nc_ + d));
+    drive(d).events(t, drive_motion(d, y, accelerations ? f_.data() : nullptr), y + drive_offset(d), drive_mode(d),
+                    g + 2 * (nl_ + nc_ + d));
   }
 }
 
 int DriveSystem::natural_drive_mode(int d, double t, const double* y) {
   const Element& k = drive(d);
   const int cur = drive_mode(d);
-  double acc = 0.0;
-  if (k.reads_acceleration(cur)) {
-    evaluate(t, y, f_.data(), fc_.data());
-    acc = drive_place(d).own(f_.data());
-  }
-  return k.natural_mode(t, drive_speed(d, y), y + drive_offset(d), cur, acc);
+  const bool acc = k.reads_acceleration(cur);
+  if (acc) evaluate(t, y, f_.data(), fc_.data());
+  return k.natural_mode(t, drive_motion(d, y, acc ? f_.data() : nullptr), y + drive_offset(d), cur);
 }
 
 int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
@@ -1098,7 +1113,7 @@ int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
   const int old = drive_mode(d);
   if (!k.settles(old, now)) return now;
   evaluate(t, y, f_.data(), fc_.data());
-  return k.settle(t, drive_speed(d, y), old, now, drive_place(d).own(f_.data()));
+  return k.settle(t, drive_motion(d, y, f_.data()), y + drive_offset(d), old, now);
 }
 
 namespace {

@@ -8,6 +8,7 @@
 
 #include "machdyn/analysis/machine_outputs.hpp"
 #include "machdyn/common/diagnostics.hpp"
+#include "machdyn/model/element.hpp"
 #include "machdyn/model/machine.hpp"
 #include "machdyn/solve/roots.hpp"
 
@@ -121,9 +122,12 @@ EnergyIntegral::EnergyIntegral(const Model& m, double added_inertia, double extr
                                     ld.name));
   }
   for (const auto& d : m.drives)
-    diag.error(m.where(d.name), fmt::format("drive '{}' has states of its own (current, controller), so the motion has "
+    diag.error(m.where(d.name),
+               d.states() > 0 ? fmt::format("drive '{}' has states of its own (current, controller), so the motion has "
                                             "no energy integral; simulate it instead",
-                                            d.name));
+                                            d.name)
+                              : fmt::format("'{}' ({}) is not part of the energy integral; simulate it instead", d.name,
+                                            d.law->type()));
   if (m.dof() == 1 && m.bodies[0].machine && m.bodies[0].machine->has_jumps())
     diag.error(m.where(m.bodies[0].name), fmt::format("body '{}' has velocity jumps (a stepwise gear ratio): kinetic energy is lost at "
                                   "every jump, so the energy integral does not hold; use `simulate`",

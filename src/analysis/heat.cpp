@@ -10,6 +10,7 @@ namespace machdyn::detail {
 Heat::Heat(const Model& m, DriveSystem& sys) : sys_(sys), n_(m.dof()) {
   contact_el_.assign(m.contacts.size(), -1);
   link_el_.assign(m.links.size(), -1);
+  drive_el_.assign(m.drives.size(), -1);
   auto add = [&](std::vector<int>& kind, std::vector<int>* el, int i, const std::string& name) {
     if (el) (*el)[static_cast<size_t>(i)] = static_cast<int>(names_.size());
     kind.push_back(i);
@@ -25,7 +26,7 @@ Heat::Heat(const Model& m, DriveSystem& sys) : sys_(sys), n_(m.dof()) {
   for (int d = 0; d < static_cast<int>(m.drives.size()); ++d) {
     const Drive& dr = m.drives[static_cast<size_t>(d)];
     if (!dr.law->dissipates()) continue;
-    add(drives_, nullptr, d, dr.name);
+    add(drives_, &drive_el_, d, dr.name);
     const auto own = dr.law->output_names(m.bodies[static_cast<size_t>(dr.body)].kind);
     own_power_.push_back(std::find(own.begin(), own.end(), "heat_power_W") != own.end());
   }
@@ -56,7 +57,7 @@ void Heat::power(double t, const double* y, double* p) {
   }
   for (int g : gears_) p[j++] = LossyGearLaw::loss_power(sys_.gear_torques(g, t, y), y[n_ + sys_.lossy_gear(g).a]);
   for (int d : drives_)
-    p[j++] = sys_.drive(d).heat_power(t, sys_.drive_speed(d, y), y + sys_.drive_offset(d), sys_.drive_mode(d));
+    p[j++] = sys_.drive(d).heat_power(t, sys_.drive_motion(d, y), y + sys_.drive_offset(d), sys_.drive_mode(d));
 }
 
 void Heat::integrate(const Stepper& st, double ta, double tb, double* heat, double* temperature) {
@@ -97,6 +98,10 @@ void Heat::add_impact(int contact, double loss) {
 void Heat::add_release(int link, double loss) {
   // Only a damped flank opens off its flank (an undamped one opens at c e = 0): nothing else releases.
   if (const int j = link_el_[static_cast<size_t>(link)]; j >= 0) heat_[static_cast<size_t>(j)] += loss;
+}
+
+void Heat::add_drive_release(int drive, double loss) {
+  if (const int j = drive_el_[static_cast<size_t>(drive)]; j >= 0) heat_[static_cast<size_t>(j)] += loss;
 }
 
 void Heat::at(const Stepper* st, double t, const double* y, double* power_out, double* heat, double* temperature) {

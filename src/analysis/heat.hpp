@@ -41,6 +41,9 @@ class Heat {
   /// flank released when its gap opened (< 0 when it closes off its flank): heat at the event.
   void add_impact(int contact, double loss);
   void add_release(int link, double loss);
+  /// Adds the energy element `drive` (Model::drives) released at a switch of its mode (its stored
+  /// energy before less after, Element::energy: a gear mesh leaving a flank off it) to its heat.
+  void add_drive_release(int drive, double loss);
   /// At t inside the open piece of the current step `st` (nullptr: none open) and state y: per element
   /// P (W) and Q (J) into `power`, `heat` (count() + 1 values each, the last the total; either may be
   /// nullptr), and per element with a thermal model, in the order of the model's contacts, T (K) into
@@ -59,6 +62,7 @@ class Heat {
   std::vector<int> contacts_, links_, gears_, drives_;  // the elements' indices in the model, by kind
   std::vector<char> own_power_;      // per element: own_power_column()
   std::vector<int> contact_el_, link_el_;      // per contact / link: its element, −1 if none
+  std::vector<int> drive_el_;                  // per Model::drives: its element, −1 if none
   std::vector<int> thermal_;         // elements with a thermal model
   std::vector<ThermalLaw> law_;      // their laws, in that order
   double t_ = 0.0;                   // heat_ and T_ hold the values at t_

@@ -618,7 +618,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       for (const Load& ld : now().loads)  // the weights as the releases so far left them
         put(ld.at(t, y, y + n_) * ld.own(y + n_));  // M v_X (model.hpp: Load)
       for (int d = 0; d < nd_; ++d)
-        put(sys_.drive_torque(d, t, y) * sys_.drive_speed(d, y));  // M ω_X (model.hpp: Drive)
+        put(sys_.drive_power(d, t, y));  // Σ M_p v_p, M ω_X on one body (model.hpp: Drive)
       for (int l = 0; l < nl_; ++l)
         if (m_.links[static_cast<size_t>(l)].d > 0.0) {
           const LinkLaw::Kinematics s = sys_.link_kinematics(l, y);
@@ -657,7 +657,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       out.vals.push_back(ld.at(t, y, y + n_));  // M at the load's point, spread in forces()
     }
     for (int i : machine_bodies_) out.vals.push_back(m_.bodies[static_cast<size_t>(i)].machine->force(y[i]));
-    for (int d = 0; d < nd_; ++d) out.vals.push_back(sys_.drive_torque(d, t, y));  // the drive's torque at t
+    for (int d = 0; d < nd_; ++d) {  // the element's forces at t, one per body it acts on
+      double M[ElementMotion::kMax] = {};
+      sys_.drive_forces_of(d, t, y, M);
+      for (int p = 0; p < sys_.drive_place(d).ports(); ++p) out.vals.push_back(M[p]);
+    }
     out.off.clear();
     for (int l : flank_links_)
       if (!sys_.link(l).transmits(sys_.gap_mode(l))) out.off.push_back(l);
@@ -756,7 +760,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (varies) ++k, ++v;
     }
     for (int i : machine_bodies_) f(i) += v < vals.size() ? vals[v++] : 0.0;
-    for (int d = 0; d < nd_; ++d) sys_.drive_place(d).spread(v < vals.size() ? vals[v++] : 0.0, f.data());
+    for (int d = 0; d < nd_; ++d) {
+      double M[ElementMotion::kMax] = {};
+      for (int p = 0; p < sys_.drive_place(d).ports(); ++p) M[p] = v < vals.size() ? vals[v++] : 0.0;
+      sys_.drive_place(d).spread_all(M, f.data());
+    }
     for (int c = 0; c < nc_; ++c) sys_.contact(c).apply(v < vals.size() ? vals[v++] : 0.0, f.data());
     return f;
   }
@@ -956,9 +964,18 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   void set_drive_mode(int d, double t, int now, bool initial, bool located = false) {
     const int old = sys_.drive_mode(d);
     if (!initial && now == old) return;
-    sys_.set_drive_mode(d, now);
-    if (!initial) sys_.drive(d).on_switch(t, sys_.drive_speed(d, y_.data()), y_.data() + sys_.drive_offset(d), old, now, located);
     const Element& e = sys_.drive(d);
+    // An element that stores energy may release some at a switch (a gear mesh leaving a flank off it,
+    // at zero force with its damper pulling): a loss, as a damped gap's release.
+    auto stored = [&] { return e.energy(sys_.drive_motion(d, y_.data()), y_.data() + sys_.drive_offset(d), sys_.drive_mode(d)); };
+    const double V_old = !initial && e.has_energy() ? stored() : 0.0;
+    sys_.set_drive_mode(d, now);
+    if (!initial) sys_.drive(d).on_switch(t, sys_.drive_motion(d, y_.data()), y_.data() + sys_.drive_offset(d), old, now, located);
+    if (!initial && e.has_energy()) {
+      const double released = V_old - stored();
+      release_loss_ += released, drive_released_ += released;
+      heat_.add_drive_release(d, released);
+    }
     record(t, initial ? "initial" : e.switch_kind(now), nl_ + nc_ + d, initial ? "" : e.mode_name(old),
            e.mode_name(now));
   }
@@ -1191,7 +1208,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     Z.clear();
     strict_.clear();
     rested_.clear();
-    const double V_before = sys_.elastic_energy(y_.data());
+    const double V_before = sys_.elastic_energy(y_.data()), drive_released = drive_released_;
     bool gap_changed = false, impacted = false;
     std::vector<ContactMode>& before = old_modes_;  // kept: no allocation per event
     before = sys_.contact_modes();
@@ -1219,7 +1236,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         strict_.push_back(e);  // breakaway
       }
     }
-    if (gap_changed) release_loss_ += V_before - sys_.elastic_energy(y_.data());
+    if (gap_changed)  // the elements' releases at this event are booked by set_drive_mode
+      release_loss_ += V_before - sys_.elastic_energy(y_.data()) - (drive_released_ - drive_released);
     if (impacted) redecide_after_impact(t);
     for (int k = 0; k < nc_; ++k)
       if (decided_at_event(k, t)) Z.push_back(k);
@@ -1404,6 +1422,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   long progress_steps_ = 0, initial_events_ = 0;
   double next_progress_ = 0.0;
   double release_loss_ = 0.0;
+  double drive_released_ = 0.0;  // the part of release_loss_ elements released at their switches
   size_t released_ = 0;                        // releases applied so far (Model::releases order)
   std::vector<std::unique_ptr<Model>> stages_;  // the model after 1, 2, … releases
   std::vector<int> released_bodies_ = released_bodies(m_);  // their mass columns

@@ -5,8 +5,8 @@
 
 namespace machdyn {
 
-ElementJacobian DcMotor::jacobian(double, double, const double*, int) const {
-  ElementJacobian j;
+OneBodyJacobian DcMotor::jacobian(double, double, const double*, int) const {
+  OneBodyJacobian j;
   j.dM_dx[0] = k;
   j.dx_domega[0] = -k / L;
   j.dx_dx[0][0] = -R / L;

@@ -7,8 +7,8 @@
 
 namespace machdyn {
 
-ElementJacobian EddyCurrentBrake::jacobian(double t, double omega, const double* x, int) const {
-  ElementJacobian j;
+OneBodyJacobian EddyCurrentBrake::jacobian(double t, double omega, const double* x, int) const {
+  OneBodyJacobian j;
   double dM_domega = 0.0;
   const double M = torque_at(t, omega, x[0], &dM_domega);
   const double dM_dT = -(omega / breakdown_speed(x[0])) * dM_domega * omega_ref * alpha;

@@ -37,18 +37,24 @@ Eigen::SparseMatrix<double> LinearModel::constraints() const {
 }
 
 void add_drive_linear(const Drive& d, int mode, LinearModel& lin) {
-  if (d.body2 < 0 && d.ratio == 1.0) return d.law->add_linear(d.body, mode, lin);
-  // The element's terms at its own point X (a scratch model of one coordinate), spread by
-  // δq_X = Σ ρ_i δq_i: an entry c at (X, X) is ρ_i ρ_j c at (i, j) (model.hpp: Drive).
-  LinearModel own(1);
-  d.law->add_linear(0, mode, own);
-  int b[2];
-  double w[2];
-  const int nt = d.terms(b, w);
+  if (d.ports() == 1 && d.body2 < 0 && d.ratio == 1.0) return d.law->add_linear(&d.body, mode, lin);
+  // The element's terms at its own points X_p (a scratch model of one coordinate per port), spread
+  // by δq_X = Σ ρ_i δq_i: an entry c at (X_r, X_s) is ρ_i ρ_j c at (i, j) over the terms i of port r
+  // and j of port s (model.hpp: Drive).
+  const int np = d.ports();
+  LinearModel own(np);
+  const int at[2] = {0, 1};
+  d.law->add_linear(at, mode, own);
+  int b[2][2];
+  double w[2][2];
+  int nt[2] = {d.terms(b[0], w[0]), 1};
+  if (np > 1) b[1][0] = d.other, w[1][0] = d.other_ratio;
   auto spread = [&](const std::vector<Eigen::Triplet<double>>& from, std::vector<Eigen::Triplet<double>>& to) {
-    for (const auto& e : from)
-      for (int i = 0; i < nt; ++i)
-        for (int j = 0; j < nt; ++j) to.emplace_back(b[i], b[j], w[i] * w[j] * e.value());
+    for (const auto& e : from) {
+      const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
+      for (int i = 0; i < nt[r]; ++i)
+        for (int j = 0; j < nt[c]; ++j) to.emplace_back(b[r][i], b[c][j], w[r][i] * w[c][j] * e.value());
+    }
   };
   spread(own.K, lin.K);
   spread(own.D, lin.D);

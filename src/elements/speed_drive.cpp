@@ -15,8 +15,8 @@ const char* to_string(LimitMode m) {
   return "?";
 }
 
-ElementJacobian SpeedDrive::jacobian(double, double, const double*, int mode) const {
-  ElementJacobian j;
+OneBodyJacobian SpeedDrive::jacobian(double, double, const double*, int mode) const {
+  OneBodyJacobian j;
   const bool lin = LimitMode(mode) == LimitMode::linear;
   if (lin) j.dx_domega[0] = -Kp / Ti;
   if (!lagged()) {

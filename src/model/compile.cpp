@@ -49,7 +49,7 @@ std::string_view section_of_type(std::string_view type) {
       {"buffer", "buffers"}, {"ideal-gear", "links"}, {"lossy-gear", "links"}, {"planetary-gear", "links"}};
   for (const auto& [t, sec] : kTypes)
     if (t == type) return sec;
-  if (detail::find_element_type(type)) return "drives";  // model/element_types.hpp
+  if (const detail::ElementType* t = detail::find_element_type(type)) return t->section;  // model/element_types.hpp
   return {};
 }
 
@@ -133,7 +133,10 @@ void remember_given_bodies(Model& m) {
   for (Link& l : m.links) l.given_a = name(l.a), l.given_b = name(l.b);
   for (FrictionContact& c : m.contacts) c.given_a = name(c.a), c.given_b = name(c.b);
   for (Load& ld : m.loads) ld.given_body = name(ld.body);
-  for (Drive& d : m.drives) d.given_body = name(d.body);
+  for (Drive& d : m.drives) {
+    d.given_body = name(d.body);
+    if (d.other >= 0) d.given_other = name(d.other);
+  }
 }
 
 void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears,
@@ -163,6 +166,10 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     }
     if (kind == "lossy-gear") {
       detail::read_lossy_gear(name, spec, m, lossy, diag);  // model/compile_lossy.cpp
+      continue;
+    }
+    if (detail::is_link_element_type(kind)) {  // a registered element between two bodies (a gear mesh)
+      detail::read_link_element(name, spec, m, diag);  // model/compile_drive.cpp
       continue;
     }
     FieldReader f(spec, fmt::format("link '{}'", name), diag);

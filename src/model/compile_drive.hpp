@@ -1,10 +1,11 @@
 #pragma once
-// Compiler of the section `drives:` (model/model.hpp `Drive`): elements with states of their own
-// acting on one body, each of a registered type (model/element_types.hpp: DC motors, speed drives,
-// …), whose own compile function reads its fields. Called from compile.cpp; messages follow its
-// conventions.
+// Compiler of the elements behind the one interface (model/model.hpp `Drive`, model/element.hpp),
+// each of a registered type (model/element_types.hpp) whose own compile function reads its fields:
+// on one body under `drives:` (DC motors, speed drives, …), between two under `links:` (a gear
+// mesh). Called from compile.cpp; messages follow its conventions.
 //
-//   NAME: {type: TYPE, body: BODY, ...the type's fields}
+//   drives:  NAME: {type: TYPE, body: BODY, ...the type's fields}
+//   links:   NAME: {type: TYPE, between: [A, B], ...the type's fields}
 #include <optional>
 
 #include "machdyn/common/diagnostics.hpp"
@@ -13,11 +14,19 @@
 
 namespace machdyn::detail {
 
-/// The types a `type:` under `drives:` may name: every registered element type.
+/// The types a `type:` under `drives:` may name: every registered element type on one body.
 std::vector<std::string> drive_types();
 
 /// Reads `drives:` into m.drives; every problem into `diag`, located.
 void compile_drives(const SpecNode* section, Model& m, Diagnostics& diag);
+
+/// Whether `type` is a registered element type between two bodies (written under `links:`).
+bool is_link_element_type(std::string_view type);
+
+/// Reads the `links:` entry NAME of a registered two-body type (`between: [A, B]`, its port 0 on A,
+/// port 1 on B; both bodies with inertia of their own, or A the ground-free body of an ideal gear's
+/// merge) into m.drives; every problem into `diag`, located.
+void read_link_element(const std::string& name, const SpecNode& spec, Model& m, Diagnostics& diag);
 
 /// A required signal field of an element: a quantity of dimension d or a map with `type:`; a missing
 /// or bad one is reported located (nullopt).

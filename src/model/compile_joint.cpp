@@ -12,6 +12,8 @@
 #include <optional>
 #include <fmt/format.h>
 
+#include "machdyn/model/element.hpp"
+
 #include "model/compile_rigid.hpp"
 
 namespace machdyn::detail {
@@ -131,7 +133,7 @@ void remove_body(Model& m, int x) {
     shift(c.a), shift(c.b);
     for (int j = 0; j < c.row.terms; ++j) shift(c.row.body[j]);
   }
-  for (Drive& d : m.drives) shift(d.body), shift(d.body2);
+  for (Drive& d : m.drives) shift(d.body), shift(d.body2), shift(d.other);
   for (LossyGear& g : m.lossy_gears) shift(g.a), shift(g.b);
   for (RigidSlave& s : m.slaves) shift(s.master), shift(s.master2);
   for (MergedGear& g : m.merged_gears) shift(g.body);
@@ -307,6 +309,9 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   // A drive on X likewise: it sees ω_X = Σ c_k v_k and puts c_k M on the others (model.hpp: Drive);
   // every member is rotational (member_index), so its columns keep their units.
   for (Drive& d : m.drives) {
+    if (d.other == x)  // its port 1 is a plain body (model.hpp: Drive::other)
+      diag.error(m.where(d.name), fmt::format("'{}': a {} on '{}', a joint's member without inertia, is not supported "
+                                              "yet: give '{}' an inertia", d.name, d.law->type(), X.name, X.name));
     if (d.body != x) continue;
     ej.drives.push_back(static_cast<int>(&d - m.drives.data())), ej.drive_weight.push_back(d.ratio);
     const double rho = d.ratio;

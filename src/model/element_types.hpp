@@ -1,9 +1,10 @@
 #pragma once
-// The registry of element types with states of their own (model/element.hpp), read by the
-// compiler of `drives:` (model/compile_drive.cpp). Each type registers itself in its own file
-// src/elements/types/NAME.cpp with
+// The registry of element types behind the one interface (model/element.hpp), read by the
+// compilers of `drives:` and `links:` (model/compile_drive.cpp). Each type registers itself in its
+// own file src/elements/types/NAME.cpp with
 //
-//   MACHDYN_ELEMENT_TYPE(NAME, "yaml-type", compile_function)
+//   MACHDYN_ELEMENT_TYPE(NAME, "yaml-type", compile_function, "example fields")       (drives:, one body)
+//   MACHDYN_LINK_ELEMENT_TYPE(NAME, "yaml-type", compile_function, "example fields")  (links:, two bodies)
 //
 // at file scope, where NAME is the file's name. CMake (cmake/ElementTypes.cmake) lists those files
 // and generates the one table that refers to each registration (generated/element_types_table.cpp in
@@ -19,12 +20,20 @@
 
 namespace machdyn::detail {
 
-/// One element type: its `type:` and its compile function, which reads the fields of one entry
-/// (`type` and `body` already read; its body is of `body_kind`) into the element in SI, reporting
-/// every problem located through `f` (f.finish() is called after it). Null when a field was bad.
+/// One element type: its `type:`, its compile function, which reads the fields of one entry
+/// (`type` and its bodies already read; its first body is of `body_kind`) into the element in SI,
+/// reporting every problem located through `f` (f.finish() is called after it; null when a field was
+/// bad), and the section it is written in with the number of its bodies: `drives:` with `body: B`
+/// (one body) or `links:` with `between: [A, B]` (two bodies).
 struct ElementType {
   const char* name;
   std::shared_ptr<const Element> (*compile)(FieldReader& f, BodyKind body_kind);
+  const char* section = "drives";
+  int bodies = 1;
+  /// The fields of a small instance (a YAML flow map's body, without `type` and the bodies), for the
+  /// conformance test over every registered type (tests/model/element_conformance_test.cpp): on a
+  /// rotational body (or two) with inertia 1 kg·m².
+  const char* example = "";
 };
 
 /// Every registered type, in the order of their files' names.
@@ -34,9 +43,18 @@ const ElementType* find_element_type(std::string_view name);
 
 }  // namespace machdyn::detail
 
-/// Registers an element type from its own file src/elements/types/NAME.cpp (NAME: the file's name).
-#define MACHDYN_ELEMENT_TYPE(NAME, TYPE, COMPILE)                                \
+/// Registers an element type on one body (section `drives:`) from its own file
+/// src/elements/types/NAME.cpp (NAME: the file's name).
+#define MACHDYN_ELEMENT_TYPE(NAME, TYPE, COMPILE, EXAMPLE)                       \
   const ::machdyn::detail::ElementType& machdyn_element_type_##NAME() {          \
-    static const ::machdyn::detail::ElementType kType{TYPE, &(COMPILE)};         \
+    static const ::machdyn::detail::ElementType kType{TYPE, &(COMPILE), "drives", 1, EXAMPLE}; \
+    return kType;                                                                \
+  }
+
+/// Registers an element type between two bodies (section `links:`, `between: [A, B]`; its port 0
+/// on A, port 1 on B) from its own file src/elements/types/NAME.cpp.
+#define MACHDYN_LINK_ELEMENT_TYPE(NAME, TYPE, COMPILE, EXAMPLE)                  \
+  const ::machdyn::detail::ElementType& machdyn_element_type_##NAME() {          \
+    static const ::machdyn::detail::ElementType kType{TYPE, &(COMPILE), "links", 2, EXAMPLE}; \
     return kType;                                                                \
   }

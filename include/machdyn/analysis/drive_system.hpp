@@ -136,13 +136,47 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] int natural_drive_mode(int d, double t, const double* y);
   /// The mode of element d after its event switches it to `now` (Element::settle where it settles).
   [[nodiscard]] int settle_drive_mode(int d, double t, const double* y, int now);
-  /// The torque (or force) M of element d at its own point (Drive::spread puts it on the bodies), N·m or N.
+  /// What element d sees of its bodies at y (Drive::at over positions and velocities; the
+  /// accelerations from acc where given, else 0).
+  [[nodiscard]] ElementMotion drive_motion(int d, const double* y, const double* acc = nullptr) const {
+    const Drive& p = drive_place(d);
+    ElementMotion b;
+    b.n = p.ports();
+    for (int i = 0; i < b.n; ++i) {
+      b.q[i] = p.at(y, i), b.v[i] = p.at(y + n_, i);
+      if (acc) b.a[i] = p.at(acc, i);
+    }
+    return b;
+  }
+  /// The forces M_p of element d on its ports into M (Element::forces).
+  void drive_forces_of(int d, double t, const double* y, double* M) const {
+    drive(d).forces(t, drive_motion(d, y), y + drive_offset(d), drive_mode(d), M);
+  }
+  /// The torque (or force) M_0 of element d at its own point (on its first body; Drive::spread puts it
+  /// on the bodies), N·m or N.
   [[nodiscard]] double drive_torque(int d, double t, const double* y) const {
-    return drive(d).torque(t, drive_speed(d, y), y + drive_offset(d), drive_mode(d));
+    double M[ElementMotion::kMax] = {};
+    drive_forces_of(d, t, y, M);
+    return M[0];
+  }
+  /// Adds element d's forces on every body it acts on to f (Drive::spread_all).
+  void drive_spread(int d, double t, const double* y, double* f) const {
+    double M[ElementMotion::kMax] = {};
+    drive_forces_of(d, t, y, M);
+    drive_place(d).spread_all(M, f);
+  }
+  /// The power element d puts into its bodies, Σ_p M_p v_p, W.
+  [[nodiscard]] double drive_power(int d, double t, const double* y) const {
+    const ElementMotion b = drive_motion(d, y);
+    double M[ElementMotion::kMax] = {};
+    drive(d).forces(t, b, y + drive_offset(d), drive_mode(d), M);
+    double P = M[0] * b.v[0];
+    for (int i = 1; i < b.n; ++i) P += M[i] * b.v[i];
+    return P;
   }
   /// Element d's own output columns at (t, y) (Element::outputs) into out.
   void drive_outputs(int d, double t, const double* y, double* out) const {
-    drive(d).outputs(t, drive_speed(d, y), y + drive_offset(d), drive_mode(d), out);
+    drive(d).outputs(t, drive_motion(d, y), y + drive_offset(d), drive_mode(d), out);
   }
 
   // Lossy gears (elements/lossy_gear.hpp), in the order of Model::lossy_gears.

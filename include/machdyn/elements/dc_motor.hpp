@@ -18,7 +18,7 @@
 
 namespace machdyn {
 
-class DcMotor final : public Element {
+class DcMotor final : public OneBodyElement {
  public:
   double R = 0.0;   ///< armature resistance, Ω, > 0
   double L = 0.0;   ///< armature inductance, H, > 0
@@ -45,8 +45,13 @@ class DcMotor final : public Element {
   /// inductance's ½ L i² is stored, not counted).
   [[nodiscard]] bool dissipates() const override { return true; }
   [[nodiscard]] double heat_power(double, double, const double* x, int) const override { return R * x[0] * x[0]; }
+  /// The supply's power into the mechanics and the heat, u i − L i di/dt (the inductance's share
+  /// of u i is stored in ½ L i², not counted): P_source = M ω + R i² by the armature equation.
+  [[nodiscard]] double source_power(double t, double omega, const double* x, int) const override {
+    return u.value(t) * x[0] - L * x[0] * current_rate(t, omega, x[0]);
+  }
   /// ∂M/∂i = k, ∂(di/dt)/∂ω = −k/L, ∂(di/dt)/∂i = −R/L.
-  [[nodiscard]] ElementJacobian jacobian(double, double, const double*, int) const override;
+  [[nodiscard]] OneBodyJacobian jacobian(double, double, const double*, int) const override;
   /// Linear model: the quasi-static slope (L → 0) dM/dω = −k²/R as a damper to the ground on
   /// `body`. Exact when the electrical time constant L/R is short against the mechanical periods.
   void add_linear(int body, int, LinearModel& lin) const override { lin.D.emplace_back(body, body, k * k / R); }

@@ -22,7 +22,7 @@
 
 namespace machdyn {
 
-class EddyCurrentBrake final : public Element {
+class EddyCurrentBrake final : public OneBodyElement {
  public:
   Signal M_k = Signal::constant(0.0);  ///< largest torque M_k(t), N·m or N, ≥ 0
   double omega_ref = 1.0;  ///< ω_k,ref: speed of the largest torque at T_ref, rad/s or m/s, > 0
@@ -50,12 +50,14 @@ class EddyCurrentBrake final : public Element {
   }
   /// ∂M/∂ω from the law; ∂M/∂T = −(ω/ω_k) ∂M/∂ω · ω_k,ref α (M depends on ω/ω_k only);
   /// ∂T'/∂ω = −(M + ω ∂M/∂ω)/C, ∂T'/∂T = −ω ∂M/∂T / C.
-  [[nodiscard]] ElementJacobian jacobian(double t, double omega, const double* x, int) const override;
+  [[nodiscard]] OneBodyJacobian jacobian(double t, double omega, const double* x, int) const override;
   [[nodiscard]] bool dissipates() const override { return true; }
   /// All of −M ω becomes heat in the disc.
   [[nodiscard]] double heat_power(double t, double omega, const double* x, int mode) const override {
     return -torque(t, omega, x, mode) * omega;
   }
+  /// Passive: no supply.
+  [[nodiscard]] double source_power(double, double, const double*, int) const override { return 0.0; }
   /// Linear model: the slope at rest, 2 M_k(0)/ω_k(T0), as a damper to the ground.
   void add_linear(int body, int, LinearModel& lin) const override;
   [[nodiscard]] const char* state_name(int) const override { return "temperature"; }

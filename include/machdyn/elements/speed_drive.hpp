@@ -47,7 +47,7 @@ inline int limit_side(LimitMode m) { return static_cast<int>(m) > 0 ? 1 : static
 inline bool on_limit(LimitMode m) { return m == LimitMode::on_limit_pos || m == LimitMode::on_limit_neg; }
 const char* to_string(LimitMode m);
 
-class SpeedDrive final : public Element {
+class SpeedDrive final : public OneBodyElement {
  public:
   double Kp = 0.0;        ///< proportional gain K_p, N·m·s/rad or N·s/m, > 0
   double Ti = 0.0;        ///< integral time T_i, s, > 0
@@ -131,7 +131,11 @@ class SpeedDrive final : public Element {
   /// converges with it missing, the solution does not depend on it):
   ///   T_m = 0:  ∂M/∂ω = −K_p, ∂M/∂x_I = 1 (linear; 0 limited);  ∂x_I'/∂ω = −K_p/T_i (linear)
   ///   T_m > 0:  ∂M/∂x₁ = 1;  ∂x₁'/∂ω = −K_p/T_m, ∂x₁'/∂x_I = 1/T_m (linear), ∂x₁'/∂x₁ = −1/T_m
-  [[nodiscard]] ElementJacobian jacobian(double t, double omega, const double* x, int mode) const override;
+  [[nodiscard]] OneBodyJacobian jacobian(double t, double omega, const double* x, int mode) const override;
+  /// An ideal controlled source (the converter's losses are not modelled): it delivers M ω.
+  [[nodiscard]] double source_power(double t, double omega, const double* x, int mode) const override {
+    return torque(t, omega, x, mode) * omega;
+  }
   [[nodiscard]] bool has_events() const override { return limited(); }
   void events(double t, double omega, const double* x, int mode, double omega_dot, double* g) const override {
     limit_events(command(t, omega, x[0]), ref.value(t) - omega, ref.slope(t) - omega_dot, LimitMode(mode), g);

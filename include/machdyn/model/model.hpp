@@ -315,9 +315,10 @@ struct Load {
   int terms(int* b, double* w) const;
 };
 
-/// A drive or another element with continuous states of its own acting on one body (`body`), from
-/// the section `drives:`: a DC motor, a speed-controlled drive, an eddy-current brake with its
-/// temperature. Each type states its law and holds its compiled SI parameters in its own file under
+/// An element behind the one interface (model/element.hpp) placed on its bodies: from the section
+/// `drives:` an element on one body (`body`) with states of its own — a DC motor, a speed-controlled
+/// drive, an eddy-current brake with its temperature; from `links:` a registered element between
+/// two bodies (`body`, `other`) — an elastic gear mesh. Each type states its law and holds its compiled SI parameters in its own file under
 /// elements/ (an Element, model/element.hpp) and registers its `type:` and compile function there;
 /// this struct only places it. Its states follow [q; v] in the drive system's state
 /// (analysis/drive_system.hpp), in the order of Model::drives.
@@ -333,6 +334,12 @@ struct Drive {
   int body2 = -1;
   double ratio2 = 0.0;
   std::string given_body;  ///< the body as the file names it (display; as Load::given_body)
+  /// The second body of an element between two bodies (Element::bodies() == 2, e.g. a gear mesh
+  /// under `links:`): its port 1 sees ρ_o x[other] and puts ρ_o M_1 on `other` (ρ_o ≠ 1 on a slaved
+  /// body, as ratio). −1: an element on one body.
+  int other = -1;
+  double other_ratio = 1.0;
+  std::string given_other;  ///< the second body as the file names it
 
   /// ρ x[body] + ρ₂ x[body2]: the element's own velocity (or acceleration) from the bodies' x.
   [[nodiscard]] double own(const double* x) const;
@@ -340,6 +347,15 @@ struct Drive {
   void spread(double M, double* f) const;
   /// Its bodies and weights into b[2], w[2]; returns how many (1 or 2).
   int terms(int* b, double* w) const;
+  /// The number of its ports (bodies it acts on as the element sees them): 1 or 2.
+  [[nodiscard]] int ports() const { return other >= 0 ? 2 : 1; }
+  /// Port p's coordinate from the bodies' x: own(x) for p = 0, ρ_o x[other] for p = 1.
+  [[nodiscard]] double at(const double* x, int p) const { return p == 0 ? own(x) : other_ratio * x[other]; }
+  /// Adds the forces M[p] of every port to f (port 0 by spread()).
+  void spread_all(const double* M, double* f) const {
+    spread(M[0], f);
+    if (other >= 0) f[other] += other_ratio * M[1];
+  }
 
   /// Number of continuous states (Element::states).
   [[nodiscard]] int states() const;
@@ -502,7 +518,7 @@ struct Model {
   std::vector<Link> links;
   std::vector<Load> loads;
   std::vector<FrictionContact> contacts;  ///< friction contacts and brakes (law: elements/contact.hpp)
-  std::vector<Drive> drives;              ///< elements with states of their own (`drives:`)
+  std::vector<Drive> drives;              ///< elements behind the interface (`drives:`, registered `links:`)
   std::string load_case;                  ///< the case applied from the file's `cases:`, or empty
   /// g in m/s² (`gravity:`), the acceleration of gravity that gives every body with `vertical` its
   /// weight; 0 when no body is vertical.

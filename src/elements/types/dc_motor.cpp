@@ -23,4 +23,5 @@ std::shared_ptr<const machdyn::Element> compile_dc_motor(machdyn::FieldReader& f
 
 }  // namespace
 
-MACHDYN_ELEMENT_TYPE(dc_motor, "dc-motor", compile_dc_motor)
+MACHDYN_ELEMENT_TYPE(dc_motor, "dc-motor", compile_dc_motor,
+                     "resistance: 0.5 ohm, inductance: 20 mH, motor_constant: 0.8 N*m/A, voltage: 50 V, initial_current: 3 A")

@@ -29,4 +29,5 @@ std::shared_ptr<const machdyn::Element> compile_speed_drive(machdyn::FieldReader
 
 }  // namespace
 
-MACHDYN_ELEMENT_TYPE(speed_drive, "speed-drive", compile_speed_drive)
+MACHDYN_ELEMENT_TYPE(speed_drive, "speed-drive", compile_speed_drive,
+                     "reference: 100 rad/s, gain: 2 N*m*s/rad, integral_time: 0.2 s, torque_limit: 40 N*m, rise_time: 20 ms, initial_torque: 5 N*m")

@@ -53,4 +53,5 @@ std::shared_ptr<const Element> compile_thermal_eddy_current_brake(FieldReader& f
 
 }  // namespace
 
-MACHDYN_ELEMENT_TYPE(thermal_eddy_current_brake, "thermal-eddy-current-brake", compile_thermal_eddy_current_brake)
+MACHDYN_ELEMENT_TYPE(thermal_eddy_current_brake, "thermal-eddy-current-brake", compile_thermal_eddy_current_brake,
+                     "breakdown_torque: 30 N*m, breakdown_speed: 20 rad/s, heat_capacity: 500 J/K, temperature_coefficient: 0.004 1/K, initial_temperature: 60 degC")
