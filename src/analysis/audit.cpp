@@ -259,7 +259,10 @@ Audit::Audit(const Model& m, DriveSystem& sys, const EnergyBalance& E, const dou
 
 void Audit::in_mode(double t, const double* y) {
   try {
-    check(std::nextafter(t, -std::numeric_limits<double>::infinity()), t, y);
+    // The laws at t⁻, the mode of the piece that ends at t; the first row (t = 0) ends no piece: the
+    // run starts with the signals' values at 0 (their right limits — a step, pulse or table that
+    // jumps at 0 s acts from the start), as its decision there took them.
+    check(t > 0.0 ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t, t, y);
   } catch (const AuditError& e) {
     if (!pending_) pending_ = std::make_unique<AuditError>(e);
   }
