@@ -327,5 +327,31 @@ simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
   EXPECT_NEAR(r.hybrid.energy.friction_loss, q * h / 3, 1e-9);
 }
 
+// Class F (campaign `release` 22, 23, 52, 89): a breakaway of a body at rest near the origin. A block
+// (1 kg) at x0 = 3e-16 m (the rounding stuck bodies carry) held by a contact (F_s = 2 N, F_k = 1 N)
+// under P = t N breaks away at t* = 2 s; then v' = t − 1: v = t²/2 − t, x = x0 + t³/6 − t²/2 + 2/3.
+// (dopri5's first step after the restart came from ‖y‖/‖f‖ with |y| = 3e-16 against atol 1e-12:
+// h = 6e-16 s, below what the step loop resolves at t = 2 s, and the run ended with "the step size
+// became too small" at the breakaway.)
+TEST_P(CampaignDefects, ABreakawayOfABodyAtRestNearTheOriginTakesItsFirstStep) {
+  const SimulationResult r = run(model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg, position: 3e-16 m}}
+loads: {P: {type: ramp, body: m, value: 3 N, before: 0 N, start: 0 s, end: 3 s}}
+contacts: {c: {between: [m, ground], static: 2 N, kinetic: 1 N}}
+simulation: {t_end: 3 s, dt_out: 0.05 s, rtol: 1e-10, atol: 1e-12}
+)"),
+                                 GetParam());
+  const auto slips = events_of(r, "c", "slip");
+  ASSERT_EQ(slips.size(), 1u);
+  EXPECT_NEAR(slips[0].t, 2.0, 1e-9);
+  const auto& t = series(r, "t_s");
+  const auto &x = series(r, "m.position_m"), &v = series(r, "m.velocity_m_s");
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double T = std::max(t[i], 2.0);
+    EXPECT_NEAR(v[i], T * T / 2 - T, 1e-8) << t[i];
+    EXPECT_NEAR(x[i], 3e-16 + T * T * T / 6 - T * T / 2 + 2.0 / 3, 1e-8) << t[i];
+  }
+}
+
 }  // namespace
 }  // namespace machdyn
