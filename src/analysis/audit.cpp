@@ -96,7 +96,9 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
          fmt::format("sliding ({}) at u = {:.17g} with F = {:.17g}, its law gives s r F_k(|u|) = {:.17g} (r = {:.6g}, "
                      "F_k = {:.17g})",
                      mode_name(x.mode), x.u, x.F, expected, r, level));
-  if (released) return;  // its kept direction follows the bodies beside it: no event of its own
+  // Its kept direction follows the bodies beside it: no event of its own while released, nor while r is
+  // 0 up to rounding (ContactLaw::events: relabelled at the application's breakpoint).
+  if (released || (law.applied && r <= ContactLaw::kApplicationRounding)) return;
   // Its direction is its motion's: s u ≥ 0 (u ≠ 0 against it is a missed stick or reversal).
   if (s * x.u < -(1e-12 * x.speed_scale + x.resolution))
     fail(name, t, "contact.sliding_direction",
@@ -259,7 +261,10 @@ Audit::Audit(const Model& m, DriveSystem& sys, const EnergyBalance& E, const dou
 
 void Audit::in_mode(double t, const double* y) {
   try {
-    check(std::nextafter(t, -std::numeric_limits<double>::infinity()), t, y);
+    // The laws at t⁻, the mode of the piece that ends at t; the first row (t = 0) ends no piece: the
+    // run starts with the signals' values at 0 (their right limits — a step, pulse or table that
+    // jumps at 0 s acts from the start), as its decision there took them.
+    check(t > 0.0 ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t, t, y);
   } catch (const AuditError& e) {
     if (!pending_) pending_ = std::make_unique<AuditError>(e);
   }

@@ -76,7 +76,13 @@ double Dopri5<N>::initial_step() {
     dnf += (k1_[i] / sk) * (k1_[i] / sk);
     dny += (y_[i] / sk) * (y_[i] / sk);
   }
-  double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : std::sqrt(dny / dnf) * 0.01;
+  // Never below what the step loop resolves at t (it fails at 0.1 h ≤ |t| uround): a state at rest near
+  // the origin (|y| ~ 1e-17 against atol 1e-12, the rounding left on bodies held by stuck contacts) made
+  // ‖y‖/‖f‖ ~ 1e-18 at a breakaway at t = 0.12 s, and the run ended with "step size too small" before its
+  // first step (issue 27, class F: it depended on the rounding before the event, so a breakpoint later
+  // in the run decided it). The error control takes the step from there.
+  const double h_min = 100.0 * std::abs(t_) * uround;
+  double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : std::max(std::sqrt(dny / dnf) * 0.01, h_min);
   if (opt_.h_max > 0) h = std::min(h, opt_.h_max);
   for (size_t i = 0; i < n; ++i) ytmp_[i] = y_[i] + h * k1_[i];
   sys_.rhs(t_ + h, ytmp_.data(), k2_.data());
@@ -90,7 +96,7 @@ double Dopri5<N>::initial_step() {
   der2 = std::sqrt(der2) / h;
   double der12 = std::max(std::abs(der2), std::sqrt(dnf));
   double h1 = der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 0.2);
-  h = std::min(100 * h, h1);
+  h = std::max(std::min(100 * h, h1), h_min);
   if (opt_.h_max > 0) h = std::min(h, opt_.h_max);
   return h;
 }

@@ -2,6 +2,7 @@
 // shrunk campaign model, checked against a closed form derived in its comment, on both integrators.
 #include "machdyn/analysis/simulate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -239,6 +240,116 @@ simulation: {t_end: 2 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
     EXPECT_NEAR(xn[i], -0.3 * (1.0 - std::cos(10.0 * t[i])), 1e-8) << t[i];
     EXPECT_NEAR(FB[i], lb, 1e-6) << t[i];
     EXPECT_NEAR(FS[i], -c - lb, 1e-6) << t[i];
+  }
+}
+
+// Class A (campaign `signals`, `ground-friction`, `planetary`, `clutch`): a signal that jumps at 0 s acts
+// from the start — the run starts with its value at t = 0, the right limit. A block (2 kg) held by a
+// contact of F_s = 7 N under a step load 20 N → 5 N at 0 s and a pulse that is high (1 N) from its
+// start at 0 s for 0.5 s and low (−10 N) after stays stuck while |P| ≤ F_s: λ = 6 N on [0, 0.5), and
+// from 0.5 s the load is −5 N, still within F_s: no event, at rest, λ = P(t) at every row. (The audit
+// read the first row at 0⁻, `before` and `low`: 20 − 10 = 10 N "beyond" 7 N, an AuditError at t = 0.)
+TEST_P(CampaignDefects, ASignalThatJumpsAtZeroActsFromTheStart) {
+  Model m = model_of(R"(
+bodies: {m: {type: translational, mass: 2 kg}}
+loads:
+  S: {type: step, body: m, value: 5 N, before: 20 N, time: 0 s}
+  U: {type: pulse, body: m, high: 1 N, low: -10 N, period: 2 s, width: 0.5 s, start: 0 s, count: 1}
+contacts: {c: {between: [m, ground], static: 7 N, kinetic: 5 N}}
+simulation: {t_end: 1 s, dt_out: 0.05 s, rtol: 1e-10, atol: 1e-12}
+)");
+  m.simulation.integrator = GetParam();
+  SimulateOptions o;
+  o.check = true;  // the invariant audit, whatever the environment
+  const SimulationResult r = simulate(m, o);
+  EXPECT_EQ(events_of(r, "c").size(), 0u);
+  const auto& t = series(r, "t_s");
+  const auto& F = series(r, "c.force_N");
+  const auto& v = series(r, "m.velocity_m_s");
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (std::abs(t[i] - 0.5) > 1e-9) {  // the jump's row aside
+      EXPECT_NEAR(F[i], t[i] < 0.5 ? 6.0 : -5.0, 1e-9) << t[i];
+    }
+    EXPECT_EQ(v[i], 0.0) << t[i];
+  }
+}
+
+// Class E (campaign `signals` 46, `clutch` 86): a clutch whose normal force rises through zero is
+// applied there. a (1 kg, 1 m/s, pushed by −3 N) and b (1 kg, at rest) with a clutch between them
+// whose normal force f_N = −50 + 100 sin(2π (t − 0.5)) N from 0.5 s (−50 N before) rises through 0 at
+// t_z = 0.5 + 1/12 s and falls through it at t_2 = 0.5 + 5/12 s. Released before t_z: v_a = 1 − 3t,
+// v_b = 0, so u = v_a − v_b < 0 at t_z while the label kept from t = 0 is slip+. Applied at t_z into
+// slip−, F = −μ_k f_N (on b +F, on a −F): with I(t) = ∫_{t_z}^{t} f_N dτ
+// = (100/2π)(cos π/6 − cos 2π(t − 0.5)) − 50 (t − t_z) (frozen at t_2),
+//   v_a = 1 − 3t + μ_k I,  v_b = −μ_k I,  u' = −3 + 2 μ_k f_N < 0 (no reversal),
+// and the friction loss is ∫ μ_k f_N |u| dτ over [t_z, t_2] (Simpson below, 2000 panels). Events:
+// `applied` released → slip− at t_z, `released` at t_2, nothing else. (A released clutch's event
+// function read its stale label within 1e-12 of r's zero, 3e-13 s before t_z: a `reversal` was
+// located there, the speeds jumped to u = 0, the energy books lost the jump.)
+TEST_P(CampaignDefects, AClutchIsAppliedWhereItsNormalForceRisesThroughZero) {
+  Model m = model_of(R"(
+bodies:
+  a: {type: translational, mass: 1 kg, velocity: 1 m/s}
+  b: {type: translational, mass: 1 kg}
+loads: {P: {type: constant, body: a, value: -3 N}}
+clutches:
+  K: {between: [a, b], normal_force: {type: sine, amplitude: 100 N, frequency: 1 Hz, offset: -50 N, start: 0.5 s},
+      mu_s: 0.02, mu_k: 0.01}
+simulation: {t_end: 1 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
+)");
+  m.simulation.integrator = GetParam();
+  SimulateOptions o;
+  o.check = true;
+  const SimulationResult r = simulate(m, o);
+  const double pi = std::acos(-1.0), tz = 0.5 + 1.0 / 12, t2 = 0.5 + 5.0 / 12, mu = 0.01;
+  const auto ev = events_of(r, "K");
+  ASSERT_EQ(ev.size(), 2u);
+  EXPECT_EQ(ev[0].kind, "applied");
+  EXPECT_EQ(ev[0].to, "slip-");
+  EXPECT_NEAR(ev[0].t, tz, 1e-12);
+  EXPECT_EQ(ev[1].kind, "released");
+  EXPECT_NEAR(ev[1].t, t2, 1e-12);
+  auto I = [&](double t) {
+    t = std::clamp(t, tz, t2);
+    return 100 / (2 * pi) * (std::cos(pi / 6) - std::cos(2 * pi * (t - 0.5))) - 50 * (t - tz);
+  };
+  const auto& t = series(r, "t_s");
+  const auto &va = series(r, "a.velocity_m_s"), &vb = series(r, "b.velocity_m_s");
+  for (size_t i = 0; i < t.size(); ++i) {
+    EXPECT_NEAR(va[i], 1 - 3 * t[i] + mu * I(t[i]), 1e-9) << t[i];
+    EXPECT_NEAR(vb[i], -mu * I(t[i]), 1e-9) << t[i];
+  }
+  auto loss = [&](double x) { return mu * (-50 + 100 * std::sin(2 * pi * (x - 0.5))) * -(1 - 3 * x + 2 * mu * I(x)); };
+  const int n = 2000;
+  const double h = (t2 - tz) / n;
+  double q = loss(tz) + loss(t2);
+  for (int k = 1; k < n; ++k) q += (k % 2 ? 4 : 2) * loss(tz + k * h);
+  EXPECT_NEAR(r.hybrid.energy.friction_loss, q * h / 3, 1e-9);
+}
+
+// Class F (campaign `release` 22, 23, 52, 89): a breakaway of a body at rest near the origin. A block
+// (1 kg) at x0 = 3e-16 m (the rounding stuck bodies carry) held by a contact (F_s = 2 N, F_k = 1 N)
+// under P = t N breaks away at t* = 2 s; then v' = t − 1: v = t²/2 − t, x = x0 + t³/6 − t²/2 + 2/3.
+// (dopri5's first step after the restart came from ‖y‖/‖f‖ with |y| = 3e-16 against atol 1e-12:
+// h = 6e-16 s, below what the step loop resolves at t = 2 s, and the run ended with "the step size
+// became too small" at the breakaway.)
+TEST_P(CampaignDefects, ABreakawayOfABodyAtRestNearTheOriginTakesItsFirstStep) {
+  const SimulationResult r = run(model_of(R"(
+bodies: {m: {type: translational, mass: 1 kg, position: 3e-16 m}}
+loads: {P: {type: ramp, body: m, value: 3 N, before: 0 N, start: 0 s, end: 3 s}}
+contacts: {c: {between: [m, ground], static: 2 N, kinetic: 1 N}}
+simulation: {t_end: 3 s, dt_out: 0.05 s, rtol: 1e-10, atol: 1e-12}
+)"),
+                                 GetParam());
+  const auto slips = events_of(r, "c", "slip");
+  ASSERT_EQ(slips.size(), 1u);
+  EXPECT_NEAR(slips[0].t, 2.0, 1e-9);
+  const auto& t = series(r, "t_s");
+  const auto &x = series(r, "m.position_m"), &v = series(r, "m.velocity_m_s");
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double T = std::max(t[i], 2.0);
+    EXPECT_NEAR(v[i], T * T / 2 - T, 1e-8) << t[i];
+    EXPECT_NEAR(x[i], 3e-16 + T * T * T / 6 - T * T / 2 + 2.0 / 3, 1e-8) << t[i];
   }
 }
 

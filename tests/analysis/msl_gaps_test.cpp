@@ -74,13 +74,12 @@ TEST_P(MslGaps, KineticTableIsHeldBeyondItsLastSpeed) {
 }
 
 // Claim: the same run slides on into the table below its last speed and stops at t₂ (v_held above).
-// On bdf this fails today (0.21 m/s off at 5 s, the mass stops at 5 s instead of 5.386 s): with the
-// held level the system is ẍ = const, BDF's steps grow to seconds, and a step that overshoots to
-// v ≤ −1 m/s evaluates the sliding mode's law at |u| ≥ 1 m/s, the held value again, so the corrector
-// agrees with the predictor and the step through the whole table is accepted (elements/contact.hpp
-// kinetic_force reads F_k0(|u|) in a fixed sliding mode). Skipped on bdf until the engine is fixed.
+// On bdf this used to fail (0.21 m/s off at 5 s, the mass stopped at 5 s instead of 5.386 s): with the
+// held level the system is ẍ = const, BDF's steps grow to seconds, and a step that overshot to
+// v ≤ −1 m/s evaluated the sliding mode's law at |u| ≥ 1 m/s, the held value again, so the corrector
+// agreed with the predictor and the step through the whole table was accepted. The law now reads
+// F_k0 at the signed speed s u of its mode (F_k0(0) beyond it: elements/contact.hpp kinetic_force).
 TEST_P(MslGaps, HeldKineticTableSlidesOnIntoTheTable) {
-  if (GetParam() == IntegratorChoice::bdf) GTEST_SKIP() << "engine defect (see the comment): a step across the table";
   const SimulationResult held = run(sliding("[[0, 1 N], [1 m/s, 2 N]]"), GetParam());
   EXPECT_LT(max_error(held, "m.velocity_m_s", v_held), 1e-8);
 }

@@ -936,6 +936,7 @@ RefResult Sim::run() {
       }
       if (static_cast<long>(res_.events.size()) > o_.max_events) throw std::runtime_error("too many events");
       std::vector<int> fired_fr;
+      std::vector<size_t> rested;  // stops the impact brought to rest
       for (size_t i = 0; i < ge.size() && i < g0.size(); ++i) {
         if (!fires(g0[i], ge[i]) || ge[i].kink) continue;
         if (ge[i].gap >= 0) {
@@ -969,6 +970,7 @@ RefResult Sim::run() {
               y[static_cast<size_t>(n_) + b] = 0.0;
               md_.fr[k] = FMode::stuck;
               record(t, "stick", f.name);
+              rested.push_back(k);
             } else {
               record(t, "impact", f.name);
             }
@@ -991,6 +993,17 @@ RefResult Sim::run() {
         }
       }
       decide(t, y, fired_fr);
+      // A plastic impact whose loads pull the body off the stop at once is one `impact` (docs/hybrid.md,
+      // End stop), not a rest: its `stick` and the decision's `slip` at t become that impact.
+      for (const size_t k : rested) {
+        if (md_.fr[k] != FMode::off) continue;
+        const std::string& name = m_.frictions[k].name;
+        auto& ev = res_.events;
+        ev.erase(std::remove_if(ev.begin(), ev.end(),
+                                [&](const RefEvent& x) { return x.t == t && x.element == name && (x.kind == "stick" || x.kind == "slip"); }),
+                 ev.end());
+        record(t, "impact", name);
+      }
       restart(t, y, g0), g0_valid = true;
     } else {
       y = std::move(y1);

@@ -129,6 +129,31 @@ TEST(ReferenceSimulator, BouncingBallImpactTimes) {
   EXPECT_EQ(r.v.back()[0], 0.0);
 }
 
+// Claim: a plastic impact (e = 0) whose loads pull the body off the stop at once is one `impact`,
+// not a rest (docs/hybrid.md, End stop): no `stick`, no `slip`. A body of 1 kg at q0 = 0.5 m moving
+// at v0 = −2 m/s towards a lower stop at 0 under +1 N: q = 0.5 − 2t + t²/2 reaches 0 at
+// t_i = 2 − √3 with v⁻ = −√3; v⁺ = 0 and a = +1 m/s² pulls it off, so q = (t − t_i)²/2 after.
+TEST(ReferenceSimulator, PlasticImpactThatLeavesAtOnceIsOneImpact) {
+  RefModel m;
+  m.bodies = {{"b", 1.0, 0.5, -2.0}};
+  m.loads = {{"P", 0, constant(1.0)}};
+  Friction s;
+  s.kind = Friction::Kind::stop, s.name = "stop", s.a = 0, s.stop_pos = 0.0, s.e = 0.0;
+  m.frictions = {s};
+  m.t_end = 1.0, m.dt_out = 0.01;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double ti = 2.0 - std::sqrt(3.0);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].kind, "impact");
+  EXPECT_NEAR(r.events[0].t, ti, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    const double t = r.t[k];
+    const double q = t <= ti ? 0.5 - 2 * t + t * t / 2 : (t - ti) * (t - ti) / 2;
+    EXPECT_NEAR(r.q[k][0], q, 1e-10) << t;
+  }
+}
+
 // Claim: a force F = 10 N on m1 = 1 kg closes a gap Δ − gap_start = 2 mm to m2 at t1 = √(2 · 0.002 · m1/F)
 // (the gap open: m1 flies alone); both flank laws agree there (no load before contact).
 TEST(ReferenceSimulator, GapClosesAtTheFreeFlightTime) {
