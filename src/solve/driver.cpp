@@ -136,12 +136,15 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     const double ta = st.t_prev(), t1 = st.t();
     const bool at_bp = to_bp && t1 == t_limit;
     // The earliest sign change from ≥ 0 to < 0 in the step. At a breakpoint the functions are taken
-    // at its left limit: the loads there have already jumped.
+    // at its left limit: the loads there have already jumped. So at t_end, which may be one (the
+    // breakpoints list only those before it): a normal force stepping up at t_end put a contact
+    // stuck beyond its limit since 0.4 s back within it at the run's last step end, and the
+    // breakaway inside that step was never seen.
     int first = -1;
     double te = std::numeric_limits<double>::infinity();
     if (ne) {
-      sys.event_functions(at_bp ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1, st.y(),
-                          g_new.data());
+      sys.event_functions(at_bp || t1 >= t_end ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1,
+                          st.y(), g_new.data());
       // A function may leave ≥ 0 and come back within one step, unseen by the error control (a
       // stuck body's state is constant while a sine load rises past the limit and falls back): in a
       // step longer than the system's sampling step h_s (its signals' time scale, whatever dt_out
