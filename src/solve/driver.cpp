@@ -72,6 +72,10 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   // most 2^20 checks over the run (a sine of 1e9 rad/s on a body that stands still for seconds).
   const double h_s = ne ? std::max(sys.sampling_step(t0, t_end), (t_end - t0) / 1048576.0)
                         : std::numeric_limits<double>::infinity();
+  // Dips between checks (dip()) are looked for where a signal can turn around between its
+  // breakpoints (h_s finite: a sine, an expression); functions of piecewise-linear signals and the
+  // state, followed by the error control, pay nothing.
+  const bool dips = std::isfinite(h_s);
   auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * dt_out; };
   long k_out = 1;
   // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
@@ -165,6 +169,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
           b = s, gn = g;
           return true;
         }
+        if (!dips) return false;
         const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
         if (!(td > ta && td < s)) return false;
         st.interpolate(td, ytmp.data());
@@ -188,7 +193,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       }
       if (!crossed) check(t1, g_new.data());
       last_t = -std::numeric_limits<double>::infinity();
-      if (!crossed) last_t = a, last_g.assign(gp, gp + ne);
+      if (!crossed && dips) last_t = a, last_g.assign(gp, gp + ne);
       for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
         if (!(gp[k] >= off[k] && gn[k] < off[k])) continue;
         const Bracket br = illinois(
