@@ -169,11 +169,18 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
           b = s, gn = g;
           return true;
         }
-        if (!dips) return false;
+        if (!dips || !(t1 - ta > h_s)) return false;  // steps the error control follows closely: none
         const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
         if (!(td > ta && td < s)) return false;
         st.interpolate(td, ytmp.data());
         sys.event_functions(td, ytmp.data(), g_dip.data());
+        // A dip shallower than 1e-6 of the function's variation over the checks is a tangency
+        // within the integration's resolution (BDF's freewheel speed touching 0 at −8e-10 rad/s in
+        // MSL's OneWayClutch), not an excursion: no crossing.
+        for (size_t k = 0; k < ne; ++k) {
+          const double hi = std::max({g_pp[k], gp[k], g[k]});
+          if (g_dip[k] < off[k] && !(g_dip[k] < -1e-6 * (hi - g_dip[k]))) g_dip[k] = off[k];
+        }
         for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g_dip[k] < off[k]);
         if (!crossed && td < a) {  // between the two checks before: the crossing is from (t_pp, g_pp)
           for (size_t k = 0; k < ne; ++k) crossed = crossed || (g_pp[k] >= off[k] && g_dip[k] < off[k]);
