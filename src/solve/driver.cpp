@@ -34,12 +34,13 @@ double dip(double t0, const double* g0, double t1, const double* g1, double t2, 
   for (size_t k = 0; k < ne; ++k) {
     if (off[k] != 0.0) continue;
     const double y0 = g0[k], y1 = g1[k], y2 = g2[k];
+    const double lo = std::min({y0, y1, y2}), hi = std::max({y0, y1, y2});
+    if (lo > 4.0 * (hi - lo)) continue;  // far from 0 for its variation (and a constant): no division
     const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1), c = (d12 - d01) / (t2 - t0);
     if (!(c > 0.0)) continue;  // p(t) = y0 + d01 (t − t0) + c (t − t0)(t − t1), convex
     const double ts = 0.5 * (t0 + t1) - d01 / (2.0 * c);
     if (!(ts > std::max(t0, ta) && ts < t2)) continue;
     const double ps = y0 + d01 * (ts - t0) + c * (ts - t0) * (ts - t1);
-    const double lo = std::min({y0, y1, y2}), hi = std::max({y0, y1, y2});
     if (ps < lo && ps < 0.25 * (hi - ps) && !(ts >= best)) best = ts;
   }
   return best;
@@ -72,10 +73,6 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   // most 2^20 checks over the run (a sine of 1e9 rad/s on a body that stands still for seconds).
   const double h_s = ne ? std::max(sys.sampling_step(t0, t_end), (t_end - t0) / 1048576.0)
                         : std::numeric_limits<double>::infinity();
-  // Dips between checks (dip()) are looked for where a signal can turn around between its
-  // breakpoints (h_s finite: a sine, an expression); functions of piecewise-linear signals and the
-  // state, followed by the error control, pay nothing.
-  const bool dips = std::isfinite(h_s);
   auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * dt_out; };
   long k_out = 1;
   // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
@@ -169,17 +166,17 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
           b = s, gn = g;
           return true;
         }
-        if (!dips || !(t1 - ta > h_s)) return false;  // steps the error control follows closely: none
         const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
         if (!(td > ta && td < s)) return false;
         st.interpolate(td, ytmp.data());
         sys.event_functions(td, ytmp.data(), g_dip.data());
-        // A dip shallower than 1e-6 of the function's variation over the checks is a tangency
+        // A dip shallower than 1e-4 of the function's variation over the checks is a tangency
         // within the integration's resolution (BDF's freewheel speed touching 0 at −8e-10 rad/s in
-        // MSL's OneWayClutch), not an excursion: no crossing.
+        // MSL's OneWayClutch, 3e-6 of its variation), not an excursion (a stuck contact's load beyond
+        // its limit for 16 ms between step ends, 2e-3; a sine's peak beyond it, 0.1): no crossing.
         for (size_t k = 0; k < ne; ++k) {
           const double hi = std::max({g_pp[k], gp[k], g[k]});
-          if (g_dip[k] < off[k] && !(g_dip[k] < -1e-6 * (hi - g_dip[k]))) g_dip[k] = off[k];
+          if (g_dip[k] < off[k] && !(g_dip[k] < -1e-4 * (hi - g_dip[k]))) g_dip[k] = off[k];
         }
         for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g_dip[k] < off[k]);
         if (!crossed && td < a) {  // between the two checks before: the crossing is from (t_pp, g_pp)
@@ -200,7 +197,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       }
       if (!crossed) check(t1, g_new.data());
       last_t = -std::numeric_limits<double>::infinity();
-      if (!crossed && dips) last_t = a, last_g.assign(gp, gp + ne);
+      if (!crossed) last_t = a, last_g.assign(gp, gp + ne);
       for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
         if (!(gp[k] >= off[k] && gn[k] < off[k])) continue;
         const Bracket br = illinois(
