@@ -348,11 +348,6 @@ void DriveSystem::set_contact_modes(const std::vector<ContactMode>& modes) {
     // A kinematic contact is no constraint: its bodies' motions are given (elements/contact.hpp).
     if (mode_[static_cast<size_t>(k)] == ContactMode::stuck && !contacts_[static_cast<size_t>(k)].kinematic)
       stuck_.push_back(k);
-  // The general rows (a planetary gear's joint) first: their step onto u = 0 (enforce_stuck,
-  // project_velocities) touches every body of the row and leaves the rounding in their own u; the
-  // unit rows after them are then exact. Stepped last, a joint moved a held carrier off rest by
-  // 1e-16 rad/s and a ring brake sliding from rest beside it to u = −2e-29.
-  std::stable_partition(stuck_.begin(), stuck_.end(), [&](int k) { return contacts_[static_cast<size_t>(k)].general; });
   const Eigen::Index ns = static_cast<Eigen::Index>(stuck_.size());
   r_.resize(ns);
   lam_.resize(ns);
@@ -1215,12 +1210,18 @@ void DriveSystem::project_velocities(double t, double* y) const {
     exact_clusters(contacts_, stuck_, n_, t, v, im);
     return;
   }
-  // With general rows: contact by contact (the general rows first, set_contact_modes), the common
-  // velocity of a pair the momentum mean (I_a v_a + I_b v_b)/(I_a + I_b).
+  // With general rows: contact by contact, the common velocity of a pair the momentum mean
+  // (I_a v_a + I_b v_b)/(I_a + I_b). The general rows first (their step touches every body of the
+  // row, leaving the rounding in their own u), then the unit rows, exact: a row stepped after them
+  // moved their bodies again (a ring brake beside a planetary gear's joint read u = −1e-29).
+  for (int k : stuck_) {
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+    if (c.general) step_onto_row(c.row, c.sliding_velocity(t, v), v, im);
+  }
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     if (c.general) {
-      step_onto_row(c.row, c.sliding_velocity(t, v), v, im);
+      continue;
     } else if (c.b < 0) {
       v[c.a] = c.surface_velocity(t);
     } else {

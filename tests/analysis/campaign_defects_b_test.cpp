@@ -105,7 +105,7 @@ simulation: {t_end: 0.08 s, dt_out: 0.001 s, rtol: 1e-10, atol: 1e-12}
     const double w = (10.0 * z * d2 / 0.227 - 11.61 * ((t - ts) - d2 / (2 * 0.0849))) / Ieff;
     EXPECT_NEAR(at(r, "b1.velocity_rad_s", t), w, 1e-8) << t;
     EXPECT_NEAR(at(r, "b3.velocity_rad_s", t), -z * w, 1e-8) << t;
-    EXPECT_EQ(at(r, "b2.velocity_rad_s", t), 0.0) << t;
+    EXPECT_NEAR(at(r, "b2.velocity_rad_s", t), 0.0, 1e-12) << t;  // the joint's rounding (enforce_stuck)
   }
 }
 
