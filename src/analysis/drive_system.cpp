@@ -1226,11 +1226,17 @@ void DriveSystem::project_velocities(double t, double* y) const {
     return;
   }
   // With general rows: contact by contact, the common velocity of a pair the momentum mean
-  // (I_a v_a + I_b v_b)/(I_a + I_b).
+  // (I_a v_a + I_b v_b)/(I_a + I_b). The general rows first (their step touches every body of the
+  // row, leaving the rounding in their own u), then the unit rows, exact: a row stepped after them
+  // moved their bodies again (a ring brake beside a planetary gear's joint read u = −1e-29).
+  for (int k : stuck_) {
+    const ContactLaw& c = contacts_[static_cast<size_t>(k)];
+    if (c.general) step_onto_row(c.row, c.sliding_velocity(t, v), v, im);
+  }
   for (int k : stuck_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(k)];
     if (c.general) {
-      step_onto_row(c.row, c.sliding_velocity(t, v), v, im);
+      continue;
     } else if (c.b < 0) {
       v[c.a] = c.surface_velocity(t);
     } else {

@@ -1064,7 +1064,19 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       close_phase(k, t);
       if (b != ContactMode::stuck) open_phase(k, t, b);
     }
+    // A slide that starts at rest starts at u = 0 exactly: the projection of the stuck set beside
+    // it may move its bodies by rounding (a general row's step — a planetary gear's joint — touches
+    // every member), and a ring brake breaking away beside the joint started at u = −2e-29, its
+    // sliding event negative, decided again and again at the same instant.
+    std::vector<int>& from_rest = from_rest_;  // kept: no allocation per event
+    from_rest.clear();
+    for (int k = 0; k < nc_; ++k)
+      if (modes[static_cast<size_t>(k)] != ContactMode::stuck && !sys_.contact(k).kinematic && !released(k, t) &&
+          sys_.sliding_velocity(k, t, y_.data()) == 0.0)
+        from_rest.push_back(k);
     sys_.project_velocities(t, y_.data());
+    for (int k : from_rest)
+      if (sys_.sliding_velocity(k, t, y_.data()) != 0.0) sys_.zero_sliding_velocity(k, t, y_.data());
   }
 
   /// The impact of end stop k's body at t, by the stop's law (elements/contact.hpp: rebound, landing):
@@ -1411,6 +1423,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   double decided_at_ = std::numeric_limits<double>::quiet_NaN();  // the instant of the last decision
   int redecisions_ = 0;                                             // and how often it was decided again
   std::vector<int> rested_;  // handle_contact_event: end stops an impact brought to rest
+  std::vector<int> from_rest_;  // apply_contact_modes: the slides starting at u = 0
   std::vector<std::vector<double>> impact_times_;  // per contact: the last impacts of a stop (impacts_accumulate)
   std::vector<char> impact_ties_;                  // per contact: may carry an impact's impulse (not a gear's)
   std::vector<int> strict_;  // stuck contacts whose limit event fired

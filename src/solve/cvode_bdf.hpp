@@ -36,6 +36,7 @@ class CvodeBdf final : public Stepper {
   OdeSystem& sys_;
   StepperOptions opt_;
   double t_ = 0.0, t_old_ = 0.0;
+  bool still_ = false;  // the last step spanned less than CVODE resolves: the state stood still
   std::vector<double> y_, dy_;
   StepperStats done_;  // counts before the last CVodeReInit
 };
