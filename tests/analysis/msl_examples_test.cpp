@@ -615,11 +615,18 @@ TEST_P(MslExample, TranslationalFrictionFollowsAnIndependentSolution) {
     }
     EXPECT_LT(eq, 1e-6) << b;
     EXPECT_LT(ew, 1e-5) << b;
+    RecordProperty(b + "_position_error", sci(eq));
+    RecordProperty(b + "_velocity_error", sci(ew));
     std::vector<double> sticks;
     for (const auto& e : r.hybrid.events)
       if (e.element == fr && e.kind == "stick") sticks.push_back(e.t);
     ASSERT_EQ(sticks.size(), ref.stick_times.size()) << b;
-    for (size_t i = 0; i < sticks.size(); ++i) EXPECT_NEAR(sticks[i], ref.stick_times[i], 1e-8) << b << " stick " << i;
+    double et = 0;
+    for (size_t i = 0; i < sticks.size(); ++i) {
+      EXPECT_NEAR(sticks[i], ref.stick_times[i], 1e-8) << b << " stick " << i;
+      et = std::max(et, std::abs(sticks[i] - ref.stick_times[i]));
+    }
+    RecordProperty(b + "_stick_time_error", sci(et));
     if (k == 1) {
       ASSERT_EQ(ref.impact_times.size(), 1u);
       EXPECT_NEAR(ref.impact_times[0], 0.0606, 1e-3);

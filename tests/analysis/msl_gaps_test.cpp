@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "machdyn/analysis/equilibrium.hpp"
+#include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "support/support.hpp"
 
@@ -155,7 +156,8 @@ simulation: {t_end: 3 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
 //   [m, ground] with preload 60 N and d = 4 N·s/m: δ = x, F = c x + 60 + d ẋ acts on m with −F, so
 //     y = x + 0.3 obeys m ÿ + d ẏ + c y = 0 from y(0) = 0.4 at rest: ζ = d/(2 m ω) = 0.1,
 //     ω_d = ω √(1 − ζ²), y = e^(−ζωt) (y0 cos ω_d t + (ζ ω y0/ω_d) sin ω_d t).
-// Within 1e-8 m and 1e-7 m/s at every 10 ms row.
+// Within 1e-8 m and 1e-7 m/s at every 10 ms row; the energy books of the runs with the contact (hybrid
+// runs) start from V = ½ c (δ − δ₀)² (4 J and 16 J) and balance within 1e-7 J.
 TEST_P(MslGaps, FreeLengthAndPreloadShiftTheSpringLaw) {
   const std::string body = "bodies:\n  m: {type: translational, mass: 2 kg, position: 0.1 m}\n";
   const std::string idle = "  idle: {type: translational, mass: 1 kg}\ncontacts:\n  hold: {between: [idle, ground], static: 1 N, kinetic: 1 N}\n";
@@ -168,6 +170,11 @@ TEST_P(MslGaps, FreeLengthAndPreloadShiftTheSpringLaw) {
     EXPECT_LT(max_error(r, "m.position_m", x_free), 1e-8) << with_contact;
     EXPECT_LT(max_error(r, "m.velocity_m_s", v_free), 1e-7) << with_contact;
     EXPECT_LT(max_error(r, "s.load_N", [&](double t) { return 200 * (0.3 - x_free(t)); }), 1e-6) << with_contact;
+    if (with_contact) {  // the energy books (a hybrid run): V = ½ c (δ − δ₀)², 4 J at the start
+      EXPECT_NEAR(r.hybrid.energy.elastic_start, 4.0, 1e-12);
+      EXPECT_NEAR(r.hybrid.energy.elastic_end, 100 * std::pow(x_free(2.0) - 0.3, 2), 1e-7);
+      EXPECT_LT(std::abs(r.hybrid.energy.residual()), 1e-7);
+    }
   }
   const double zeta = 0.1, w = 10, wd = w * std::sqrt(1 - zeta * zeta), y0 = 0.4;
   auto y = [&](double t) { return std::exp(-zeta * w * t) * (y0 * std::cos(wd * t) + zeta * w * y0 / wd * std::sin(wd * t)); };
@@ -176,6 +183,8 @@ TEST_P(MslGaps, FreeLengthAndPreloadShiftTheSpringLaw) {
                                      "damping: 4 N*s/m, preload: 60 N}\n" + sim,
                                  GetParam());
   EXPECT_LT(max_error(r, "m.position_m", [&](double t) { return y(t) - 0.3; }), 1e-8);
+  EXPECT_NEAR(r.hybrid.energy.elastic_start, 0.5 * 200 * y0 * y0, 1e-12);  // ½ c (x0 − δ₀)², 16 J
+  EXPECT_LT(std::abs(r.hybrid.energy.residual()), 1e-7);
 }
 
 // Claim: the free length is one law for statics too. A chain ground –c1– m1 –c2– m2 –c3– ground
@@ -184,7 +193,8 @@ TEST_P(MslGaps, FreeLengthAndPreloadShiftTheSpringLaw) {
 // c3 x2, so F = −δ₀ / (1/c1 + 1/c2 + 1/c3) = 0.07/0.00175 = 40 N, x1 = −F/c1 = −0.04 m,
 // x2 = F/c3 = 0.01 m. Checked: the equilibrium start (analysis/equilibrium.hpp) puts the bodies
 // there and the run stays (positions within 1e-12 m, c2's load 40 N within 1e-9 N); from rest at
-// x = 0 the quasi-static loads of every link at its extremes (analysis/static_loads.hpp) are 40 N.
+// x = 0 the quasi-static loads of every link at its extremes (analysis/static_loads.hpp) are 40 N,
+// and so are those of the modal form (analysis/modes.hpp static_link_loads).
 TEST_P(MslGaps, FreeLengthPreloadsAChainInStatics) {
   const std::string chain = R"Y(
 bodies:
@@ -195,9 +205,12 @@ links:
   c2: {type: spring, between: [m1, m2], stiffness: 2000 N/m, free_length: 0.07 m}
   c3: {type: spring, between: [m2, ground], stiffness: 4000 N/m}
 )Y";
-  const EquilibriumStart e = static_equilibrium(model_text(chain));
+  const Model model = model_text(chain);
+  const EquilibriumStart e = static_equilibrium(model);
   EXPECT_NEAR(e.q0[0], -0.04, 1e-12);
   EXPECT_NEAR(e.q0[1], 0.01, 1e-12);
+  const Eigen::VectorXd modal = static_link_loads(model, compute_modes(model), Eigen::VectorXd::Zero(2));
+  for (Eigen::Index l = 0; l < 3; ++l) EXPECT_NEAR(modal(l), 40.0, 1e-9) << l;  // the modal form agrees
   const SimulationResult at_rest =
       run(chain + "simulation: {t_end: 1 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12, initial: equilibrium}\n", GetParam());
   EXPECT_LT(max_error(at_rest, "m1.position_m", [](double) { return -0.04; }), 1e-12);
