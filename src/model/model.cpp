@@ -367,7 +367,17 @@ std::vector<double> Model::breakpoints(double t_end) const {
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
   std::erase_if(t, [&](double x) { return !(x > 0.0 && x < t_end); });
-  return t;
+  // Breakpoints closer than s = 1e-12 t_end are one, the last of them: a step of a few ulps is none
+  // an integrator can take (CVODE refuses it: `t > 20` beside a table's jump at 20 gives 20 and the
+  // double after), and the switches inside act over at most s. One closer than s to 0 moves to s
+  // (the first step must not start on the old value and carry the switch), one closer to t_end goes.
+  const double s = 1e-12 * t_end;
+  std::vector<double> kept;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (k + 1 == t.size() || t[k + 1] - t[k] >= s) kept.push_back(std::max(t[k], s));
+  std::erase_if(kept, [&](double x) { return !(x < t_end - s); });
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  return kept;
 }
 
 bool Model::is_hybrid() const {

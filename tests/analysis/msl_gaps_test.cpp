@@ -272,6 +272,27 @@ simulation: {t_end: 3 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
   EXPECT_LT(e, GetParam() == IntegratorChoice::bdf ? 1e-8 : 1e-9) << test::sci(e);
 }
 
+// Claim: switches a few ulps apart, or a few ulps after the start, do not stop the run (model/model.cpp
+// Model::breakpoints: closer than 1e-12 t_end they are one breakpoint; one after 0 moves to 1e-12 t_end).
+// F = 2 (t > 0) + (t > 1) + a table's jump of 1 N at t = 1 on m = 1 kg from rest: `t > 0` switches
+// at the smallest double, `t > 1` at the double after the table's jump (CVODE refused both before):
+// v = 2 t to 1 s, then 2 + 4 (t − 1); within 1e-9 m/s on both integrators.
+TEST_P(MslGaps, SwitchesAnUlpApartAreOneBreakpoint) {
+  const std::string yaml = R"Y(
+bodies: {m: {type: translational, mass: 1 kg}}
+loads:
+  f: {type: expression, body: m, expression: "2*(t > 0) + (t > 1)"}
+  g: {type: table, body: m, points: [[1 s, 0 N], [1 s, 1 N]]}
+simulation: {t_end: 2 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
+)Y";
+  const std::vector<double> b = model_text(yaml).breakpoints(2.0);
+  ASSERT_EQ(b.size(), 2u);
+  EXPECT_EQ(b[0], 2e-12);
+  EXPECT_EQ(b[1], std::nextafter(1.0, 2.0));
+  const SimulationResult r = run(yaml, GetParam());
+  EXPECT_LT(max_error(r, "m.velocity_m_s", [](double t) { return t <= 1 ? 2 * t : 2 + 4 * (t - 1); }), 1e-9);
+}
+
 // Claim: a `scale` signal multiplies a law of the speed (M = s(t) f(v)). Two bodies, each a closed form:
 //   a drag k = 0.5 N·s²/m² on m = 10 kg from v0 = 10 m/s, scaled by a step 1 → 0.5 at 1 s:
 //     m v̇ = −s k v²  ⇒  1/v = 1/v0 + (k/m) S(t), S = min(t, 1) + 0.5 max(t − 1, 0);
