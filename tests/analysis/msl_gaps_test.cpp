@@ -325,7 +325,8 @@ simulation: {t_end: 3 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
 //   stuck while 10 t ≤ 1.2 · 10 N: it breaks away at exactly t = 1.2 s (without a peak at 1 s);
 //   sliding, m v̇ = 10 t − (4 + 6 e^(−v/0.1)) from v(1.2) = 0: its first acceleration is
 //   (12 − 10)/2 = 1 m/s² (the jump from the static limit to the kinetic level at rest); v(t) from a
-//   fixed-step RK4 of that equation (h = 1e-5 s), within 1e-8 m/s at every 10 ms row.
+//   fixed-step RK4 of that equation (h = 1e-5 s), within 1e-8 m/s at every 10 ms row. A brake with
+//   holding 10 N, braking 4 N and the same law and peak moves the same (within 1e-9 m/s).
 TEST_P(MslGaps, StribeckPeakBreaksAwayAtPeakTimesTheLevelAtRest) {
   auto yaml = [](const char* peak) {
     return std::string(R"Y(
@@ -370,6 +371,16 @@ simulation: {t_end: 1.6 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
   }
   EXPECT_GT(compared, 30);
   EXPECT_LT(e, 1e-8);
+  // A brake reads `peak` the same way (its holding level is the Stribeck law's level at rest).
+  const SimulationResult brake = run(R"Y(
+bodies: {m: {type: translational, mass: 2 kg}}
+loads: {push: {type: ramp, body: m, value: 20 N, end: 2 s}}
+brakes: {k: {body: m, holding: 10 N, braking: 4 N, stribeck_speed: 0.1 m/s, peak: 1.2}}
+simulation: {t_end: 1.6 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
+)Y",
+                                     GetParam());
+  EXPECT_NEAR(breakaway(brake), 1.2, 1e-9);
+  EXPECT_LT(max_error(brake, "m.velocity_m_s", [&](double tt) { return test::at(r, "m.velocity_m_s", tt); }), 1e-9);
 }
 
 // Claim: the new fields and switches refuse what they cannot mean, each at its place (exit 2 from
