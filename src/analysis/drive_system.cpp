@@ -226,7 +226,9 @@ void DriveSystem::form_dense() {
   // −K and −D summed over the links first, then scaled: the rounding of M⁻¹ (f − K q − D v).
   for (size_t e = 0; e < A.size(); ++e) A[e] *= inv_mass_[e % static_cast<size_t>(n_)];
   chain_.c.clear();
-  for (int i = 0; i < n_; ++i) chain_.c.push_back(f_const_[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
+  std::vector<double> f0 = f_const_;
+  for (const auto& l : links_) l.rest_forces(f0.data());  // a free length's constant part (elements/link.hpp)
+  for (int i = 0; i < n_; ++i) chain_.c.push_back(f0[static_cast<size_t>(i)] * inv_mass_[static_cast<size_t>(i)]);
   chain_.rows = chain_.copy = n_;
   const bool undamped = std::all_of(A.begin() + n_ * n_, A.end(), [](double a) { return a == 0.0; });
   chain_.kernel = undamped ? kChainUndamped[n_ - 1] : kChain[n_ - 1];

@@ -50,12 +50,16 @@ Modes compute_modes(const Model& m) {
 }
 
 Eigen::VectorXd static_link_loads(const Model& m, const Modes& modes, const Eigen::VectorXd& f) {
-  const Eigen::VectorXd eta = (modes.shapes.transpose() * f).cwiseQuotient(modes.omega.cwiseAbs2());
+  // A spring's free length (elements/link.hpp): its constant part −c δ₀ joins the forces, and the
+  // load is measured from δ₀.
+  Eigen::VectorXd f0 = f;
+  for (const Link& l : m.links) LinkLaw::of(m, l).rest_forces(f0.data());
+  const Eigen::VectorXd eta = (modes.shapes.transpose() * f0).cwiseQuotient(modes.omega.cwiseAbs2());
   const Eigen::VectorXd q_e = modes.shapes * eta;
   const Eigen::VectorXd delta = deflection_matrix(m) * q_e;
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t l = 0; l < m.links.size(); ++l)
-    F(static_cast<Eigen::Index>(l)) = m.links[l].c * delta(static_cast<Eigen::Index>(l));
+    F(static_cast<Eigen::Index>(l)) = m.links[l].c * (delta(static_cast<Eigen::Index>(l)) - m.links[l].delta0);
   return F;
 }
 

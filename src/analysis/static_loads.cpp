@@ -360,13 +360,17 @@ Eigen::VectorXd ParticularSolver::solve(const Eigen::VectorXd& f) const {
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(s.rows);
   rhs.head(n) = f;
   if (s.R.cols() > 0 && !s.reacting) rhs.head(n) -= s.MR * s.rigid.solve(s.R.transpose() * f);
+  // A spring's free length (elements/link.hpp): F = c (δ − δ₀), its constant part −c δ₀ a pair of
+  // forces on its ends that do no work in a rigid motion (Rᵀ f₀ = 0), so only the elastic part sees it.
+  for (const Link& l : m.links) LinkLaw::of(m, l).rest_forces(rhs.data());
   for (int p : s.pins) rhs(p) = 0.0;
   for (int p : s.fixed) rhs(p) = 0.0;
   const Eigen::VectorXd sol = s.lu.solve(rhs);
   Eigen::VectorXd F(static_cast<Eigen::Index>(m.links.size()));
   for (size_t k = 0; k < m.links.size(); ++k) {
     const LinkLaw law = LinkLaw::of(m, m.links[k]);
-    F(static_cast<Eigen::Index>(k)) = law.spring_load(law.weighted(sol.data()));
+    // From the flank of the open mode: δ₀ without a gap, 0 with one (as every flank taken closed).
+    F(static_cast<Eigen::Index>(k)) = law.spring_load(law.weighted(sol.data()) - law.flank(GapMode::open));
   }
   return F;
 }

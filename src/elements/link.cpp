@@ -14,6 +14,7 @@ LinkLaw LinkLaw::of(const Model& m, const Link& l) {
   k.capped = l.damping_capped;
   k.lo = l.tension_only ? -HUGE_VAL : -l.gap_start;
   k.hi = l.gap - l.gap_start;
+  k.rest = l.has_gap ? 0.0 : l.delta0;
   if (l.a_point && l.a >= 0) k.pa = m.bodies[static_cast<size_t>(l.a)].machine.get();
   if (l.b_point && l.b >= 0) k.pb = m.bodies[static_cast<size_t>(l.b)].machine.get();
   k.wb = l.b_weight;

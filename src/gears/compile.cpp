@@ -29,7 +29,9 @@ std::optional<Expression> read_expression(FieldReader& fr, const char* key, bool
     return std::nullopt;
   }
   try {
-    return Expression(n->scalar, "phi");
+    Expression e(n->scalar, "phi");
+    e.refuse_switches(0, true, "the law needs its derivatives everywhere (a smooth function of phi)");
+    return e;
   } catch (const ExpressionError& e) {
     Location at = n->loc;
     // Quote a long text by its start only (a runaway expression may be megabytes).

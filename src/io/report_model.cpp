@@ -53,9 +53,11 @@ std::string ratio_unit(const Model& m, const Link& l) {
   return std::string(position_unit(ka)) + "/" + position_unit(kb);
 }
 
-/// A motor's contactor and direction, if switched.
+/// A motor's contactor and direction, or another load's `scale`, if switched.
 std::string switching(const Load& L) {
   if (!L.switched) return "";
+  const bool motor = L.kind == LoadKind::motor_linear || L.kind == LoadKind::motor_kloss || L.kind == LoadKind::motor_table;
+  if (!motor) return fmt::format("; scale: {}", L.on.describe(""));
   return fmt::format("; on: {}; direction: {}", L.on.describe(""), L.direction.describe(""));
 }
 

@@ -255,6 +255,25 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     } else {
       detail::compile_link_gap(f, l, qd);
     }
+    // A spring's free length or preload (Link::delta0; law: elements/link.hpp): F = c (δ − δ₀) + d δ̇.
+    if (f.map().is_map() && (f.map().find("free_length") || f.map().find("preload"))) {
+      const bool fl = f.map().find("free_length") != nullptr;
+      const char* key = fl ? "free_length" : "preload";
+      if (fl && f.map().find("preload")) f.error_at("preload", "give either 'free_length' or 'preload', not both");
+      else if (type && (!needs_c || rope))
+        f.error_at(key, fmt::format("field '{}' belongs to a spring or spring-damper ({})", key,
+                                    rope ? "a rope's free play is its 'slack'" : "a damper has no spring"));
+      else if (l.has_gap)
+        f.error_at(key, fmt::format("a link with a 'gap' or a 'flank' carries its load from its flanks; give no '{}'", key));
+      else if (l.a_point || l.b_point)
+        f.error_at(key, fmt::format("a link to a machine's output point has no '{}'", key));
+      else if (fl) {
+        if (auto L0 = f.quantity("free_length", qd)) l.delta0 = -*L0;
+      } else if (auto P = f.quantity("preload", ld); P && l.c > 0.0) {
+        l.delta0 = -*P / l.c;
+      }
+    }
+    f.node("free_length"), f.node("preload");
     // The flank law of a gap or rope: `linear` (F = c e + d δ̇) or `elasto-backlash` (damping capped).
     const bool law_given = f.map().is_map() && f.map().find("flank_law");
     if (auto law = f.word("flank_law", {"linear", "elasto-backlash"}, "linear")) {
@@ -351,6 +370,17 @@ void compile_motor_switching(FieldReader& f, Load& ld) {
                   ld.direction.kind() == Signal::Kind::constant && ld.direction.value(0.0) == 1.0);
 }
 
+/// `scale`: a signal s(t) that multiplies a law of the state (drag, eddy-current-brake, a table over
+/// speed or position): M = s(t) f(q, v), held in ld.on (model/model.hpp Load::on).
+void compile_scale(FieldReader& f, Load& ld) {
+  const SpecNode* n = f.node("scale");
+  if (!n) return;
+  auto s = detail::compile_signal(*n, dim::none, f.what() + ": field 'scale'", f.diagnostics());
+  if (!s) return;
+  ld.on = *s;
+  ld.switched = !(s->kind() == Signal::Kind::constant && s->value(0.0) == 1.0);
+}
+
 void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
   if (!section) return;
   if (!section->is_map()) {
@@ -389,6 +419,11 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
         try {
           ld.law = std::make_shared<const Expression>(
               *text, std::vector<std::string>{"t", rot ? "phi" : "x", rot ? "omega" : "v"});
+          // A jump in the state has no event to stop at: refused; a kink (min, max) is continuous.
+          for (int k : {1, 2})
+            ld.law->refuse_switches(k, false, "a jump of the load with the state, which no step stops at; write a "
+                                              "continuous law (min, max), a table over position or speed, or a "
+                                              "friction contact");
         } catch (const ExpressionError& e) {
           f.error_at("expression", fmt::format("field 'expression' '{}': {} (an expression in t [s], {} and {} in SI; "
                                                "the value is {})", text->size() > 60 ? text->substr(0, 57) + "..." : *text,
@@ -406,6 +441,7 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
         // Over the state a jump would need an event of its own: the table must be continuous.
         auto tab = detail::read_table(f, speed ? wd : qd, vd, false, false);
         if (tab) ld.signal = *tab;
+        compile_scale(f, ld);
       }
     } else if (detail::is_signal_type(t)) {
       if (t == "table") f.word("over", {"time", "speed", "position"}, "time");
@@ -427,10 +463,12 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
         auto wn = f.positive("speed", wd);
         if (Mn && wn) ld.value = *Mn / (*wn * *wn);
       }
+      compile_scale(f, ld);
     } else if (t == "eddy-current-brake") {
       ld.kind = LoadKind::eddy_current;
       ld.value = f.positive("breakdown_torque", vd).value_or(0.0);
       ld.omega0 = f.positive("breakdown_speed", wd).value_or(1.0);
+      compile_scale(f, ld);
     } else if (t == "motor-linear") {
       ld.kind = LoadKind::motor_linear;
       ld.value = f.quantity("stall_torque", vd).value_or(0.0);

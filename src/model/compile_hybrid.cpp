@@ -131,11 +131,24 @@ bool resolve_between(FieldReader& f, const SpecNode& spec, const std::string& na
 
 /// `stribeck_speed` w_s and `stribeck_exponent` δ (model/model.hpp): the kinetic level falls from
 /// the static limit at rest to the constant level F_c. Needs a constant kinetic level.
+/// `peak` (MSL's peak, ≥ 1) with a Stribeck law: the static limit is peak times the law's level at
+/// rest (the given static level or N μ_s), F_s0 = peak · F_k0(0) (model/model.hpp FrictionContact::peak).
 void read_stribeck(FieldReader& f, const SpecNode& spec, const Dim& vd, const char* level_key, FrictionContact& c) {
   if (!spec.find("stribeck_speed")) {
     if (spec.find("stribeck_exponent")) f.error_at("stribeck_exponent", "field 'stribeck_exponent' needs 'stribeck_speed'");
-    f.node("stribeck_exponent");
+    if (spec.find("peak"))
+      f.error_at("peak", "field 'peak' needs 'stribeck_speed': without a Stribeck law the static level is given "
+                         "apart from the kinetic one (static = peak · kinetic at rest)");
+    f.node("stribeck_exponent"), f.node("peak");
     return;
+  }
+  if (spec.find("peak")) {
+    auto p = f.quantity("peak", dim::none);
+    if (p && !(*p >= 1.0 && *p <= 1e3))
+      f.error_at("peak", fmt::format("field 'peak' must lie in [1, 1000] (the static limit over the kinetic level at "
+                                     "rest), got {}", *p));
+    else if (p)
+      c.peak = *p, c.static_limit *= *p;
   }
   auto ws = f.positive("stribeck_speed", vd);
   auto d = f.quantity("stribeck_exponent", dim::none, 1.0);
@@ -559,8 +572,11 @@ ElementText describe_friction_element(const Model& m, const FrictionContact& c) 
                                             describe_number(c.kinetic.front()), describe_number(c.kinetic.back()), lu);
     std::string t = fmt::format("static limit F_s = {} {}, kinetic F_k = {}", describe_number(c.static_limit), lu, kinetic);
     if (c.stribeck_speed > 0.0)
-      t += fmt::format(" (Stribeck: w_s = {} {}, δ = {})", describe_number(c.stribeck_speed), vu,
-                       describe_number(c.stribeck_exponent));
+      t += fmt::format(" (Stribeck: w_s = {} {}, δ = {}{})", describe_number(c.stribeck_speed), vu,
+                       describe_number(c.stribeck_exponent),
+                       c.peak != 1.0 ? fmt::format(", from {} {} at rest, peak {}", describe_number(c.static_limit / c.peak),
+                                                   lu, describe_number(c.peak))
+                                     : std::string());
     return t;
   };
   if (c.joint) {

@@ -60,7 +60,9 @@ std::optional<Expression> read_expression(FieldReader& f, std::string_view key, 
   auto text = f.text(key, required ? std::nullopt : std::optional<std::string>(""));
   if (!text || text->empty()) return std::nullopt;
   try {
-    return Expression(*text, "q");
+    Expression e(*text, "q");
+    e.refuse_switches(0, true, "the law needs its derivatives everywhere (a smooth function of q)");
+    return e;
   } catch (const std::invalid_argument& e) {
     const std::string shown = text->size() > 80 ? text->substr(0, 77) + "..." : *text;
     f.error_at(key, fmt::format("field '{}': expression '{}': {}", key, shown, e.what()));

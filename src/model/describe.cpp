@@ -30,6 +30,9 @@ ElementText describe_link(const Model& m, const Link& l) {
   if (l.kind != LinkKind::spring)
     def += fmt::format("{}d = {} {}·s/{}", def.empty() ? "" : ", ", describe_number(l.d), lu, qu);
   if (l.has_gap) def += "; " + detail::describe_gap(m, l);
+  if (l.delta0 != 0.0)
+    def += fmt::format("; free length {} {} (load {} {} at δ = 0)", describe_number(-l.delta0), qu,
+                       describe_number(-l.c * l.delta0), lu);
   const char* type = l.kind == LinkKind::damper ? "damper" : l.kind == LinkKind::spring ? "spring" : "spring-damper";
   return {l.name,
           l.tension_only ? std::string("one-sided ") + type : l.has_gap ? std::string(type) + " with backlash" : std::string(type),

@@ -46,15 +46,27 @@ double load_law(const Load& l, double t, double q, double v, double* dMdq, doubl
       return j.v;
     }
     case LoadKind::speed_table:
-      if constexpr (kD) *dMdv = l.signal.slope(v);
-      return l.signal.value(v);
     case LoadKind::position_table:
-      if constexpr (kD) *dMdq = l.signal.slope(q);
-      return l.signal.value(q);
-    case LoadKind::drag:  // M = −k v|v|, dM/dv = −2k|v|
-      if constexpr (kD) *dMdv = -2.0 * l.value * std::abs(v);
-      return -l.value * v * std::abs(v);
-    case LoadKind::eddy_current: return eddy_current_law(v, l.value, l.omega0, kD ? dMdv : nullptr);
+    case LoadKind::drag:
+    case LoadKind::eddy_current: {
+      // M = s(t) f(q, v): the `scale` s (1 unless switched) times the law of the state.
+      const double s = l.switched ? l.on.value(t) : 1.0;
+      double f = 0.0;
+      if (l.kind == LoadKind::speed_table) {
+        if constexpr (kD) *dMdv = l.signal.slope(v);
+        f = l.signal.value(v);
+      } else if (l.kind == LoadKind::position_table) {
+        if constexpr (kD) *dMdq = l.signal.slope(q);
+        f = l.signal.value(q);
+      } else if (l.kind == LoadKind::drag) {  // f = −k v|v|, df/dv = −2k|v|
+        if constexpr (kD) *dMdv = -2.0 * l.value * std::abs(v);
+        f = -l.value * v * std::abs(v);
+      } else {
+        f = eddy_current_law(v, l.value, l.omega0, kD ? dMdv : nullptr);
+      }
+      if constexpr (kD) *dMdq *= s, *dMdv *= s;
+      return s * f;
+    }
     case LoadKind::motor_linear:
     case LoadKind::motor_kloss:
     case LoadKind::motor_table: {
@@ -100,7 +112,11 @@ std::vector<double> Load::breakpoints(double t0, double t1) const {
       b.insert(b.end(), x.begin(), x.end());
     }
   }
-  // An expression in t has none of its own (model/signal.hpp).
+  // An expression's switches in t alone (step, comparisons, min, max: common/expression.hpp).
+  if (kind == LoadKind::expression && law) {
+    auto x = law->switch_points(0, t0, t1);
+    b.insert(b.end(), x.begin(), x.end());
+  }
   return b;
 }
 
@@ -283,8 +299,9 @@ bool FrictionContact::released(double t) const {
 
 double FrictionContact::kinetic_level(double speed) const {
   if (stribeck_speed > 0.0) {
+    // From F_s0 / peak at rest (the static limit itself without a peak: peak = 1 divides exactly).
     const double Fc = kinetic.empty() ? 0.0 : kinetic.front();
-    return Fc + (static_limit - Fc) * std::exp(-std::pow(std::abs(speed) / stribeck_speed, stribeck_exponent));
+    return Fc + (static_limit / peak - Fc) * std::exp(-std::pow(std::abs(speed) / stribeck_speed, stribeck_exponent));
   }
   return table_value(speeds, kinetic, speed);
 }
@@ -294,7 +311,7 @@ double FrictionContact::kinetic_level_slope(double speed) const {
   if (stribeck_speed > 0.0) {
     // d/ds [F_c + (F_s0 − F_c) e^{−x^δ}], x = s/w_s: −(F_s0 − F_c) δ x^{δ−1} e^{−x^δ} / w_s (δ ≥ 1: finite at 0).
     const double Fc = kinetic.empty() ? 0.0 : kinetic.front(), x = s / stribeck_speed, d = stribeck_exponent;
-    return -(static_limit - Fc) * d * std::pow(x, d - 1.0) * std::exp(-std::pow(x, d)) / stribeck_speed;
+    return -(static_limit / peak - Fc) * d * std::pow(x, d - 1.0) * std::exp(-std::pow(x, d)) / stribeck_speed;
   }
   const auto& x = speeds;
   const auto& y = kinetic;
@@ -350,7 +367,17 @@ std::vector<double> Model::breakpoints(double t_end) const {
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
   std::erase_if(t, [&](double x) { return !(x > 0.0 && x < t_end); });
-  return t;
+  // Breakpoints closer than s = 1e-12 t_end are one, the last of them: a step of a few ulps is none
+  // an integrator can take (CVODE refuses it: `t > 20` beside a table's jump at 20 gives 20 and the
+  // double after), and the switches inside act over at most s. One closer than s to 0 moves to s
+  // (the first step must not start on the old value and carry the switch), one closer to t_end goes.
+  const double s = 1e-12 * t_end;
+  std::vector<double> kept;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (k + 1 == t.size() || t[k + 1] - t[k] >= s) kept.push_back(std::max(t[k], s));
+  std::erase_if(kept, [&](double x) { return !(x < t_end - s); });
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  return kept;
 }
 
 bool Model::is_hybrid() const {

@@ -210,8 +210,8 @@ std::vector<double> Signal::breakpoints(double t0, double t1) const {
         out.insert(out.end(), b.begin(), b.end());
       }
       break;
-    case Kind::constant:
-    case Kind::expression: break;
+    case Kind::expression: out = f_->switch_points(0, t0, t1); break;  // its switches (step, min, ...)
+    case Kind::constant: break;
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

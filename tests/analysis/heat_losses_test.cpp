@@ -219,7 +219,7 @@ simulation: {t_end: 2 s, dt_out: 10 ms, rtol: 1e-11, atol: 1e-12}
 //   mass3: Brake, fn = 10 · 10 sin 4πt, free while fn ≤ 0, 0.5 fn sliding and holding;
 //          springDamper1 f1 = 1e4 (x4 − x3) + 1000 (v4 − v3);
 //   mass4 (MassWithStopAndFriction): −f1, F_prop = 0.5, sliding friction 1 + 2 e^{−2|v|}, holding
-//          up to F_C + F_S = 3 N (MSL's 1.001 factor left out, as in examples/msl/friction.yaml),
+//          up to f0_max = 1.001 (F_C + F_S) = 3.003 N (MSL's peak; the file's `peak: 1.001`),
 //          stops at x4 = −0.25 m, 0.05 m with reinit v = 0 (the kinetic energy lost goes to no heat
 //          port in MSL: counted apart here).
 // A stuck element's force is the sum of the other forces on its mass (a = 0), which needs no other
@@ -282,12 +282,12 @@ struct HeatLossesReference {
     d[work] = force(t) * y[v1];
     return d;
   }
-  /// Mass 4's stuck margin: at a stop only a pull away from it beyond 3 N frees it.
+  /// Mass 4's stuck margin: at a stop only a pull away from it beyond f0_max = 3.003 N frees it.
   static double margin4(const Y& y) {
-    const double n = n4(y);
-    if (y[x4] >= xmax) return 3 + n;
-    if (y[x4] <= xmin) return 3 - n;
-    return 3 - std::abs(n);
+    const double n = n4(y), f0_max = 1.001 * 3;
+    if (y[x4] >= xmax) return f0_max + n;
+    if (y[x4] <= xmin) return f0_max - n;
+    return f0_max - std::abs(n);
   }
   double event(double t, const Y& y) const {
     const double e2 = m2 == 0 ? 1 - std::abs(n2(y)) : m2 * y[v2];

@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string>
 #include <thread>
+#include <utility>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -542,6 +544,40 @@ simulation: {initial: equilibrium, t_end: 0.1}
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("2 runs, 1 ok, 1 error(s)"), std::string::npos) << r.out;
 }
+
+// Claim: hostile expressions with the switches (issue 29) are located errors with exit 2 that write
+// nothing: a condition that is not a comparison, chained comparisons, a jump of the state in a load,
+// a switch nested past the depth bound; a model with 150 switches in t still runs (each a
+// breakpoint found in bounded time).
+TEST(HostileFiles, ExpressionSwitchesAreLocatedErrors) {
+  const auto work = scratch("expression-switches");
+  std::string deep = "t";
+  for (int i = 0; i < 300; ++i) deep = "min(" + deep + ", 1)";
+  const std::pair<std::string, std::string> bad[] = {
+      {"if(t, 1, 2)", "at character 4: the condition of if must be a comparison"},
+      {"1 < t < 2", "comparisons do not chain"},
+      {"-5*step(v)", "step of v"},
+      {deep, "nested deeper than 200"},
+  };
+  for (const auto& [text, what] : bad) {
+    std::ofstream(work / "model.yaml") << "bodies:\n  A: {type: translational, mass: 1 kg}\nloads:\n"
+                                          "  M: {type: expression, body: A, expression: \"" << text << "\"}\n"
+                                          "simulation: {t_end: 1 s}\n";
+    const auto r = run_bash("timeout 60 \"$M\" simulate model.yaml -o out --quiet", work);
+    EXPECT_EQ(r.exit_code, 2) << text << r.err;
+    EXPECT_NE(r.err.find("model.yaml:4:"), std::string::npos) << text << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << text << r.err;
+    EXPECT_FALSE(fs::exists(work / "out")) << text;
+  }
+  std::string many = "0";
+  for (int i = 1; i <= 150; ++i) many += "+step(t - " + std::to_string(i) + "e-2)";
+  std::ofstream(work / "model.yaml") << "bodies:\n  A: {type: translational, mass: 1 kg}\nloads:\n"
+                                        "  M: {type: sum, body: A, terms: [{type: expression, expression: \"" << many << "\"}]}\n"
+                                        "simulation: {t_end: 1.5 s}\n";
+  const auto r = run_bash("timeout 120 \"$M\" simulate model.yaml -o ok --quiet", work);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 
 }  // namespace
 }  // namespace machdyn

@@ -7,11 +7,23 @@
 /// finite difference, and the pitch-curve curvature needs i, di/dφ and d²i/dφ².
 ///
 /// Grammar (usual precedence, `^` right-associative and above unary minus: `-2^2` = -4):
+///   top := cmp;  cmp := expr [('<'|'>'|'<='|'>=') expr]      (comparisons do not chain)
 ///   expr := term (('+'|'-') term)*;  term := unary (('*'|'/') unary)*
 ///   unary := ('+'|'-') unary | power;  power := primary ['^' unary]
-///   primary := number | 'pi' | 'e' | variable | func '(' expr ')' | '(' expr ')'
-/// Functions: sin cos tan asin acos atan sinh cosh tanh exp log sqrt abs. Numbers are plain (no
-/// units, the value is SI); angles are in radians.
+///   primary := number | 'pi' | 'e' | variable | func '(' cmp ')' | func2 '(' cmp ',' cmp ')'
+///            | 'if' '(' comparison ',' cmp ',' cmp ')' | '(' cmp ')'
+/// Functions: sin cos tan asin acos atan sinh cosh tanh exp log sqrt abs step; min max (two
+/// arguments); if (three). Numbers are plain (no units, the value is SI); angles are in radians.
+/// Switches (exact values and derivatives on each side; NaN in, NaN out):
+///   a < b, a > b, a <= b, a >= b   1 where it holds, else 0 (derivative 0)
+///   step(x)                        1 for x ≥ 0, 0 for x < 0
+///   min(a, b), max(a, b)           the smaller (larger) argument with its derivatives; at a tie the
+///                                  one that stays smaller (larger) to the right (the right derivative)
+///   if(c, a, b)                    a where the comparison c holds, else b (only that branch is evaluated)
+/// A switch jumps (step, comparisons, if) or has a kink (min, max) where its argument changes side:
+/// switch_points() lists those places for the callers that must stop there (a signal in t: its
+/// breakpoints), refuse_switches() refuses them where no such stop exists (a law of the state).
+/// abs has a kink at 0 but is not a switch (its kink is the caller's, as before).
 /// Nothing else is accepted: no assignment, no other names, no I/O. Nesting and tree height are
 /// bounded by Expression::kMaxDepth (200), so evaluation cannot exhaust the stack.
 
@@ -75,15 +87,38 @@ class Expression {
   }
   [[nodiscard]] const std::string& text() const { return text_; }
 
+  /// The values of variable k in the open interval (lo, hi), increasing without repeats, where a
+  /// switch whose argument depends on variable k alone changes side: each the first double on the
+  /// new side, so the expression is on the old side everywhere before it and on the new one from it
+  /// (a breakpoint a step can end at and restart from). Found from the argument g (step: x; a
+  /// comparison, min, max: a − b) sampled at 4096 equal steps and at each extremum of g between two
+  /// samples, each change of side refined by bisection to the last bit: exact for an argument with
+  /// at most one extremum between samples (an affine one always); two extrema within one sample
+  /// step can hide a pair of switches.
+  [[nodiscard]] std::vector<double> switch_points(int k, double lo, double hi) const;
+  /// Throws ExpressionError at the first switch whose argument depends on variable k: any switch
+  /// (kinks_too) or only those that jump (step, comparisons, if). `why` ends the message.
+  void refuse_switches(int k, bool kinks_too, const std::string& why) const;
+
  private:
-  enum class Op { Num, Var, Add, Sub, Mul, Div, Pow, Neg, Sin, Cos, Tan, Asin, Acos, Atan, Sinh, Cosh, Tanh, Exp, Log, Sqrt, Abs };
+  enum class Op {
+    Num, Var, Add, Sub, Mul, Div, Pow, Neg, Sin, Cos, Tan, Asin, Acos, Atan, Sinh, Cosh, Tanh, Exp, Log, Sqrt, Abs,
+    Step, Min, Max, If, Lt, Gt, Le, Ge
+  };
   struct Node {
     Op op;
     double value = 0.0;  ///< Op::Num
     int a = -1, b = -1;  ///< operand node indices (Op::Var: a is the variable's index)
+    int c = -1;          ///< Op::If: the else branch (a: the condition, b: the then branch)
+    int column = 0;      ///< 1-based character of the operator or function name in the text
   };
   friend class ExpressionParser;
   [[nodiscard]] Jet eval_node(int i, const Jet* x) const;
+  /// Whether the subtree at node i uses variable k; uses_only: no other variable.
+  [[nodiscard]] bool subtree_uses(int i, int k) const;
+  [[nodiscard]] bool subtree_uses_only(int i, int k) const;
+  /// The side of switch node i with every variable at x[]: 1 or 0 (NaN: −1).
+  [[nodiscard]] int side(int i, const Jet* x) const;
   std::string text_;
   std::vector<std::string> variables_;
   std::vector<Node> nodes_;

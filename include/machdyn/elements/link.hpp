@@ -15,7 +15,7 @@
 /// damping terms become c j jᵀ and d j jᵀ over the three bodies (j = (1/i, −w_b, w_e)).
 ///
 /// Law (N·m or N; positive = tension, as the paper's M12 = c1 (φ1 − φ2)):
-///   no gap:        F = c δ + d δ̇
+///   no gap:        F = c (δ − δ₀) + d δ̇          (δ₀: the free length's deflection, Link::delta0; 0 by default)
 ///   gap, open:     F = 0                         (δ₋ < δ < δ₊)
 ///   closed+:       F = c (δ − δ₊) + d δ̇ ≥ 0      (positive flank δ₊ = Δ − gap_start)
 ///   closed−:       F = c (δ − δ₋) + d δ̇ ≤ 0      (δ₋ = −gap_start; one-sided links: δ₋ = −∞, δ₊ any sign)
@@ -26,6 +26,9 @@
 /// when c e + d δ̇ reaches 0 (F and c e + d δ̇ vanish together there), so the events below hold for
 /// both laws. The cap's kink (d δ̇ = c e) is a continuous law, not an event: the load is continuous
 /// there and the integrator's error control resolves it, as for any other continuous nonlinearity.
+/// δ₀ is the flank of a link without a gap (flank() below), so every consumer of the law (force,
+/// elastic energy ½ c (δ − δ₀)², Jacobian, linear terms, equilibrium) measures from it; the load's
+/// constant part −c δ₀ at δ = 0 is rest_forces() (the affine and dense paths, static loads).
 /// Events (each ≥ 0 while the mode holds): closed+ ends when F reaches 0 (F ≥ 0); closed− when
 /// −F reaches 0; open ends when δ reaches a flank while pressing (δ₊ − δ ≥ 0, δ − δ₋ ≥ 0; beyond the
 /// flank, the pressing force −F₊ or F₋ decides).
@@ -89,6 +92,7 @@ struct LinkLaw {
   int third = kGround;          ///< the third body e, or kGround
   double w3 = 0.0;              ///< w_e
   double lo = 0.0, hi = 0.0;    ///< flanks δ₋, δ₊
+  double rest = 0.0;            ///< δ₀ of a link without a gap (Link::delta0)
   const Machine* pa = nullptr;  ///< a's output point, or null (q_a itself)
   const Machine* pb = nullptr;
   bool winding = false;         ///< a rope wound on drum a: c(q_a) = K / L_f(q_a) (see above)
@@ -178,9 +182,18 @@ struct LinkLaw {
     return s;
   }
 
-  /// The flank the load is measured from in mode g (0 without a gap).
+  /// The flank the load is measured from in mode g (δ₀ without a gap).
   [[nodiscard]] double flank(GapMode g) const {
-    return !gap ? 0.0 : g == GapMode::closed_pos ? hi : g == GapMode::closed_neg ? lo : 0.0;
+    return !gap ? rest : g == GapMode::closed_pos ? hi : g == GapMode::closed_neg ? lo : 0.0;
+  }
+  /// Adds the generalized forces of the load at δ = 0, δ̇ = 0 to f (n): the constant part of an
+  /// affine law, F₀ = −c δ₀ (0 with a gap, which is open there, or without a free length).
+  void rest_forces(double* f) const {
+    if (gap || rest == 0.0) return;
+    const double F0 = -c * rest;
+    if (a >= 0) f[a] -= F0 * inv_ratio;
+    if (b >= 0) f[b] += F0 * wb;
+    if (third >= 0) f[third] -= F0 * w3;
   }
   /// Whether the link transmits load in mode g.
   [[nodiscard]] bool transmits(GapMode g) const { return !gap || g != GapMode::open; }

@@ -80,6 +80,10 @@ struct Link {
   double ratio = 1.0;  ///< i, nonzero; dimension of q_a / q_b
   double c = 0.0;      ///< stiffness, N·m/rad or N/m (in b's coordinate), >= 0
   double d = 0.0;      ///< damping, N·m·s/rad or N·s/m, >= 0
+  /// δ₀, the deflection of the unstretched spring of a link without a gap: F = c (δ − δ₀) + d δ̇ (law:
+  /// elements/link.hpp). From `free_length` ℓ₀ (MSL's s_rel0, φ_rel0: δ₀ = −ℓ₀) or `preload` P, the
+  /// load at δ = 0 (δ₀ = −P/c). 0: the spring is unstretched at δ = 0.
+  double delta0 = 0.0;
   /// Backlash (law: elements/link.hpp). With a gap the link transmits load only on a flank:
   ///   δ ≥ δ₊: F = max(0, c (δ − δ₊) + d δ̇),  δ ≤ δ₋: F = min(0, c (δ − δ₋) + d δ̇),  else F = 0,
   /// δ₋ = −gap_start, δ₊ = gap − gap_start. gap_start = 0: the link must take up the whole gap in
@@ -214,6 +218,9 @@ struct FrictionContact {
   std::vector<double> kinetic;       ///< F_k0: one value (constant; μ_c with Stribeck) or one per speed
   double stribeck_speed = 0.0;       ///< w_s > 0: F_k0 follows the Stribeck law; 0: constant or table
   double stribeck_exponent = 1.0;    ///< δ ≥ 1
+  /// peak = F_s0 / F_k0(0) ≥ 1 (MSL's `peak`): the static limit over the kinetic law's level at rest.
+  /// The Stribeck law starts from F_s0 / peak; a constant or tabulated kinetic level is F_k0 itself.
+  double peak = 1.0;
   std::vector<double> surface_times; ///< prescribed ground velocity w(t): table times, or empty (w = const)
   std::vector<double> surface_velocities;  ///< w values (one value if constant; empty: w = 0)
   bool applied = false;              ///< r(t) from `application` (else r ≡ 1)
@@ -296,9 +303,11 @@ struct Load {
   /// The body as the file names it, for display (report, Python): `body` may be a master the load
   /// was moved to. Empty: bodies[body]'s name.
   std::string given_body;
-  Signal on = Signal::constant(1.0);         ///< motors: contactor, 0 or 1
+  /// motors: the contactor, 0 or 1; drag, eddy-current-brake and tables over speed or position: the
+  /// `scale` s(t), M = s(t) f(q, v) (MSL's Vehicle: a rolling resistance times cos α(t)).
+  Signal on = Signal::constant(1.0);
   Signal direction = Signal::constant(1.0);  ///< motors: +1 or −1
-  bool switched = false;                     ///< motors: `on` or `direction` is not the constant 1
+  bool switched = false;                     ///< `on` (or `scale`) or `direction` is not the constant 1
 
   /// Times in (t0, t1) where M jumps or has a kink in t (model/signal.hpp).
   [[nodiscard]] std::vector<double> breakpoints(double t0, double t1) const;

@@ -19,9 +19,10 @@
 /// A CSV file of measured data is read by io (io/model_file.hpp) into a table.
 ///
 /// Breakpoints are the times where s jumps or has a kink: step t0; ramp t0, t1; every table time;
-/// the sine's start; every pulse edge; those of each term of a sum. An integrator must not step
-/// across them (the driver stops there, solve/event_system.hpp). An expression has none: a kink of
-/// its own (abs, a piecewise law) is the user's to avoid; use a table or a sum instead.
+/// the sine's start; every pulse edge; an expression's switches (step, comparisons, min, max:
+/// Expression::switch_points, each the first time on the new side); those of each term of a sum. An
+/// integrator must not step across them (the driver stops there, solve/event_system.hpp). abs in an
+/// expression keeps no breakpoint (write max(x, -x) where its kink matters).
 
 #include <memory>
 #include <string>
