@@ -30,15 +30,19 @@ build-release: deps
 	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_RELEASE) -j $(JOBS)
 
+# The two trees of `make test` compile the library in batches as well (MACHDYN_UNITY_LIBRARY,
+# cmake/Unity.cmake); the release tree above, which the benchmarks measure, compiles it file by file.
 build-test: deps
-	@cmake -S . -B $(BUILD_TEST) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_WERROR=ON -DMACHDYN_BENCH=OFF $(CCACHE) >/dev/null
+	@cmake -S . -B $(BUILD_TEST) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_WERROR=ON -DMACHDYN_BENCH=OFF \
+	  -DMACHDYN_UNITY_LIBRARY=ON $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_TEST) -j $(JOBS)
 
 # The test suite and the fuzzers under AddressSanitizer + UBSan (clang, -O1, line tables only).
 build-asan: deps
 	@cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=Asan -DCMAKE_CXX_COMPILER=$(ASAN_CXX) \
 	  -DCMAKE_CXX_FLAGS_ASAN="-O1 -gline-tables-only" -DMACHDYN_FUZZ=ON -DMACHDYN_MPI=OFF \
-	  -DMACHDYN_PYTHON=OFF -DMACHDYN_PACKAGE_TESTS=OFF $(CCACHE) >/dev/null
+	  -DMACHDYN_PYTHON=OFF -DMACHDYN_PACKAGE_TESTS=OFF -DMACHDYN_BENCH=OFF -DMACHDYN_UNITY_LIBRARY=ON \
+	  $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli machdyn_campaign \
 	  fuzz_model_file fuzz_units fuzz_expression fuzz_gear_spec fuzz_signal_csv fuzz_set_vary
 

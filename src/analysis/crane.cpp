@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <Eigen/Core>
 #include <fmt/format.h>
+#include "common/constants.hpp"
 
 #include "machdyn/analysis/crane_standard.hpp"
 #include "machdyn/analysis/equilibrium.hpp"
@@ -19,7 +20,6 @@
 namespace machdyn {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void case_error(const Model& m, const std::string& element, const std::string& message) {
   throw InputError(m.where(element), "crane: " + message);
@@ -264,7 +264,7 @@ double rigid_buffer_force(const Model& m, const SimulationResult& res, int k, Cr
 }
 
 /// A column of the run by its name's start ("trolley.position_"), or null.
-const std::vector<double>* column(const SimulationResult& res, const std::string& start) {
+const std::vector<double>* column_starting_with(const SimulationResult& res, const std::string& start) {
   for (size_t c = 0; c < res.column_names.size() && c < res.columns.size(); ++c)
     if (res.column_names[c].rfind(start, 0) == 0) return &res.columns[c];
   return nullptr;
@@ -279,8 +279,8 @@ const std::vector<double>* column(const SimulationResult& res, const std::string
 double buffer_xi(const Model& m, const SimulationResult& res, int k, std::string* how, double* stroke) {
   const Link& l = m.links[static_cast<size_t>(k)];
   const int body = l.a >= 0 ? l.a : l.b;
-  const std::vector<double>* q = column(res, m.bodies[static_cast<size_t>(body)].name + ".position_");
-  const std::vector<double>* F = column(res, l.name + ".load_");
+  const std::vector<double>* q = column_starting_with(res, m.bodies[static_cast<size_t>(body)].name + ".position_");
+  const std::vector<double>* F = column_starting_with(res, l.name + ".load_");
   *how = "xi_b = 1/2: the buffer was not reached";
   if (!q || !F || q->empty()) return 0.5;
   std::vector<double> e(q->size());  // the stroke e = δ − δ₊ (model/model.hpp: Link::buffer)

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <numbers>
 #include <optional>
+#include "common/constants.hpp"
 
 #include "machdyn/gears/gear_model.hpp"
 
@@ -15,7 +16,6 @@ double GearModel::r(double phi) const { return L / (1.0 + law.ratio(phi).v); }
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 std::optional<Expression> read_expression(FieldReader& fr, const char* key, bool required) {
   const SpecNode* n = fr.node(key);

@@ -4,13 +4,12 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
+#include "common/constants.hpp"
 
 namespace machdyn::gears {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 double wrap_s(double s, double perimeter) { return s - perimeter * std::floor(s / perimeter); }
 

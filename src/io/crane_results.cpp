@@ -6,12 +6,12 @@
 #include <vector>
 #include <fmt/format.h>
 #include "machdyn/common/csv.hpp"
+#include "io/number_text.hpp"
 
 namespace machdyn {
 namespace {
 
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-std::string csv_number(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : ""; }
+std::string csv_exact(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : ""; }
 std::string quoted(const std::string& s) { return csv_field(s, true); }
 std::string standard_text(const CraneFactorRow& r) {
   if (!std::isfinite(r.standard_lo)) return "-";  // not defined (e.g. HD2 without its creep speed)
@@ -27,20 +27,20 @@ nlohmann::json crane_json(const CraneReport& r) {
   for (const auto& x : r.rows)
     rows.push_back({{"factor", x.factor},
                     {"case", x.case_name},
-                    {"simulated", number(x.simulated)},
-                    {"standard_lo", number(x.standard_lo)},
-                    {"standard_hi", number(x.standard_hi)},
+                    {"simulated", json_number(x.simulated)},
+                    {"standard_lo", json_number(x.standard_lo)},
+                    {"standard_hi", json_number(x.standard_hi)},
                     {"clause", x.clause},
-                    {"margin", number(x.margin)},
+                    {"margin", json_number(x.margin)},
                     {"note", x.note},
-                    {"extreme", number(x.extreme)},
-                    {"t_extreme_s", number(x.t_extreme)},
-                    {"reference", number(x.reference)},
-                    {"vh_m_s", number(x.vh)},
-                    {"xi_b", number(x.xi_b)},
-                    {"stroke", number(x.stroke)},
-                    {"contact_speed", number(x.contact_speed)},
-                    {"t_contact_s", number(x.t_contact)},
+                    {"extreme", json_number(x.extreme)},
+                    {"t_extreme_s", json_number(x.t_extreme)},
+                    {"reference", json_number(x.reference)},
+                    {"vh_m_s", json_number(x.vh)},
+                    {"xi_b", json_number(x.xi_b)},
+                    {"stroke", json_number(x.stroke)},
+                    {"contact_speed", json_number(x.contact_speed)},
+                    {"t_contact_s", json_number(x.t_contact)},
                     {"warning", x.warning.empty() ? nlohmann::json(nullptr) : nlohmann::json(x.warning)}});
   nlohmann::json j = {{"model", r.model}, {"rows", rows}};
   if (!r.load_case.empty()) j["load_case"] = r.load_case;
@@ -50,8 +50,8 @@ nlohmann::json crane_json(const CraneReport& r) {
 std::string crane_csv(const CraneReport& r) {
   std::string s = "factor,case,simulated,standard_lo,standard_hi,clause,margin,note\n";
   for (const auto& x : r.rows)
-    s += fmt::format("{},{},{},{},{},{},{},{}\n", csv_field(x.factor), quoted(x.case_name), csv_number(x.simulated),
-                     csv_number(x.standard_lo), csv_number(x.standard_hi), quoted(x.clause), csv_number(x.margin),
+    s += fmt::format("{},{},{},{},{},{},{},{}\n", csv_field(x.factor), quoted(x.case_name), csv_exact(x.simulated),
+                     csv_exact(x.standard_lo), csv_exact(x.standard_hi), quoted(x.clause), csv_exact(x.margin),
                      quoted(x.note));
   return s;
 }

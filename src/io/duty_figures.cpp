@@ -11,20 +11,10 @@
 #include <fmt/format.h>
 
 #include "machdyn/analysis/duty_classes.hpp"
+#include "io/number_text.hpp"
 
 namespace machdyn {
 namespace {
-
-std::string number(double v) { return fmt::format("{:.4g}", v); }
-
-/// The link's unit with k or M in front for large loads (as the other figures print them), and the
-/// factor to multiply SI values by.
-std::pair<double, std::string> engineering(double largest, const std::string& si_unit) {
-  const std::string u = plot::pretty_unit(si_unit);
-  if (largest >= 1e7) return {1e-6, "M" + u};
-  if (largest >= 1e4) return {1e-3, "k" + u};
-  return {1.0, u};
-}
 
 /// A file stem of a link name: letters, digits, '_' and '-' kept, anything else '_'.
 std::string stem(const std::string& name) {
@@ -40,10 +30,10 @@ std::string stem(const std::string& name) {
 plot::Figure exceedance_figure(const DutyLink& l, double m, bool log_x) {
   const Exceedance e = exceedance(l.cycles);
   const double largest = e.range.empty() ? 0.0 : e.range.front();
-  const auto [k, unit] = engineering(largest, l.unit);
+  const auto [k, unit] = engineering_unit(largest, l.unit);
   plot::Figure f;
   f.id = "duty_exceedance_" + stem(l.link);
-  f.title = fmt::format("{}: cumulative spectrum of the load ranges, {} cycles", l.link, number(l.history.total_cycles));
+  f.title = fmt::format("{}: cumulative spectrum of the load ranges, {} cycles", l.link, label_number(l.history.total_cycles));
   f.x = log_x ? plot::make_axis("cumulative cycles H", "") : plot::make_axis("cumulative cycles log₁₀ H", "");
   f.x.log = log_x;
   f.y = plot::make_axis("load range Δ", unit);
@@ -62,11 +52,11 @@ plot::Figure exceedance_figure(const DutyLink& l, double m, bool log_x) {
   f.series.push_back(plot::make_series(l.link, x, y));
   if (largest > 0.0) {
     f.ref_lines.push_back(plot::make_ref_line(k * l.equivalent_range, fmt::format("Δ_eq = {} {} (N_t cycles)",
-                                                                                number(k * l.equivalent_range), unit), 0));
+                                                                                label_number(k * l.equivalent_range), unit), 0));
     for (int L = 1; L <= 3; ++L) {
       const double lim = spectrum_class_limit(L);
       f.ref_lines.push_back(plot::make_ref_line(k * largest * std::pow(lim, 1.0 / m),
-                                                fmt::format("k = {} (L{}/L{})", number(lim), L, L + 1), -1));
+                                                fmt::format("k = {} (L{}/L{})", label_number(lim), L, L + 1), -1));
     }
   }
   f.legend = plot::Figure::Legend::top_right;
@@ -105,7 +95,7 @@ std::string duty_heat_map_data(const DutyLink& l, int bins) {
 plot::Rendered render_duty_heat_map(const DutyLink& l, int bins) {
   const RainflowMatrix M = range_mean_matrix(l.cycles, bins, bins);
   const double largest = std::max({M.row_hi, std::abs(M.col_lo), std::abs(M.col_hi)});
-  const auto [k, unit] = engineering(largest, l.unit);
+  const auto [k, unit] = engineering_unit(largest, l.unit);
   // Cells in the engineering unit; an empty axis (one range or one mean) a cell of unit width.
   std::string data;
   const double wr = (M.row_hi - M.row_lo) / M.rows, wc = (M.col_hi - M.col_lo) / M.cols;
@@ -119,7 +109,7 @@ plot::Rendered render_duty_heat_map(const DutyLink& l, int bins) {
                             k * 0.5 * (r0 + r1), k * m0, k * m1, k * r0, k * r1, M.at(i, j));
       }
   const std::string title = fmt::format("{}: rainflow matrix, {} cycles in {} × {} classes (colour: cycles, log scale)",
-                                        l.link, number(M.total()), bins, bins);
+                                        l.link, label_number(M.total()), bins, bins);
   const auto script = [&, unit = unit](plot::Format format, const std::string& data_path, const std::string& out) {
     const bool svg = format == plot::Format::svg;
     std::string g = "reset\nset encoding utf8\n";
@@ -150,15 +140,15 @@ report::Section duty_report_section(const DutyResult& r) {
       "(residue: {}, gate {} of each operation's range), the counts multiplied by the operations' numbers and merged "
       "over the duty. k_m = Σ n_i ∫|P|³dt / (P_max³ Σ n_i T_i) over the running time; classes of ISO 4301-1 / "
       "FEM 1.001 (docs/duty.md).",
-      d.residue == RainflowResidue::repeat ? "closed by repetition" : "half cycles", number(d.gate)));
+      d.residue == RainflowResidue::repeat ? "closed by repetition" : "half cycles", label_number(d.gate)));
   report::Table ops;
   ops.caption = "Operations";
   ops.header = {"operation", "case", "per hour", "number n", "running time T_i, s"};
   for (std::size_t i = 0; i < d.operations.size(); ++i) {
     const DutyOperation& op = d.operations[i];
     ops.rows.push_back({op.name, op.load_case.empty() ? "(model)" : op.load_case,
-                        op.per_hour >= 0.0 ? number(op.per_hour) : "", fmt::format("{:.0f}", op.repeat),
-                        i < r.op_seconds.size() ? number(r.op_seconds[i]) : ""});
+                        op.per_hour >= 0.0 ? label_number(op.per_hour) : "", fmt::format("{:.0f}", op.repeat),
+                        i < r.op_seconds.size() ? label_number(r.op_seconds[i]) : ""});
   }
   ops.note = fmt::format("running time Σ n_i T_i = {:.6g} h: class of utilization T{}{}", r.running_hours,
                          r.utilization_class,
@@ -171,20 +161,20 @@ report::Section duty_report_section(const DutyResult& r) {
   for (const DutyLink& l : r.links) {
     std::vector<std::string> row = {l.link,
                                     plot::pretty_unit(l.unit),
-                                    number(l.history.total_cycles),
-                                    number(l.history.largest),
-                                    number(l.equivalent_range),
-                                    number(l.history.s),
+                                    label_number(l.history.total_cycles),
+                                    label_number(l.history.largest),
+                                    label_number(l.equivalent_range),
+                                    label_number(l.history.s),
                                     stress_history_class_name(l.stress_class),
-                                    number(l.p_max) + (l.rated ? " (rated)" : ""),
+                                    label_number(l.p_max) + (l.rated ? " (rated)" : ""),
                                     fmt::format("{:.4f}", l.k_m),
                                     fmt::format("L{}", l.spectrum_class),
                                     fmt::format("M{}", l.group)};
-    if (d.has_curve) row.push_back(number(l.damage));
+    if (d.has_curve) row.push_back(label_number(l.damage));
     t.rows.push_back(row);
   }
-  t.note = fmt::format("s = Σ n (Δ/Δ̂)^m / N_ref with m = {}, N_ref = {}; Δ_eq for N_t cycles with exponent m", number(d.m),
-                       number(d.n_ref));
+  t.note = fmt::format("s = Σ n (Δ/Δ̂)^m / N_ref with m = {}, N_ref = {}; Δ_eq for N_t cycles with exponent m", label_number(d.m),
+                       label_number(d.n_ref));
   s.tables.push_back(t);
   for (const DutyLink& l : r.links)
     if (!l.cycles.empty()) s.figures.push_back(exceedance_figure(l, d.m, false));

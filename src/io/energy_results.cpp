@@ -3,12 +3,9 @@
 #include <cmath>
 
 #include "machdyn/model/machine.hpp"
+#include "io/number_text.hpp"
 
 namespace machdyn {
-
-namespace {
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-}  // namespace
 
 nlohmann::json energy_json(const Model& m, const EnergyResult& r) {
   const Machine* mach = m.bodies[0].machine.get();
@@ -25,9 +22,9 @@ nlohmann::json energy_json(const Model& m, const EnergyResult& r) {
   j["q_at_omega_max"] = r.q_at_omega_max;
   j["omega_min"] = r.omega_min;
   j["q_at_omega_min"] = r.q_at_omega_min;
-  j["omega_limit"] = r.omega_limit ? num(*r.omega_limit) : nlohmann::json();
+  j["omega_limit"] = r.omega_limit ? json_number(*r.omega_limit) : nlohmann::json();
   j["limit"] = r.limit_kind;
-  j["epsilon_limit"] = r.epsilon_limit ? num(*r.epsilon_limit) : nlohmann::json();  // rad/s², with "unbounded"
+  j["epsilon_limit"] = r.epsilon_limit ? json_number(*r.epsilon_limit) : nlohmann::json();  // rad/s², with "unbounded"
   if (r.work_per_period) j["work_per_period"] = *r.work_per_period;
   j["units"] = {{"q", "rad"}, {"omega", "rad/s"}, {"epsilon_limit", "rad/s^2"}, {"I", "kg*m^2"}, {"A", "J"}};
   // Values in the sweep coordinate (β for the wheel) and at the output point (x, piston).

@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include "common/constants.hpp"
+#include "io/number_text.hpp"
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/machine.hpp"
@@ -17,8 +19,6 @@ namespace machdyn {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The output column whose name starts with `prefix` (e.g. "c1.load_"); columns are found by name
 /// so that commands adding columns (events, gaps) do not shift them.
@@ -30,18 +30,6 @@ const std::vector<double>& column(const SimulationResult& r, const std::string& 
 
 std::string endpoint_name(const Model& m, int body) {
   return body == kGround ? std::string("ground") : m.bodies[static_cast<std::size_t>(body)].name;
-}
-
-std::string number(double v) { return fmt::format("{:.4g}", v); }
-
-/// An engineering unit for loads of this size: the SI unit ("N", "N*m") with k or M in front when
-/// the largest magnitude reaches 10⁴ or 10⁷, so tick labels stay short decimals (43.5 kN, not
-/// 43500 or 4.35e+04). Returns the factor to multiply SI values by and the printed unit.
-std::pair<double, std::string> engineering(double largest, const std::string& si_unit) {
-  const std::string u = plot::pretty_unit(si_unit);
-  if (largest >= 1e7) return {1e-6, "M" + u};
-  if (largest >= 1e4) return {1e-3, "k" + u};
-  return {1.0, u};
 }
 
 std::vector<double> scaled(std::vector<double> v, double k) {
@@ -103,8 +91,8 @@ void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_le
   for (const std::size_t l : which)
     for (double v : column(r, m.links[l].name + ".load_"))
       if (std::isfinite(v)) largest[axis_of(m.links[l])] = std::max(largest[axis_of(m.links[l])], std::abs(v));
-  const auto [k1, u1] = engineering(largest[1], any_torque ? "N*m" : "N");
-  const auto [k2, u2] = engineering(largest[2], "N");
+  const auto [k1, u1] = engineering_unit(largest[1], any_torque ? "N*m" : "N");
+  const auto [k2, u2] = engineering_unit(largest[2], "N");
   f.y = any_torque ? plot::make_axis("link torque M", u1) : plot::make_axis("link force F", u1);
   if (any_torque && any_force) f.y2 = plot::make_axis("link force F", u2);
   double peak_abs = -1.0;
@@ -118,7 +106,7 @@ void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_le
     const bool has_static = l < r.links.size() && std::isfinite(r.links[l].static_load);
     const int series_index = static_cast<int>(f.series.size());
     if (static_in_legend && has_static) {
-      name += fmt::format(", {}* = {} {}", L.name, number(k * r.links[l].static_load), unit);
+      name += fmt::format(", {}* = {} {}", L.name, label_number(k * r.links[l].static_load), unit);
       f.ref_lines.push_back(plot::make_ref_line(k * r.links[l].static_load, "", series_index, axis));
     }
     f.series.push_back(plot::make_series(name, t, scaled(column(r, L.name + ".load_"), k), plot::Style::line, axis));
@@ -129,7 +117,7 @@ void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_le
       const double v = use_max ? S.max : S.min, tv = use_max ? S.t_max : S.t_min;
       if (std::isfinite(v) && std::abs(v) * k > peak_abs) {
         peak_abs = std::abs(v) * k;
-        peak = {tv, k * v, fmt::format("{} peak {} {} at {} s", L.name, number(k * v), unit, number(tv)),
+        peak = {tv, k * v, fmt::format("{} peak {} {} at {} s", L.name, label_number(k * v), unit, label_number(tv)),
                 series_index, axis};
       }
     }
@@ -310,7 +298,7 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
     const auto& c = m.contacts[k];
     if (c.brake || std::string(contact_unit(m, c)) != y_unit) continue;
     f.ref_lines.push_back(plot::make_ref_line(
-        k_left * c.static_limit, fmt::format("F_sc = {} {}", number(k_left * c.static_limit), f.y.unit), -1));
+        k_left * c.static_limit, fmt::format("F_sc = {} {}", label_number(k_left * c.static_limit), f.y.unit), -1));
   }
   add_slip_bands(m, r, ks, f);
   f.title = titled(m, fmt::format("load cyclogram{}", f.ref_lines.empty() ? "" : "; dashed: static limit F_sc"));
@@ -331,8 +319,8 @@ plot::Figure load_cyclogram_figure(const Model& m, const SimulationResult& r) {
       const std::string& unit = f.series[l].y_axis == 2 ? f.y2.unit : f.y.unit;
       const double lo = *std::min_element(s.y.begin(), s.y.end()), hi = *std::max_element(s.y.begin(), s.y.end());
       s.name += hi - lo <= 5e-4 * std::max(std::abs(hi), 1e-3)
-                    ? fmt::format(" ({} {})", number(hi), unit)
-                    : fmt::format(" ({} … {} {})", number(lo), number(hi), unit);
+                    ? fmt::format(" ({} {})", label_number(hi), unit)
+                    : fmt::format(" ({} … {} {})", label_number(lo), label_number(hi), unit);
       f.series.push_back(std::move(s));
     }
   }
@@ -363,7 +351,7 @@ plot::Figure contacts_figure(const Model& m, const SimulationResult& r, BodyKind
     if (!c.joint && m.bodies[static_cast<std::size_t>(c.a)].kind == kind)
       for (double v : column(r, c.name + ".force_"))
         if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
-  const auto [k_force, u_force] = engineering(largest, rot ? "N*m" : "N");
+  const auto [k_force, u_force] = engineering_unit(largest, rot ? "N*m" : "N");
   f.y = rot ? plot::make_axis("contact torque M", u_force) : plot::make_axis("contact force F", u_force);
   f.y2 = rot ? plot::make_axis("sliding velocity u", "rad/s") : plot::make_axis("sliding velocity u", "m/s");
   const auto& t = column(r, "t_s");
@@ -564,7 +552,7 @@ plot::Figure speed_distance_figure(const Model& m, const EnergyResult& r) {
   }
   f.series.push_back(std::move(w));
   if (std::isfinite(limit))
-    f.ref_lines.push_back(plot::make_ref_line(limit, fmt::format("ω_lim = {} rad/s", number(limit)), -1));
+    f.ref_lines.push_back(plot::make_ref_line(limit, fmt::format("ω_lim = {} rad/s", label_number(limit)), -1));
   f.legend = plot::Figure::Legend::bottom_right;
   return f;
 }

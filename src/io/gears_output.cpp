@@ -6,13 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <vector>
+#include "common/constants.hpp"
 
 namespace machdyn::io {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 using gears::Vec2;
 
 const char* law_name(const gears::RatioLaw& l) {

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "machdyn/common/diagnostics.hpp"
+#include "io/file_kind.hpp"
 
 namespace machdyn {
 namespace {
@@ -33,15 +34,6 @@ void note(const struct stat& st, const std::string& path) {
   r.files.try_emplace({st.st_dev, st.st_ino}, path);
 }
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  return "not a regular file";
-}
-
 /// Closes the descriptor on every path out.
 struct Fd {
   int fd;
@@ -60,7 +52,7 @@ std::string read_input_file(const std::string& path, std::uint64_t limit_bytes, 
   struct stat st {};
   if (::fstat(f.fd, &st) != 0) throw InputError(at, fmt::format("cannot read the {}: {}", what, std::strerror(errno)));
   if (!S_ISREG(st.st_mode))
-    throw InputError(at, fmt::format("the {} is {}; expected a regular file", what, kind_of(st.st_mode)));
+    throw InputError(at, fmt::format("the {} is {}; expected a regular file", what, detail::file_kind(st.st_mode)));
   const auto too_large = [&](std::uint64_t bytes, bool at_least) {
     return InputError(at, fmt::format("the {} has {}{} bytes, more than the limit of {} MiB; expected a {} of a "
                                       "sensible size",

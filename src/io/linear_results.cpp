@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include "machdyn/common/csv.hpp"
+#include "io/number_text.hpp"
 
 namespace machdyn {
 
@@ -15,10 +16,7 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kRpm = 60.0 / kTwoPi;
 
-/// JSON has no NaN: null instead.
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-
-std::string csv_number(double x) { return std::isfinite(x) ? fmt::format("{:.12g}", x) : ""; }
+std::string csv_12_digits(double x) { return std::isfinite(x) ? fmt::format("{:.12g}", x) : ""; }
 
 nlohmann::json shapes_json(const Model& m, const Eigen::VectorXd& omega, const Eigen::MatrixXd& shapes) {
   nlohmann::json out = nlohmann::json::array();
@@ -59,7 +57,7 @@ nlohmann::json topology_modes_json(const Model& m, const TopologyModes& t) {
                    {"lambda", {md.lambda.real(), md.lambda.imag()}},
                    {"omega_n_rad_s", md.omega_n},
                    {"omega_d_rad_s", md.omega_d},
-                   {"zeta", number(md.zeta)},
+                   {"zeta", json_number(md.zeta)},
                    {"decay_rate_1_s", md.decay_rate},
                    {"shape_magnitude", mag},
                    {"shape_phase_deg", ph}});
@@ -99,8 +97,8 @@ std::string linear_modes_csv(const std::vector<TopologyModes>& list) {
           if (d.oscillatory && std::abs(d.omega_n - t.modes.omega(k)) < best)
             best = std::abs(d.omega_n - t.modes.omega(k)), zeta = d.zeta, wd = d.omega_d;
       }
-      s += fmt::format("{},{},{},{},{},{}\n", label, k + 1, csv_number(t.modes.omega(k)),
-                       csv_number(t.modes.omega(k) / kTwoPi), csv_number(zeta), csv_number(wd));
+      s += fmt::format("{},{},{},{},{},{}\n", label, k + 1, csv_12_digits(t.modes.omega(k)),
+                       csv_12_digits(t.modes.omega(k) / kTwoPi), csv_12_digits(zeta), csv_12_digits(wd));
     }
   }
   return s;
@@ -115,8 +113,8 @@ std::string frequency_response_csv(const FrequencyResponse& r) {
   s += '\n';
   const Eigen::MatrixXd mag = r.magnitude(), ph = r.phase_deg();
   for (Eigen::Index f = 0; f < r.omega.size(); ++f) {
-    s += fmt::format("{},{}", csv_number(r.omega(f)), csv_number(r.omega(f) / kTwoPi));
-    for (Eigen::Index k = 0; k < mag.cols(); ++k) s += fmt::format(",{},{}", csv_number(mag(f, k)), csv_number(ph(f, k)));
+    s += fmt::format("{},{}", csv_12_digits(r.omega(f)), csv_12_digits(r.omega(f) / kTwoPi));
+    for (Eigen::Index k = 0; k < mag.cols(); ++k) s += fmt::format(",{},{}", csv_12_digits(mag(f, k)), csv_12_digits(ph(f, k)));
     s += '\n';
   }
   return s;
@@ -133,7 +131,7 @@ nlohmann::json frequency_response_json(const FrequencyResponse& r) {
   for (size_t k = 0; k < r.outputs.size(); ++k) {
     nlohmann::json m = nlohmann::json::array(), p = nlohmann::json::array(), pk = nlohmann::json::array();
     for (Eigen::Index f = 0; f < r.omega.size(); ++f)
-      m.push_back(number(mag(f, static_cast<Eigen::Index>(k)))), p.push_back(number(ph(f, static_cast<Eigen::Index>(k))));
+      m.push_back(json_number(mag(f, static_cast<Eigen::Index>(k)))), p.push_back(json_number(ph(f, static_cast<Eigen::Index>(k))));
     for (const auto& x : peaks)
       if (x.output == static_cast<int>(k))
         pk.push_back({{"omega_rad_s", x.omega}, {"f_hz", x.omega / kTwoPi}, {"magnitude", x.magnitude},
@@ -204,8 +202,8 @@ std::string position_frequencies_csv(const Model& m, const PositionFrequencies& 
   for (Eigen::Index k = 0; k < p.omega.cols(); ++k) s += fmt::format(",omega_{}_rad_s", k + 1);
   s += '\n';
   for (Eigen::Index i = 0; i < p.positions.size(); ++i) {
-    s += csv_number(p.positions(i));
-    for (Eigen::Index k = 0; k < p.omega.cols(); ++k) s += fmt::format(",{}", csv_number(p.omega(i, k)));
+    s += csv_12_digits(p.positions(i));
+    for (Eigen::Index k = 0; k < p.omega.cols(); ++k) s += fmt::format(",{}", csv_12_digits(p.omega(i, k)));
     s += '\n';
   }
   return s;

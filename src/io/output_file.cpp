@@ -13,6 +13,7 @@
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/input_file.hpp"
+#include "io/file_kind.hpp"
 
 namespace machdyn {
 namespace {
@@ -86,16 +87,6 @@ void make_parent(const std::filesystem::path& path) {
 /// The endings of the files machdyn writes (results, journal, figures, report, drawings).
 constexpr const char* kResultExtensions[] = {".csv", ".json", ".journal", ".svg", ".png", ".html", ".dxf"};
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISLNK(mode)) return "a symbolic link";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  return "not a regular file";
-}
-
 /// True for the name of a temporary file of write_file_atomic whose process is gone: RESULT.tmp.PID
 /// with RESULT of a kind machdyn writes (so that no other file of the folder is ever touched).
 bool stale_temp_name(const std::string& name) {
@@ -125,7 +116,7 @@ std::string output_target_problem(const std::filesystem::path& path) {
       if (const std::string input = input_file_at(path.string()); !input.empty())
         to += fmt::format(", the input file {} of this run", input);
     }
-    return fmt::format("it is {}{}; machdyn writes only to a new path or over a regular file", kind_of(st.st_mode), to);
+    return fmt::format("it is {}{}; machdyn writes only to a new path or over a regular file", detail::file_kind(st.st_mode), to);
   }
   if (const std::string input = input_file_at(path.string()); !input.empty())
     return fmt::format("it is the input file {} of this run{}; choose another output", input,

@@ -3,6 +3,7 @@
 #include "machdyn/analysis/brake_summary.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/csv.hpp"
+#include "io/number_text.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -41,8 +42,6 @@ void write_timeseries_csv(const std::filesystem::path& path, const SimulationRes
 }
 
 namespace {
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
 const char* method_name(IntegratorChoice c) {
   switch (c) {
     case IntegratorChoice::dopri5: return "dopri5";
@@ -87,12 +86,12 @@ void add_hybrid_summary(const Model& m, const SimulationResult& r, nlohmann::jso
     if (c.joint) continue;  // a gear joint: no limit, never slips (none in stats)
     const ContactStatistics& st = stats[next++];
     nlohmann::json ratio = nlohmann::json::object();
-    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = number_or_null(st.link_max_over_static_limit[l]);
+    for (size_t l = 0; l < m.links.size(); ++l) ratio[m.links[l].name] = json_number(st.link_max_over_static_limit[l]);
     contacts[c.name] = {{"kind", c.brake ? "brake" : c.clutch ? "clutch" : "contact"},
                         {"static_limit", c.static_limit},
                         {"kinetic_at_rest", c.kinetic_level(0.0)},
                         {"slips", st.slips},
-                        {"period_s", number_or_null(st.period_s)},
+                        {"period_s", json_number(st.period_s)},
                         {"link_max_over_static_limit", ratio},
                         {"unit", load_unit(m.bodies[static_cast<size_t>(c.a)].kind)}};
     // null for a brake that stays released over the run (t_apply = t_end there, compile_hybrid.cpp).
@@ -202,7 +201,7 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
                               {"peak", L.peak},
                               {"t_peak", L.t_peak},
                               {"static", L.static_load},
-                              {"dynamic_factor", number_or_null(L.dynamic_factor)},
+                              {"dynamic_factor", json_number(L.dynamic_factor)},
                               {"unit", link_load_unit(m, m.links[l])}};
   }
   j["links"] = links;

@@ -22,7 +22,7 @@ namespace {
 /// Problems reported per file before the rest are summed up (a file of 10^6 bad rows gives ten).
 constexpr int kMaxFileErrors = 10;
 
-std::string_view trim(std::string_view s) {
+std::string_view trim_cell(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
   if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
@@ -35,7 +35,7 @@ struct Cell {
   int column;
 };
 
-std::vector<Cell> split(std::string_view line, char sep) {
+std::vector<Cell> split_cells(std::string_view line, char sep) {
   std::vector<Cell> cells;
   std::size_t start = 0;
   for (;;) {
@@ -44,7 +44,7 @@ std::vector<Cell> split(std::string_view line, char sep) {
     // The column of the cell's first non-blank character.
     std::size_t lead = 0;
     while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;
-    cells.push_back({trim(raw), static_cast<int>(start + lead) + 1});
+    cells.push_back({trim_cell(raw), static_cast<int>(start + lead) + 1});
     if (end == std::string_view::npos) break;
     start = end + 1;
   }
@@ -146,13 +146,13 @@ class FileSignal {
     };
     std::string_view line;
     while (next_line(&line)) {
-      const std::string_view t = trim(line);
+      const std::string_view t = trim_cell(line);
       if (t.empty() || t.front() == '#') continue;
       sep = line.find(',') != std::string_view::npos   ? ','
             : line.find(';') != std::string_view::npos ? ';'
             : line.find('\t') != std::string_view::npos ? '\t'
                                                         : ',';
-      for (const Cell& c : split(line, sep)) hs.push_back(parse_header(c));
+      for (const Cell& c : split_cells(line, sep)) hs.push_back(parse_header(c));
       break;
     }
     if (hs.empty()) {
@@ -168,13 +168,13 @@ class FileSignal {
     double t_last = -HUGE_VAL;
     std::size_t rows = 0;
     while (next_line(&line)) {
-      const std::string_view t = trim(line);
+      const std::string_view t = trim_cell(line);
       if (t.empty() || t.front() == '#') continue;
       if (++rows > kMaxSignalFileRows) {
         error(line_no, 1, fmt::format("more than {} rows; resample the record", kMaxSignalFileRows));
         return;
       }
-      const std::vector<Cell> cells = split(line, sep);
+      const std::vector<Cell> cells = split_cells(line, sep);
       SpecNode pair;
       pair.kind = SpecNode::Kind::Sequence;
       pair.loc = SpecLoc(file_, line_no, 1);

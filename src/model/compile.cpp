@@ -25,15 +25,12 @@
 #include "model/compile_joint.hpp"
 #include "model/compile_lossy.hpp"
 #include "model/compile_release.hpp"
+#include "model/body_dims.hpp"
 #include "model/compile_rigid.hpp"
 #include "model/element_types.hpp"
 
 namespace machdyn {
 namespace {
-
-Dim position_dim(BodyKind k) { return k == BodyKind::rotational ? dim::none : dim::length; }
-Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
-Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
 
 /// The section an element of this `type` belongs in, or "" (a hint for `type: brake` under loads).
 std::string_view section_of_type(std::string_view type) {
@@ -111,8 +108,8 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
     auto inertia = b.kind == BodyKind::rotational ? f.positive("inertia", dim::inertia, std::nullopt, true)
                                                    : f.positive("mass", dim::mass, std::nullopt, true);
     b.inertia = inertia.value_or(1.0);
-    b.q0 = f.quantity("position", position_dim(b.kind), 0.0).value_or(0.0);
-    b.v0 = f.quantity("velocity", velocity_dim(b.kind), 0.0).value_or(0.0);
+    b.q0 = f.quantity("position", detail::position_dim(b.kind), 0.0).value_or(0.0);
+    b.v0 = f.quantity("velocity", detail::velocity_dim(b.kind), 0.0).value_or(0.0);
     if (f.map().find("vertical")) {
       auto up = f.word("vertical", {"up", "down"});
       if (b.kind != BodyKind::translational)
@@ -218,11 +215,11 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
       if (f.map().find("ratio")) f.error_at("ratio", "a link to the ground has no ratio");
       f.node("ratio");
     } else {
-      auto r = f.quantity("ratio", position_dim(ka) / position_dim(kb), 1.0);
+      auto r = f.quantity("ratio", detail::position_dim(ka) / detail::position_dim(kb), 1.0);
       if (r && *r == 0.0) f.error_at("ratio", "field 'ratio' must not be zero");
       l.ratio = r.value_or(1.0);
     }
-    const Dim qd = position_dim(side), ld = load_dim(side);
+    const Dim qd = detail::position_dim(side), ld = detail::load_dim(side);
     const bool rope = type && *type == "rope";
     bool needs_c = type && (*type == "spring" || *type == "spring-damper" || rope);
     bool needs_d = type && (*type == "damper" || *type == "spring-damper");
@@ -405,7 +402,7 @@ void compile_loads(const SpecNode* section, Model& m, Diagnostics& diag) {
         body_ok = true;
       }
     }
-    const Dim vd = load_dim(kind), wd = velocity_dim(kind), qd = position_dim(kind);
+    const Dim vd = detail::load_dim(kind), wd = detail::velocity_dim(kind), qd = detail::position_dim(kind);
     if (!type || !body_ok) {  // field dimensions depend on both; avoid a cascade of messages
       for (const auto& [k, v] : spec.fields) f.node(k);
       continue;

@@ -4,13 +4,11 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "model/body_dims.hpp"
 #include "model/compile_signal.hpp"
 
 namespace machdyn::detail {
 namespace {
-
-Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
-Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
 
 /// A list of [x, y] pairs with x strictly increasing (and >= x_min). False if reported bad.
 bool read_pairs(const SpecNode& n, const std::string& what, const std::string& key, const Dim& dx, const Dim& dy,

@@ -6,6 +6,7 @@
 // converts them by |ρ_A| (elements/lossy_gear.hpp).
 #include "model/compile_lossy.hpp"
 
+#include "model/body_dims.hpp"
 #include "model/compile_rigid.hpp"
 
 #include <algorithm>
@@ -17,10 +18,6 @@
 
 namespace machdyn::detail {
 namespace {
-
-Dim position_dim(BodyKind k) { return k == BodyKind::rotational ? dim::none : dim::length; }
-Dim velocity_dim(BodyKind k) { return k == BodyKind::rotational ? dim::angular_velocity : dim::velocity; }
-Dim load_dim(BodyKind k) { return k == BodyKind::rotational ? dim::torque : dim::force; }
 
 /// The checks of one set of loss data (a constant or a table row); `at` locates the error.
 void check_losses(const std::string& name, double eta1, double eta2, double bf1, double bf2, const SpecLoc& at,

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <fmt/format.h>
+#include "common/constants.hpp"
 
 #include "machdyn/gears/gear_model.hpp"
 #include "machdyn/gears/synthesis.hpp"
@@ -13,7 +14,6 @@
 namespace machdyn {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// Reads `key: [[x, y], ...]` with dimensions dx, dy; x must increase. Empty on error (reported).
 bool read_pairs(FieldReader& f, std::string_view key, const Dim& dx, const Dim& dy, std::vector<double>* xs,

@@ -15,18 +15,10 @@
 
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/io/output_file.hpp"
+#include "sweep/fnv1a.hpp"
 
 namespace machdyn {
 namespace {
-
-std::uint64_t fnv1a(std::string_view s) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -67,7 +59,7 @@ std::string header_text(const std::string& fingerprint, long runs, const std::st
 }  // namespace
 
 std::string journal_record(std::string_view text) {
-  return fmt::format("{}|{:016x}\n", text, fnv1a(text));
+  return fmt::format("{}|{:016x}\n", text, detail::fnv1a(text));
 }
 
 bool parse_journal_record(std::string_view line, std::string& text) {
@@ -76,7 +68,7 @@ bool parse_journal_record(std::string_view line, std::string& text) {
   const auto bar = line.size() - 17;
   if (line[bar] != '|') return false;
   const auto body = line.substr(0, bar);
-  if (fmt::format("{:016x}", fnv1a(body)) != line.substr(bar + 1)) return false;
+  if (fmt::format("{:016x}", detail::fnv1a(body)) != line.substr(bar + 1)) return false;
   text.assign(body);
   return true;
 }

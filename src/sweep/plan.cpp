@@ -11,6 +11,7 @@
 #include "machdyn/io/model_file.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "sweep/fnv1a.hpp"
 
 namespace machdyn {
 namespace {
@@ -18,14 +19,6 @@ namespace {
 /// The plan holds every run's values (some 230 bytes a run: 10^6 runs ≈ 230 MB; 10^8 were 23 GB, an
 /// out-of-memory before the first run): a larger sweep is split (docs/sweeps.md).
 constexpr long kMaxRuns = 1'000'000;
-
-std::uint64_t fnv1a(std::string_view s, std::uint64_t h = 0xcbf29ce484222325ULL) {
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
 
 const char* method_name(SweepMethod m) {
   switch (m) {
@@ -209,8 +202,8 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   if (!request.cases.empty()) plan.description += fmt::format(" × {} cases = {} runs", n_cases, plan.runs.size());
 
   // Fingerprint: what decides the table (model text, options), so --resume refuses another sweep.
-  std::uint64_t h = fnv1a("machdyn-sweep-v1");
-  auto add = [&](std::string_view s) { h = fnv1a(s, fnv1a("\x1f", h)); };
+  std::uint64_t h = detail::fnv1a("machdyn-sweep-v1");
+  auto add = [&](std::string_view s) { h = detail::fnv1a(s, detail::fnv1a("\x1f", h)); };
   add(text);
   for (const auto& s : request.sets) add(s);
   add("vary");

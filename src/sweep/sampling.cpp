@@ -52,19 +52,19 @@ std::uint64_t Xoshiro256::below(std::uint64_t n) {
 
 namespace {
 
-std::string trim(std::string_view s) {
+std::string trim_blanks(std::string_view s) {
   const auto b = s.find_first_not_of(" \t");
   if (b == std::string_view::npos) return {};
   const auto e = s.find_last_not_of(" \t");
   return std::string(s.substr(b, e - b + 1));
 }
 
-std::vector<std::string> split(std::string_view s, char sep) {
+std::vector<std::string> split_trimmed(std::string_view s, char sep) {
   std::vector<std::string> out;
   size_t start = 0;
   for (;;) {
     const auto p = s.find(sep, start);
-    out.push_back(trim(s.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
+    out.push_back(trim_blanks(s.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
     if (p == std::string_view::npos) return out;
     start = p + 1;
   }
@@ -86,7 +86,7 @@ SampleSpec parse_sample_spec(std::string_view spec, const std::string& where) {
   if (spec.find(':') == std::string_view::npos) {
     // A list (one value is a list of one).
     s.kind = SampleSpec::Kind::list;
-    s.texts = split(spec, ',');
+    s.texts = split_trimmed(spec, ',');
     std::optional<Dim> dim0;
     for (const auto& t : s.texts) {
       if (t.empty()) fail("an empty value");
@@ -101,7 +101,7 @@ SampleSpec parse_sample_spec(std::string_view spec, const std::string& where) {
     }
     return s;
   }
-  auto parts = split(spec, ':');
+  auto parts = split_trimmed(spec, ':');
   if (!parts.empty() && parts.back() == "log") {
     s.log = true;
     parts.pop_back();
@@ -133,7 +133,7 @@ SampleSpec parse_sample_spec(std::string_view spec, const std::string& where) {
 
 namespace {
 
-AxisValue number(double v) { return {fmt::format("{}", v), v}; }  // shortest exact text
+AxisValue axis_value(double v) { return {fmt::format("{}", v), v}; }  // shortest exact text
 
 double range_value(const SampleSpec& s, double u) {
   if (s.log) return s.a * std::pow(s.b / s.a, u);
@@ -150,11 +150,11 @@ std::vector<AxisValue> grid_values(const SampleSpec& s) {
   }
   for (int k = 0; k < s.n; ++k) {
     if (k == 0) {
-      out.push_back(number(s.a));
+      out.push_back(axis_value(s.a));
     } else if (k == s.n - 1) {
-      out.push_back(number(s.b));
+      out.push_back(axis_value(s.b));
     } else {
-      out.push_back(number(range_value(s, static_cast<double>(k) / static_cast<double>(s.n - 1))));
+      out.push_back(axis_value(range_value(s, static_cast<double>(k) / static_cast<double>(s.n - 1))));
     }
   }
   return out;
@@ -166,7 +166,7 @@ AxisValue value_at(const SampleSpec& s, double u) {
     if (k >= s.texts.size()) k = s.texts.size() - 1;
     return {s.texts[k], s.values[k]};
   }
-  return number(range_value(s, u));
+  return axis_value(range_value(s, u));
 }
 
 std::vector<std::vector<int>> grid_indices(const std::vector<int>& sizes) {

@@ -15,7 +15,7 @@
 namespace machdyn {
 namespace {
 
-std::string number(double v) {
+std::string exact_text(double v) {
   if (std::isnan(v)) return "nan";
   return fmt::format("{}", v);  // shortest text that reads back to the same double
 }
@@ -183,7 +183,7 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
   }
   for (const auto& v : run.values) {
     row += ',';
-    row += std::isnan(v.si) ? one_line_field(v.text) : number(v.si);
+    row += std::isnan(v.si) ? one_line_field(v.text) : exact_text(v.si);
   }
 
   size_t n_summary = 0;
@@ -213,12 +213,12 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
       if (values.size() != own.size())
         throw std::runtime_error(fmt::format("the run gave {} summary values, its header has {}", values.size(), own.size()));
       if (own == names[k]) {
-        for (double v : values) cells.push_back(number(v));
+        for (double v : values) cells.push_back(exact_text(v));
         continue;
       }
       for (const auto& name : names[k]) {
         const auto it = std::find(own.begin(), own.end(), name);
-        cells.push_back(it == own.end() ? std::string() : number(values[static_cast<size_t>(it - own.begin())]));
+        cells.push_back(it == own.end() ? std::string() : exact_text(values[static_cast<size_t>(it - own.begin())]));
       }
     }
     for (const auto& c : cells) {

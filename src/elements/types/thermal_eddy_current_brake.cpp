@@ -13,10 +13,9 @@
 
 namespace {
 
-using namespace machdyn;
-
 /// An absolute temperature field (`20 degC`, `293.15 K`), or `fallback` when absent.
-std::optional<double> temperature(FieldReader& f, const char* key, double fallback) {
+std::optional<double> temperature(machdyn::FieldReader& f, const char* key, double fallback) {
+  using namespace machdyn;
   const SpecNode* v = f.node(key);
   if (!v) return fallback;
   std::string err;
@@ -27,7 +26,9 @@ std::optional<double> temperature(FieldReader& f, const char* key, double fallba
   return T;
 }
 
-std::shared_ptr<const Element> compile_thermal_eddy_current_brake(FieldReader& f, BodyKind kind) {
+std::shared_ptr<const machdyn::Element> compile_thermal_eddy_current_brake(machdyn::FieldReader& f,
+                                                                        machdyn::BodyKind kind) {
+  using namespace machdyn;
   const Dim load = kind == BodyKind::rotational ? dim::torque : dim::force;
   const Dim speed = kind == BodyKind::rotational ? dim::angular_velocity : dim::velocity;
   auto b = std::make_shared<EddyCurrentBrake>();
