@@ -13,9 +13,8 @@
 
 namespace {
 
-using namespace machdyn;
-
-std::shared_ptr<const Element> compile_gear_mesh(FieldReader& f, BodyKind kind) {
+std::shared_ptr<const machdyn::Element> compile_gear_mesh(machdyn::FieldReader& f, machdyn::BodyKind kind) {
+  using namespace machdyn;
   if (kind != BodyKind::rotational) {
     f.error_at("between", "a gear mesh joins two rotational bodies (a pinion and a wheel)");
     for (const auto& [k, v] : f.map().fields) f.node(k);
