@@ -161,8 +161,10 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       // itself: [left check, dip] then brackets the crossing.
       bool crossed = false;
       auto check = [&](double s, const double* g) {
-        for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g[k] < off[k]);
-        if (crossed) {
+        bool c = false;  // a tight scan in registers: most checks cross nothing
+        for (size_t k = 0; k < ne; ++k) c |= (gp[k] >= off[k]) & (g[k] < off[k]);
+        if (c) {
+          crossed = true;
           b = s, gn = g;
           return true;
         }
