@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <gtest/gtest.h>
 
 #include "support/events.hpp"
@@ -24,10 +25,7 @@ class CampaignDefectsB : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, CampaignDefectsB,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf), integrator_name);
 
-SimulationResult run(Model m, IntegratorChoice ic) {
-  m.simulation.integrator = ic;
-  return simulate(m);
-}
+SimulationResult run(Model m, IntegratorChoice ic) { return simulate(test::with_integrator(std::move(m), ic)); }
 
 // Claim (class H, campaign `drum` seed 1 model 133): a drum (I = 3 kg·m²) held by a contact of
 // F_s = 100 N·m (F_k = 60 N·m), a hook of m = 200 kg on it by an ideal gear of i = 4.8 rad/m, the hook

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <utility>
 #include <gtest/gtest.h>
 
 #include "machdyn/io/yaml_reader.hpp"
@@ -28,10 +29,7 @@ class CampaignDefects : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, CampaignDefects,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf), integrator_name);
 
-SimulationResult run(Model m, IntegratorChoice ic) {
-  m.simulation.integrator = ic;
-  return simulate(m);
-}
+SimulationResult run(Model m, IntegratorChoice ic) { return simulate(test::with_integrator(std::move(m), ic)); }
 
 // Claim: a free body of 1 kg at rest under a force step 0 → 1 N at t = 0.5 s stays exactly at rest up
 // to the step and then moves as x = ½ (t − 0.5)², v = t − 0.5. A step of the integrator that ends on

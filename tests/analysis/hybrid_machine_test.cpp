@@ -50,10 +50,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, HybridMachine,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          integrator_name);
 
-Model with_integrator(Model m, IntegratorChoice ic) {
-  m.simulation.integrator = ic;
-  return m;
-}
+using test::with_integrator;
 SimulationResult run(const Model& m, IntegratorChoice ic) { return simulate(with_integrator(m, ic)); }
 
 // Claim: a crank-slider braked from 50 rad/s (braking torque M_b = 30 N·m, a constant gas force

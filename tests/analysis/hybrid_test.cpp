@@ -33,10 +33,7 @@ class Hybrid : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Hybrid, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          integrator_name);
 
-Model with_integrator(Model m, IntegratorChoice ic) {
-  m.simulation.integrator = ic;
-  return m;
-}
+using test::with_integrator;
 SimulationResult run(const Model& m, IntegratorChoice ic) { return simulate(with_integrator(m, ic)); }
 
 // Claim: a body stays stuck while the load is within the static limit and slips exactly when it

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <fmt/format.h>
+#include <utility>
 #include <gtest/gtest.h>
 
 #include "machdyn/io/yaml_reader.hpp"
@@ -31,10 +32,7 @@ class MissedEvents : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, MissedEvents, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          integrator_name);
 
-SimulationResult run(Model m, IntegratorChoice ic) {
-  m.simulation.integrator = ic;
-  return simulate(m);
-}
+SimulationResult run(Model m, IntegratorChoice ic) { return simulate(test::with_integrator(std::move(m), ic)); }
 
 /// The largest |F|/F_s of contact `name` over the output rows where it is stuck (mode 0).
 double stuck_overload(const SimulationResult& r, const std::string& name, double Fs) {

@@ -77,6 +77,14 @@ TEST_P(Conformance, HasAnExampleThatCompiles) {
   EXPECT_LE(m.drives[0].law->states(), ElementJacobian::kMax);
 }
 
+/// The model's state at sample s (bodies' q and v; the element's own states initial) in the mode the
+/// element's law implies there at t.
+void place(DriveSystem& sys, const Sample& s, double t, std::vector<double>& y) {
+  sys.initial_state(y.data());
+  for (int p = 0; p < 2; ++p) y[static_cast<size_t>(p)] = s.q[p], y[static_cast<size_t>(2 + p)] = s.v[p];
+  sys.set_drive_mode(0, sys.natural_drive_mode(0, t, y.data()));
+}
+
 // Claim: at each sample, in the mode its state implies, the element's Jacobian terms ∂M/∂(q, v, x)
 // and ∂x'/∂(q, v, x) equal central differences of its forces and rates (step 1e-6 (1 + |value|),
 // within 1e-6 of the largest term); and that mode's event functions are ≥ 0 there.
@@ -87,10 +95,8 @@ TEST_P(Conformance, JacobianMatchesCentralDifferences) {
   const int nb = e.bodies(), nx = e.states();
   std::vector<double> y(static_cast<size_t>(sys.size()));
   for (const Sample& s : kSamples) {
-    sys.initial_state(y.data());
-    for (int p = 0; p < 2; ++p) y[static_cast<size_t>(p)] = s.q[p], y[static_cast<size_t>(2 + p)] = s.v[p];
     const double t = 0.01;
-    sys.set_drive_mode(0, sys.natural_drive_mode(0, t, y.data()));
+    place(sys, s, t, y);
     const int mode = sys.drive_mode(0);
     ElementMotion b = sys.drive_motion(0, y.data());
     const double* x0 = y.data() + sys.drive_offset(0);
@@ -153,10 +159,8 @@ TEST_P(Conformance, PowerBalances) {
   const int nb = e.bodies(), nx = e.states();
   std::vector<double> y(static_cast<size_t>(sys.size()));
   for (const Sample& s : kSamples) {
-    sys.initial_state(y.data());
-    for (int p = 0; p < 2; ++p) y[static_cast<size_t>(p)] = s.q[p], y[static_cast<size_t>(2 + p)] = s.v[p];
     const double t = 0.01;
-    sys.set_drive_mode(0, sys.natural_drive_mode(0, t, y.data()));
+    place(sys, s, t, y);
     const int mode = sys.drive_mode(0);
     const ElementMotion b = sys.drive_motion(0, y.data());
     const double* x = y.data() + sys.drive_offset(0);
@@ -201,10 +205,8 @@ TEST_P(Conformance, EventFunctionsAreContinuous) {
   ASSERT_TRUE(sys.slot_is_drive(slot));
   std::vector<double> y(static_cast<size_t>(N)), dy(y), ys(y), g0(static_cast<size_t>(sys.event_slots())), gs(g0);
   for (const Sample& s : kSamples) {
-    sys.initial_state(y.data());
-    for (int p = 0; p < 2; ++p) y[static_cast<size_t>(p)] = s.q[p], y[static_cast<size_t>(2 + p)] = s.v[p];
     const double t = 0.01;
-    sys.set_drive_mode(0, sys.natural_drive_mode(0, t, y.data()));
+    place(sys, s, t, y);
     sys.rhs(t, y.data(), dy.data());
     sys.event_functions(t, y.data(), g0.data());
     for (int k = 0; k < 2; ++k) {
@@ -233,9 +235,7 @@ TEST_P(Conformance, LinearTermsAreTheHessianOfTheEnergy) {
   const int nb = e.bodies();
   std::vector<double> y(static_cast<size_t>(sys.size()));
   for (const Sample& s : kSamples) {
-    sys.initial_state(y.data());
-    for (int p = 0; p < 2; ++p) y[static_cast<size_t>(p)] = s.q[p], y[static_cast<size_t>(2 + p)] = s.v[p];
-    sys.set_drive_mode(0, sys.natural_drive_mode(0, 0.0, y.data()));
+    place(sys, s, 0.0, y);
     const int mode = sys.drive_mode(0);
     const ElementMotion b = sys.drive_motion(0, y.data());
     const double* x = y.data() + sys.drive_offset(0);

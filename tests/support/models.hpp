@@ -12,6 +12,12 @@ namespace machdyn::test {
 /// The model of `yaml` (errors located in "test.yaml").
 inline Model model_of(const std::string& yaml) { return compile_model(parse_yaml_string(yaml, "test.yaml"), "test.yaml"); }
 
+/// `m` to be run on integrator `ic`.
+inline Model with_integrator(Model m, IntegratorChoice ic) {
+  m.simulation.integrator = ic;
+  return m;
+}
+
 /// "dopri5" / "bdf": the suffix of a test parameterized over the integrators.
 inline std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
   return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
