@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The travel start-up's ratio to the hand-written loop over code and stack placements (issue 15).
 # One binary measures a few percent faster or slower by where its code and its stack happen to lie
-# (docs/benchmarks.md, eleventh and thirteenth rounds), so one run of bench_travel_start says little
+# (docs/benchmarks.md, "Travel start-up"), so one run of bench_travel_start says little
 # about a change of 2 %. This relinks bench_travel_start's object with padding objects of 0 … 3080
 # bytes before the library (the library's code shifts) and runs each from paths of different length
 # (the stack shifts), passes times, interleaved; it prints the median, the quartiles and the range
