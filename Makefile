@@ -27,7 +27,8 @@ deps-browser:
 	@MACHDYN_WITH_CHROMIUM=1 bash scripts/install-deps.sh
 
 build-release: deps
-	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CCACHE) >/dev/null
+	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_TESTS=ON -DMACHDYN_BENCH=ON \
+	  -DMACHDYN_PYTHON=ON $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_RELEASE) -j $(JOBS)
 
 # The two trees of `make test` compile the library in batches as well (MACHDYN_UNITY_LIBRARY,
@@ -46,9 +47,12 @@ build-asan: deps
 	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target machdyn_tests machdyn_cli machdyn_campaign \
 	  fuzz_model_file fuzz_units fuzz_expression fuzz_gear_spec fuzz_signal_csv fuzz_set_vary
 
-# The demo builds only the library and the CLI it runs (not the tests, benchmarks or Python module).
-demo: deps
-	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CCACHE) >/dev/null
+# The demo installs and builds only the library and the CLI it runs (not the tests, benchmarks or
+# Python module, nor their packages); `make bench` or `make package` turns them on in the same tree.
+demo:
+	@bash scripts/install-deps.sh demo
+	@cmake -S . -B $(BUILD_RELEASE) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMACHDYN_TESTS=OFF -DMACHDYN_BENCH=OFF \
+	  -DMACHDYN_PYTHON=OFF $(CCACHE) >/dev/null
 	@cmake --build $(BUILD_RELEASE) -j $(JOBS) --target machdyn_cli
 	@$(BUILD_RELEASE)/apps/machdyn/machdyn demo
 

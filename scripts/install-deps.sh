@@ -10,13 +10,21 @@
 #   clang-14, libclang-rt-14-dev: the sanitizer build and the libFuzzer harnesses of `make test`
 #   libsuitesparse-dev: KLU, CVODE's sparse linear solver for large models
 #   ccache:      keeps rebuilds of unchanged sources cheap (the Makefile uses it when present)
+# `install-deps.sh demo` (make demo) installs only what the library and the CLI build and run with:
+# the compilers, the libraries, gnuplot and npm (the CLI's --plot and report); no test, Python,
+# sanitizer, MPI or browser packages.
 set -euo pipefail
 packages=(cmake ninja-build g++ make pkg-config ccache
           libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev gnuplot-nox fonts-dejavu-core clang-14 libclang-rt-14-dev
-          pybind11-dev python3-dev python3-pytest python3-numpy python3-pandas python3-matplotlib
-          python3-nbconvert python3-ipykernel)
+          gnuplot-nox fonts-dejavu-core)
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
+if [ "${1:-}" = demo ]; then
+  MACHDYN_WITH_MPI=0 MACHDYN_WITH_CHROMIUM=0
+else
+  packages+=(libgtest-dev libgmock-dev clang-14 libclang-rt-14-dev
+             pybind11-dev python3-dev python3-pytest python3-numpy python3-pandas python3-matplotlib
+             python3-nbconvert python3-ipykernel)
+fi
 # MPI sweeps (`mpirun -np N machdyn sweep`): OpenMPI is installed unless MACHDYN_WITH_MPI=0 (it pulls
 # in ~150 MB: gfortran, UCX, libfabric); without it the MPI test skips with a message.
 if [ "${MACHDYN_WITH_MPI:-1}" = 1 ]; then
