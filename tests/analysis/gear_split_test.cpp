@@ -209,5 +209,78 @@ simulation: {{t_end: 0.1, dt_out: 0.01, integrator: {}}}
   }
 }
 
+// The model above with P1 a ramp, P1 = k t (k = 1000 N·m/s). From the admissible set above (the gear
+// with Cb1 at its limit, |Y| ≤ F_s/i = 15, holds |X| ≤ 15/η_mf1 on both sides of 0), the set holds
+// while λ_Cb2 = P1 + λ_K ≤ F_s with λ_K = P0 − X ≥ P0 − 15/η_mf1, i.e. until
+//   t* = (F_s − P0 + F_s/(i η_mf1)) / k = (200 + 15/0.99)/1000 s = 0.215151… s,
+// where Cb2, Cb1 and the gear reach their limits together (K at 84.85 N·m within its 300). Then b0 and
+// b2 start together (K stuck), the gear rolls forward with a driving, Cb1 and Cb2 slide with their
+// kinetic 200 N·m: with the lumped side a, I_a = 2 (b0 and b2), J_b = I_b1/i² = 1/400, F_a = P0 + k t −
+// 200, F_b' = −200/i = −10 (elements/lossy_gear.hpp, a drives):
+//   (η_mf1 I_a + J_b) a = η_mf1 F_a + F_b'  ⇒  v(t) = (η_mf1 k (t² − t*²)/2 − (η_mf1 (200 − P0) + 10)(t − t*)) / E,
+// E = 1.9825; a(t*) = 104/E > 0 (consistent), and K carries λ_K = a − k t + 200 (b2's balance), within
+// its limit over the run.
+// Claim, on both integrators: Cb1, Cb2 and G break away at t* within 1e-9 s as the first and only
+// events (Cb1, Cb2 slip+, G forward), every row before it at rest with the three balances and every
+// limit as above, after it v_b0 = v_b2 = v(t) within 1e-8 rad/s (1e-6 on BDF), v_b1 = v/i, and K stuck
+// with λ_K = a − k t + 200 within 1e-6 N·m.
+TEST_P(GearSplitSim, TheChainAndTheGearBreakAwayTogetherWhereTheLockingRangeAndTheLimitsRunOut) {
+  const std::string yaml = fmt::format(R"(bodies:
+  b0: {{type: rotational, inertia: 1}}
+  b1: {{type: rotational, inertia: 1}}
+  b2: {{type: rotational, inertia: 1}}
+links:
+  G: {{type: lossy-gear, between: [b0, b1], ratio: 20, efficiency: 0.99, efficiency_reverse: 0.1}}
+loads:
+  P0: {{type: constant, body: b0, value: 100}}
+  P1: {{type: ramp, body: b2, value: 1000, end: 1 s}}
+contacts:
+  Cb1: {{between: [b1, ground], static: 300, kinetic: 200}}
+  Cb2: {{between: [b2, ground], static: 300, kinetic: 200}}
+  K: {{between: [b0, b2], static: 300, kinetic: 200}}
+simulation: {{t_end: 0.3, dt_out: 0.01, rtol: 1e-10, integrator: {}}}
+)",
+                                       GetParam());
+  const SimulationResult r = simulate(test::model_text(yaml, "gear-split-ramp.yaml"));
+  const double i = 20.0, eta1 = 0.99, k = 1000.0, P0 = 100.0, Fs = 300.0, Fk = 200.0, E = eta1 * 2.0 + 1.0 / (i * i);
+  const double ts = (Fs - P0 + Fs / (i * eta1)) / k;
+  const auto& ev = r.hybrid.events;
+  int n = 0;
+  for (const auto& e : ev) {
+    if (e.kind == "initial") continue;
+    ++n;
+    EXPECT_NEAR(e.t, ts, 1e-9) << e.element;
+    EXPECT_EQ(e.kind, "slip") << e.element;
+    EXPECT_EQ(e.to, e.element == "G" ? "forward" : "slip+") << e.element;
+  }
+  EXPECT_EQ(n, 3);
+  EXPECT_TRUE(test::events_of(r, "K").empty());
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto &lK = series(r, "K.force_N_m"), &l1 = series(r, "Cb1.force_N_m"), &l2 = series(r, "Cb2.force_N_m");
+  const auto &v0 = series(r, "b0.velocity_rad_s"), &v1 = series(r, "b1.velocity_rad_s"), &v2 = series(r, "b2.velocity_rad_s");
+  const auto &Xs = series(r, "G.torque_a_N_m"), &Tb = series(r, "G.torque_b_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    const double P1 = k * t[j];
+    if (t[j] < ts - 1e-9) {
+      EXPECT_EQ(v0[j], 0.0) << t[j];
+      const double X = Xs[j], Y = -Tb[j] / i;
+      EXPECT_NEAR(P0 - lK[j] - X, 0.0, 1e-9) << t[j];
+      EXPECT_NEAR(P1 + lK[j] - l2[j], 0.0, 1e-9) << t[j];
+      EXPECT_NEAR(i * Y - l1[j], 0.0, 1e-9) << t[j];
+      for (double l : {lK[j], l1[j], l2[j]}) EXPECT_LE(std::abs(l), Fs + 1e-9) << t[j];
+      EXPECT_LE(std::abs(X), 15.0 / eta1 + 1e-9) << t[j];
+    } else if (t[j] > ts + 1e-9) {
+      const double v = (eta1 * k * (t[j] * t[j] - ts * ts) / 2.0 - (eta1 * (Fk - P0) + Fk / i) * (t[j] - ts)) / E;
+      const double a = (eta1 * (P0 + P1 - Fk) - Fk / i) / E;
+      EXPECT_NEAR(v0[j], v, tol) << t[j];
+      EXPECT_EQ(v2[j], v0[j]) << t[j];
+      EXPECT_NEAR(v1[j], v0[j] / i, 1e-12 * (1.0 + std::abs(v0[j]))) << t[j];
+      EXPECT_NEAR(lK[j], a - P1 + Fk, 1e-6) << t[j];
+      EXPECT_EQ(series(r, "K.mode")[j], 0.0) << t[j];
+    }
+  }
+}
+
 }  // namespace MACHDYN_UNITY_ID
 }  // namespace machdyn
