@@ -54,7 +54,13 @@ Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& E, const Eigen:
 
 std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, const Eigen::VectorXd& w,
                                              const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
-  const Eigen::Index n = A.cols();
+  return bounded_split(A, r, w, lo, hi, Eigen::MatrixXd(0, A.cols()), Eigen::VectorXd(0));
+}
+
+std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, const Eigen::VectorXd& w,
+                                             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::MatrixXd& D,
+                                             const Eigen::VectorXd& e) {
+  const Eigen::Index n = A.cols(), nd = D.rows();
   // The weighted least-norm split λ₀ = D z₀ and the null space N of A D (its redundancy).
   const Eigen::MatrixXd B = A * w.asDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -71,14 +77,18 @@ std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eig
     if (std::isfinite(lo(i))) scale = std::max(scale, std::abs(lo(i)));
     if (std::isfinite(hi(i))) scale = std::max(scale, std::abs(hi(i)));
   }
+  for (Eigen::Index m = 0; m < nd; ++m) scale = std::max(scale, std::abs(e(m)));
   const double slack = 1e-12 * scale;
   auto within = [&](const Eigen::VectorXd& lam) {
     for (Eigen::Index i = 0; i < n; ++i)
       if (lam(i) < lo(i) - slack || lam(i) > hi(i) + slack) return false;
+    for (Eigen::Index m = 0; m < nd; ++m)
+      if (D.row(m).dot(lam) < e(m) - slack * std::max(1.0, D.row(m).cwiseAbs().sum())) return false;
     return true;
   };
   bool inside = true;  // exactly: a share in the rounding band beyond a bound is moved onto it
   for (Eigen::Index i = 0; i < n; ++i) inside = inside && lam0(i) >= lo(i) && lam0(i) <= hi(i);
+  for (Eigen::Index m = 0; m < nd; ++m) inside = inside && D.row(m).dot(lam0) >= e(m);
   if (inside) return lam0;
   const Eigen::Index k = n - rank;
   if (k == 0) return std::nullopt;  // one split only, and it is beyond a bound
@@ -102,6 +112,17 @@ std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eig
     if (std::isfinite(lo(i)) && !add(row, (lo(i) / w(i) - z0(i)) / zs)) return std::nullopt;
     if (std::isfinite(hi(i)) && !add(-row, (z0(i) - hi(i) / w(i)) / zs)) return std::nullopt;
   }
+  // D λ ≥ e ⇔ (D W N) s ≥ e − D λ₀.
+  for (Eigen::Index m = 0; m < nd; ++m) {
+    const double dn = (D.row(m) * w.asDiagonal()).norm();  // the row in z units, scaled to length 1
+    const double rhs = e(m) - D.row(m).dot(lam0);
+    if (dn == 0.0) {
+      if (rhs > slack) return std::nullopt;
+      continue;
+    }
+    const Eigen::VectorXd row = (D.row(m) * w.asDiagonal() * N).transpose() / dn;
+    if (!add(row, rhs / (dn * zs))) return std::nullopt;
+  }
   // min ‖s‖ subject to G s ≥ h: with u ≥ 0 minimizing ‖E u − e‖, E = [Gᵀ; hᵀ], e = (0, …, 0, 1), and
   // ρ = E u − e, s = −ρ₁…ₖ / ρₖ₊₁; ρ = 0 (ρₖ₊₁ = 0) when the bounds admit no s (Lawson–Hanson).
   const auto p = static_cast<Eigen::Index>(G.size());
@@ -110,12 +131,21 @@ std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eig
     E.col(j).head(k) = G[static_cast<size_t>(j)];
     E(k, j) = h[static_cast<size_t>(j)];
   }
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(k + 1);
-  e(k) = 1.0;
-  const Eigen::VectorXd u = nonnegative_least_squares(E, e, 1e-14 * std::max(1.0, E.cwiseAbs().maxCoeff()));
-  const Eigen::VectorXd rho = E * u - e;
+  Eigen::VectorXd last = Eigen::VectorXd::Zero(k + 1);
+  last(k) = 1.0;
+  const Eigen::VectorXd u = nonnegative_least_squares(E, last, 1e-14 * std::max(1.0, E.cwiseAbs().maxCoeff()));
+  const Eigen::VectorXd rho = E * u - last;
   if (-rho(k) <= 1e-12) return std::nullopt;
-  const Eigen::VectorXd s = -rho.head(k) / rho(k) * zs;
+  Eigen::VectorXd s = -rho.head(k) / rho(k) * zs;
+  // A general row met only up to the rounding of s (weights 1e3 beside 1 scale it up in λ): moved onto
+  // it along the null space, the least step (a bound is clamped below; a row cannot be).
+  for (int pass = 0; pass < 3; ++pass)
+    for (Eigen::Index m = 0; m < nd; ++m) {
+      const Eigen::VectorXd lam_m = w.cwiseProduct(z0 + N * s);
+      const double short_by = e(m) - D.row(m).dot(lam_m);
+      const Eigen::VectorXd g = (D.row(m) * w.asDiagonal() * N).transpose();
+      if (short_by > 0.0 && g.squaredNorm() > 0.0) s += g * (short_by / g.squaredNorm());
+    }
   Eigen::VectorXd lam = w.cwiseProduct(z0 + N * s);
   if (!within(lam)) return std::nullopt;
   for (Eigen::Index i = 0; i < n; ++i) lam(i) = std::clamp(lam(i), lo(i), hi(i));  // onto a bound met within slack

@@ -184,6 +184,7 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
   // Clutches on a gear's body (analysis/gear_clutch.hpp): the stuck contacts then see the gears' law.
   gear_of_body_.assign(static_cast<size_t>(n_), -1);
   gear_clutch_.assign(static_cast<size_t>(ng_), 0);
+  gear_joint_.assign(static_cast<size_t>(ng_), 0);
   for (int g = 0; g < ng_; ++g)
     gear_of_body_[static_cast<size_t>(gears_[static_cast<size_t>(g)].a)] =
         gear_of_body_[static_cast<size_t>(gears_[static_cast<size_t>(g)].b)] = g;
@@ -1093,6 +1094,8 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
       }
       k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
                1.0 / inv_mass_[static_cast<size_t>(k.b)], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
+      if (gear_joint_[u] != 0 && locks_.of_gear[u] < 0)  // held on its locking range by the split: its limit's allowance
+        for (int e = 0; e < 2; ++e) g[2 * (nl_ + nc_ + nd_ + gi) + e] += k.allowance(gear_fa_[u], gear_fb_[u]);
     }
     if (!locks_.empty()) lock_event_functions(t, g);
   }

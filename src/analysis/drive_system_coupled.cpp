@@ -1,7 +1,12 @@
 // The drive system's side of gears with clutches on their bodies (analysis/gear_clutch.hpp): the stuck
 // contacts solved with the compliance C of the bodies, whose gear blocks come from the gears' law.
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Dense>
 
+#include "analysis/bounded_share.hpp"
+#include "analysis/gear_split.hpp"
 #include "machdyn/analysis/drive_system.hpp"
 
 namespace machdyn {
@@ -69,6 +74,10 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
     }
   if (masked)
     if (const Eigen::MatrixXd P = weighted_solution(S, w, true); P.size() > 0) lam_ = P * r_;
+  // A stuck gear whose locking range this split breaks (or a contact beyond its limit beside it): the
+  // gear as bounded rows of the split (analysis/gear_split.hpp).
+  std::fill(gear_joint_.begin(), gear_joint_.end(), 0);
+  split_stuck_gears(t, acc, im, ka, kb);
   // The loads on the bodies: the gears' sides through their law, the others through 1/I.
   std::vector<double> df(static_cast<size_t>(n_), 0.0);
   for (Eigen::Index j = 0; j < ns; ++j) {
@@ -94,6 +103,99 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
   }
   enforce_coupled(t, acc, im, false);
   if (!locks_.empty()) share_locks(t, fc);
+}
+
+bool DriveSystem::split_stuck_gears(double t, const double* acc, const double* im, const std::vector<double>& ka,
+                                    const std::vector<double>& kb) {
+  // The stuck coupled gears the split can take as rows: both sides with inertia, no prescribed side,
+  // no backstop among their friction to the ground (its split is gear_lock's).
+  std::vector<int> J;
+  for (int g = 0; g < ng_; ++g) {
+    const auto gi = static_cast<size_t>(g);
+    const LossyGearLaw& k = gears_[gi];
+    const int li = locks_.of_gear[gi];
+    if (gear_mode_[gi] != GearMode::stuck || !coupled_gear(g) || gear_motion_[gi] >= 0 || !std::isfinite(im[k.a]) ||
+        !std::isfinite(im[k.b]) || im[k.a] <= 0.0 || im[k.b] <= 0.0 ||
+        (li >= 0 && locks_.locks[static_cast<size_t>(li)].blocked != 0))
+      continue;
+    J.push_back(g);
+  }
+  if (J.empty()) return false;
+  const auto ns = static_cast<Eigen::Index>(stuck_.size());
+  auto lock_owned = [&](Eigen::Index j) { return locks_.owner[static_cast<size_t>(stuck_[static_cast<size_t>(j)])] >= 0; };
+  // 1. Does the split as it stands hold? Every contact within its limits, every gear of J with its
+  //    friction to the ground at its limits within its locking range (gear_lock.hpp's pair events).
+  bool holds = true;
+  for (Eigen::Index j = 0; j < ns && holds; ++j)
+    holds = lock_owned(j) || contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].holds(lam_(j), t, true);
+  for (size_t q = 0; q < J.size() && holds; ++q) {
+    const auto gi = static_cast<size_t>(J[q]);
+    const LossyGearLaw& k = gears_[gi];
+    double F[2] = {gear_fa_[gi], gear_fb_[gi]}, d[2] = {0.0, 0.0};
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      if (lock_owned(j)) continue;
+      const VelocityRow& row = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].row;
+      for (int p = 0; p < row.terms; ++p)
+        if (row.body[p] == k.a || row.body[p] == k.b) F[row.body[p] == k.a ? 0 : 1] -= row.w[p] * lam_(j);
+    }
+    if (const int li = locks_.of_gear[gi]; li >= 0) locks_.locks[static_cast<size_t>(li)].limit_forces(contacts_.data(), t, d);
+    holds = lock_start(k, F[0], F[1], d, 0.0) == 0;
+  }
+  if (holds) return false;
+  // 2. The split with the gears' rows: e_a and i e_b per gear of J, their bodies with their own 1/I.
+  std::vector<int> in_j(static_cast<size_t>(ng_), 0);
+  for (int g : J) in_j[static_cast<size_t>(g)] = 1;
+  auto C = [&](int x, int z) {  // ∂acc_x / ∂f_z (solve_coupled's C, J's gears free)
+    const int g = gear_of_body_[static_cast<size_t>(x)];
+    if (g < 0 || in_j[static_cast<size_t>(g)] != 0) return x == z ? im[x] : 0.0;
+    const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+    if (z != k.a && z != k.b) return 0.0;
+    const double kz = z == k.a ? ka[static_cast<size_t>(g)] : kb[static_cast<size_t>(g)];
+    return x == k.a ? kz : kz / k.i;
+  };
+  std::vector<double> acc0(acc, acc + n_);  // the accelerations without λ, J's gears not holding
+  std::vector<VelocityRow> rows;
+  std::vector<const LossyGearLaw*> laws;
+  for (int k : stuck_) rows.push_back(contacts_[static_cast<size_t>(k)].row);
+  for (int g : J) {
+    const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+    acc0[static_cast<size_t>(k.a)] = gear_fa_[static_cast<size_t>(g)] * im[k.a];
+    acc0[static_cast<size_t>(k.b)] = gear_fb_[static_cast<size_t>(g)] * im[k.b];
+    VelocityRow ra, rb;
+    ra.terms = rb.terms = 1;
+    ra.body[0] = k.a, ra.w[0] = 1.0;
+    rb.body[0] = k.b, rb.w[0] = k.i;
+    rows.push_back(ra), rows.push_back(rb);
+    laws.push_back(&k);
+  }
+  const auto nr = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nr, nr);
+  Eigen::VectorXd r(nr), w(nr), lo(nr), hi(nr);
+  for (Eigen::Index i = 0; i < nr; ++i) {
+    const VelocityRow& ri = rows[static_cast<size_t>(i)];
+    if (i < ns) {
+      const int k = stuck_[static_cast<size_t>(i)];
+      r(i) = contacts_[static_cast<size_t>(k)].sliding_acceleration(t, acc0.data());
+      w(i) = share_weight(k, t);
+      detail::stuck_bounds(contacts_[static_cast<size_t>(k)], t, &lo(i), &hi(i));
+    } else {
+      r(i) = ri.w[0] * acc0[static_cast<size_t>(ri.body[0])];
+      w(i) = detail::kGearSplitWeight;
+      lo(i) = -HUGE_VAL, hi(i) = HUGE_VAL;
+    }
+    for (Eigen::Index j = 0; j < nr; ++j) {
+      const VelocityRow& rj = rows[static_cast<size_t>(j)];
+      for (int p = 0; p < ri.terms; ++p)
+        for (int q = 0; q < rj.terms; ++q) A(i, j) += ri.w[p] * C(ri.body[p], rj.body[q]) * rj.w[q];
+    }
+  }
+  const auto split = detail::gear_bounded_split(A, r, w, lo, hi, laws);
+  if (!split) return false;  // no split within the bounds: the decision releases what is overloaded
+  // The contacts' loads; the gears' friction to the ground is split by share_locks at these forces
+  // (a split within its limits exists: the one above).
+  for (Eigen::Index j = 0; j < ns; ++j) lam_(j) = lock_owned(j) ? 0.0 : (*split)(j);
+  for (int g : J) gear_joint_[static_cast<size_t>(g)] = 1;
+  return true;
 }
 
 void DriveSystem::enforce_coupled(double t, double* x, const double* im, bool velocities) const {

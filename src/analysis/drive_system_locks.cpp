@@ -2,6 +2,8 @@
 // with the friction elements to the ground on its bodies. Their dynamics need nothing here (the stuck
 // gear holds both bodies at rest, its contacts' rows solve to λ = 0); what is set here is the split of
 // the holding torque (outputs, the gear's X and Y) and the joint event functions.
+#include <cmath>
+
 #include "machdyn/analysis/drive_system.hpp"
 
 namespace machdyn {
@@ -51,6 +53,10 @@ void DriveSystem::lock_event_functions(double t, double* g) const {
     double d[2];
     L.limit_forces(contacts_.data(), t, d);
     lock_events(gears_[gi], gear_fa_[gi], gear_fb_[gi], d, ev);
+    if (gear_joint_[gi] != 0) {  // held on its locking range by the split (split_stuck_gears): its limit's allowance
+      const double tol = gears_[gi].allowance(std::abs(gear_fa_[gi]) + std::abs(d[0]), std::abs(gear_fb_[gi]) + std::abs(d[1]));
+      ev[0] += tol, ev[1] += tol;
+    }
   }
 }
 

@@ -185,13 +185,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // same instant (solve/driver.cpp): decisions that keep contradicting their own event functions
     // there mean no consistent mode exists — an error naming the element, never a disarmed event.
     if (t == decided_at_ && !fired.empty()) {
-      // Contacts, end stops, flanks, ropes and elements with states (a speed drive: its switch puts
-      // its state on the surface, Element::on_switch) are decided again. Lossy gears and stepwise
-      // gears keep their decision: their functions wait until they are ≥ 0 at a step end (a lossy
-      // gear with friction on its bodies) — their decisions are not yet formed from their events'
-      // computation.
-      if (std::all_of(fired.begin(), fired.end(), [&](int f) { return f >= sys_.event_slots() || sys_.slot_is_gear(f); }))
-        return false;
+      // Contacts, end stops, flanks, ropes, lossy gears (their stuck margins and the contacts beside
+      // them from one split, analysis/gear_split.hpp; a fired margin is judged strictly) and elements
+      // with states (a speed drive: its switch puts its state on the surface, Element::on_switch) are
+      // decided again. A stepwise gear's jump is no decision: its function waits until it is ≥ 0 at a
+      // step end (handed back, it would jump again).
+      if (std::all_of(fired.begin(), fired.end(), [&](int f) { return f >= sys_.event_slots(); })) return false;
       if (++redecisions_ > kMaxRedecisions)
         throw SolverError(slot_name(fired.front()), t,
                           fmt::format("no consistent mode: its event function stays negative after {} decisions at "

@@ -34,6 +34,15 @@ namespace machdyn {
                                                            const Eigen::VectorXd& w, const Eigen::VectorXd& lo,
                                                            const Eigen::VectorXd& hi);
 
+/// The same split with general rows besides the bounds: also D λ ≥ e (D: p × n, e: p), each row met
+/// within 1e-12 of the problem's load scale. A stuck lossy gear's locking range is such a set of rows
+/// on its two reactions (analysis/gear_split.hpp): it is not a box. Rows are taken in the least-distance
+/// problem exactly as the bounds (s-space rows D W N s ≥ e − D λ₀).
+[[nodiscard]] std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eigen::VectorXd& r,
+                                                           const Eigen::VectorXd& w, const Eigen::VectorXd& lo,
+                                                           const Eigen::VectorXd& hi, const Eigen::MatrixXd& D,
+                                                           const Eigen::VectorXd& e);
+
 /// min ‖E u − f‖ subject to u ≥ 0 (nonnegative least squares, Lawson–Hanson active set); tol: the
 /// gradient level below which a constraint stays clamped. Used by bounded_split; exposed for tests.
 [[nodiscard]] Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, double tol);

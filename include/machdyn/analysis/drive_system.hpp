@@ -365,6 +365,12 @@ class DriveSystem final : public OdeSystem {
   /// u ≡ 0 exactly on the stuck contacts of a coupled model: each gear's bodies keep their values (the
   /// gear holds them on v_a = i v_b), the bodies stuck to them or to the ground take theirs.
   void enforce_coupled(double t, double* x, const double* im, bool velocities) const;
+  /// Where the stuck set's split leaves a stuck coupled gear beyond its locking range or a contact
+  /// beyond its limit: the split again with the gears as bounded rows (analysis/gear_split.hpp) into
+  /// lam_; true when it replaced it (those gears flagged in gear_joint_).
+  bool split_stuck_gears(double t, const double* acc, const double* im, const std::vector<double>& ka,
+                         const std::vector<double>& kb);
+  std::vector<char> gear_joint_;  // per gear: its stuck split came from split_stuck_gears (events with the allowance)
   void numeric_jacobian(double t, const double* y, Eigen::Ref<Eigen::MatrixXd> J);
   /// Adds the elements' torques to f; returns the source work rate Σ (M v + heat) and adds their heat
   /// power (Element::heat_power) to *loss.

@@ -34,7 +34,10 @@
 ///
 /// At rest (v_a = 0) the gear, its friction to the ground (analysis/gear_lock.hpp: brakes, bearing
 /// friction on its bodies) and the contacts at zero sliding speed Z are decided together:
-///   1. the gear and its ground friction stuck, Z by the stick rule; kept when the pair's events of
+///   1. the gear and its ground friction stuck, Z by the stick rule (where the weighted share leaves
+///      the gear beyond its locking range or a contact beyond its limit, the stuck set's split takes the
+///      gear as bounded rows, analysis/gear_split.hpp: a chain of stuck clutches to the ground beside the
+///      gear carries what the gear cannot); kept when the pair's events of
 ///      analysis/gear_lock.hpp hold, m_{+1}(F + d) ≥ −tol and m_{−1}(F − d) ≥ −tol (d = 0 without
 ///      ground friction: the gear's own margins), with the stuck clutches' loads in F = (F_a, F_b);
 ///      the split of the holding torque is gear_lock's rule at these F;
