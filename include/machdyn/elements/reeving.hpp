@@ -23,8 +23,10 @@
 /// (+ hoisting: the reeving efficiency of a pulley block, the largest part force and the one a rope
 /// is chosen for; − lowering: T_0 = F η^(k−1) / (n η_r+), the least loaded part). At rest the part
 /// forces lie anywhere between the two; the hoisting value (the larger) is reported there.
-/// The sheave losses are an output here: the drive sees the ideal reeving's F/i (the drum torque of
-/// the ideal reeving), so a run's energy books hold without them (docs/model-files.md, Links).
+/// The losses act on the dynamics (k > 1, η < 1): compile makes them a lossy gear between the drum and
+/// the rope's end at the drum, lumped at the drum side of the rope's spring, with η_mf1 = η_r+ (the
+/// drum drives: hoisting) and η_mf2 = 1/η_r− (the load drives: lowering), so the drum carries
+/// F/(i η_r+) hoisting, F/(i η_r−) lowering, and holds at rest anything between (model/sheaves.hpp).
 /// Valid for n ≥ 1, 1 ≤ n_e ≤ n with n a multiple of n_e, η ∈ (0, 1]. Nothing is thrown.
 
 #include <cmath>
