@@ -254,12 +254,12 @@ constexpr const char* kPageScript = R"js(
     function logRange(u, mn, mx) { return uPlot.rangeLog(mn, mx, 10, true); }
     var scales = { x: { time: false }, y: { range: padRange(1) } };
     // Its tick labels: uPlot's own keep three decimals (1e-4 read "0"): decades below 1e-3 or from 1e6
-    // on as 1e-4, 1e6.
+    // on as 1e-4, 1e6, the others (the axis's ends) to three digits.
     function logValues(u, splits) {
       return splits.map(function (v) {
         if (v == null) return "";
         var a = Math.abs(v);
-        return a !== 0 && (a < 1e-3 || a >= 1e6) ? v.toExponential(0) : String(Number(v.toPrecision(6)));
+        return a !== 0 && (a < 1e-3 || a >= 1e6) ? v.toExponential(0) : String(Number(v.toPrecision(3)));
       });
     }
     if (spec.x.log) { scales.x.distr = 3; scales.x.log = 10; scales.x.range = function (u, mn, mx) { return [mn, mx]; }; }
