@@ -14,7 +14,7 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
   const bool is_map = map.is_map();
   auto has = [&](const char* k) { return is_map && map.find(k) != nullptr; };
   l.falls = static_cast<int>(f.integer("falls", 1, 1000, 1).value_or(1));
-  // Reeving as drawn (elements/reeving.hpp): n_e rope ends on the drum, each feeding n/n_e falls.
+  // Reeving as drawn (model/reeving.hpp): n_e rope ends on the drum, each feeding n/n_e falls.
   l.rope_ends = static_cast<int>(f.integer("rope_ends", 1, 1000, 1).value_or(1));
   if (l.rope_ends > 1 && l.a == kGround)
     f.error_at("rope_ends", "'rope_ends' are wound on a drum: the rope's first end (body a) must be the drum");

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "machdyn/elements/reeving.hpp"
+#include "machdyn/model/reeving.hpp"
 #include "machdyn/model/sheaves.hpp"
 
 namespace machdyn {
@@ -55,7 +55,7 @@ void add_sheave_losses(Model& m, std::vector<LossyGearSpec>& lossy, Diagnostics&
     s.gear.a = l.a;
     s.gear.b = static_cast<int>(m.bodies.size());
     s.gear.ratio = l.ratio;  // (n/n_e)/R: drum angle per metre of hook travel
-    // Power to the hook (hoisting): η_mf1 = η_r+; from it (lowering): η_mf2 = 1/η_r− (elements/reeving.hpp).
+    // Power to the hook (hoisting): η_mf1 = η_r+; from it (lowering): η_mf2 = 1/η_r− (model/reeving.hpp).
     s.gear.eta_forward = {rv.efficiency(true)};
     s.gear.eta_reverse = {1.0 / rv.efficiency(false)};
     s.gear.bearing_forward = {0.0};

@@ -147,7 +147,7 @@ TEST(CraneExample, EmergencyStopWhileLowering) {
   ASSERT_FALSE(brakes[0].stops.empty());
   const BrakeStop& b = brakes[0].stops.back();  // the emergency stop (before it, any slip while lifting)
   const double Mk = 950, sk = 0.18, w_syn = 1500 * 2 * std::numbers::pi / 60, eta2 = 0.93, i = 140, ir = 8, mass = 32600;
-  const double eta_s = 2 * 0.98 / (1 + 0.98);  // 1/η_r− of the 4/2 reeving (elements/reeving.hpp)
+  const double eta_s = 2 * 0.98 / (1 + 0.98);  // 1/η_r− of the 4/2 reeving (model/reeving.hpp)
   const double Fb = mass * kG / ir / i, hold = eta2 * eta_s * Fb;
   const double s = (2 * Mk * sk - std::sqrt(4 * Mk * Mk * sk * sk - 4 * hold * hold * sk * sk)) / (2 * hold);
   const double w0 = w_syn * (1 + s);

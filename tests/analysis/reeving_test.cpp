@@ -1,4 +1,4 @@
-// Reeving as drawn (elements/reeving.hpp; `type: rope` with `falls`, `rope_ends`, `sheave_efficiency`):
+// Reeving as drawn (model/reeving.hpp; `type: rope` with `falls`, `rope_ends`, `sheave_efficiency`):
 // the ratio and stiffness of a 4/2 reeving, the force in one rope part and in the part at the drum
 // with lossy sheaves against the parts' balance worked by hand, hoisting, lowering and at rest, on
 // both integrators; old files keep their meaning; bad reeving is a located error.

@@ -1,5 +1,5 @@
 // A rope's sheave losses acting on the dynamics (model/sheaves.hpp; the reeving's law:
-// elements/reeving.hpp): steady hoisting and lowering at the drum torque of the parts' balance over the
+// model/reeving.hpp): steady hoisting and lowering at the drum torque of the parts' balance over the
 // sheaves, a hold at rest anywhere inside the band between the two, a start just outside it in the
 // direction it points, and the energy books (the loss is heat) with the invariant audit, on both
 // integrators; what the drum cannot carry with the losses is a located error.

@@ -99,7 +99,7 @@ TEST(ReportElements, EveryElementAsTheFileWroteIt) {
 
 // Claim: a 4/2 reeving with sheave losses hung from a girder is shown as written: 4 falls from 2 rope
 // ends, η = 0.98, the drum's 1/R = 4 rad/m as the file gave it (the link's own ratio is (n/n_e)/R =
-// 8 rad/m, elements/reeving.hpp), the frame body by name, the reeving's efficiencies (1 + η)/2 and
+// 8 rad/m, model/reeving.hpp), the frame body by name, the reeving's efficiencies (1 + η)/2 and
 // 2η/(1 + η) that act at the drum, and no row for the body and gear the losses are compiled into.
 TEST(ReportElements, ReevingAndFrameAsTheFileWroteThem) {
   std::string yaml = kHoist;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// A rope's sheave losses as compile builds them (model/compile_sheaves.cpp; the reeving's law:
-/// elements/reeving.hpp). A rope with `sheave_efficiency` η < 1 whose rope ends each feed k = n/n_e > 1
+/// model/reeving.hpp). A rope with `sheave_efficiency` η < 1 whose rope ends each feed k = n/n_e > 1
 /// parts becomes, between its drum and its hook:
 ///
 ///   drum ══ lossy gear NAME.sheaves (ratio i) ══ body NAME.sheaves (massless, m) ── rope spring ── hook
@@ -12,7 +12,7 @@
 /// drum with the reeving's two efficiencies, T_0 the force in the part at the drum, F the hook load:
 ///   drum drives (hoisting, power to the hook):   F = n η_r+ T_0,   η_mf1 = η_r+ = (1/k) Σ_{j<k} η^j
 ///   hook drives (lowering, the load overhauls):  T_0 = F / (n η_r−), η_mf2 = 1/η_r− = 1/((1/k) Σ_{j<k} η^−j)
-/// (the balance of the parts over the sheaves, elements/reeving.hpp). So hoisting at a steady speed
+/// (the balance of the parts over the sheaves, model/reeving.hpp). So hoisting at a steady speed
 /// the drum needs the torque F/(i η_r+), lowering F/(i η_r−); at rest the gear sticks while the drum's
 /// torque lies between the two (the band F (1/η_r− … 1/η_r+)/i, the sheaves' friction holding the
 /// difference), and a change of the rope's direction over the sheaves is the gear's event. The loss
