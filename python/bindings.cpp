@@ -46,6 +46,7 @@
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/model/cases.hpp"
 #include "machdyn/model/compile.hpp"
+#include "machdyn/model/sheaves.hpp"
 #include "machdyn/sweep/runner.hpp"
 
 namespace py = pybind11;
@@ -103,6 +104,7 @@ const char* kind_name(LoadKind k) {
 py::list bodies(const Model& m) {
   py::list out;
   for (const auto& b : m.bodies) {
+    if (is_sheave_body(m, static_cast<int>(&b - m.bodies.data()))) continue;  // a rope's (model/sheaves.hpp)
     const bool rot = b.kind == BodyKind::rotational;
     py::dict d;
     d["name"] = b.name, d["type"] = kind_name(b.kind);

@@ -1,4 +1,5 @@
 #include "machdyn/analysis/brake_summary.hpp"
+#include "machdyn/model/sheaves.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -198,7 +199,9 @@ std::vector<BrakeSummary> brake_summaries(const Model& m, const SimulationResult
       };
       add_travel(body);
       for (size_t i = 0; i < m.bodies.size(); ++i)
-        if (group[i] && m.bodies[i].kind == BodyKind::translational && static_cast<int>(i) != c.a) add_travel(m.bodies[i]);
+        if (group[i] && m.bodies[i].kind == BodyKind::translational && static_cast<int>(i) != c.a &&
+            !is_sheave_body(m, static_cast<int>(i)))  // a rope's end at its drum, not a body of the file
+          add_travel(m.bodies[i]);
       double peak_any = 0.0;  // its peak below counts only the stop's own side of t_a and t_e
       integrate(st.t_applied, st.t_end, st.energy_J, peak_any, st.t_peak_power);
       st.peak_power_W = 0.0;

@@ -16,6 +16,7 @@
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/lossy_gear.hpp"
 #include "machdyn/model/element.hpp"
+#include "machdyn/model/sheaves.hpp"
 
 namespace machdyn {
 namespace {
@@ -414,7 +415,7 @@ Model hanging_start(const Model& m, double released_mass) {
     FrictionContact hold;
     hold.name = "crane_holding_brake";
     hold.brake = true;
-    hold.a = rope.a;
+    hold.a = rope_drum(m, rope);  // the drum, also behind the rope's sheave losses (model/sheaves.hpp)
     hold.b = kGround;
     hold.static_limit = 1e30;
     hold.kinetic = {1e30};

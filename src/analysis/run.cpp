@@ -25,7 +25,7 @@
 #include "machdyn/analysis/load_history.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
-#include "machdyn/elements/reeving.hpp"
+#include "machdyn/model/reeving.hpp"
 #include "analysis/heat.hpp"
 #include "analysis/impact.hpp"
 #include "analysis/machine_jumps.hpp"
@@ -353,7 +353,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (!is_rope_with_falls(l)) continue;
       names.push_back(l.name + ".fall_tension_N");
       if (l.EA > 0.0) names.push_back(l.name + ".fall_length_m");
-      if (has_reeving(l)) names.push_back(l.name + ".rope_force_N");  // the part at the drum (elements/reeving.hpp)
+      if (has_reeving(l)) names.push_back(l.name + ".rope_force_N");  // the part at the drum (model/reeving.hpp)
       rope_links_.push_back(k);
     }
     for (int k = 0; k < nl_; ++k)

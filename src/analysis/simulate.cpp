@@ -30,9 +30,24 @@ Method choose_method(const Model& m, std::string* reason) {
   // damping rate of M⁻¹D, ω_K ≥ ω_max.
   const int n = m.dof();
   std::vector<double> rowD(static_cast<size_t>(n), 0.0), rowK(rowD);
+  // A massless side x of a lossy gear moves with its other side y, q_x = w q_y (a rope's end at the
+  // drum behind its sheave losses, model/sheaves.hpp): its rows and columns fold onto y's (the bounds
+  // of Tᵀ K T over the coordinates that carry mass).
+  std::vector<int> onto(static_cast<size_t>(n));
+  std::vector<double> weight(static_cast<size_t>(n), 1.0);
+  for (int i = 0; i < n; ++i) onto[static_cast<size_t>(i)] = i;
+  for (const LossyGear& g : m.lossy_gears) {
+    if (m.bodies[static_cast<size_t>(g.b)].inertia == 0.0) onto[static_cast<size_t>(g.b)] = g.a, weight[static_cast<size_t>(g.b)] = 1.0 / g.ratio;
+    else if (m.bodies[static_cast<size_t>(g.a)].inertia == 0.0) onto[static_cast<size_t>(g.a)] = g.b, weight[static_cast<size_t>(g.a)] = g.ratio;
+  }
+  auto add = [&](std::vector<double>& row, int r, int c, double v) {
+    const auto rr = static_cast<size_t>(r), cc = static_cast<size_t>(c);
+    row[static_cast<size_t>(onto[rr])] += std::abs(v * weight[rr] * weight[cc]);
+  };
   for (const auto& l : m.links)
     LinkLaw::of(m, l).jacobian(n, GapMode::closed_pos, [&](int r, int c, double v) {
-      (c < n ? rowK : rowD)[static_cast<size_t>(r)] += std::abs(v);
+      if (c < n) add(rowK, r, c, v);
+      else add(rowD, r, c - n, v);
     });
   // A kinetic friction table rising with the sliding speed acts as a damper of its steepest rising
   // slope while the contact slides (dF_k/du: 7e9 N·s/m for 0.2 → 0.9 of 10 N over 1e-9 m/s).
@@ -40,8 +55,7 @@ Method choose_method(const Model& m, std::string* reason) {
     const ContactLaw law = ContactLaw::of(c);
     const double slope = law.steepest_kinetic_slope();
     for (int r = 0; r < law.row.terms; ++r)
-      for (int k = 0; k < law.row.terms; ++k)
-        rowD[static_cast<size_t>(law.row.body[r])] += slope * std::abs(law.row.w[r] * law.row.w[k]);
+      for (int k = 0; k < law.row.terms; ++k) add(rowD, law.row.body[r], law.row.body[k], slope * law.row.w[r] * law.row.w[k]);
   }
   double rho_D = 0.0, omega_K = 0.0;
   // An element's linear terms in its mode 0 (model/element.hpp: a speed drive's K_p and a DC
@@ -50,14 +64,15 @@ Method choose_method(const Model& m, std::string* reason) {
   for (const auto& d : m.drives) {
     LinearModel lin(n);
     add_drive_linear(d, 0, lin);
-    for (const auto& e : lin.D) rowD[static_cast<size_t>(e.row())] += std::abs(e.value());
-    for (const auto& e : lin.K) rowK[static_cast<size_t>(e.row())] += std::abs(e.value());
+    for (const auto& e : lin.D) add(rowD, static_cast<int>(e.row()), static_cast<int>(e.col()), e.value());
+    for (const auto& e : lin.K) add(rowK, static_cast<int>(e.row()), static_cast<int>(e.col()), e.value());
     rho_D = std::max(rho_D, d.law->rate_bound());
   }
   // The smallest masses of the run (after every release) give the largest rates.
   std::vector<double> released(static_cast<size_t>(n), 0.0);
   for (const Release& r : m.releases) released[static_cast<size_t>(r.body)] += r.amount;
   for (int i = 0; i < m.dof(); ++i) {
+    if (onto[static_cast<size_t>(i)] != i) continue;  // folded onto its gear's other side
     const double I = m.bodies[static_cast<size_t>(i)].inertia - released[static_cast<size_t>(i)];
     rho_D = std::max(rho_D, rowD[static_cast<size_t>(i)] / I);
     omega_K = std::max(omega_K, std::sqrt(rowK[static_cast<size_t>(i)] / I));

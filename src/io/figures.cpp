@@ -1,5 +1,6 @@
 // The papers' plots as Figures (io/figures.hpp). Each function only selects and labels data.
 #include "machdyn/io/figures.hpp"
+#include "machdyn/model/sheaves.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -26,10 +27,6 @@ const std::vector<double>& column(const SimulationResult& r, const std::string& 
   for (std::size_t c = 0; c < r.column_names.size(); ++c)
     if (r.column_names[c].rfind(prefix, 0) == 0) return r.columns[c];
   throw std::logic_error("simulation result has no column " + prefix);
-}
-
-std::string endpoint_name(const Model& m, int body) {
-  return body == kGround ? std::string("ground") : m.bodies[static_cast<std::size_t>(body)].name;
 }
 
 std::vector<double> scaled(std::vector<double> v, double k) {
@@ -102,7 +99,8 @@ void add_link_loads(const Model& m, const SimulationResult& r, bool static_in_le
     const int axis = axis_of(L);
     const double k = axis == 2 ? k2 : k1;
     const std::string& unit = axis == 2 ? u2 : u1;
-    std::string name = fmt::format("{} ({}–{})", L.name, endpoint_name(m, L.a), endpoint_name(m, L.b));
+    // The ends as the file names them (a rope's drum also behind its sheave losses, model/sheaves.hpp).
+    std::string name = fmt::format("{} ({}–{})", L.name, shown_body(m, L.a, L.given_a), shown_body(m, L.b, L.given_b));
     const bool has_static = l < r.links.size() && std::isfinite(r.links[l].static_load);
     const int series_index = static_cast<int>(f.series.size());
     if (static_in_legend && has_static) {
@@ -242,6 +240,7 @@ plot::Figure body_speeds_figure(const Model& m, const SimulationResult& r, const
   if (any_rot && any_tr) f.y2 = plot::make_axis("velocity v", "m/s");
   const double to_rpm = 60.0 / (2.0 * kPi);
   for (const Body& b : m.bodies) {
+    if (is_sheave_body(m, static_cast<int>(&b - m.bodies.data()))) continue;  // a rope's, not the file's
     const bool rot = b.kind == BodyKind::rotational;
     f.series.push_back(plot::make_series(b.name, t, scaled(column(r, b.name + ".velocity_"), rot && opt.rpm ? to_rpm : 1.0),
                                          plot::Style::line, any_rot && !rot ? 2 : 1));
@@ -409,24 +408,30 @@ plot::Figure mode_shapes_figure(const Model& m, const Modes& modes, int max_mode
                          ? fmt::format("the {} lowest of {} elastic mode shapes ({})", shown, modes.shapes.cols(), how)
                          : fmt::format("elastic mode shapes ({})", how));
   f.x = plot::make_axis("body", "");
+  // The file's bodies (a rope's massless end at its drum is the rope's: model/sheaves.hpp), at 1 … n.
+  std::vector<int> body;
+  for (int i = 0; i < m.dof() && i < shapes.rows(); ++i)
+    if (!is_sheave_body(m, i)) body.push_back(i);
+  const int n = static_cast<int>(body.size());
+  auto name = [&](int j) { return m.bodies[static_cast<std::size_t>(body[static_cast<std::size_t>(j)])].name; };
   // Every body named while the names fit; a long chain names every k-th body.
   std::size_t name_chars = 0;
-  for (const auto& b : m.bodies) name_chars += b.name.size() + 2;
+  for (int j = 0; j < n; ++j) name_chars += name(j).size() + 2;
   const int every = std::max(1, static_cast<int>((name_chars + 59) / 60));
-  for (int i = 0; i < m.dof(); i += every) f.x.ticks.push_back({i + 1.0, m.bodies[static_cast<std::size_t>(i)].name});
-  if (every > 1 && (m.dof() - 1) % every >= 2)  // the last body too, unless its neighbour is named
-    f.x.ticks.push_back({static_cast<double>(m.dof()), m.bodies.back().name});
+  for (int j = 0; j < n; j += every) f.x.ticks.push_back({j + 1.0, name(j)});
+  if (every > 1 && (n - 1) % every >= 2)  // the last body too, unless its neighbour is named
+    f.x.ticks.push_back({static_cast<double>(n), name(n - 1)});
   f.y = mixed ? plot::make_axis("relative amplitude √I·φ / max|√I·φ|", "") : plot::make_axis("relative amplitude φ / max|φ|", "");
   for (Eigen::Index k = 0; k < shown; ++k) {
     const double scale = shapes.col(k).cwiseAbs().maxCoeff();
     plot::Series s = plot::make_series(fmt::format("mode {}: {:.4g} Hz ({:.4g} rad/s)", k + 1,
                                                    modes.omega(k) / (2 * kPi), modes.omega(k)),
                                        {}, {}, plot::Style::linepoints);
-    for (int i = 0; i < m.dof(); ++i) {
-      s.x.push_back(i + 1.0);
-      s.y.push_back(scale > 0 ? shapes(i, k) / scale : 0.0);
+    for (int j = 0; j < n; ++j) {
+      s.x.push_back(j + 1.0);
+      s.y.push_back(scale > 0 ? shapes(body[static_cast<std::size_t>(j)], k) / scale : 0.0);
     }
-    if (m.dof() > 12) s.style = plot::Style::line;  // markers would crowd a long chain
+    if (n > 12) s.style = plot::Style::line;  // markers would crowd a long chain
     f.series.push_back(std::move(s));
   }
   f.y.min = -1.1, f.y.max = 1.1;

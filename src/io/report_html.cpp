@@ -189,7 +189,9 @@ constexpr const char* kPageScript = R"js(
     var horizontal = ax.side % 2 === 0;
     var c = horizontal ? u.bbox.left + u.bbox.width / 2 : u.bbox.top + u.bbox.height / 2;
     var total = horizontal ? ctx.canvas.width : ctx.canvas.height;
-    return { label: label, fits: label.length > 0 && w / 2 <= Math.min(c, total - c) + 1 };
+    // Its tick labels as drawn (uPlot's _values; empty ones are the unlabelled grid lines).
+    var ticks = (ax._values || []).filter(function (t) { return t != null && t !== ""; }).map(String);
+    return { label: label, fits: label.length > 0 && w / 2 <= Math.min(c, total - c) + 1, ticks: ticks };
   }
 
   // Whether series k lies under a series drawn after it on the same axis (within 1 % of the axis's
@@ -251,11 +253,22 @@ constexpr const char* kPageScript = R"js(
     // A log axis (distr 3): whole decades around the data, as gnuplot draws it.
     function logRange(u, mn, mx) { return uPlot.rangeLog(mn, mx, 10, true); }
     var scales = { x: { time: false }, y: { range: padRange(1) } };
+    // Its tick labels: uPlot's own keep three decimals (1e-4 read "0"): decades below 1e-3 or from 1e6
+    // on as 1e-4, 1e6, the others (the axis's ends) to three digits.
+    function logValues(u, splits) {
+      return splits.map(function (v) {
+        if (v == null) return "";
+        var a = Math.abs(v);
+        return a !== 0 && (a < 1e-3 || a >= 1e6) ? v.toExponential(0) : String(Number(v.toPrecision(3)));
+      });
+    }
     if (spec.x.log) { scales.x.distr = 3; scales.x.log = 10; scales.x.range = function (u, mn, mx) { return [mn, mx]; }; }
-    if (spec.y.log) scales.y = { distr: 3, log: 10, range: logRange };
+    if (spec.x.log && !spec.x.ticks.length) axes[0].values = logValues;
+    if (spec.y.log) { scales.y = { distr: 3, log: 10, range: logRange }; axes[1].values = logValues; }
     if (spec.x.min != null && spec.x.max != null) scales.x.range = function () { return [spec.x.min, spec.x.max]; };
     if (spec.y2) {
       axes.push({ label: spec.y2.label, labelSize: 28, size: 70, scale: "y2", side: 1, grid: { show: false } });
+      if (spec.y2.log) axes[2].values = logValues;
       scales.y2 = spec.y2.log ? { distr: 3, log: 10, range: logRange } : { range: padRange(2) };
     }
     var u = new uPlot({
@@ -298,6 +311,15 @@ constexpr const char* kPageScript = R"js(
     catch (e) { status.errors.push(String(e && e.stack || e)); }
   }
   if (blocks.length === 0) status.done = true;
+  // Tables that reach past the page's column (a wide one scrolls in its .wide box instead).
+  var column = document.querySelector("main");
+  if (column) {
+    var right = column.getBoundingClientRect().right;
+    status.tables_outside = Array.prototype.filter.call(document.querySelectorAll("main table"), function (t) {
+      if (t.closest(".uplot")) return false;  // a chart's legend
+      return (t.closest(".wide") || t).getBoundingClientRect().right > right + 1;
+    }).map(function (t) { var c = t.querySelector("caption"); return c ? c.textContent : "table"; });
+  }
   writeStatus();
 })();
 )js";
@@ -308,7 +330,7 @@ main { max-width: 1100px; margin: 0 auto; padding: 24px 32px 48px; background: #
 h1 { font-size: 26px; margin: 0 0 4px; } h2 { font-size: 20px; margin: 32px 0 8px; border-bottom: 2px solid #0072B2; padding-bottom: 3px; }
 h3 { font-size: 16px; margin: 22px 0 6px; } .sub { color: #555; margin: 0; } code { font-size: 13px; background: #f2f2f2; padding: 1px 4px; }
 table { border-collapse: collapse; margin: 6px 0 4px; font-size: 14px; }
-caption { text-align: left; font-weight: bold; padding: 4px 0; }
+caption { text-align: left; font-weight: bold; padding: 4px 0; } .wide { max-width: 100%; overflow-x: auto; }
 th, td { border-bottom: 1px solid #ddd; padding: 4px 12px 4px 0; text-align: right; white-space: nowrap; }
 th { border-bottom: 2px solid #888; } th:first-child, td:first-child { text-align: left; }
 td.text, table.text th { text-align: left; white-space: normal; } .note { color: #555; font-size: 13px; margin: 2px 0 12px; }
@@ -326,6 +348,8 @@ std::string section_anchor(std::size_t k) { return fmt::format("sec-{}", k + 1);
 void write_table(std::string& o, const Table& t) {
   if (t.collapsed)
     o += fmt::format("<details><summary>{} ({} rows; click to show)</summary>\n", escape_html(t.caption), t.rows.size());
+  // A table wider than the page's column (a slip phase's loads of every link) scrolls in its own box.
+  o += "<div class=\"wide\">";
   o += t.text_values ? "<table class=\"text\">" : "<table>";
   if (!t.caption.empty() && !t.collapsed) o += "<caption>" + escape_html(t.caption) + "</caption>";
   o += "<thead><tr>";
@@ -341,7 +365,7 @@ void write_table(std::string& o, const Table& t) {
     }
     o += "</tr>\n";
   }
-  o += "</tbody></table>\n";
+  o += "</tbody></table></div>\n";
   if (!t.note.empty()) o += "<p class=\"note\">" + escape_html(t.note) + "</p>\n";
   if (t.collapsed) o += "</details>\n";
 }

@@ -7,6 +7,7 @@
 
 #include "machdyn/model/describe.hpp"
 #include "machdyn/model/element.hpp"
+#include "machdyn/model/sheaves.hpp"
 #include "machdyn/io/figures.hpp"
 #include "machdyn/io/report.hpp"
 #include "machdyn/io/crane_results.hpp"
@@ -47,8 +48,9 @@ BodyKind link_kind_body(const Model& m, const Link& l) {
 }
 
 std::string ratio_unit(const Model& m, const Link& l) {
-  if (l.a == kGround || l.b == kGround) return "";
-  const auto ka = m.bodies[static_cast<std::size_t>(l.a)].kind, kb = m.bodies[static_cast<std::size_t>(l.b)].kind;
+  const int a = rope_drum(m, l);  // a rope's drum, also behind its sheave losses (model/sheaves.hpp)
+  if (a == kGround || l.b == kGround) return "";
+  const auto ka = m.bodies[static_cast<std::size_t>(a)].kind, kb = m.bodies[static_cast<std::size_t>(l.b)].kind;
   if (ka == kb) return "";
   return std::string(position_unit(ka)) + "/" + position_unit(kb);
 }
@@ -220,6 +222,7 @@ Table cases_table(const std::vector<Case>& cases) {
 std::vector<Table> model_tables(const Model& m) {
   Table bodies = table("Bodies", {"body", "type", "inertia / mass", "unit", "initial position", "initial velocity"});
   for (const auto& b : m.bodies) {
+    if (is_sheave_body(m, static_cast<int>(&b - m.bodies.data()))) continue;  // a rope's, not the file's (model/sheaves.hpp)
     const bool rot = b.kind == BodyKind::rotational;
     bodies.rows.push_back({b.name, rot ? "rotational" : "translational", num(b.inertia), rot ? "kg·m²" : "kg",
                            num(b.q0) + " " + position_unit(b.kind), num(b.v0) + " " + velocity_unit(b.kind)});

@@ -24,6 +24,7 @@
 #include "model/compile_crane.hpp"
 #include "model/compile_joint.hpp"
 #include "model/compile_lossy.hpp"
+#include "model/compile_sheaves.hpp"
 #include "model/compile_release.hpp"
 #include "model/body_dims.hpp"
 #include "model/compile_rigid.hpp"
@@ -127,7 +128,10 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
 /// Fills the given_* names (model.hpp: Link::given_a) from the bodies the elements are on now.
 void remember_given_bodies(Model& m) {
   auto name = [&](int b) { return shown_body(m, b, ""); };
-  for (Link& l : m.links) l.given_a = name(l.a), l.given_b = name(l.b);
+  for (Link& l : m.links) {
+    if (l.given_a.empty()) l.given_a = name(l.a);  // a rope's drum is set already (model/compile_sheaves.cpp)
+    l.given_b = name(l.b);
+  }
   for (FrictionContact& c : m.contacts) c.given_a = name(c.a), c.given_b = name(c.b);
   for (Load& ld : m.loads) ld.given_body = name(ld.body);
   for (Drive& d : m.drives) {
@@ -636,6 +640,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   std::vector<detail::LossyGearSpec> lossy;
   std::vector<detail::JointSpec> joints;
   compile_links(top.node("links"), m, gears, lossy, joints, diag);
+  // A rope's sheave losses: a lossy gear at its drum (model/sheaves.hpp), resolved with the others.
+  if (diag.empty()) detail::add_sheave_losses(m, lossy, diag);
   compile_loads(top.node("loads"), m, diag);
   compile_gravity(top, m, diag);
   detail::compile_contacts(top.node("contacts"), top.node("brakes"), m, diag);

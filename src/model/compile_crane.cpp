@@ -193,31 +193,31 @@ void compile_crane(const SpecNode* crane, Model& m, Diagnostics& diag) {
   c.hoist_speed = f.positive("hoist_speed", dim::velocity, 0.0, true).value_or(0.0);
   c.creep_speed = f.positive("creep_speed", dim::velocity, 0.0, true).value_or(0.0);
   if (c.creep_speed > 0.0 && c.hoist_speed > 0.0 && c.creep_speed > c.hoist_speed)
-    f.error_at("creep_speed", fmt::format("crane: the creep speed {:.6g} m/s exceeds the hoisting speed 'hoist_speed' "
+    f.error_at("creep_speed", fmt::format("the creep speed {:.6g} m/s exceeds the hoisting speed 'hoist_speed' "
                                           "{:.6g} m/s; the creep speed is the slow speed the load is taken up with",
                                           c.creep_speed, c.hoist_speed));
   if ((c.drive_class == 2 || c.drive_class == 3) && !crane->find("creep_speed"))
-    f.error_at("drive_class", fmt::format("crane: drive class HD{} hoists at the creep speed: give 'creep_speed'",
+    f.error_at("drive_class", fmt::format("drive class HD{} hoists at the creep speed: give 'creep_speed'",
                                           c.drive_class));
   if (auto load = f.text("load", "")) {
     if (!load->empty()) {
       c.load = m.body_index(*load);
-      if (c.load < 0) f.error_at("load", fmt::format("crane: unknown body '{}'", *load));
+      if (c.load < 0) f.error_at("load", fmt::format("unknown body '{}'", *load));
       else if (m.bodies[static_cast<size_t>(c.load)].vertical == 0)
-        f.error_at("load", fmt::format("crane: the hook load '{}' needs its weight: give it 'vertical: up'", *load));
+        f.error_at("load", fmt::format("the hook load '{}' needs its weight: give it 'vertical: up'", *load));
     }
   }
   if (auto rope = f.text("rope", "")) {
     if (!rope->empty()) {
       c.rope = link_index(m, *rope);
-      if (c.rope < 0) f.error_at("rope", fmt::format("crane: unknown link '{}'", *rope));
+      if (c.rope < 0) f.error_at("rope", fmt::format("unknown link '{}'", *rope));
       else if (c.load >= 0 && m.links[static_cast<size_t>(c.rope)].b != c.load)
-        f.error_at("rope", fmt::format("crane: the rope '{}' must end at the load: between: [DRUM_OR_HOOK, {}]", *rope,
+        f.error_at("rope", fmt::format("the rope '{}' must end at the load: between: [DRUM_OR_HOOK, {}]", *rope,
                                        m.bodies[static_cast<size_t>(c.load)].name));
     }
   }
   if ((c.load < 0) != (c.rope < 0) && diag.empty())
-    f.error_at(c.load < 0 ? "load" : "rope", "crane: give both 'load' and 'rope' (the hoisting cases need both)");
+    f.error_at(c.load < 0 ? "load" : "rope", "give both 'load' and 'rope' (the hoisting cases need both)");
   if (const SpecNode* rel = f.node("release")) {
     FieldReader r(*rel, "crane: release", diag);
     c.release_mass = r.positive("mass", dim::mass).value_or(-1.0);
@@ -228,20 +228,20 @@ void compile_crane(const SpecNode* crane, Model& m, Diagnostics& diag) {
     auto during = r.word("while", {"hanging", "hoisting"}, "hanging");
     c.release_hoisting = during && *during == "hoisting";
     if (rel->is_map() && rel->find("while") && !rel->find("time"))
-      r.error_at("while", "crane: release: 'while' needs the release 'time' (without it the load is released at once "
+      r.error_at("while", "'while' needs the release 'time' (without it the load is released at once "
                           "from the hanging equilibrium)");
     if (c.release_hoisting && !(c.hoist_speed > 0.0))
-      r.error_at("while", "crane: release: 'while: hoisting' hoists at 'hoist_speed': give it in the crane section");
+      r.error_at("while", "'while: hoisting' hoists at 'hoist_speed': give it in the crane section");
     r.finish();
     if (c.load < 0) diag.error(rel->loc, "crane: a 'release' needs the hook 'load' and its 'rope'");
     else if (c.release_mass > m.bodies[static_cast<size_t>(c.load)].inertia)
-      r.error_at("mass", fmt::format("crane: the released mass {} kg exceeds the load's mass {} kg", c.release_mass,
+      r.error_at("mass", fmt::format("the released mass {} kg exceeds the load's mass {} kg", c.release_mass,
                                      m.bodies[static_cast<size_t>(c.load)].inertia));
   }
   if (const SpecNode* drive = f.node("drive")) {
     FieldReader d(*drive, "crane: drive", diag);
     c.drive_links = link_list(d, "links", m, false);
-    if (!drive->find("links")) d.error_at("links", "crane: drive: missing field 'links' (the drive links of the φ5 case)");
+    if (!drive->find("links")) d.error_at("links", "missing field 'links' (the drive links of the φ5 case)");
     auto change = d.word("force_change", {"centrifugal", "smooth", "sudden", "backlash"}, "smooth");
     if (change)
       c.force_change = *change == "centrifugal" ? 0 : *change == "smooth" ? 1 : *change == "sudden" ? 2 : 3;

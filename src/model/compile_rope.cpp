@@ -1,5 +1,6 @@
 #include "compile_rope.hpp"
 #include "machdyn/model/describe.hpp"
+#include "machdyn/model/sheaves.hpp"
 
 #include <optional>
 
@@ -13,7 +14,7 @@ bool compile_rope_length(FieldReader& f, Link& l, const Dim& ld, const Dim& qd, 
   const bool is_map = map.is_map();
   auto has = [&](const char* k) { return is_map && map.find(k) != nullptr; };
   l.falls = static_cast<int>(f.integer("falls", 1, 1000, 1).value_or(1));
-  // Reeving as drawn (elements/reeving.hpp): n_e rope ends on the drum, each feeding n/n_e falls.
+  // Reeving as drawn (model/reeving.hpp): n_e rope ends on the drum, each feeding n/n_e falls.
   l.rope_ends = static_cast<int>(f.integer("rope_ends", 1, 1000, 1).value_or(1));
   if (l.rope_ends > 1 && l.a == kGround)
     f.error_at("rope_ends", "'rope_ends' are wound on a drum: the rope's first end (body a) must be the drum");
@@ -95,10 +96,17 @@ std::string describe_rope(const Model& m, const Link& l) {
   if (l.third != kGround)
     for (const RigidSlave& s : m.slaves)
       if (s.name == l.given_a && s.master == l.a) ratio = l.ratio * s.ratio;
+  const int sheaves = sheave_gear(m, l);  // its drum's ratio: shown_ratio
+  if (sheaves >= 0) ratio = shown_ratio(m, l);
   const double n = l.falls, per_m = ratio * l.rope_ends / n;
   std::string t = fmt::format("{} fall{}", l.falls, l.falls == 1 ? "" : "s");
   if (l.rope_ends > 1) t += fmt::format(" from {} rope ends on the drum ({}/{} reeving)", l.rope_ends, l.falls, l.rope_ends);
   if (l.sheave_efficiency < 1.0) t += fmt::format(", sheave efficiency η = {}", describe_number(l.sheave_efficiency));
+  if (sheaves >= 0) {
+    const LossyGear& g = m.lossy_gears[static_cast<std::size_t>(sheaves)];
+    t += fmt::format(" (reeving efficiency {} hoisting, {} lowering, acting at the drum)",
+                     describe_number(g.eta_forward.at(0)), describe_number(g.eta_reverse.at(0)));
+  }
   if (l.EA > 0.0)
     t += fmt::format(", EA = {} N, free length L = {} m per fall at the start, drum 1/R = {} rad/m (R = {} m); "
                      "hook stiffness n·EA/L = {} N/m at the start (changes as the drum winds)",

@@ -10,7 +10,7 @@
 namespace machdyn::detail {
 
 /// Reads a rope's reeving — `falls` (n, default 1), `rope_ends` (n_e on the drum, default 1, n a
-/// multiple of it), `sheave_efficiency` (η, default 1; elements/reeving.hpp) — its `frame` (a third,
+/// multiple of it), `sheave_efficiency` (η, default 1; model/reeving.hpp) — its `frame` (a third,
 /// translational body the drum hangs from: Link::third with weight 1) and, if given, its free
 /// length: `length` (L_f0, one fall, in b's position unit) with `EA` (N) or `elastic_modulus` (Pa)
 /// and `area` (m²). The link's ratio becomes (n/n_e) × the file's drum ratio (1/R) and

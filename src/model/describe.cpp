@@ -1,6 +1,7 @@
 // The model's elements in words (model/describe.hpp): the entry points; each kind's text is
 // defined beside its compile code.
 #include "machdyn/model/describe.hpp"
+#include "machdyn/model/sheaves.hpp"
 
 #include <cmath>
 
@@ -43,7 +44,8 @@ ElementText describe_contact(const Model& m, const FrictionContact& c) { return 
 
 std::vector<ElementText> describe_gears(const Model& m) {
   std::vector<ElementText> out = detail::describe_ideal_gears(m);
-  for (const LossyGear& g : m.lossy_gears) out.push_back(detail::describe_lossy_gear(m, g));
+  for (const LossyGear& g : m.lossy_gears)  // a rope's sheave losses are the rope's (model/sheaves.hpp)
+    if (!is_sheave_gear(m, g)) out.push_back(detail::describe_lossy_gear(m, g));
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include "machdyn/common/expression.hpp"
 #include "machdyn/model/element.hpp"
+#include "machdyn/model/sheaves.hpp"
 
 namespace machdyn {
 
@@ -149,6 +150,11 @@ const RigidSlave* slave_named(const Model& m, const std::string& name) {
 }  // namespace
 
 double shown_ratio(const Model& m, const Link& l) {
+  // A rope with sheave losses: the drum's ratio is its sheave gear's (model/sheaves.hpp), in the file's bodies.
+  if (const int g = sheave_gear(m, l); g >= 0) {
+    const LossyGear& x = m.lossy_gears[static_cast<size_t>(g)];
+    return x.ratio * x.rho_a / x.rho_b;
+  }
   const RigidSlave* s = l.b_weight == 1.0 && l.third == kGround ? slave_named(m, l.given_a) : nullptr;
   return s && s->master == l.a ? l.ratio * s->ratio : l.ratio;
 }

@@ -1,8 +1,8 @@
 // The end-to-end crane example examples/crane/overhead-crane-32t.yaml (README.md beside it): every
 // case runs, and its headline numbers agree with hand calculations written here — φ2 at full and creep
 // speed against 1 + vh ω1/g of the hanging chain, the emergency stop while lowering (stopping time,
-// distance at the load, brake energy and temperature) against the rigid stop through the gearbox's
-// reverse efficiency, the gearbox input shaft's φ5 against its rigid-body torque and the coupling's
+// distance at the load, brake energy and temperature) against the rigid stop through the reeving's and
+// the gearbox's reverse efficiencies, the gearbox input shaft's φ5 against its rigid-body torque and the coupling's
 // quasi-static lag, and the trolley's contact speed at its buffer against the rolling resistance.
 #include <algorithm>
 #include <cmath>
@@ -83,26 +83,28 @@ TEST(CraneExample, Phi5OfTheShafts) {
 // Claim: φ5 of the gearbox input shaft (the coupling) by hand, on both integrators. Before the load
 // lifts, the motor's torque M drives J_m = 0.6 kg·m² ahead of the coupling and, behind it, the brake
 // drum, the gearbox output, the drum and the hook block reduced to the input shaft through the ratio
-// i = 140 and the lifting efficiency η = 0.94: J_r = 0.45 + (40 + 90 + 600/8²)/(η i²) = 0.4576 kg·m²,
-// against the hook block's weight T_L = 600 g/(8 η i) = 5.59 N·m. The rigid-body torque in the coupling
+// i = 140 and the lifting efficiency η = 0.94, the hook block through the reeving's too (4/2, sheaves
+// of 0.98 hoisting: η_r = (1 + 0.98)/2 = 0.99): J_r = 0.45 + (40 + 90 + 600/(8² η_r))/(η i²) =
+// 0.4576 kg·m², against the hook block's weight T_L = 600 g/(8 η_r η i) = 5.65 N·m. The rigid-body
+// torque in the coupling
 //   T_r(M) = (J_r M + J_m T_L)/(J_m + J_r)
-// peaks with M at the Kloss motor's breakdown torque M_k = 950 N·m (s = s_k): 414.2 N·m. There M(t) has
+// peaks with M at the Kloss motor's breakdown torque M_k = 950 N·m (s = s_k): 414.23 N·m. There M(t) has
 // M̈ = −M_k (ṡ/s_k)² (M = M_k 2x/(1 + x²), x = s/s_k, d²/dx² = −1 at x = 1), ṡ = −α/ω_syn, α = (M_k −
 // T_L)/(J_m + J_r), and the coupling (ω_c² = c (1/J_m + 1/J_r), the two-mass mode; the output shaft
 // far softer, its drum behind it lumped) follows the smooth drive with the quasi-static correction
 // T = T_r − T̈_r/ω_c² (the step at switch-on decayed by e^(−ζ ω_c t) ≈ 4e-5 by then, ζ = d/(2√(c J_eff))):
-//   peak ≈ T_r(M_k) + (J_r/(J_m + J_r)) M_k (ṡ/s_k)²/ω_c² = 414.20 + 3.04 N·m,  φ5 ≈ 1.0073.
+//   peak ≈ T_r(M_k) + (J_r/(J_m + J_r)) M_k (ṡ/s_k)²/ω_c² = 414.23 + 3.04 N·m,  φ5 ≈ 1.0073.
 // Checked: the peak within 0.1 %, its quasi-static load against T_r(M(ω)) at the run's motor speed
 // there to 1e-4, φ5 within 5e-4 (the correction's own approximation: the output shaft's mode).
 TEST(CraneExample, Phi5OfTheGearboxInputShaftByHand) {
-  const double Jm = 0.6, eta = 0.94, i = 140, ir = 8, mh = 600, c = 3.5e4, Mk = 950, sk = 0.18;
+  const double Jm = 0.6, eta = 0.94, i = 140, ir = 8, mh = 600, c = 3.5e4, Mk = 950, sk = 0.18, eta_r = (1 + 0.98) / 2;
   const double w_syn = 1500 * 2 * std::numbers::pi / 60;
-  const double Jr = 0.45 + (40 + 90 + mh / (ir * ir)) / (eta * i * i), TL = mh * kG / (ir * eta * i);
+  const double Jr = 0.45 + (40 + 90 + mh / (ir * ir * eta_r)) / (eta * i * i), TL = mh * kG / (ir * eta_r * eta * i);
   const auto T_rigid = [&](double M) { return (Jr * M + Jm * TL) / (Jm + Jr); };
   const double alpha = (Mk - TL) / (Jm + Jr), s_dot = -alpha / w_syn, wc2 = c * (1 / Jm + 1 / Jr);
   const double dT = Jr / (Jm + Jr) * Mk * (s_dot / sk) * (s_dot / sk) / wc2;
   const double peak = T_rigid(Mk) + dT, phi5 = peak / T_rigid(Mk);
-  EXPECT_NEAR(T_rigid(Mk), 414.20, 0.01);
+  EXPECT_NEAR(T_rigid(Mk), 414.23, 0.01);
   EXPECT_NEAR(phi5, 1.0073, 1e-4);
   for (const IntegratorChoice integrator : {IntegratorChoice::dopri5, IntegratorChoice::bdf}) {
     Model m = load_model_case(kFile, {}, "start");
@@ -125,14 +127,16 @@ TEST(CraneExample, Phi5OfTheGearboxInputShaftByHand) {
   }
 }
 
-// Claim: the emergency stop while lowering, by hand. Lowering, the load drives the gearbox (reverse
-// efficiency η2 = 0.93): the motor in generator mode holds η2 F_b/i = 265.5 N·m, F_b/i = m g/(8·140)
-// = 285.5 N·m (m = 32.6 t with the hook block), so its Kloss slip s solves 2 M_k s s_k/(s² + s_k²) =
-// 265.5 N·m: ω0 = 157.08 (1 + s) rad/s = 161.1 rad/s. At 2 s the contactor opens and the brake's
-// 650 N·m rise over τ = 50 ms; rigid, with the load driving through η2:
-//   J ω̇ = −(M_b(t) − η2 F_b/i),  J = I_motor + I_brake + η2 (I_out + I_drum + m/8²)/140²
-// so the ramp takes Δω = (M_b τ/2 − η2 F_b τ/i)/J off ω0 and the stop ends after τ + ω1/α,
-// α = (M_b − η2 F_b/i)/J; the drum turns ω0 τ − (M_b τ²/6 − η2 F_b τ²/(2i))/J + ω1²/(2α) meanwhile
+// Claim: the emergency stop while lowering, by hand. Lowering, the load drives the reeving (4/2, sheaves
+// of η = 0.98: the part at the drum carries T_0 = F/(n η_r−), η_r− = (1 + 1/η)/2, so the drum sees the
+// load through η_s = 1/η_r− = 2η/(1 + η) = 0.98990) and the gearbox (reverse efficiency η2 = 0.93): the
+// motor in generator mode holds η2 η_s F_b/i = 262.8 N·m, F_b/i = m g/(8·140) = 285.5 N·m (m = 32.6 t
+// with the hook block), so its Kloss slip s solves 2 M_k s s_k/(s² + s_k²) = 262.8 N·m: ω0 = 157.08
+// (1 + s) rad/s = 161.0 rad/s. At 2 s the contactor opens and the brake's 650 N·m rise over τ = 50 ms;
+// rigid, with the load driving through η_s and η2:
+//   J ω̇ = −(M_b(t) − η2 η_s F_b/i),  J = I_motor + I_brake + η2 (I_out + I_drum + η_s m/8²)/140²
+// so the ramp takes Δω = (M_b τ/2 − hold τ)/J off ω0 (hold = η2 η_s F_b/i) and the stop ends after
+// τ + ω1/α, α = (M_b − hold)/J; the drum turns ω0 τ − (M_b τ²/6 − hold τ²/2)/J + ω1²/(2α) meanwhile
 // (the load 1/(140·8) of it) and the brake takes ∫ M_b ω dt. Within 1 % (time), 3 % (travel, energy:
 // the rope's and shafts' elasticity); the disc (C = 18 kJ/K) warms by that energy over C.
 TEST(CraneExample, EmergencyStopWhileLowering) {
@@ -143,11 +147,12 @@ TEST(CraneExample, EmergencyStopWhileLowering) {
   ASSERT_FALSE(brakes[0].stops.empty());
   const BrakeStop& b = brakes[0].stops.back();  // the emergency stop (before it, any slip while lifting)
   const double Mk = 950, sk = 0.18, w_syn = 1500 * 2 * std::numbers::pi / 60, eta2 = 0.93, i = 140, ir = 8, mass = 32600;
-  const double Fb = mass * kG / ir / i, hold = eta2 * Fb;
+  const double eta_s = 2 * 0.98 / (1 + 0.98);  // 1/η_r− of the 4/2 reeving (model/reeving.hpp)
+  const double Fb = mass * kG / ir / i, hold = eta2 * eta_s * Fb;
   const double s = (2 * Mk * sk - std::sqrt(4 * Mk * Mk * sk * sk - 4 * hold * hold * sk * sk)) / (2 * hold);
   const double w0 = w_syn * (1 + s);
   EXPECT_NEAR(std::abs(value_at(r, "brake_drum.velocity_rad_s", 2.0)), w0, 0.005 * w0);
-  const double J = 0.6 + 0.45 + eta2 * (40 + 90 + mass / (ir * ir)) / (i * i), Mb = 650, tau = 0.05;
+  const double J = 0.6 + 0.45 + eta2 * (40 + 90 + eta_s * mass / (ir * ir)) / (i * i), Mb = 650, tau = 0.05;
   const double w1 = w0 - (Mb * tau / 2 - hold * tau) / J, alpha = (Mb - hold) / J;
   const double t_stop = tau + w1 / alpha;
   const double angle = w0 * tau - (Mb * tau * tau / 6 - hold * tau * tau / 2) / J + w1 * w1 / (2 * alpha);

@@ -1,4 +1,4 @@
-// Reeving as drawn (elements/reeving.hpp; `type: rope` with `falls`, `rope_ends`, `sheave_efficiency`):
+// Reeving as drawn (model/reeving.hpp; `type: rope` with `falls`, `rope_ends`, `sheave_efficiency`):
 // the ratio and stiffness of a 4/2 reeving, the force in one rope part and in the part at the drum
 // with lossy sheaves against the parts' balance worked by hand, hoisting, lowering and at rest, on
 // both integrators; old files keep their meaning; bad reeving is a located error.
@@ -17,6 +17,7 @@
 #include "machdyn/elements/linearize.hpp"
 #include "machdyn/io/yaml_reader.hpp"
 #include "machdyn/model/compile.hpp"
+#include "machdyn/model/sheaves.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {
@@ -61,7 +62,7 @@ simulation: {t_end: 0.1 s, dt_out: 1 ms, rtol: 1e-11, atol: 1e-13, initial: equi
 )");
   m.simulation.integrator = GetParam();
   const double mg = kMass * kG, EA = 2.5e7, Lf = 15.0;
-  EXPECT_DOUBLE_EQ(m.links[0].ratio, 2.0 / 0.25);
+  EXPECT_DOUBLE_EQ(rope_ratio(m, m.links[0]), 2.0 / 0.25);  // the drum's, in its sheave gear (model/sheaves.hpp)
   EXPECT_DOUBLE_EQ(m.links[0].c, 4.0 * EA / Lf);
   const double e = mg * Lf / (4.0 * EA);
   const EquilibriumStart st = static_equilibrium(m);

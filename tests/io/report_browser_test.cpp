@@ -137,11 +137,16 @@ bool axis_title_ok(const std::string& label) {
 }
 
 /// Every figure of a report opened in the browser: drawn (each series' pixels), its title laid out
-/// inside the page's column, each axis titled (with its unit where it has one) and inside its chart.
+/// inside the page's column, each axis titled (with its unit where it has one) and inside its chart,
+/// and no two tick labels of an axis alike; no table reaches past the column.
 void expect_every_figure_readable(const nlohmann::json& status, size_t at_least, const std::string& what) {
   EXPECT_TRUE(status["done"].get<bool>()) << what << status.dump();
   EXPECT_TRUE(status["errors"].empty()) << what << status["errors"].dump();
   EXPECT_GE(status["plots"].size(), at_least) << what << status.dump();
+  // Every table inside the page's column (a wide one scrolls in its own box).
+  if (status.contains("tables_outside")) {
+    EXPECT_TRUE(status["tables_outside"].empty()) << what << status["tables_outside"].dump();
+  }
   for (const auto& p : status["plots"]) {
     const std::string id = p["id"];
     ASSERT_EQ(p["drawn"].size(), p["series"].get<size_t>()) << what << " " << id;
@@ -163,6 +168,13 @@ void expect_every_figure_readable(const nlohmann::json& status, size_t at_least,
       const std::string label = ax["label"];
       EXPECT_TRUE(axis_title_ok(label)) << what << " " << id << ": axis title '" << label << "' without a unit";
       EXPECT_TRUE(ax["fits"].get<bool>()) << what << " " << id << ": axis title cut: " << label;
+      // No two ticks of an axis read the same (a log axis's 1e-4, 1e-5 once all read "0").
+      if (ax.contains("ticks")) {
+        std::vector<std::string> ticks = ax["ticks"].get<std::vector<std::string>>();
+        std::sort(ticks.begin(), ticks.end());
+        EXPECT_TRUE(std::adjacent_find(ticks.begin(), ticks.end()) == ticks.end())
+            << what << " " << id << ": axis '" << label << "' ticks " << ax["ticks"].dump();
+      }
     }
   }
 }

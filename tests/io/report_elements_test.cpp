@@ -99,7 +99,8 @@ TEST(ReportElements, EveryElementAsTheFileWroteIt) {
 
 // Claim: a 4/2 reeving with sheave losses hung from a girder is shown as written: 4 falls from 2 rope
 // ends, η = 0.98, the drum's 1/R = 4 rad/m as the file gave it (the link's own ratio is (n/n_e)/R =
-// 8 rad/m, elements/reeving.hpp), and the frame body by name.
+// 8 rad/m, model/reeving.hpp), the frame body by name, the reeving's efficiencies (1 + η)/2 and
+// 2η/(1 + η) that act at the drum, and no row for the body and gear the losses are compiled into.
 TEST(ReportElements, ReevingAndFrameAsTheFileWroteThem) {
   std::string yaml = kHoist;
   const std::string old_rope = "  rope: {type: rope, between: [drum, hook], ratio: 4 rad/m, falls: 4, EA: 2.4e7 N, length: 12 m}\n";
@@ -110,6 +111,10 @@ TEST(ReportElements, ReevingAndFrameAsTheFileWroteThem) {
                "sheave_efficiency: 0.98, stiffness: 8e6 N/m, frame: girder}\n"
                "  girder_spring: {type: spring, between: [ground, girder], stiffness: 5e7 N/m}\n");
   yaml.replace(yaml.find("  hook:"), 0, "  girder: {type: translational, mass: 5 t, vertical: up}\n");
+  // The sheave losses act as a lossy gear at the drum (model/sheaves.hpp), which may not share the
+  // gearbox's rigid group: the last stage is an elastic shaft here.
+  const std::string stage = "stage: {type: ideal-gear, between: [pinion, drum], ratio: 4}";
+  yaml.replace(yaml.find(stage), stage.size(), "stage: {type: spring, between: [pinion, drum], ratio: 4, stiffness: 1e7 N*m/rad}");
   const Model m = test::model_text(yaml);
   const auto rope = row_of(m, "Links", "rope");
   ASSERT_GE(rope.size(), 7u);
@@ -119,6 +124,14 @@ TEST(ReportElements, ReevingAndFrameAsTheFileWroteThem) {
   EXPECT_TRUE(has(rd, "sheave efficiency η = 0.98")) << rd;
   EXPECT_TRUE(has(rd, "drum 1/R = 4 rad/m")) << rd;
   EXPECT_TRUE(has(rd, "hung from the frame 'girder'")) << rd;
+  // Between the drum and the hook with the drum's ratio (n/n_e)/R = 8 rad/m, as without the losses; the
+  // reeving's efficiencies in its words; no body or gearbox row of its own (the rope's, model/sheaves.hpp).
+  EXPECT_EQ(rope[2], "drum – hook") << rope[2];
+  EXPECT_EQ(rope[3], "8 rad/m") << rope[3];
+  EXPECT_TRUE(has(rd, "reeving efficiency 0.99 hoisting, 0.989899 lowering, acting at the drum")) << rd;
+  EXPECT_TRUE(row_of(m, "Bodies", "rope.sheaves").empty());
+  EXPECT_TRUE(row_of(m, "Gearboxes", "rope.sheaves").empty());
+  EXPECT_FALSE(row_of(m, "Gearboxes", "gearbox").empty());
 }
 
 // Claim: a progressive buffer is described by its side, position and F = c sⁿ with c = F/sⁿ
