@@ -39,7 +39,8 @@ void audit_on(O& o) {
 }
 
 const std::set<std::string>& compared_kinds() {
-  static const std::set<std::string> k = {"gap_closed", "gap_opened", "stick", "slip", "reversal", "impact", "applied"};
+  static const std::set<std::string> k = {"gap_closed", "gap_opened", "stick", "slip", "reversal", "impact", "applied",
+                                          "mesh", "free play"};
   return k;
 }
 
@@ -175,6 +176,9 @@ RefModel without_body(const RefModel& m, int i) {
   s.releases.clear();
   for (auto x : m.releases)
     if (x.body != i) x.body = map(x.body), s.releases.push_back(x);
+  s.meshes.clear();
+  for (auto G : m.meshes)
+    if (G.a != i && G.b != i) G.a = map(G.a), G.b = map(G.b), s.meshes.push_back(G);
   s.gears.clear();
   for (auto g : m.gears)
     if (g.a != i && g.b != i && g.c != i) g.a = map(g.a), g.b = map(g.b), g.c = map(g.c), s.gears.push_back(g);
@@ -230,6 +234,11 @@ RefModel shrink(const RefModel& m0, const std::string& integrator, Outcome::Kind
     for (size_t k = best.links.size(); k-- > 0;) {
       RefModel c = best;
       c.links.erase(c.links.begin() + static_cast<long>(k));
+      if (still_fails(c)) best = c, changed = true;
+    }
+    for (size_t k = best.meshes.size(); k-- > 0;) {
+      RefModel c = best;
+      c.meshes.erase(c.meshes.begin() + static_cast<long>(k));
       if (still_fails(c)) best = c, changed = true;
     }
     for (int i = static_cast<int>(best.bodies.size()); i-- > 0 && best.bodies.size() > 1;) {
