@@ -129,6 +129,9 @@ int GearMesh::natural_mode(double, const ElementMotion& m, const double*, int cu
   GapMode g;
   if (L.gap) {
     g = L.natural_mode(D, Dr);
+    // In the free play the signs act on nothing and a contact reads them again (settle): kept, so a
+    // decision at a breakpoint after a body reversed there changes no mode (no `free play` event).
+    if (g == GapMode::open) return mode_of(g, sign1(cur), sign2(cur));
   } else {
     const double p = L.pressing(D, Dr, L.u0);
     g = p > 0.0 ? GapMode::closed_pos : p < 0.0 ? GapMode::closed_neg : flank_of(cur);

@@ -640,7 +640,7 @@ TEST(ReferenceSimulator, GearMeshContactThroughTheBacklashWithItsEfficiency) {
   const RefResult r = simulate_reference(m);
   ASSERT_TRUE(r.error.empty()) << r.error;
   const double W = std::sqrt(5.6e6), t1 = 0.005, t2 = t1 + std::numbers::pi / W, t3 = t2 + 0.01;
-  ASSERT_EQ(r.events.size(), 3u);
+  ASSERT_GE(r.events.size(), 3u);  // (then the − flank's contact, not followed here)
   EXPECT_EQ(r.events[0].kind, "mesh");
   EXPECT_EQ(r.events[1].kind, "free play");
   EXPECT_EQ(r.events[2].kind, "mesh");
