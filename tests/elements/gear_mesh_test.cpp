@@ -130,6 +130,30 @@ TEST_P(Mesh, AStepInTheFreePlayIsNoEvent) {
   }
 }
 
+// Claim: a mesh without backlash at rest starts on the + flank (τ = 0 reads as +, as a speed at 0
+// does), so a load that turns τ negative is an event. Pinion J₁ = 0.01, wheel J₂ = 0.5 kg·m², i = 3,
+// c = 2e4 N·m/rad, η = 1, at rest; a step of M = 5 N·m on the wheel at t_s = 0.1 s. Then
+// Δ'' = −Ω² Δ − i M/J₂ (Ω² = c (1/J₁ + i²/J₂)), Δ = −(i M/(J₂ Ω²)) (1 − cos Ω(t − t_s)) ≤ 0: τ = c Δ
+// turns negative at t_s, the mesh's first event (the start's mode, the − flank by its number 0, hid
+// it: campaign gear-mesh seed 1 model 77).
+TEST_P(Mesh, AMeshAtRestStartsOnThePlusFlank) {
+  const double i = 3.0, M = 5.0, W = omega_mesh(2e4, i), A = i * M / (0.5 * W * W);
+  const Model m = mesh_model("ratio: 3, stiffness: 2e4 N*m/rad",
+                             "loads:\n  lift: {type: step, body: wheel, value: 5 N*m, time: 0.1 s}\n", 0.11, 1e-4, GetParam());
+  const SimulationResult r = simulate(m);
+  std::vector<const ModeEvent*> ev;
+  for (const ModeEvent& e : r.hybrid.events)
+    if (e.element == "mesh") ev.push_back(&e);
+  ASSERT_GE(ev.size(), 2u);
+  EXPECT_EQ(ev[0]->kind, "initial");
+  EXPECT_EQ(ev[0]->to.rfind("flank+", 0), 0u) << ev[0]->to;
+  EXPECT_NEAR(ev[1]->t, 0.1, 1e-9);
+  EXPECT_EQ(ev[1]->to.rfind("flank-", 0), 0u) << ev[1]->to;
+  const auto &t = series(r, "t_s"), &D = series(r, "mesh.deflection_rad");
+  for (size_t k = 0; k < t.size(); ++k)
+    EXPECT_NEAR(D[k], t[k] < 0.1 ? 0.0 : -A * (1.0 - std::cos(W * (t[k] - 0.1))), 1e-6 * A) << t[k];
+}
+
 // Claim: in steady motion the wheel gets η i times the pinion's torque. A constant 10 N·m on the
 // pinion, a damper D = 5 N·m·s/rad from the wheel to the ground, i = 3, η = 0.9 (the pinion
 // drives): τ = 10 N·m, the wheel's torque η i τ = 27 N·m = D ω₂, so ω₂ = 5.4 rad/s, ω₁ = i ω₂ = 16.2
