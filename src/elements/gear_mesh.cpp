@@ -129,10 +129,14 @@ int GearMesh::natural_mode(double, const ElementMotion& m, const double*, int cu
   GapMode g;
   if (L.gap) {
     g = L.natural_mode(D, Dr);
+    // In the free play the signs act on nothing and a contact reads them again (settle): kept, so a
+    // decision at a breakpoint after a body reversed there changes no mode (no `free play` event).
+    if (g == GapMode::open) return mode_of(g, sign1(cur), sign2(cur));
   } else {
     const double p = L.pressing(D, Dr, L.u0);
-    g = p > 0.0 ? GapMode::closed_pos : p < 0.0 ? GapMode::closed_neg : flank_of(cur);
-    if (g == GapMode::open) g = GapMode::closed_pos;
+    // τ at 0 reads as + (a speed at 0 does too): a mesh at rest starts on the + flank, so a load
+    // turning τ negative is an event (the start's mode 0, the − flank, hid it; campaign gear-mesh).
+    g = p < 0.0 ? GapMode::closed_neg : GapMode::closed_pos;
   }
   const int s1 = m.v[0] > 0.0 ? 1 : m.v[0] < 0.0 ? -1 : sign1(cur);
   const int s2 = m.v[1] > 0.0 ? 1 : m.v[1] < 0.0 ? -1 : sign2(cur);

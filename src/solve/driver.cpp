@@ -31,9 +31,15 @@ double dip(double t0, const double* g0, double t1, const double* g1, double t2, 
            size_t ne, double ta) {
   double best = std::numeric_limits<double>::quiet_NaN();
   if (!(t0 < t1 && t1 < t2)) return best;
+  // At a step's first check the vertex lies in (t1, t2) (t0 < ta = t1): then p'(t1) < 0, and as p
+  // is convex its chord before t1 falls (y1 < y0) and p* ≥ y1 + p'(t1)(t2 − t1) ≥ y1 − (y0 − y1) ρ,
+  // ρ = (t2 − t1)/(t1 − t0). A function failing either has no dip: two operations, no division.
+  const bool right = std::max(t0, ta) >= t1;
+  const double rho = (t2 - t1) / (t1 - t0);
   for (size_t k = 0; k < ne; ++k) {
-    if (off[k] != 0.0) continue;
     const double y0 = g0[k], y1 = g1[k], y2 = g2[k];
+    if (right && !(y1 < y0 && y1 - (y0 - y1) * rho < 0.25 * std::max(y0, y2))) continue;
+    if (off[k] != 0.0) continue;
     const double lo = std::min({y0, y1, y2}), hi = std::max({y0, y1, y2});
     if (lo > 4.0 * (hi - lo)) continue;  // far from 0 for its variation (and a constant): no division
     const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1), c = (d12 - d01) / (t2 - t0);
@@ -58,7 +64,8 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   std::vector<double> g_prev(ne), g_new(ne), g_tmp(ne), g_mid(ne), g_a(ne), g_dip(ne);
   // The check point before the last one (time, functions), for the dips between checks (dip()):
   // −∞ after a restart (the stepper's dense output starts there); last_*: the check before t1.
-  std::vector<double> g_pp(ne), last_g(ne);
+  std::vector<double> g_pp(ne);
+  std::vector<double>* last_g = &g_prev;
   double t_pp = -std::numeric_limits<double>::infinity(), last_t = t_pp;
   // Per function the value it fires below: 0, or −∞ while the system's own decision keeps it below
   // 0 (settle below) until it is ≥ 0 at a step end.
@@ -161,13 +168,23 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       // itself: [left check, dip] then brackets the crossing.
       bool crossed = false;
       auto check = [&](double s, const double* g) {
-        bool c = false;  // a tight scan in registers: most checks cross nothing
-        for (size_t k = 0; k < ne; ++k) c |= (gp[k] >= off[k]) & (g[k] < off[k]);
+        // A tight scan in registers: most checks cross nothing, and at a step's first check (the
+        // dip's vertex in (a, s)) most functions fail dip()'s pre-test on these same values.
+        // (dip()'s bound times h1 = a − t_pp: no division to wait for.)
+        const bool right = std::max(t_pp, ta) >= a;
+        const double h1 = a - t_pp, h2 = s - a;
+        bool c = false, may_dip = !right;
+        for (size_t k = 0; k < ne; ++k) {
+          const double v0 = g_pp[k], v1 = gp[k];
+          c |= (v1 >= off[k]) & (g[k] < off[k]);
+          may_dip |= (off[k] == 0.0) & (v1 < v0) & (v1 * h1 - (v0 - v1) * h2 < 0.25 * h1 * std::max(v0, g[k]));
+        }
         if (c) {
           crossed = true;
           b = s, gn = g;
           return true;
         }
+        if (!may_dip || !(t_pp > -std::numeric_limits<double>::infinity())) return false;
         const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
         if (!(td > ta && td < s)) return false;
         st.interpolate(td, ytmp.data());
@@ -199,7 +216,8 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       }
       if (!crossed) check(t1, g_new.data());
       last_t = -std::numeric_limits<double>::infinity();
-      if (!crossed) last_t = a, last_g.assign(gp, gp + ne);
+      // The check before t1 becomes the next step's first (t_pp, g_pp): swapped in below, not copied.
+      if (!crossed) last_t = a, last_g = gp == g_prev.data() ? &g_prev : &g_a;
       for (size_t k = 0; k < (crossed ? ne : 0); ++k) {
         if (!(gp[k] >= off[k] && gn[k] < off[k])) continue;
         const Bracket br = illinois(
@@ -217,7 +235,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     }
     if (first < 0) {
       segment(ta, t1);
-      t_pp = last_t, g_pp.swap(last_g);  // the check before t1: the next step's first triple
+      t_pp = last_t, g_pp.swap(*last_g);  // the check before t1: the next step's first triple
       g_prev.swap(g_new);
       if (any_off) {  // a function armed below 0 that is ≥ 0 again is armed from 0
         any_off = false;

@@ -102,6 +102,58 @@ TEST_P(Mesh, FreeFlightThroughTheBacklashAndElasticContact) {
   }
 }
 
+// Claim: in the free play nothing happens at a load's step, though a body has reversed there since
+// the last decision. The pinion (J₁ = 0.01 kg·m²) at ω₀ = −1 rad/s under 1 N·m: ω₁ = −1 + 100 t,
+// φ₁ = −t + 50 t² (reversing at 0.01 s); the wheel (J₂ = 0.5 kg·m²) at rest until a step of 0.5 N·m
+// at 0.05 s: φ₂ = ½ (t − 0.05)². With i = 1 and b = 1 rad, Δ = φ₁ − φ₂ stays inside ±b/2 (its
+// minimum −0.005 rad at 0.01 s) until 49.5 t² − 0.95 t − 0.50125 = 0 (Δ = b/2), t_c = 0.110 68 s:
+// the first event of the mesh is that contact. (The decision at the step re-read the signs of the
+// speeds inside the free play and listed a `free play` → `free play` event at 0.05 s.)
+TEST_P(Mesh, AStepInTheFreePlayIsNoEvent) {
+  const Model m = mesh_model("ratio: 1, stiffness: 1e4 N*m/rad, backlash: 1 rad",
+                             "loads:\n  drive: {type: constant, body: pinion, value: 1 N*m}\n"
+                             "  brake: {type: step, body: wheel, value: 0.5 N*m, time: 0.05 s}\n",
+                             0.12, 1e-3, GetParam(), "-1");
+  const SimulationResult r = simulate(m);
+  const double tc = (0.95 + std::sqrt(0.95 * 0.95 + 4 * 49.5 * 0.50125)) / 99.0;
+  std::vector<const ModeEvent*> ev;
+  for (const ModeEvent& e : r.hybrid.events)
+    if (e.element == "mesh" && e.kind != "initial") ev.push_back(&e);
+  ASSERT_GE(ev.size(), 1u);
+  EXPECT_EQ(ev[0]->from, "free play");
+  EXPECT_NE(ev[0]->to, "free play");
+  EXPECT_NEAR(ev[0]->t, tc, 1e-9);
+  const auto &t = series(r, "t_s"), &w1 = series(r, "pinion.velocity_rad_s"), &w2 = series(r, "wheel.velocity_rad_s");
+  for (size_t k = 0; k < t.size() && t[k] < tc; ++k) {
+    EXPECT_NEAR(w1[k], -1.0 + 100.0 * t[k], 1e-9) << t[k];
+    EXPECT_NEAR(w2[k], t[k] > 0.05 ? t[k] - 0.05 : 0.0, 1e-9) << t[k];
+  }
+}
+
+// Claim: a mesh without backlash at rest starts on the + flank (τ = 0 reads as +, as a speed at 0
+// does), so a load that turns τ negative is an event. Pinion J₁ = 0.01, wheel J₂ = 0.5 kg·m², i = 3,
+// c = 2e4 N·m/rad, η = 1, at rest; a step of M = 5 N·m on the wheel at t_s = 0.1 s. Then
+// Δ'' = −Ω² Δ − i M/J₂ (Ω² = c (1/J₁ + i²/J₂)), Δ = −(i M/(J₂ Ω²)) (1 − cos Ω(t − t_s)) ≤ 0: τ = c Δ
+// turns negative at t_s, the mesh's first event (the start's mode, the − flank by its number 0, hid
+// it: campaign gear-mesh seed 1 model 77).
+TEST_P(Mesh, AMeshAtRestStartsOnThePlusFlank) {
+  const double i = 3.0, M = 5.0, W = omega_mesh(2e4, i), A = i * M / (0.5 * W * W);
+  const Model m = mesh_model("ratio: 3, stiffness: 2e4 N*m/rad",
+                             "loads:\n  lift: {type: step, body: wheel, value: 5 N*m, time: 0.1 s}\n", 0.11, 1e-4, GetParam());
+  const SimulationResult r = simulate(m);
+  std::vector<const ModeEvent*> ev;
+  for (const ModeEvent& e : r.hybrid.events)
+    if (e.element == "mesh") ev.push_back(&e);
+  ASSERT_GE(ev.size(), 2u);
+  EXPECT_EQ(ev[0]->kind, "initial");
+  EXPECT_EQ(ev[0]->to.rfind("flank+", 0), 0u) << ev[0]->to;
+  EXPECT_NEAR(ev[1]->t, 0.1, 1e-9);
+  EXPECT_EQ(ev[1]->to.rfind("flank-", 0), 0u) << ev[1]->to;
+  const auto &t = series(r, "t_s"), &D = series(r, "mesh.deflection_rad");
+  for (size_t k = 0; k < t.size(); ++k)
+    EXPECT_NEAR(D[k], t[k] < 0.1 ? 0.0 : -A * (1.0 - std::cos(W * (t[k] - 0.1))), 1e-6 * A) << t[k];
+}
+
 // Claim: in steady motion the wheel gets η i times the pinion's torque. A constant 10 N·m on the
 // pinion, a damper D = 5 N·m·s/rad from the wheel to the ground, i = 3, η = 0.9 (the pinion
 // drives): τ = 10 N·m, the wheel's torque η i τ = 27 N·m = D ω₂, so ω₂ = 5.4 rad/s, ω₁ = i ω₂ = 16.2

@@ -7,7 +7,8 @@
 /// Stated tolerances of a comparison (the reference's own error, measured against closed forms and
 /// against itself at half the step, is below a tenth of them):
 ///   events: the same (element, kind) in the same order, each within kEventTol·max(1, t_end) s;
-///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied;
+///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied, and a gear
+///           mesh's `mesh` and `free play`;
 ///   states: every body's position and velocity at every output row within
 ///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9.
 /// Only the part of the run before the reference's `ambiguous_from` is compared. The states are

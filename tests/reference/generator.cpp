@@ -10,7 +10,8 @@ namespace machdyn::reference {
 
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
-                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor", "drum"};
+                                             "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor", "drum",
+                                             "gear-mesh"};
   return f;
 }
 
@@ -185,7 +186,7 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
            (signals && (fs == "ground-friction" || fs == "brake" || fs == "clutch") && r.p(0.4));
   };
   const int n = family == "planetary" ? r.i(3, 6) : r.i(2, 6);
-  m.rotational = family == "planetary" || family == "drum";
+  m.rotational = family == "planetary" || family == "drum" || family == "gear-mesh";
   m.t_end = sig(r.u(0.4, 1.2), 2);
   m.dt_out = m.t_end / 200;
   for (int i = 0; i < n; ++i) m.bodies.push_back({named("b", i), sig(r.log_u(1.0, 20.0)), 0.0, 0.0});
@@ -414,6 +415,41 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
+  // Elastic gear meshes: 1–2 links of the rotational chain become meshes (ratio 0.3–3, stiffness,
+  // damping up to 0.15 of critical over the mesh's J_eff = 1/(1/J_a + i²/J_b), backlash 0 or
+  // 0.5–5 mrad, efficiency 1 or 0.85–0.99), with a contact and a brake to the ground on chain bodies.
+  if (family == "gear-mesh") {
+    for (int k = r.i(1, 2); k > 0; --k) {
+      std::vector<size_t> between;
+      for (size_t j = 0; j < m.links.size(); ++j)
+        if (m.links[j].kind == Link::Kind::plain && m.links[j].a >= 0 && m.links[j].b >= 0) between.push_back(j);
+      if (between.empty()) break;
+      const size_t j = between[static_cast<size_t>(r.i(0, static_cast<int>(between.size()) - 1))];
+      Mesh G;
+      G.name = named("M", k), G.a = m.links[j].a, G.b = m.links[j].b;
+      m.links.erase(m.links.begin() + static_cast<long>(j));
+      G.i = sig(r.log_u(0.3, 3.0));
+      const double Jeff = 1.0 / (1.0 / m.bodies[static_cast<size_t>(G.a)].m + G.i * G.i / m.bodies[static_cast<size_t>(G.b)].m);
+      G.c = sig(r.log_u(2e3, 1e5));
+      G.d = r.p(0.35) ? 0.0 : sig(r.u(0.0, 0.15) * 2 * std::sqrt(G.c * Jeff));
+      G.backlash = r.p(0.35) ? 0.0 : sig(r.log_u(5e-4, 5e-3));
+      G.eta = r.p(0.3) ? 1.0 : sig(r.u(0.85, 0.99), 2);
+      m.meshes.push_back(G);
+    }
+    if (r.p(0.4)) {
+      Friction f;
+      f.kind = Friction::Kind::contact, f.name = fname("f"), f.a = r.i(0, n - 1), f.b = kGround;
+      f.Fs = sig(r.log_u(0.2, 2.0) * force), f.Fk = r.p(0.2) ? f.Fs : sig(f.Fs * r.u(0.5, 1.0));
+      add(f);
+    }
+    if (r.p(0.3)) {
+      Friction f;
+      f.kind = Friction::Kind::brake, f.name = fname("B"), f.a = r.i(0, n - 1), f.b = kGround;
+      f.Fs = sig(r.log_u(0.3, 3.0) * force), f.Fk = sig(f.Fs * r.u(0.6, 1.0));
+      f.time = sig(r.u(0.05, 0.6) * m.t_end), f.ramp = r.p(0.5) ? 0.0 : sig(r.u(0.02, 0.3) * m.t_end);
+      add(f);
+    }
+  }
   // A prescribed motion (speed or acceleration of every kind that keeps the speed continuous) on one
   // chain body, with friction contacts from it to free neighbours (a stuck one makes the neighbour
   // follow the motion).
@@ -622,6 +658,12 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
     if (rope) y += ", slack: " + num(L.flank) + q;
     if (L.elasto) y += ", flank_law: elasto-backlash";
     y += "}\n";
+  }
+  for (const auto& G : m.meshes) {
+    if (first_link) y += "links:\n", first_link = false;
+    y += "  " + G.name + ": {type: gear-mesh, between: [" + end_name(m, G.a) + ", " + end_name(m, G.b) + "], ratio: " + num(G.i) +
+         ", stiffness: " + num(G.c) + " N*m/rad, damping: " + num(G.d) + " N*m*s/rad, backlash: " + num(G.backlash) +
+         " rad, efficiency: " + num(G.eta) + "}\n";
   }
   if (!m.loads.empty()) y += "loads:\n";
   for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, lin(l.body) ? "N" : U.F) + "}\n";

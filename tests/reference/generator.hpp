@@ -36,6 +36,9 @@
 ///   drum             rotational bodies (drums) with translational bodies (hooks) slaved by ideal
 ///                    gears in rad/m (i = 1/R, R = 0.1–0.5 m), hook loads in N, hook links to the
 ///                    ground, a contact and a brake on the drums
+///   gear-mesh        rotational bodies with 1–2 chain links made elastic gear meshes (ratio 0.3–3,
+///                    damping, backlash 0 or 0.5–5 mrad, efficiency 1 or 0.85–0.99), a contact and a
+///                    brake to the ground
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
 /// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 

@@ -177,9 +177,16 @@ enum class GMode { open, closed_pos, closed_neg };
 int sign_of(FMode md) { return md == FMode::slip_pos ? 1 : md == FMode::slip_neg ? -1 : 0; }
 bool sliding(FMode md) { return md == FMode::slip_pos || md == FMode::slip_neg; }
 
+/// A gear mesh's mode: the flank g (+1, −1; 0 the free play; without backlash the sign of τ) and
+/// the assumed signs of the pinion's and the wheel's speeds.
+struct MeshMode {
+  int g = 0, s1 = 1, s2 = 1;
+};
+
 struct Modes {
   std::vector<GMode> gap;
   std::vector<FMode> fr;
+  std::vector<MeshMode> mesh;
 };
 
 class Sim {
@@ -189,6 +196,7 @@ class Sim {
     build_P();
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
+    md_.mesh.assign(m.meshes.size(), MeshMode{});
     // The force scale of the model (the thresholds of the switching functions are relative to it).
     // (sampled over the run: every signal kind, its largest magnitude up to a sample's spacing).
     for (int i = 0; i <= 2000; ++i) {
@@ -205,6 +213,14 @@ class Sim {
       if (l.b >= 0) mm = std::min(mm, m.bodies[l.b].m - released_from(l.b));
       const double meff = (l.a >= 0 && l.b >= 0) ? mm / 2 : mm;
       w = std::max({w, std::sqrt(l.c / meff), l.d / meff});
+    }
+    // A gear mesh: Δ'' = −(c Δ + d Δ') (1/J_a + i²/J_b) on a flank; twice that rate: its contacts
+    // through the backlash and its efficiency's switches restart the step often (at the rate alone a
+    // model's event times moved by 1.4e-9 s between h and h/2, beyond the self-convergence test's 1e-9).
+    for (const auto& G : m.meshes) {
+      const double k = 1.0 / (m.bodies[static_cast<size_t>(G.a)].m - released_from(G.a)) +
+                       G.i * G.i / (m.bodies[static_cast<size_t>(G.b)].m - released_from(G.b));
+      w = std::max({w, 2.0 * std::sqrt(G.c * k), 2.0 * G.d * k});
     }
     // A kinetic level falling or rising with the sliding speed is a damper of rate |dF_k/ds|/m: the
     // Stribeck law's steepest slope (F_s − F_k)/w_s (at s = 0 for δ = 1, below it for δ > 1), a
@@ -297,6 +313,24 @@ class Sim {
     const double ce = L.c * e, dd = L.d * ddl;
     if (!L.elasto) return ce + dd;
     return gm == GMode::closed_pos ? ce + std::min(ce, dd) : ce + std::max(ce, dd);
+  }
+
+  /// A gear mesh's Δ = φ_a − i φ_b and Δ' (docs/model-files.md, "Elastic gear mesh").
+  double mesh_D(const Mesh& G, const double* y) const { return y[G.a] - G.i * y[G.b]; }
+  double mesh_Dr(const Mesh& G, const double* y) const { return y[n_ + G.a] - G.i * y[n_ + G.b]; }
+  /// Its tooth moment in flank g: the elasto-backlash law of a gap with flanks ±b/2, 0 in the free
+  /// play; without backlash c Δ + d Δ'.
+  static double mesh_tau(const Mesh& G, int g, double D, double Dr) {
+    if (!(G.backlash > 0.0)) return G.c * D + G.d * Dr;
+    if (g == 0) return 0.0;
+    const double ce = G.c * (D - g * 0.5 * G.backlash), dd = G.d * Dr;
+    return g > 0 ? ce + std::min(ce, dd) : ce + std::max(ce, dd);
+  }
+  /// The sign of a speed just after an instant: its own, at 0 its acceleration's, else `keep`.
+  static int sign_after(double v, double a, int keep) {
+    if (v != 0.0) return v > 0.0 ? 1 : -1;
+    if (a != 0.0) return a > 0.0 ? 1 : -1;
+    return keep;
   }
 
   // ---- right-hand side of a mode -----------------------------------------------------------------
@@ -469,6 +503,16 @@ class Sim {
       if (L.b >= 0) f[static_cast<size_t>(L.b)] += F;
       if (L.a >= 0) f[static_cast<size_t>(L.a)] -= F;
     }
+    // Gear meshes: −τ on the pinion, i τ on the wheel, η on the driven side (the power flows from
+    // the pinion where τ σ_a > 0 and τ σ_b > 0, from the wheel where both are < 0).
+    for (size_t k = 0; k < m_.meshes.size(); ++k) {
+      const Mesh& G = m_.meshes[k];
+      const MeshMode& mm = md.mesh[k];
+      const double tau = mesh_tau(G, mm.g, mesh_D(G, y), mesh_Dr(G, y));
+      const bool pinion_drives = mm.g * mm.s1 > 0 && mm.g * mm.s2 > 0, wheel_drives = mm.g * mm.s1 < 0 && mm.g * mm.s2 < 0;
+      f[static_cast<size_t>(G.a)] -= (wheel_drives ? G.eta : 1.0) * tau;
+      f[static_cast<size_t>(G.b)] += (pinion_drives ? G.eta : 1.0) * G.i * tau;
+    }
     unsigned mask = 0;
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& fr = m_.frictions[k];
@@ -551,6 +595,7 @@ class Sim {
     double g, eps;
     int gap = -1, fr = -1;  // which element (kinks: gap ≥ 0 with kink = true)
     bool kink = false;
+    int mesh = -1, slot = 0;  // a gear mesh: 0 its flank (or τ's sign), 1 and 2 its bodies' speeds
   };
 
   std::vector<Fn> functions(double t_in, const std::vector<double>& y) {
@@ -580,6 +625,26 @@ class Sim {
           if (L.elasto) out.push_back({L.d * ddl - L.c * (dl - L.lo()), eps_f, gi, -1, true});
           break;
       }
+    }
+    // Gear meshes: in the free play the flanks' distances (past a flank: its c e + d Δ'); on a flank
+    // its c e + d Δ' (the contact ends; without backlash τ changes sign), the elasto-backlash kink, and
+    // σ ω of each body (a body reverses: the power direction changes).
+    for (size_t k = 0; k < m_.meshes.size(); ++k) {
+      const Mesh& G = m_.meshes[k];
+      const MeshMode& mm = md_.mesh[k];
+      const int mi = static_cast<int>(k);
+      const double D = mesh_D(G, y.data()), Dr = mesh_Dr(G, y.data()), h = 0.5 * G.backlash;
+      if (mm.g == 0) {
+        const double gp = G.c * (D - h) + G.d * Dr, gn = G.c * (D + h) + G.d * Dr;
+        out.push_back({D <= h ? h - D : -gp, D <= h ? eps_x : eps_f, -1, -1, false, mi, 0});
+        out.push_back({D >= -h ? D + h : gn, D >= -h ? eps_x : eps_f, -1, -1, false, mi, 1});
+        continue;
+      }
+      const double ce = G.c * (D - mm.g * h);
+      out.push_back({mm.g * (ce + G.d * Dr), eps_f, -1, -1, false, mi, 0});
+      if (h > 0.0 && G.d > 0.0) out.push_back({mm.g * (ce - G.d * Dr), eps_f, -1, -1, true, mi, 3});
+      out.push_back({mm.s1 * y[static_cast<size_t>(n_ + G.a)], eps_v, -1, -1, false, mi, 1});
+      out.push_back({mm.s2 * y[static_cast<size_t>(n_ + G.b)], eps_v, -1, -1, false, mi, 2});
     }
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
@@ -842,7 +907,9 @@ class Sim {
     for (const auto& f : g)
       if (!f.kink && f.g < -f.eps)
         throw std::runtime_error("the decision at t = " + std::to_string(t) + " leaves a switching function negative (" +
-                                 (f.gap >= 0 ? m_.links[static_cast<size_t>(f.gap)].name : m_.frictions[static_cast<size_t>(f.fr)].name) +
+                                 (f.gap >= 0    ? m_.links[static_cast<size_t>(f.gap)].name
+                                  : f.mesh >= 0 ? m_.meshes[static_cast<size_t>(f.mesh)].name
+                                                : m_.frictions[static_cast<size_t>(f.fr)].name) +
                                  ": " + std::to_string(f.g) + ")");
   }
 
@@ -867,6 +934,17 @@ RefResult Sim::run() {
     if (!L.has_flanks()) continue;
     const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
     md_.gap[k] = dl > L.hi() ? GMode::closed_pos : dl < L.lo() ? GMode::closed_neg : GMode::open;
+  }
+  // Gear meshes: the flank by Δ(0) (without backlash the sign of τ, + at 0), the speeds' signs
+  // from the state (+ at 0).
+  for (size_t k = 0; k < m_.meshes.size(); ++k) {
+    const Mesh& G = m_.meshes[k];
+    const double D = mesh_D(G, y.data()), h = 0.5 * G.backlash;
+    MeshMode& mm = md_.mesh[k];
+    if (h > 0.0) mm.g = D > h ? 1 : D < -h ? -1 : 0;
+    else mm.g = G.c * D + G.d * mesh_Dr(G, y.data()) < 0.0 ? -1 : 1;
+    mm.s1 = y[static_cast<size_t>(n_ + G.a)] < 0.0 ? -1 : 1;
+    mm.s2 = y[static_cast<size_t>(n_ + G.b)] < 0.0 ? -1 : 1;
   }
   for (size_t k = 0; k < m_.frictions.size(); ++k) {
     const Friction& f = m_.frictions[k];
@@ -949,6 +1027,29 @@ RefResult Sim::run() {
           } else {
             md_.gap[k] = GMode::open;
             record(t, "gap_opened", L.name);
+          }
+        } else if (ge[i].mesh >= 0) {
+          // A gear mesh: the free play reaches a flank (the speeds' signs read again), the contact
+          // ends, τ changes sign (no backlash), or a body on a flank reverses.
+          const size_t k = static_cast<size_t>(ge[i].mesh);
+          const Mesh& G = m_.meshes[k];
+          MeshMode& mm = md_.mesh[k];
+          std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+          auto signs = [&](bool first, bool second) {
+            accel(t, y.data(), md_, a.data(), lam.data());
+            if (first) mm.s1 = sign_after(y[static_cast<size_t>(n_ + G.a)], a[static_cast<size_t>(G.a)], mm.s1);
+            if (second) mm.s2 = sign_after(y[static_cast<size_t>(n_ + G.b)], a[static_cast<size_t>(G.b)], mm.s2);
+          };
+          if (mm.g == 0) {
+            mm.g = ge[i].slot == 0 ? 1 : -1;
+            signs(true, true);
+            record(t, "mesh", G.name);
+          } else if (ge[i].slot == 0) {
+            if (G.backlash > 0.0) mm.g = 0, record(t, "free play", G.name);
+            else mm.g = -mm.g, record(t, "mesh", G.name);
+          } else {
+            signs(ge[i].slot == 1, ge[i].slot == 2);
+            record(t, "mesh", G.name);
           }
         } else if (ge[i].fr >= 0) {
           const size_t k = static_cast<size_t>(ge[i].fr);

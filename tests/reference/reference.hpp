@@ -39,6 +39,12 @@
 /// P = M⁻¹ − M⁻¹Jᵀ(J M⁻¹ Jᵀ)⁻¹J M⁻¹ (no reduction to a master, as compile does); the stuck set's λ
 /// solves (G P Gᵀ) λ = G P f̃.
 ///
+/// Gear meshes (elastic, with backlash and efficiency) are force elements of their own: a mode per
+/// mesh (the flank, or τ's sign without backlash, and the assumed signs σ_a, σ_b of the speeds, read
+/// again where a speed crosses 0 on a flank: its sign after the instant, at 0 its acceleration's),
+/// its switching functions those of a gap (the flank's c e + d Δ', the elasto-backlash kink) and
+/// σ ω of each body on a flank.
+///
 /// Planetary gears are the Willis row e_sun + z e_ring − (1 + z) e_carrier of J (every member with
 /// inertia). A model's bodies are all translational or all rotational (the same equations), but for
 /// `linear` bodies of a rotational model: hooks slaved to drums by ideal gears in rad/m.
@@ -207,6 +213,19 @@ struct Release {
   double dm = 0.0, t = 0.0;  ///< kg (kg·m²), s
 };
 
+/// An elastic gear mesh (docs/model-files.md, "Elastic gear mesh"; `type: gear-mesh` under `links:`)
+/// between a pinion a and a wheel b, both rotational with inertia: deflection Δ = φ_a − i φ_b at the
+/// pinion; the tooth moment τ the elasto-backlash flank law of a gap with flanks ±b/2 (b = 0: τ =
+/// c Δ + d Δ', both flanks in contact); torques −τ on the pinion and i τ on the wheel, the efficiency
+/// η on the driven side: the pinion drives (τ ω_a > 0 and τ i ω_b > 0, the speeds' signs as assumed
+/// by the mode: a speed at 0 keeps its sign) → the wheel gets η i τ; the wheel drives (both < 0) →
+/// the pinion gets −η τ; otherwise the ideal torques.
+struct Mesh {
+  std::string name;
+  int a = 0, b = 1;
+  double i = 1.0, c = 0.0, d = 0.0, backlash = 0.0, eta = 1.0;  ///< ratio, N·m/rad, N·m·s/rad, rad, η ∈ (0, 1]
+};
+
 /// A DC motor (docs/model-files.md, Drives): L di/dt = u(t) − R i − k v, force k i on its body; the
 /// current i is a state of its own (after [q; v]).
 struct DcMotor {
@@ -225,12 +244,15 @@ struct RefModel {
   std::vector<Friction> frictions;
   std::vector<Release> releases;
   std::vector<DcMotor> motors;
+  std::vector<Mesh> meshes;
   double t_end = 1.0, dt_out = 0.01;
 };
 
 struct RefEvent {
   double t = 0.0;
-  std::string kind;     ///< gap_closed, gap_opened, stick, slip, reversal, impact, applied
+  std::string kind;     ///< gap_closed, gap_opened, stick, slip, reversal, impact, applied; a gear mesh's
+                        ///< `mesh` (on a flank: contact, a body reversing, b = 0: τ changing sign)
+                        ///< and `free play` (the contact ends)
   std::string element;
 };
 

@@ -621,5 +621,39 @@ TEST(ReferenceSimulator, DcMotorOnAFreeMassFollowsItsLinearSystem) {
   }
 }
 
+// Claim: a gear mesh (i = 2, c = 2e4 N·m/rad, no damping, backlash b = 0.02 rad, η = 0.9) between a
+// pinion (J₁ = 0.01 kg·m², at ω₀ = 2 rad/s) and a wheel (J₂ = 0.02 kg·m², at rest). Free play until
+// Δ = ω₀ t reaches b/2: t₁ = 0.005 s. On the + flank the pinion drives (τ > 0, ω₁ > 0, the wheel's
+// speed at 0 keeps its + sign): J₁ ω₁' = −τ, J₂ ω₂' = η i τ, τ = c e, so e'' = −Ω² e with
+// Ω² = c (1/J₁ + η i²/J₂) = 5.6e6 s⁻², e = (ω₀/Ω) sin Ω(t − t₁); the contact ends at t₂ = t₁ + π/Ω
+// with ω₁ = ω₀ (1 − 2c/(J₁ Ω²)) = 4/7 rad/s, ω₂ = 2 η i c ω₀/(J₂ Ω²) = 9/7 rad/s (still both > 0:
+// no reversal) and Δ' = −ω₀; free flight across the play to the − flank at t₃ = t₂ + b/ω₀. The kinetic
+// energy lost, ½ J₁ ω₀² − ½ J₁ ω₁² − ½ J₂ ω₂², is (1 − η)/η × the wheel's gain.
+TEST(ReferenceSimulator, GearMeshContactThroughTheBacklashWithItsEfficiency) {
+  RefModel m;
+  m.rotational = true;
+  m.bodies = {{"pinion", 0.01, 0.0, 2.0}, {"wheel", 0.02, 0.0, 0.0}};
+  Mesh G;
+  G.name = "mesh", G.a = 0, G.b = 1, G.i = 2.0, G.c = 2e4, G.backlash = 0.02, G.eta = 0.9;
+  m.meshes = {G};
+  m.t_end = 0.02, m.dt_out = 1e-4;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double W = std::sqrt(5.6e6), t1 = 0.005, t2 = t1 + std::numbers::pi / W, t3 = t2 + 0.01;
+  ASSERT_GE(r.events.size(), 3u);  // (then the − flank's contact, not followed here)
+  EXPECT_EQ(r.events[0].kind, "mesh");
+  EXPECT_EQ(r.events[1].kind, "free play");
+  EXPECT_EQ(r.events[2].kind, "mesh");
+  EXPECT_NEAR(r.events[0].t, t1, 1e-12);
+  EXPECT_NEAR(r.events[1].t, t2, 1e-10);
+  EXPECT_NEAR(r.events[2].t, t3, 1e-10);
+  const size_t k = 100;  // t = 0.01 s, in the free flight back
+  ASSERT_NEAR(r.t[k], 0.01, 1e-15);
+  EXPECT_NEAR(r.v[k][0], 4.0 / 7.0, 1e-9);
+  EXPECT_NEAR(r.v[k][1], 9.0 / 7.0, 1e-9);
+  const double lost = 0.5 * 0.01 * 4.0 - 0.5 * 0.01 * r.v[k][0] * r.v[k][0] - 0.5 * 0.02 * r.v[k][1] * r.v[k][1];
+  EXPECT_NEAR(lost, (1.0 - 0.9) / 0.9 * 0.5 * 0.02 * r.v[k][1] * r.v[k][1], 1e-10);
+}
+
 }  // namespace
 }  // namespace machdyn::reference

@@ -36,7 +36,9 @@
 ///               g₁ = min(σ₁ ω₁, σ₂ i ω₂) (a body reverses: the power direction changes)
 /// Rule at a switch: closing on a flank or a body reversing, the new signs σ are the bodies' speed
 /// signs after the instant (a speed at 0 takes the sign of its acceleration); at the start every sign
-/// is read from the state (a speed at 0: +). A run at rest (ω₁ = ω₂ = 0) keeps its mode.
+/// is read from the state (a speed at 0, and without backlash τ at 0: +). A run at rest (ω₁ = ω₂ =
+/// 0) keeps its mode. In the free play the signs are kept (they act on nothing there; the contact
+/// reads them again).
 /// Valid for two rotational bodies; nothing is thrown.
 
 #include "machdyn/elements/link.hpp"
