@@ -5,9 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <utility>
 #include <gtest/gtest.h>
 
+#include "reference/campaign.hpp"
+#include "reference/generator.hpp"
 #include "support/events.hpp"
 #include "support/models.hpp"
 #include "support/support.hpp"
@@ -117,6 +121,35 @@ simulation: {t_end: 0.3 s, dt_out: 0.0015 s, rtol: 1e-10, atol: 1e-12}
   for (size_t i = 0; i < v0.size(); ++i) {
     EXPECT_NEAR(v0[i], v2[i], 1e-14) << i;
     EXPECT_NEAR(v2[i], v3[i], 1e-14) << i;
+  }
+}
+
+/// The campaign's model `index` of `family` at `seed` against the reference simulator on ic
+/// (tests/reference/campaign.hpp: events and states within the stated tolerances).
+reference::Outcome against_reference(const std::string& family, std::uint64_t seed, std::uint64_t index, IntegratorChoice ic) {
+  return reference::check(reference::random_model(family, seed, index), ic == IntegratorChoice::bdf ? "bdf" : "dopri5");
+}
+
+// Claim (campaign `mixed` seed 2 model 83), against the reference simulator: a contact that stuck
+// contacts beside it lock does not slide. f0 (68.3 N) and f2 (90 N) hold b1 to the ground in
+// parallel, a freewheel F3 ties b1 to b0, f1 (μ N(t) with a sine N) holds b0. Where f1 breaks away
+// (0.4417 s) f0's share in the bounded split is at its limit at that instant: the decision released
+// it, and its slide was consistent at u̇ = 0 only, by rounding — f2 holds u ≡ 0 (the audit's
+// contact.locked_slide, exit 3). The reference keeps f0 and f2 stuck and slips f1 and F3.
+TEST_P(CampaignDefectsD, AContactThatAStuckParallelOneLocksDoesNotSlide) {
+  const reference::Outcome o = against_reference("mixed", 2, 83, GetParam());
+  EXPECT_EQ(o.kind, reference::Outcome::Kind::pass) << o.detail;
+}
+
+// Claim (campaign `mixed` seed 2 models 54 and 55), against the reference simulator: a clutch K4
+// whose sine normal force rises through 0 beside a stuck clutch K5 on the same two bodies is applied
+// at rest and stuck silently. At the left limit of that zero its mode is the label it kept while
+// released (r = 0 up to rounding): the audit read it as a slide locked by K5 (contact.locked_slide,
+// exit 3).
+TEST_P(CampaignDefectsD, AClutchReappliedBesideAStuckOneIsNoLockedSlide) {
+  for (const std::uint64_t i : {54u, 55u}) {
+    const reference::Outcome o = against_reference("mixed", 2, i, GetParam());
+    EXPECT_EQ(o.kind, reference::Outcome::Kind::pass) << i << ": " << o.detail;
   }
 }
 
