@@ -153,5 +153,19 @@ TEST_P(CampaignDefectsD, AClutchReappliedBesideAStuckOneIsNoLockedSlide) {
   }
 }
 
+// Claim (campaign `mixed` seed 1 model 28), the reference's rule for an application at rest: every
+// body rests (a load of 15.5 N on b2 held by the stuck contacts f1, f2, f0 to the ground) when the
+// clutch K4 between b2 and b0 — two bodies the stuck chain ties together — is applied at 0.073 s. At
+// rest it holds silently (docs/hybrid.md), so neither side lists an event; the reference read the
+// 1e-19 m/s its projection of the stuck chain leaves between b0 and b2 as a motion and listed
+// `applied` (every mixed model of that kind failed on both integrators, "engine: nothing").
+TEST_P(CampaignDefectsD, AClutchAppliedBetweenBodiesAStuckChainTiesIsAppliedAtRest) {
+  const reference::RefResult ref = reference::simulate_reference(reference::random_model("mixed", 1, 28));
+  ASSERT_TRUE(ref.error.empty()) << ref.error;
+  for (const auto& e : ref.events) EXPECT_NE(e.kind, "applied") << e.element << " at " << e.t;
+  const reference::Outcome o = against_reference("mixed", 1, 28, GetParam());
+  EXPECT_EQ(o.kind, reference::Outcome::Kind::pass) << o.detail;
+}
+
 }  // namespace MACHDYN_UNITY_ID
 }  // namespace machdyn
