@@ -6,6 +6,8 @@
 #include <limits>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "machdyn/common/diagnostics.hpp"
 
 namespace machdyn {
@@ -50,8 +52,37 @@ class Decision {
       const double s = static_cast<double>(static_cast<int>(md));
       if (md == ContactMode::stuck ? !holds(k) : !sys_.contact(k).can_slide(md) || s * sliding_acceleration(k) < -rounding(k))
         return false;
+      if (md != ContactMode::stuck && std::abs(sliding_acceleration(k)) <= rounding(k) && locked(k, modes)) return false;
     }
     return true;
+  }
+  /// Whether friction contact k (not a freewheel, stop or joint) is held at u ≡ 0 by the friction
+  /// contacts stuck in `modes`: its row in the span of theirs (rank test to 1e-9). Such a contact
+  /// cannot slide — its slide from rest is consistent only at u̇ = 0, by rounding — it is stuck with
+  /// the set, its load within the set's limits (the bounded split; the audit's contact.locked_slide).
+  /// Two parallel contacts to the ground, one breaking away at the instant another contact of the
+  /// set did: the other kept it at u ≡ 0 (campaign `mixed` seed 2 model 83).
+  bool locked(int k, const std::vector<ContactMode>& modes) const {
+    const ContactLaw& c = sys_.contact(k);
+    if (c.lock != 0 || c.joint || c.kinematic) return false;
+    const auto n = static_cast<Eigen::Index>(sys_.dof());
+    std::vector<int> rows;
+    for (size_t j = 0; j < modes.size(); ++j) {
+      const ContactLaw& cj = sys_.contact(static_cast<int>(j));
+      if (static_cast<int>(j) != k && modes[j] == ContactMode::stuck && cj.lock == 0 && !cj.joint && !cj.kinematic &&
+          !cj.released(t_))
+        rows.push_back(static_cast<int>(j));
+    }
+    if (rows.empty()) return false;
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()) + 1, n);
+    auto put = [&](Eigen::Index i, const ContactLaw& x) {
+      for (int j = 0; j < x.row.terms; ++j) G(i, x.row.body[j]) += x.row.w[j];
+    };
+    for (size_t i = 0; i < rows.size(); ++i) put(static_cast<Eigen::Index>(i), sys_.contact(rows[i]));
+    put(G.rows() - 1, c);
+    Eigen::FullPivLU<Eigen::MatrixXd> with(G), without(G.topRows(G.rows() - 1));
+    with.setThreshold(1e-9), without.setThreshold(1e-9);
+    return with.rank() == without.rank();
   }
   double force(int k) const { return fc_[static_cast<size_t>(k)]; }
   double sliding_acceleration(int k) const { return sys_.contact(k).sliding_acceleration(t_, acc_); }

@@ -44,6 +44,31 @@ const std::set<std::string>& compared_kinds() {
   return k;
 }
 
+/// The events of `list` that open and close a phase of one element shorter than tol (s): a `slip`
+/// and the `stick` that ends it, a `stick` and the `slip` that ends it, a `gap_opened` and the
+/// `gap_closed` that ends it (and the reverse), within tol of each other. The comparison resolves
+/// instants to tol only, so it cannot see such a phase — nor compare it; the states are compared
+/// whatever the events (a phase with an effect shows there). Both sides make them: the engine a
+/// slide of a pair of parallel contacts 1e-13 s long at an impact, the reference a stick between
+/// two located crossings 7e-14 s apart.
+template <class List, class Get>
+std::vector<char> brief_phases(const List& list, double tol, Get get) {
+  auto undoes = [](const std::string& a, const std::string& b) {
+    return (a == "slip" && b == "stick") || (a == "stick" && b == "slip") || (a == "gap_opened" && b == "gap_closed") ||
+           (a == "gap_closed" && b == "gap_opened");
+  };
+  std::vector<char> brief(list.size(), 0);
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (brief[i]) continue;
+    for (size_t j = i + 1; j < list.size() && get(list[j]).t <= get(list[i]).t + tol; ++j) {
+      if (brief[j] || get(list[j]).element != get(list[i]).element) continue;
+      if (undoes(get(list[i]).kind, get(list[j]).kind)) brief[i] = brief[j] = 1;
+      break;  // the element's next event: it ends the phase, or the phase is not brief
+    }
+  }
+  return brief;
+}
+
 std::string fmt(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.12g", x);
@@ -88,9 +113,12 @@ Outcome compare(const RefModel& m, const std::string& integrator, const RefResul
       if (get(list[j]).element == get(list[i]).element && get(list[j]).kind != "initial") return true;
     return false;
   };
+  const auto eng_brief = brief_phases(r.hybrid.events, tol_t, [](const ModeEvent& x) -> const ModeEvent& { return x; });
+  const auto ref_brief = brief_phases(ref.events, tol_t, [](const RefEvent& x) -> const RefEvent& { return x; });
   std::vector<const ModeEvent*> eng;
   for (size_t i = 0; i < r.hybrid.events.size(); ++i) {
     const auto& e = r.hybrid.events[i];
+    if (eng_brief[i]) continue;  // a phase shorter than the instants' resolution
     auto same = [](const ModeEvent& x) -> const ModeEvent& { return x; };
     if (compared_kinds().count(e.kind) != 0 && e.t < t_cmp - tol_t && !zeno_tail(r.hybrid.events, i, same) &&
         !mesh_tie(r.hybrid.events, i, same))
@@ -101,14 +129,16 @@ Outcome compare(const RefModel& m, const std::string& integrator, const RefResul
   Outcome ev;  // the first event difference (pass if none)
   for (size_t ir = 0; ir < ref.events.size(); ++ir) {
     const RefEvent& re = ref.events[ir];
+    if (ref_brief[ir]) continue;
     if (compared_kinds().count(re.kind) == 0 || re.t >= t_cmp - tol_t) continue;
     if (zeno_tail(ref.events, ir, [](const RefEvent& x) -> const RefEvent& { return x; })) continue;
     if (mesh_tie(ref.events, ir, [](const RefEvent& x) -> const RefEvent& { return x; })) continue;
     bool hit = false;
+    const double tol_e = std::max(tol_t, re.window);  // the instant as well as the model fixes it
     for (size_t j = first_free; j < eng.size(); ++j) {
       if (used[j]) continue;
-      if (eng[j]->t > re.t + tol_t) break;
-      if (eng[j]->element == re.element && eng[j]->kind == re.kind && std::abs(eng[j]->t - re.t) <= tol_t) {
+      if (eng[j]->t > re.t + tol_e) break;
+      if (eng[j]->element == re.element && eng[j]->kind == re.kind && std::abs(eng[j]->t - re.t) <= tol_e) {
         used[j] = hit = true;
         break;
       }

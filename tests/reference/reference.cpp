@@ -346,6 +346,11 @@ class Sim {
   };
   std::map<unsigned, StuckSet> sets_;
   double t_left_ = -1.0;  // the end of the current step (its signals' left limits)
+  // The start of the step before the current one in this piece (no event or breakpoint since; else
+  // the piece's start), for event_window; the window of the events being recorded (0: exact).
+  double t_back_ = 0.0, window_ = 0.0;
+  std::vector<double> y_back_;
+  std::vector<int> applied_at_rest_;  // brakes and clutches applied at rest now (engage → decide)
   std::vector<double> f_, lamv_, bv_;
 
   StuckSet& stuck_set(unsigned mask) {
@@ -596,6 +601,7 @@ class Sim {
     int gap = -1, fr = -1;  // which element (kinks: gap ≥ 0 with kink = true)
     bool kink = false;
     int mesh = -1, slot = 0;  // a gear mesh: 0 its flank (or τ's sign), 1 and 2 its bodies' speeds
+    double res = 0.0;  // its resolution δ (> 0: the events it fires get a resolution window)
   };
 
   std::vector<Fn> functions(double t_in, const std::vector<double>& y) {
@@ -655,8 +661,9 @@ class Sim {
         const double x = y[static_cast<size_t>(f.a)];
         out.push_back({f.stop_max ? f.stop_pos - x : x - f.stop_pos, eps_x, -1, fi});
       } else if (md == FMode::stuck) {
-        if (f.one_sided()) out.push_back({lock(f) * lam[k] + f.kinetic_level(t) + 1e-9, eps_f, -1, fi});
-        else out.push_back({f.static_limit(t) - std::abs(lam[k]), 1e-13 * f.static_limit(t) + eps_f, -1, fi});
+        const double res = kLoadResolution * fscale_;  // a load's resolution (event_window)
+        if (f.one_sided()) out.push_back({lock(f) * lam[k] + f.kinetic_level(t) + 1e-9, eps_f, -1, fi, false, res});
+        else out.push_back({f.static_limit(t) - std::abs(lam[k]), 1e-13 * f.static_limit(t) + eps_f, -1, fi, false, res});
       } else {
         out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
         // The kinks of a kinetic table over the sliding speed: located (no mode changes there), so
@@ -680,7 +687,35 @@ class Sim {
   }
 
   // ---- decisions ---------------------------------------------------------------------------------
-  void record(double t, const char* kind, const std::string& el) { res_.events.push_back({t, kind, el}); }
+  void record(double t, const char* kind, const std::string& el) { res_.events.push_back({t, kind, el, window_}); }
+
+  /// The resolution window of an event located at te (RefEvent::window): for every function that
+  /// fired with a resolution δ > 0, how far from te it stays within δ of its value there — before te
+  /// (g(te − τ) − g(te) ≤ δ) and after it in the same mode's equations (g(te) − g(te + τ) ≤ δ), by
+  /// doubling τ from 1e-7·max(1, te) s; the larger side. Each side reaches at most to the start of
+  /// the step before te's (t_back_, y_back_: the same piece) and two steps past te, short of the
+  /// next breakpoint `t_next` (a lower bound there). One function evaluation per side when the root
+  /// is simple and steep (no window below 1e-7 s).
+  double event_window(double te, double t_next, const std::vector<Fn>& g0, const std::vector<Fn>& ge) {
+    double w = 0.0;
+    const double t_far = std::min(t_next, te + 2.0 * h_);
+    for (size_t i = 0; i < ge.size() && i < g0.size(); ++i) {
+      if (!fires(g0[i], ge[i]) || ge[i].kink || !(ge[i].res > 0.0)) continue;
+      for (const double side : {-1.0, 1.0}) {
+        double within = 0.0;
+        for (double tau = 1e-7 * std::max(1.0, te); side < 0 ? te - tau > t_back_ : te + tau < t_far; tau *= 2.0) {
+          const double s = te + side * tau;
+          std::vector<double> ys = y_back_;  // at s, in steps of at most h from t_back_
+          const int pieces = static_cast<int>(std::ceil((s - t_back_) / h_));
+          for (int p = 0; p < pieces; ++p) ys = rk4(t_back_ + (s - t_back_) * p / pieces, ys, (s - t_back_) / pieces);
+          if (side * (ge[i].g - functions(s, ys)[i].g) > ge[i].res) break;
+          within = tau;
+        }
+        w = std::max(w, within);
+      }
+    }
+    return w;
+  }
 
   /// Sets u = 0 exactly for every element in `rows` (friction rows e_a − e_b, stop rows e_a): the
   /// momentum-keeping projection v ← v − M⁻¹Gᵀ(G M⁻¹ Gᵀ)⁺ G v.
@@ -855,11 +890,13 @@ class Sim {
       const FMode was = md_.fr[static_cast<size_t>(k)], now = chosen.fr[static_cast<size_t>(k)];
       const std::string& name = m_.frictions[static_cast<size_t>(k)].name;
       if (was == now || initial) continue;
+      const bool applied = std::find(applied_at_rest_.begin(), applied_at_rest_.end(), k) != applied_at_rest_.end();
       if (now == FMode::stuck) record(t, "stick", name);
-      else if (was == FMode::stuck) record(t, "slip", name);
+      else if (was == FMode::stuck) record(t, applied ? "applied" : "slip", name);
       else if (sliding(was) && sliding(now)) record(t, "reversal", name);
     }
     md_ = chosen;
+    applied_at_rest_.clear();
     // Stuck ones: exactly equal speeds.
     std::vector<int> st;
     for (size_t k = 0; k < m_.frictions.size(); ++k)
@@ -884,14 +921,20 @@ class Sim {
 
   /// Engagement changes of brakes and clutches at t (a breakpoint or the start).
   void engage(double t, const std::vector<double>& y, bool initial) {
+    applied_at_rest_.clear();
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
       const bool on = f.engaged(t);
       if (md_.fr[k] == FMode::released && on) {
-        const double u = rel_u(f, y.data());
+        // At rest where u is 0 within the resolution of the sliding functions, 1e-12 (1 + |v_a| +
+        // |v_b|): the projection of a stuck chain leaves its bodies 1e-19 m/s apart (and the engine's
+        // integration, its rounding, applied_at_rest in analysis/run.cpp).
+        const double S = std::abs(va(y.data(), f.a)) + std::abs(va(y.data(), f.b)), u0 = rel_u(f, y.data());
+        const double u = std::abs(u0) <= 1e-12 * (1.0 + S) ? 0.0 : u0;
         md_.fr[k] = u > 0 ? FMode::slip_pos : u < 0 ? FMode::slip_neg : FMode::stuck;
         // An `applied` event where it is applied while its bodies move (docs/hybrid.md); applied at
-        // rest it simply holds (or slips: decided with the rest).
+        // rest it simply holds, or slips at once (decided with the rest: its slide is `applied`).
+        if (!initial && u == 0.0) applied_at_rest_.push_back(static_cast<int>(k));
         if (!initial && u != 0.0) record(t, "applied", f.name);
       } else if (md_.fr[k] != FMode::released && !on) {
         md_.fr[k] = FMode::released;
@@ -958,6 +1001,7 @@ RefResult Sim::run() {
   std::vector<Fn> g0;
   restart(0.0, y, g0);
   bool g0_valid = true;
+  t_back_ = 0.0, y_back_ = y;
 
   std::vector<double> bps;
   for (const auto& l : m_.loads) l.s.breakpoints(bps, m_.t_end);
@@ -1005,6 +1049,7 @@ RefResult Sim::run() {
       const double te = t + hi;
       y = rk4(t, y, hi);
       const auto ge = functions(te, y);
+      window_ = event_window(te, ib < bps.size() ? bps[ib] : m_.t_end, g0, ge);
       t = te;
       t_left_ = -1.0;
       if (t - last_event_t < 1e-9 * std::max(1.0, t)) {
@@ -1106,7 +1151,9 @@ RefResult Sim::run() {
         record(t, "impact", name);
       }
       restart(t, y, g0), g0_valid = true;
+      window_ = 0.0, t_back_ = t, y_back_ = y;
     } else {
+      t_back_ = t, y_back_ = y;  // this step's start: the next event's window may reach back to it
       y = std::move(y1);
       t = t_to;
       t_left_ = -1.0;
@@ -1122,6 +1169,7 @@ RefResult Sim::run() {
         engage(t, y, false);
         decide(t, y, {});
         restart(t, y, g0);
+        t_back_ = t, y_back_ = y;
       }
       project_stuck(y);
       if (t == t_row) row(t), ++next_row;

@@ -248,12 +248,27 @@ struct RefModel {
   double t_end = 1.0, dt_out = 0.01;
 };
 
+/// The resolution of a load the integration forms, relative to the model's force scale: an event
+/// function of loads (a stuck contact's F_s − |λ|, a freewheel's lock·λ + F_d + 1e-9) is known to
+/// δ = kLoadResolution × that scale — the engine at rtol 1e-10 accumulates 1e3 rtol over a run (the
+/// allowance of its energy books), the reference's own error is 4.4e-8 of a velocity's scale
+/// (self-convergence, reference_test.cpp).
+constexpr double kLoadResolution = 1e-7;
+
 struct RefEvent {
   double t = 0.0;
   std::string kind;     ///< gap_closed, gap_opened, stick, slip, reversal, impact, applied; a gear mesh's
                         ///< `mesh` (on a flank: contact, a body reversing, b = 0: τ changing sign)
                         ///< and `free play` (the contact ends)
   std::string element;
+  /// s: how well the model itself fixes the instant — the time before t over which the function
+  /// that fired lies within its resolution δ of its value at t (0: sharper than 1e-7 s, or an
+  /// instant of a signal). A root of multiplicity k, g ≈ c (t − t₀)^k, moves by (δ/c)^(1/k) for an
+  /// error δ in g: a freewheel whose load grows from 0 as c (t − t₀)⁶ through a chain of springs
+  /// slips where it passes the 1e-9 N allowance of the hold rule, and 1e-11 N of λ, far below any
+  /// integration's resolution of the loads, moves that instant by 1e-6 s. Events at the same instant
+  /// as the one that fired (its decision's) share its window.
+  double window = 0.0;
 };
 
 struct RefOptions {
