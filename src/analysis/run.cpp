@@ -229,8 +229,11 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (again) remember_decision(y);
     if (fired.empty()) time_event(t);
     else if (!own.empty()) {
-      // An event located on a breakpoint: the breakpoint's applications and releases too.
-      if (std::binary_search(out_.hybrid.breakpoints.begin(), out_.hybrid.breakpoints.end(), t)) log_applications(t);
+      // An event located on a breakpoint (within the span that merges breakpoints into it): the
+      // breakpoint's applications and releases too.
+      const auto& bps = out_.hybrid.breakpoints;
+      const auto bp = std::lower_bound(bps.begin(), bps.end(), t);
+      if (bp != bps.end() && *bp - t <= 1e-12 * m_.simulation.t_end) log_applications(t);
       handle_event(t, own);
     }
     std::copy(y_.begin(), y_.end(), y);
