@@ -6,10 +6,17 @@
 ///
 /// Stated tolerances of a comparison (the reference's own error, measured against closed forms and
 /// against itself at half the step, is below a tenth of them):
-///   events: the same (element, kind) in the same order, each within kEventTol·max(1, t_end) s;
-///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied;
-///   states: every body's position and velocity at every output row within
-///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9.
+///   states: every body's position and velocity at every output row within δq, δv =
+///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9;
+///   events: the same (element, kind) in the same order, each within
+///           max(kEventTol·max(1, t_end) s, δg/|ġ|): an event is a zero of a switching function g,
+///           and states within δx move that zero by δg/|ġ| (RefEvent: dt_dq δq + dt_dv δv of its
+///           body). A comparison that accepts the states must accept the event times they imply:
+///           the n-th bounce of a Zeno series under e < 1 meets its stop at |ġ| = |v⁻| ∝ eⁿ, its
+///           instant conditioned like 1/eⁿ; the rest at the accumulation instant t∞ is known to
+///           √(δq/(2a)) (1 + e)/(1 − e) + 2 e δv/(a (1 − e)) (bounces whose apex height is below δq
+///           are rest at that tolerance), and an impact within that of the rest is not compared;
+///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied.
 /// Only the part of the run before the reference's `ambiguous_from` is compared. The states are
 /// compared even where the events differ: a state mismatch is a wrong motion, an event mismatch with
 /// every state agreeing ("states agree") a wrong event list.
@@ -19,6 +26,8 @@
 #include <vector>
 
 #include "reference/reference.hpp"
+
+#include "machdyn/analysis/simulate.hpp"
 
 namespace machdyn::reference {
 
@@ -35,6 +44,18 @@ const char* to_string(Outcome::Kind k);
 
 /// Runs the engine on to_yaml(m, integrator) and compares it with the reference result `ref`.
 Outcome compare(const RefModel& m, const std::string& integrator, const RefResult& ref);
+
+/// Compares an engine result `r` of m with the reference result `ref` (compare() after the run).
+Outcome compare_results(const RefModel& m, const RefResult& ref, const SimulationResult& r);
+
+/// δq, δv per body: kStateTol times the largest |value| of the column in `ref`, + 1e-9.
+struct StateTolerances {
+  std::vector<double> q, v;
+};
+StateTolerances state_tolerances(const RefModel& m, const RefResult& ref);
+
+/// The time tolerance of reference event e: max(tol_t, dt_dq δq + dt_dsqrtq √δq + dt_dv δv of its body).
+double event_tolerance(const RefEvent& e, const StateTolerances& s, double tol_t);
 
 /// Runs both on m (the reference once) and compares on `integrator`.
 Outcome check(const RefModel& m, const std::string& integrator, const RefOptions& o = {});
