@@ -211,5 +211,19 @@ TEST_P(CampaignDefectsC, ZenoSeriesOfTheStopFamilyAgreeWithTheReference) {
   }
 }
 
+// Claim (campaign `gap` seed 3 models 7, 8, 83 on dopri5; known/ class G): two bodies across a gap
+// under constant loads move relative to each other on an exact parabola while it is open, and dopri5
+// takes one step of 17 ms over it: the relative position touches the positive flank for 3 ms and
+// reaches the negative one at the step's end. The driver stopped its check at the negative flank's
+// crossing, so the positive flank's dip before it (its closing and bounce) was lost — the audit's
+// `gap.inside`. They agree with the reference simulator on both integrators.
+TEST_P(CampaignDefectsC, AGapFlankTouchedInsideAStepThatReachesTheOtherFlankCloses) {
+  const std::string w = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  for (std::uint64_t i : {7u, 8u, 83u}) {
+    const ref::Outcome o = ref::check(ref::random_model("gap", 3, i), w);
+    EXPECT_FALSE(o.failed()) << "gap seed 3 #" << i << ": " << ref::to_string(o.kind) << ": " << o.detail;
+  }
+}
+
 }  // namespace MACHDYN_UNITY_ID
 }  // namespace machdyn
