@@ -227,7 +227,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     const bool again = redecisions_ > 0;
     if (again) remember_decision(y);
     if (fired.empty()) time_event(t);
-    else if (!own.empty()) handle_event(t, own);
+    else if (!own.empty()) {
+      // An event located on a breakpoint (within the span that merges breakpoints into it): the
+      // breakpoint's applications and releases too.
+      const auto& bps = out_.hybrid.breakpoints;
+      const auto bp = std::lower_bound(bps.begin(), bps.end(), t);
+      if (bp != bps.end() && *bp - t <= 1e-12 * m_.simulation.t_end) log_applications(t);
+      handle_event(t, own);
+    }
     std::copy(y_.begin(), y_.end(), y);
     return !again || !same_decision(y);
   }
@@ -1320,8 +1327,23 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // A jump of a speed reference may carry the command across the torque limit.
     for (int d = 0; d < nd_; ++d)
       if (sys_.drive(d).has_events()) set_drive_mode(d, t, sys_.natural_drive_mode(d, t, y_.data()), false);
-    // A brake or clutch applied now while it slides starts a slip phase (it was released so far);
-    // one released now ends its phase (its application reached 0: it opens).
+    log_applications(t);
+    std::vector<int> Z;
+    for (int k = 0; k < nc_; ++k)
+      if (decided_at_event(k, t)) Z.push_back(k);
+    if (Z.empty()) return;
+    const std::vector<ContactMode> old = sys_.contact_modes();
+    at_rest_together(t, Z);
+    apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);
+  }
+
+  /// The applications and releases of brakes and clutches at t (a breakpoint of their signals): a
+  /// brake or clutch applied now while it slides starts a slip phase (it was released so far); one
+  /// released now ends its phase (its application reached 0: it opens). At every breakpoint, also
+  /// one where an event is located: breakpoints closer than 1e-12 t_end are one (Model::breakpoints),
+  /// so a normal force falling to 0 an ulp before a table's point is already 0 at the merged
+  /// breakpoint's left limit, and the stuck clutch's breakaway is located on the breakpoint itself.
+  void log_applications(double t) {
     for (int k = 0; k < nc_; ++k) {
       const ContactMode md = sys_.contact_mode(k);
       const bool was = was_released_[static_cast<size_t>(k)] != 0, now = released(k, t);
@@ -1354,13 +1376,6 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         close_phase(k, t);
       }
     }
-    std::vector<int> Z;
-    for (int k = 0; k < nc_; ++k)
-      if (decided_at_event(k, t)) Z.push_back(k);
-    if (Z.empty()) return;
-    const std::vector<ContactMode> old = sys_.contact_modes();
-    at_rest_together(t, Z);
-    apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);
   }
 
   /// Whether contact k's u at t is 0 within the integrator's resolution of its bodies' speeds over

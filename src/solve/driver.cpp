@@ -179,14 +179,15 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
           c |= (v1 >= off[k]) & (g[k] < off[k]);
           may_dip |= (off[k] == 0.0) & (v1 < v0) & (v1 * h1 - (v0 - v1) * h2 < 0.25 * h1 * std::max(v0, g[k]));
         }
-        if (c) {
-          crossed = true;
-          b = s, gn = g;
-          return true;
-        }
-        if (!may_dip || !(t_pp > -std::numeric_limits<double>::infinity())) return false;
+        // One function crossing at s does not end the check: another's dip before it comes first
+        // (a gap's relative motion, a free-flight parabola in one dopri5 step, touching one flank
+        // and reaching the other at s: the first flank's closing was lost).
+        if (c) crossed = true, b = s, gn = g;
+        if (!may_dip || !(t_pp > -std::numeric_limits<double>::infinity())) return crossed;
         const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
-        if (!(td > ta && td < s)) return false;
+        if (!(td > ta && td < s)) return crossed;
+        const bool crossed_at_s = crossed;
+        crossed = false;
         st.interpolate(td, ytmp.data());
         sys.event_functions(td, ytmp.data(), g_dip.data());
         // A dip shallower than 1e-4 of the function's variation over the checks is a tangency
@@ -203,6 +204,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
           if (crossed) gp = g_pp.data(), a = t_pp;
         }
         if (crossed) b = td, gn = g_dip.data();
+        crossed = crossed || crossed_at_s;
         return crossed;
       };
       for (double j = 1.0; t1 - ta > h_s; ++j) {

@@ -6,18 +6,25 @@
 ///
 /// Stated tolerances of a comparison (the reference's own error, measured against closed forms and
 /// against itself at half the step, is below a tenth of them):
-///   events: the same (element, kind) in the same order, each within kEventTol·max(1, t_end) s, or
-///           within the reference event's resolution window (RefEvent::window) where that is wider:
-///           an instant is compared only as well as the model fixes it. The rule: an event function
-///           known to δ (a load's: kLoadResolution × the model's force scale) fixes a simple root
-///           to δ/|g'|, a root of multiplicity k (g ≈ c (t − t₀)^k, a load growing from 0 through
-///           a chain of k/2 springs) only to (δ/c)^(1/k); the window is the time over which g
-///           stays within δ of its value at the root, so a steep root (every other event) keeps
-///           kEventTol and a real shift of 1e-3 s is caught (tests/reference/event_window_test.cpp);
+///   states: every body's position and velocity at every output row within δq, δv =
+///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9;
+///   events: the same (element, kind) in the same order, each within the largest of
+///           kEventTol·max(1, t_end) s, δg/|ġ| and the reference event's resolution window:
+///           - δg/|ġ|: an event is a zero of a switching function g, and states within δx move
+///             that zero by δg/|ġ| (RefEvent: dt_dq δq + dt_dv δv of its body). A comparison that
+///             accepts the states must accept the event times they imply: the n-th bounce of a Zeno
+///             series under e < 1 meets its stop at |ġ| = |v⁻| ∝ eⁿ, its instant conditioned like
+///             1/eⁿ; the rest at the accumulation instant t∞ is known to
+///             √(δq/(2a)) (1 + e)/(1 − e) + 2 e δv/(a (1 − e)) (bounces whose apex height is below
+///             δq are rest at that tolerance), and an impact within that of the rest is not compared;
+///           - the window (RefEvent::window): an event function known to δ (a load's:
+///             kLoadResolution × the model's force scale) fixes a simple root to δ/|g'|, a root of
+///             multiplicity k (g ≈ c (t − t₀)^k, a load growing from 0 through a chain of k/2
+///             springs) only to (δ/c)^(1/k): the time over which g stays within δ of its value at the
+///             root, so a steep root keeps kEventTol and a real shift of 1e-3 s is caught
+///             (tests/reference/event_window_test.cpp);
 ///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied, and a gear
 ///           mesh's `mesh` and `free play`;
-///   states: every body's position and velocity at every output row within
-///           kStateTol·(the largest |value| of that column in the reference run) + 1e-9.
 /// Only the part of the run before the reference's `ambiguous_from` is compared. The states are
 /// compared even where the events differ: a state mismatch is a wrong motion, an event mismatch with
 /// every state agreeing ("states agree") a wrong event list.
@@ -27,6 +34,8 @@
 #include <vector>
 
 #include "reference/reference.hpp"
+
+#include "machdyn/analysis/simulate.hpp"
 
 namespace machdyn::reference {
 
@@ -43,6 +52,18 @@ const char* to_string(Outcome::Kind k);
 
 /// Runs the engine on to_yaml(m, integrator) and compares it with the reference result `ref`.
 Outcome compare(const RefModel& m, const std::string& integrator, const RefResult& ref);
+
+/// Compares an engine result `r` of m with the reference result `ref` (compare() after the run).
+Outcome compare_results(const RefModel& m, const RefResult& ref, const SimulationResult& r);
+
+/// δq, δv per body: kStateTol times the largest |value| of the column in `ref`, + 1e-9.
+struct StateTolerances {
+  std::vector<double> q, v;
+};
+StateTolerances state_tolerances(const RefModel& m, const RefResult& ref);
+
+/// The time tolerance of reference event e: max(tol_t, dt_dq δq + dt_dsqrtq √δq + dt_dv δv of its body).
+double event_tolerance(const RefEvent& e, const StateTolerances& s, double tol_t);
 
 /// Runs both on m (the reference once) and compares on `integrator`.
 Outcome check(const RefModel& m, const std::string& integrator, const RefOptions& o = {});

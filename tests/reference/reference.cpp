@@ -197,6 +197,7 @@ class Sim {
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
     md_.mesh.assign(m.meshes.size(), MeshMode{});
+    series_v_.assign(m.frictions.size(), 0.0);
     // The force scale of the model (the thresholds of the switching functions are relative to it).
     // (sampled over the run: every signal kind, its largest magnitude up to a sample's spacing).
     for (int i = 0; i <= 2000; ++i) {
@@ -294,6 +295,7 @@ class Sim {
   Modes md_;
   double fscale_ = 1.0, h_ = 1e-3;
   RefResult res_;
+  std::vector<double> series_v_;  ///< per stop: |v⁻| of the first impact of its current series of bounces (0: none)
 
   // ---- kinematics --------------------------------------------------------------------------------
   double qa(const double* y, int i) const { return i < 0 ? 0.0 : y[i]; }
@@ -1060,18 +1062,25 @@ RefResult Sim::run() {
       if (static_cast<long>(res_.events.size()) > o_.max_events) throw std::runtime_error("too many events");
       std::vector<int> fired_fr;
       std::vector<size_t> rested;  // stops the impact brought to rest
+      std::vector<double> rested_v;  // their |v⁻|
       for (size_t i = 0; i < ge.size() && i < g0.size(); ++i) {
         if (!fires(g0[i], ge[i]) || ge[i].kink) continue;
         if (ge[i].gap >= 0) {
           const size_t k = static_cast<size_t>(ge[i].gap);
           const Link& L = m_.links[k];
           const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
+          const double ddl = std::abs(va(y.data(), L.a) - va(y.data(), L.b));
+          const bool by_position = md_.gap[k] == GMode::open || L.d == 0.0;  // g a distance (RefEvent)
           if (md_.gap[k] == GMode::open) {
             md_.gap[k] = std::abs(dl - L.hi()) <= std::abs(dl - L.lo()) ? GMode::closed_pos : GMode::closed_neg;
             record(t, "gap_closed", L.name);
           } else {
             md_.gap[k] = GMode::open;
             record(t, "gap_opened", L.name);
+          }
+          if (by_position && ddl > 0.0) {
+            RefEvent& ev = res_.events.back();
+            ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = 1.0 / ddl;
           }
         } else if (ge[i].mesh >= 0) {
           // A gear mesh: the free play reaches a flank (the speeds' signs read again), the contact
@@ -1103,6 +1112,8 @@ RefResult Sim::run() {
             // The impact: v⁺ = −e v⁻ at the stop; rest for e = 0 or a flight below the resolution.
             const size_t b = static_cast<size_t>(f.a);
             y[b] = f.stop_pos;
+            const double vm = std::abs(y[static_cast<size_t>(n_) + b]);
+            if (series_v_[k] == 0.0) series_v_[k] = vm;  // the first impact of a series of bounces
             const double vp = -f.e * y[static_cast<size_t>(n_) + b];
             y[static_cast<size_t>(n_) + b] = vp;
             std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
@@ -1116,9 +1127,19 @@ RefResult Sim::run() {
               y[static_cast<size_t>(n_) + b] = 0.0;
               md_.fr[k] = FMode::stuck;
               record(t, "stick", f.name);
-              rested.push_back(k);
+              // The rest is the series' accumulation instant (RefEvent): its sensitivity.
+              RefEvent& ev = res_.events.back();
+              ev.body = f.a, ev.dt_dq = series_v_[k] > 0.0 ? 1.0 / series_v_[k] : 0.0;
+              if (f.e > 0.0 && f.e < 1.0 && back > 0.0) {
+                ev.dt_dsqrtq = (1.0 + f.e) / ((1.0 - f.e) * std::sqrt(2.0 * back));
+                ev.dt_dv = 2.0 * f.e / (back * (1.0 - f.e));
+              }
+              series_v_[k] = 0.0;
+              rested.push_back(k), rested_v.push_back(vm);
             } else {
               record(t, "impact", f.name);
+              RefEvent& ev = res_.events.back();
+              ev.body = f.a, ev.dt_dq = vm > 0.0 ? 1.0 / vm : 0.0;
             }
             // The velocity jump changes δ̇ of the links on the body: a closed damped flank whose
             // c e + d δ̇ turns negative opens at the impact, an open one past its flank whose force
@@ -1141,7 +1162,8 @@ RefResult Sim::run() {
       decide(t, y, fired_fr);
       // A plastic impact whose loads pull the body off the stop at once is one `impact` (docs/hybrid.md,
       // End stop), not a rest: its `stick` and the decision's `slip` at t become that impact.
-      for (const size_t k : rested) {
+      for (size_t r = 0; r < rested.size(); ++r) {
+        const size_t k = rested[r];
         if (md_.fr[k] != FMode::off) continue;
         const std::string& name = m_.frictions[k].name;
         auto& ev = res_.events;
@@ -1149,6 +1171,8 @@ RefResult Sim::run() {
                                 [&](const RefEvent& x) { return x.t == t && x.element == name && (x.kind == "stick" || x.kind == "slip"); }),
                  ev.end());
         record(t, "impact", name);
+        RefEvent& imp = res_.events.back();
+        imp.body = m_.frictions[k].a, imp.dt_dq = rested_v[r] > 0.0 ? 1.0 / rested_v[r] : 0.0;
       }
       restart(t, y, g0), g0_valid = true;
       window_ = 0.0, t_back_ = t, y_back_ = y;

@@ -269,6 +269,23 @@ struct RefEvent {
   /// integration's resolution of the loads, moves that instant by 1e-6 s. Events at the same instant
   /// as the one that fired (its decision's) share its window.
   double window = 0.0;
+  /// The event time's sensitivity to the state of one body, for the campaign's tolerance of this
+  /// event (campaign.hpp): an event at a zero of g(x) moves by δg/|ġ| when the state moves by δx.
+  /// body −1: none (the fixed tolerance alone); else the tolerance is
+  /// dt_dq δq + dt_dsqrtq √δq + dt_dv δv of that body (and of body2: δq, δv are the sums over
+  /// both). A gap closing (g the distance δ₊ − δ or δ − δ₋ of its flank, |ġ| = |v_a − v_b|), or
+  /// opening from a flank without damping (g = c e): dt_dq = 1/|v_a − v_b| on its two bodies. An end stop's impact at speed v⁻ (g its
+  /// distance, |ġ| = |v⁻|): dt_dq = 1/|v⁻|. A plastic rest (e = 0) is that impact. The rest that
+  /// ends a series of bounces (e > 0) is the accumulation instant t∞ = t_k + 2 e v_k/(a (1 − e)),
+  /// from any bounce k at speed v_k under the acceleration a towards the stop: an offset δq of the
+  /// body at bounce k moves t_k by δq/v_k and v_k by a δq/v_k, so t∞ by (δq/v_k)(1 + e)/(1 − e);
+  /// a bounce is resolved by the position only while its apex height v_k²/(2a) exceeds δq, so
+  /// v_k ≥ √(2 a δq) and dt_dsqrtq = (1 + e)/((1 − e) √(2a)); a velocity error moves it by
+  /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact.
+  int body = -1, body2 = -1;
+  double dt_dq = 0.0;      ///< s/m
+  double dt_dsqrtq = 0.0;  ///< s/√m
+  double dt_dv = 0.0;      ///< s/(m/s)
 };
 
 struct RefOptions {
