@@ -149,8 +149,8 @@ py::list drives(const Model& m) {
     if (!d.others.empty()) {  // an element between two bodies (its "other") or on several ("others")
       py::list others;
       for (size_t p = 0; p < d.others.size(); ++p)
-        others.append(shown_body(m, d.others[p], p < d.given_others.size() ? d.given_others[p] : ""));
-      e["other"] = others[0];
+        others.append(py::str(shown_body(m, d.others[p], p < d.given_others.size() ? d.given_others[p] : "")));
+      e["other"] = py::str(shown_body(m, d.others[0], d.given_others.empty() ? "" : d.given_others[0]));
       if (d.others.size() > 1) e["others"] = others;
     }
     out.append(e);

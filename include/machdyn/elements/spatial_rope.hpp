@@ -47,7 +47,8 @@ class SpatialRope final : public Element {
   LinkLaw law;         ///< the scalar law: one positive flank at e = 0, c = nEA/L0, K = nEA, s, φ0, d
   double h = 0.0;      ///< the suspension point's height, m
   double r0 = 0.0;     ///< the jib's radius without a radius body, m
-  double mass = 0.0;   ///< the load's mass, kg (for the description only)
+  double mass = 0.0;   ///< the load's mass, kg (the description, the summary's rigid force)
+  double sway_after = -1.0;  ///< t_r of the summary's residual sway, s (`sway_after`; < 0: none)
 
   /// Where the rope is at the motion b: the points, its length, direction and the gradients.
   struct Geometry {

@@ -6,7 +6,7 @@
 //          hangs at rest),
 //          trolley: BODY (translational, x), bridge: BODY (translational, y),
 //          jib: BODY (rotational, θ) with radius: BODY (translational) or a length,
-//          drum: BODY (rotational, φ) with drum_radius (m)}
+//          drum: BODY (rotational, φ) with drum_radius (m), sway_after (s: the summary's residual sway)}
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -141,6 +141,7 @@ std::shared_ptr<const Element> place_spatial_rope(FieldReader& f, const Model& m
     ok = false;
   }
   const std::optional<double> height = f.map().find("height") ? f.quantity("height", dim::length) : std::nullopt;
+  if (f.map().find("sway_after")) rope->sway_after = f.positive("sway_after", dim::time, 0.0, true).value_or(-1.0);
   if (!ok || !L0 || !EA || (port_body[static_cast<int>(Role::drum)] >= 0 && !R)) return nullptr;
 
   // The ports in their order, each body once.
