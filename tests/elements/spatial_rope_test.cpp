@@ -267,6 +267,36 @@ TEST_P(Sway, EnergyBooksBalanceHoistingAndTravelling) {
   EXPECT_LT(series(r, "rope.free_length_m").back(), 9.5);
 }
 
+// Claim: a load resting on a ground stop under its z body lifts off as on a rope link: the drum
+// (J = 50 kg·m², torque M = 2 kN·m, unloaded while the rope is slack) winds in the slack
+// ℓ₀ − L0 < 0 (ℓ₀ = √(0.2² + 9.95²) from the load at x = 0.2 m to the suspension point 9.95 m above
+// it) at s = R/n = 0.15 m per radian: the rope is taut at t = √(2 (L0 − ℓ₀)/(s M/J)) (within 1e-9 s),
+// the stop lets the load go after that (an event of the stop), the load rises, and the energy books
+// balance within 1e-6 of the work turned over.
+TEST_P(Sway, LiftOffFromAGroundStop) {
+  Model md = sway_model("bodies:\n  drum: {inertia: 50 kg*m^2}\n  trolley: {type: translational, mass: 3 t}\n"
+                        "  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [0.2 m, 0 m]}\n"
+                        "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, drum: drum, drum_radius: 0.3 m, "
+                        "falls: 2, length: 10 m, EA: 5e7 N, height: 9.95 m, damping: 1e4 N*s/m}\n"
+                        "loads:\n  hoist: {type: constant, body: drum, value: 2000 N*m}\n"
+                        "stops:\n  ground: {body: load.z, min: 0 m}\n",
+                        1.0, 1e-3, GetParam());
+  SimulateOptions o;
+  o.event_driven = true;
+  const SimulationResult r = simulate(md, o);
+  const double l0 = std::hypot(0.2, 9.95), t_taut = std::sqrt(2 * (10 - l0) / (0.15 * 2000 / 50.0));
+  double taut = -1, lift = -1;
+  for (const ModeEvent& ev : r.hybrid.events) {
+    if (taut < 0 && ev.element == "rope" && ev.to == "taut" && ev.kind != "initial") taut = ev.t;
+    if (lift < 0 && ev.element == "ground" && ev.kind != "initial") lift = ev.t;
+  }
+  EXPECT_NEAR(taut, t_taut, 1e-9);
+  EXPECT_GT(lift, taut);
+  EXPECT_GT(series(r, "load.z.position_m").back(), 0.01);
+  const EnergyBalance& e = r.hybrid.energy;
+  EXPECT_LT(std::abs(e.residual()), 1e-6 * (std::abs(e.source_work) + e.damping_loss)) << e.residual();
+}
+
 // Claim: linearized about the hanging load, a load on a free trolley has the pendulum mode
 // ω² = (g/ℓ)(1 + m/M) and the stretch mode c/m (and the trolley's rigid mode 0): the eigenvalues of
 // M⁻¹K of linearize() within 1e-9 (the geometric stiffness F ∂²ℓ/∂q² is the pendulum's m g/ℓ).
