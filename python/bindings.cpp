@@ -148,7 +148,13 @@ py::list drives(const Model& m) {
     py::dict e;
     e["name"] = d.name, e["type"] = d.law->type();
     e["body"] = shown_body(m, d.body, d.given_body), e["states"] = d.states();
-    if (d.other >= 0) e["other"] = shown_body(m, d.other, d.given_other);  // an element between two bodies
+    if (!d.others.empty()) {  // an element between two bodies (its "other") or on several ("others")
+      py::list others;
+      for (size_t p = 0; p < d.others.size(); ++p)
+        others.append(py::str(shown_body(m, d.others[p], p < d.given_others.size() ? d.given_others[p] : "")));
+      e["other"] = py::str(shown_body(m, d.others[0], d.given_others.empty() ? "" : d.given_others[0]));
+      if (d.others.size() > 1) e["others"] = others;
+    }
     out.append(e);
   }
   return out;

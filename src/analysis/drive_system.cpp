@@ -930,7 +930,7 @@ void DriveSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix
     double w[ElementMotion::kMax][2];  // port p: ω_p = Σ w_i v_i, f_i += w_i M_p (model.hpp: Drive)
     int nt[ElementMotion::kMax];
     nt[0] = place.terms(b[0], w[0]);
-    if (np > 1) nt[1] = 1, b[1][0] = place.other, w[1][0] = place.other_ratio;
+    for (int p = 1; p < np; ++p) nt[p] = 1, b[p][0] = place.others[static_cast<size_t>(p - 1)], w[p][0] = 1.0;
     for (int p = 0; p < np; ++p)
       for (int i = 0; i < nt[p]; ++i) {
         const int vb = n_ + b[p][i];

@@ -1,5 +1,6 @@
 #include "machdyn/elements/linear_model.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "machdyn/elements/contact.hpp"
@@ -36,24 +37,40 @@ Eigen::SparseMatrix<double> LinearModel::constraints() const {
   return assemble(static_cast<int>(G.size()), n, t);
 }
 
-void add_drive_linear(const Drive& d, int mode, LinearModel& lin) {
-  if (d.ports() == 1 && d.body2 < 0 && d.ratio == 1.0) return d.law->add_linear(&d.body, mode, lin);
+void add_drive_linear(const Drive& d, int mode, LinearModel& lin, const double* q, const double* x) {
+  const int np = d.ports();
+  ElementMotion b;  // the configuration q (at rest) the terms are taken about
+  b.n = np;
+  if (q)
+    for (int p = 0; p < np; ++p) b.q[p] = d.at(q, p);
+  std::vector<double> x0;
+  if (!x) {  // the element's initial states
+    x0.assign(static_cast<size_t>(std::max(d.law->states(), 1)), 0.0);
+    d.law->initial_states(x0.data());
+    x = x0.data();
+  }
+  auto add = [&](const int* at, LinearModel& to) {
+    if (q) d.law->add_linear_at(at, b, x, mode, to);
+    else d.law->add_linear(at, mode, to);
+  };
+  if (np == 1 && d.body2 < 0 && d.ratio == 1.0) return add(&d.body, lin);
   // The element's terms at its own points X_p (a scratch model of one coordinate per port), spread
   // by δq_X = Σ ρ_i δq_i: an entry c at (X_r, X_s) is ρ_i ρ_j c at (i, j) over the terms i of port r
-  // and j of port s (model.hpp: Drive).
-  const int np = d.ports();
+  // and j of port s (model.hpp: Drive; ports ≥ 1 are plain bodies).
   LinearModel own(np);
-  const int at[2] = {0, 1};
-  d.law->add_linear(at, mode, own);
-  int b[2][2];
-  double w[2][2];
-  int nt[2] = {d.terms(b[0], w[0]), 1};
-  if (np > 1) b[1][0] = d.other, w[1][0] = d.other_ratio;
+  int at[ElementMotion::kMax];
+  for (int p = 0; p < np; ++p) at[p] = p;
+  add(at, own);
+  int b_[ElementMotion::kMax][2];
+  double w[ElementMotion::kMax][2];
+  int nt[ElementMotion::kMax];
+  nt[0] = d.terms(b_[0], w[0]);
+  for (int p = 1; p < np; ++p) nt[p] = 1, b_[p][0] = d.others[static_cast<size_t>(p - 1)], w[p][0] = 1.0;
   auto spread = [&](const std::vector<Eigen::Triplet<double>>& from, std::vector<Eigen::Triplet<double>>& to) {
     for (const auto& e : from) {
       const int r = static_cast<int>(e.row()), c = static_cast<int>(e.col());
       for (int i = 0; i < nt[r]; ++i)
-        for (int j = 0; j < nt[c]; ++j) to.emplace_back(b[r][i], b[c][j], w[r][i] * w[c][j] * e.value());
+        for (int j = 0; j < nt[c]; ++j) to.emplace_back(b_[r][i], b_[c][j], w[r][i] * w[c][j] * e.value());
     }
   };
   spread(own.K, lin.K);
@@ -88,7 +105,7 @@ LinearModel linearize(const Model& m, const Topology& topo, double t, const doub
   // Elements with states of their own in their mode 0 (model/element.hpp; a limited speed drive
   // is a constant torque and adds nothing): a DC motor its quasi-static slope k²/R, a speed drive its
   // PI law as damper K_p and spring K_p/T_i.
-  for (const Drive& d : m.drives) add_drive_linear(d, 0, lin);
+  for (const Drive& d : m.drives) add_drive_linear(d, 0, lin, q);  // about the configuration q
   // Lossy gears: for modes the ideal gear, v_a − i v_b = 0 (elements/lossy_gear.hpp).
   for (const LossyGear& g : m.lossy_gears) LossyGearLaw::of(g).add_linear(lin);
   // Prescribed motions: fixed supports (elements/prescribed_motion.hpp).

@@ -273,8 +273,12 @@ std::vector<Table> model_tables(const Model& m) {
   Table drives = table("Drives", {"drive", "type", "body", "definition"});
   for (const auto& d : m.drives)
     drives.rows.push_back({d.name, d.law->type(),
-                           shown_body(m, d.body, d.given_body) +
-                               (d.other >= 0 ? ", " + shown_body(m, d.other, d.given_other) : std::string()),
+                           [&] {
+                             std::string at = shown_body(m, d.body, d.given_body);
+                             for (size_t p = 0; p < d.others.size(); ++p)
+                               at += ", " + shown_body(m, d.others[p], p < d.given_others.size() ? d.given_others[p] : "");
+                             return at;
+                           }(),
                            d.law->describe(m.bodies[static_cast<std::size_t>(d.body)].kind)});
   drives.note = "Elements with states of their own: L di/dt = u − R i − k ω, M = k i (DC motor); PI speed control "
                 "M = K_p e + (K_p/T_i) ∫e dt, |M| ≤ M_max, integral held while limited (speed drive); the laws of "

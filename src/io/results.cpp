@@ -1,6 +1,7 @@
 #include "machdyn/io/results.hpp"
 
 #include "machdyn/analysis/brake_summary.hpp"
+#include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/csv.hpp"
 #include "io/number_text.hpp"
@@ -207,6 +208,18 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   j["links"] = links;
   if (r.hybrid.active) add_hybrid_summary(m, r, j);
   if (const auto brakes = brake_summaries(m, r); !brakes.empty()) j["brakes"] = brake_stops_json(brakes);
+  if (const auto sway = sway_summaries(m, r); !sway.empty()) {  // spatial ropes: analysis/sway_summary.hpp
+    nlohmann::json js = nlohmann::json::object();
+    for (const SwaySummary& x : sway) {
+      nlohmann::json e = {{"max_sway_rad", x.max_sway_rad}, {"t_max_sway_s", x.t_max_sway},
+                          {"max_horizontal_force_N", x.max_horizontal_force_N},
+                          {"t_max_horizontal_force_s", x.t_max_horizontal_force}, {"max_tension_N", x.max_tension_N}};
+      if (x.residual_after) e["residual_after_s"] = *x.residual_after, e["residual_sway_rad"] = x.residual_sway_rad;
+      if (x.dynamic_factor) e["rigid_force_N"] = *x.rigid_force_N, e["horizontal_dynamic_factor"] = *x.dynamic_factor;
+      js[x.rope] = e;
+    }
+    j["sway"] = js;
+  }
   if (!r.machines.empty()) {
     nlohmann::json ms = nlohmann::json::object();
     for (const auto& x : r.machines) {

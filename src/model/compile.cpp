@@ -21,6 +21,7 @@
 #include "model/compile_signal.hpp"
 #include "model/compile_machine.hpp"
 #include "model/compile_motion.hpp"
+#include "model/compile_point_mass.hpp"
 #include "model/compile_crane.hpp"
 #include "model/compile_joint.hpp"
 #include "model/compile_lossy.hpp"
@@ -98,6 +99,10 @@ void compile_bodies(const SpecNode* section, Model& m, Diagnostics& diag) {
       m.bodies.push_back(compile_machine_body(name, spec, diag));
       continue;
     }
+    if (detail::is_point_mass(spec)) {  // a load in the plane or in space: model/compile_point_mass.cpp
+      detail::compile_point_mass(name, spec, m, diag);
+      continue;
+    }
     if (wrong_section(spec, "bodies", fmt::format("body '{}'", name), diag)) continue;
     FieldReader f(spec, fmt::format("body '{}'", name), diag);
     if (name == "ground") diag.error(spec.loc, "'ground' is reserved for the fixed frame; name the body otherwise");
@@ -136,13 +141,14 @@ void remember_given_bodies(Model& m) {
   for (Load& ld : m.loads) ld.given_body = name(ld.body);
   for (Drive& d : m.drives) {
     d.given_body = name(d.body);
-    if (d.other >= 0) d.given_other = name(d.other);
+    d.given_others.clear();
+    for (int o : d.others) d.given_others.push_back(name(o));
   }
 }
 
 void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealGear>& gears,
                    std::vector<detail::LossyGearSpec>& lossy, std::vector<detail::JointSpec>& joints,
-                   Diagnostics& diag) {
+                   std::vector<std::pair<std::string, const SpecNode*>>& placed, Diagnostics& diag) {
   if (!section) return;
   if (!section->is_map()) {
     diag.error(section->loc, "'links' must be a map of NAME: {fields}");
@@ -167,6 +173,10 @@ void compile_links(const SpecNode* section, Model& m, std::vector<detail::IdealG
     }
     if (kind == "lossy-gear") {
       detail::read_lossy_gear(name, spec, m, lossy, diag);  // model/compile_lossy.cpp
+      continue;
+    }
+    if (detail::is_placed_element_type(kind)) {  // an element naming its bodies (a spatial rope): after gravity
+      placed.emplace_back(name, &spec);
       continue;
     }
     if (detail::is_link_element_type(kind)) {  // a registered element between two bodies (a gear mesh)
@@ -639,7 +649,8 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   std::vector<detail::IdealGear> gears;
   std::vector<detail::LossyGearSpec> lossy;
   std::vector<detail::JointSpec> joints;
-  compile_links(top.node("links"), m, gears, lossy, joints, diag);
+  std::vector<std::pair<std::string, const SpecNode*>> placed;
+  compile_links(top.node("links"), m, gears, lossy, joints, placed, diag);
   // A rope's sheave losses: a lossy gear at its drum (model/sheaves.hpp), resolved with the others.
   if (diag.empty()) detail::add_sheave_losses(m, lossy, diag);
   compile_loads(top.node("loads"), m, diag);
@@ -651,6 +662,7 @@ Model compile_model(const SpecNode& root, const std::string& source) {
   detail::compile_buffers(top.node("buffers"), m, diag);
   detail::compile_crane(top.node("crane"), m, diag);
   detail::compile_drives(top.node("drives"), m, diag);
+  for (const auto& [name, spec] : placed) detail::read_placed_element(name, *spec, m, diag);  // model/compile_drive.cpp
   detail::check_motion_elements(m, diag);
   // The bodies as the file names them, for display, before the merges below may move an element.
   if (diag.empty()) remember_given_bodies(m);

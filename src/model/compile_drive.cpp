@@ -64,10 +64,31 @@ void read_link_element(const std::string& name, const SpecNode& spec, Model& m, 
   Drive d;
   d.name = name;
   d.body = idx[0];
-  d.other = idx[1];
+  d.others = {idx[1]};
   d.law = type->compile(f, m.bodies[static_cast<size_t>(idx[0])].kind);
   f.finish();
   if (d.law) m.drives.push_back(std::move(d));
+}
+
+bool is_placed_element_type(std::string_view type) {
+  const ElementType* t = find_element_type(type);
+  return t && t->place;
+}
+
+void read_placed_element(const std::string& name, const SpecNode& spec, Model& m, Diagnostics& diag) {
+  FieldReader f(spec, fmt::format("link '{}'", name), diag);
+  if (!spec.is_map()) return;  // reported by the reader
+  const ElementType* type = find_element_type(*f.text("type"));
+  std::vector<int> bodies;
+  auto law = type->place(f, m, bodies);
+  f.finish();
+  if (!law || bodies.empty()) return;
+  Drive d;
+  d.name = name;
+  d.body = bodies[0];
+  d.others.assign(bodies.begin() + 1, bodies.end());
+  d.law = std::move(law);
+  m.drives.push_back(std::move(d));
 }
 
 std::optional<Signal> signal_field(FieldReader& f, const char* key, const Dim& d) {
@@ -88,7 +109,8 @@ void compile_drives(const SpecNode* section, Model& m, Diagnostics& diag) {
   for (const auto& [name, spec] : section->fields) {
     FieldReader f(spec, fmt::format("drive '{}'", name), diag);
     if (!spec.is_map()) continue;  // reported by the reader
-    if (const SpecNode* t = spec.find("type"); t && t->is_scalar() && is_link_element_type(t->scalar)) {
+    if (const SpecNode* t = spec.find("type");
+        t && t->is_scalar() && (is_link_element_type(t->scalar) || is_placed_element_type(t->scalar))) {
       diag.error(t->loc, fmt::format("drive '{}': type '{}' is not a kind of drives; a {} goes under 'links:'", name,
                                      t->scalar, t->scalar));
       continue;

@@ -28,6 +28,14 @@ bool is_link_element_type(std::string_view type);
 /// merge) into m.drives; every problem into `diag`, located.
 void read_link_element(const std::string& name, const SpecNode& spec, Model& m, Diagnostics& diag);
 
+/// Whether `type` is a registered element type whose own fields name its bodies (ElementType::place:
+/// a spatial rope), written under `links:`.
+bool is_placed_element_type(std::string_view type);
+
+/// Reads the `links:` entry NAME of such a type into m.drives (its ports on the bodies its place
+/// function names); every problem into `diag`, located. Called after `gravity:` is compiled.
+void read_placed_element(const std::string& name, const SpecNode& spec, Model& m, Diagnostics& diag);
+
 /// A required signal field of an element: a quantity of dimension d or a map with `type:`; a missing
 /// or bad one is reported located (nullopt).
 std::optional<Signal> signal_field(FieldReader& f, const char* key, const Dim& d);

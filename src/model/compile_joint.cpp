@@ -133,7 +133,10 @@ void remove_body(Model& m, int x) {
     shift(c.a), shift(c.b);
     for (int j = 0; j < c.row.terms; ++j) shift(c.row.body[j]);
   }
-  for (Drive& d : m.drives) shift(d.body), shift(d.body2), shift(d.other);
+  for (Drive& d : m.drives) {
+    shift(d.body), shift(d.body2);
+    for (int& o : d.others) shift(o);
+  }
   for (LossyGear& g : m.lossy_gears) shift(g.a), shift(g.b);
   for (RigidSlave& s : m.slaves) shift(s.master), shift(s.master2);
   for (MergedGear& g : m.merged_gears) shift(g.body);
@@ -309,7 +312,7 @@ void eliminate(Model& m, const JointSpec& j, const VelocityRow& r, int x, const 
   // A drive on X likewise: it sees ω_X = Σ c_k v_k and puts c_k M on the others (model.hpp: Drive);
   // every member is rotational (member_index), so its columns keep their units.
   for (Drive& d : m.drives) {
-    if (d.other == x)  // its port 1 is a plain body (model.hpp: Drive::other)
+    if (std::find(d.others.begin(), d.others.end(), x) != d.others.end())  // plain bodies (model.hpp: Drive::others)
       diag.error(m.where(d.name), fmt::format("'{}': a {} on '{}', a joint's member without inertia, is not supported "
                                               "yet: give '{}' an inertia", d.name, d.law->type(), X.name, X.name));
     if (d.body != x) continue;

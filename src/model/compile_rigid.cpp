@@ -367,11 +367,13 @@ void resolve_rigid(Model& m, const std::vector<IdealGear>& gears, const SpecNode
       d.ratio *= rho[static_cast<size_t>(d.body)];
     }
     d.body = to(d.body);
-    if (d.other >= 0 && is_slave(d.other))  // its port 1 is a plain body (model.hpp: Drive::other)
-      diag.error(m.where(d.name), fmt::format("'{}': {}; a {} on a slaved body is not supported yet: attach it to '{}'",
-                                              d.name, slave_text(d.other), d.law->type(),
-                                              m.bodies[static_cast<size_t>(master[static_cast<size_t>(d.other)])].name));
-    if (d.other >= 0) d.other = to(d.other);
+    for (int& o : d.others) {  // ports ≥ 1 are plain bodies (model.hpp: Drive::others)
+      if (is_slave(o))
+        diag.error(m.where(d.name), fmt::format("'{}': {}; a {} on a slaved body is not supported yet: attach it to '{}'",
+                                                d.name, slave_text(o), d.law->type(),
+                                                m.bodies[static_cast<size_t>(master[static_cast<size_t>(o)])].name));
+      o = to(o);
+    }
   }
   if (m.crane.load >= 0) {
     if (is_slave(m.crane.load))

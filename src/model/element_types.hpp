@@ -5,6 +5,8 @@
 //
 //   MACHDYN_ELEMENT_TYPE(NAME, "yaml-type", compile_function, "example fields")       (drives:, one body)
 //   MACHDYN_LINK_ELEMENT_TYPE(NAME, "yaml-type", compile_function, "example fields")  (links:, two bodies)
+//   MACHDYN_PLACED_ELEMENT_TYPE(NAME, "yaml-type", place_function, "example fields", "example bodies")
+//                                                       (links:, the bodies named by its own fields)
 //
 // at file scope, where NAME is the file's name. CMake (cmake/ElementTypes.cmake) lists those files
 // and generates the one table that refers to each registration (generated/element_types_table.cpp in
@@ -32,8 +34,16 @@ struct ElementType {
   int bodies = 1;
   /// The fields of a small instance (a YAML flow map's body, without `type` and the bodies), for the
   /// conformance test over every registered type (tests/model/element_conformance_test.cpp): on a
-  /// rotational body (or two) with inertia 1 kg·m².
+  /// rotational body (or two) with inertia 1 kg·m², or on the bodies `example_bodies` gives.
   const char* example = "";
+  /// A type whose own fields name its bodies (bodies = 0: a spatial rope's load and suspension
+  /// bodies): `place` reads every field of the entry (`type` already read), puts the bodies it acts
+  /// on into `bodies` (its ports in order, each a body of `m` with inertia) and returns the element,
+  /// reporting every problem located (null when one was bad); `compile` is unused. Compiled after
+  /// `gravity:` (m.gravity is set).
+  std::shared_ptr<const Element> (*place)(FieldReader& f, const Model& m, std::vector<int>& bodies) = nullptr;
+  /// Such a type's example bodies: the `bodies:` section (a YAML flow map's body) its example acts on.
+  const char* example_bodies = "";
 };
 
 /// Every registered type, in the order of their files' names.
@@ -57,4 +67,12 @@ const ElementType* find_element_type(std::string_view name);
   const ::machdyn::detail::ElementType& machdyn_element_type_##NAME() {          \
     static const ::machdyn::detail::ElementType kType{TYPE, &(COMPILE), "links", 2, EXAMPLE}; \
     return kType;                                                                \
+  }
+
+/// Registers an element type under `links:` whose own fields name its bodies (ElementType::place)
+/// from its own file src/elements/types/NAME.cpp; BODIES: its example's `bodies:`.
+#define MACHDYN_PLACED_ELEMENT_TYPE(NAME, TYPE, PLACE, EXAMPLE, BODIES)                           \
+  const ::machdyn::detail::ElementType& machdyn_element_type_##NAME() {                           \
+    static const ::machdyn::detail::ElementType kType{TYPE, nullptr, "links", 0, EXAMPLE, &(PLACE), BODIES}; \
+    return kType;                                                                                 \
   }

@@ -244,7 +244,7 @@ TEST(MeshCompile, BaseRadiiAreTheLineOfAction) {
   EXPECT_NEAR(g.c, 2e4, 1e-9);
   EXPECT_NEAR(g.d, 1.0, 1e-12);
   EXPECT_NEAR(g.b, 2e-3, 1e-15);
-  EXPECT_EQ(m.drives[0].other, 1);
+  EXPECT_EQ(m.drives[0].others, std::vector<int>{1});
 }
 
 // Claim: every bad field of a mesh is an error at its place naming it, and nothing else.

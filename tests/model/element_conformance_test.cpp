@@ -24,17 +24,20 @@
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
-/// The model of one instance `e` of `type` from its example, on A (and B).
+/// The model of one instance `e` of `type` from its example, on A (and B), or on the bodies its
+/// example names (a type whose fields name its bodies: ElementType::place).
 Model instance_of(const detail::ElementType& type) {
-  std::string yaml = "bodies:\n  A: {inertia: 1 kg*m^2, velocity: 3 rad/s}\n  B: {inertia: 1 kg*m^2, velocity: -0.5 rad/s}\n";
+  std::string yaml = type.place ? std::string("bodies: {") + type.example_bodies + "}\n"
+                                : "bodies:\n  A: {inertia: 1 kg*m^2, velocity: 3 rad/s}\n  B: {inertia: 1 kg*m^2, velocity: -0.5 rad/s}\n";
   const std::string entry = std::string("{type: ") + type.name + ", " +
-                            (type.bodies == 2 ? "between: [A, B], " : "body: A, ") + type.example + "}";
+                            (type.place ? "" : type.bodies == 2 ? "between: [A, B], " : "body: A, ") + type.example + "}";
   yaml += std::string(type.section) + ":\n  e: " + entry + "\nsimulation: {t_end: 0.05 s, dt_out: 1 ms}\n";
   return test::model_text(yaml, std::string(type.name) + ".yaml");
 }
 
 /// The states the checks run at: positions and velocities of A and B (the element's own states
-/// stay at their initial values).
+/// stay at their initial values); on more bodies, body i at its initial position + q[i % 2] with
+/// velocity v[i % 2].
 struct Sample {
   double q[2], v[2];
 };
@@ -72,8 +75,11 @@ TEST_P(Conformance, HasAnExampleThatCompiles) {
   const Model m = instance_of(type);
   ASSERT_EQ(m.drives.size(), 1u);
   EXPECT_STREQ(m.drives[0].law->type(), type.name);
-  EXPECT_EQ(m.drives[0].law->bodies(), type.bodies);
-  EXPECT_EQ(m.drives[0].ports(), type.bodies);
+  if (type.bodies > 0) {
+    EXPECT_EQ(m.drives[0].law->bodies(), type.bodies);
+  }
+  EXPECT_EQ(m.drives[0].ports(), m.drives[0].law->bodies());
+  EXPECT_LE(m.drives[0].ports(), ElementMotion::kMax);
   EXPECT_LE(m.drives[0].law->states(), ElementJacobian::kMax);
 }
 
@@ -81,7 +87,8 @@ TEST_P(Conformance, HasAnExampleThatCompiles) {
 /// element's law implies there at t.
 void place(DriveSystem& sys, const Sample& s, double t, std::vector<double>& y) {
   sys.initial_state(y.data());
-  for (int p = 0; p < 2; ++p) y[static_cast<size_t>(p)] = s.q[p], y[static_cast<size_t>(2 + p)] = s.v[p];
+  const int n = sys.dof();
+  for (int i = 0; i < n; ++i) y[static_cast<size_t>(i)] += s.q[i % 2], y[static_cast<size_t>(n + i)] = s.v[i % 2];
   sys.set_drive_mode(0, sys.natural_drive_mode(0, t, y.data()));
 }
 
@@ -240,7 +247,7 @@ TEST_P(Conformance, LinearTermsAreTheHessianOfTheEnergy) {
     const ElementMotion b = sys.drive_motion(0, y.data());
     const double* x = y.data() + sys.drive_offset(0);
     LinearModel lin(m.dof());
-    add_drive_linear(m.drives[0], mode, lin);
+    add_drive_linear(m.drives[0], mode, lin, y.data(), x);
     const Eigen::MatrixXd K(lin.stiffness());
     const double h = 1e-4;
     double worst = 0.0, scale = 1e-12;
@@ -252,7 +259,8 @@ TEST_P(Conformance, LinearTermsAreTheHessianOfTheEnergy) {
           return e.energy(bb, x, mode);
         };
         const double H = (V(h, h) - V(h, -h) - V(-h, h) + V(-h, -h)) / (4.0 * h * h);
-        const int br = r == 0 ? m.drives[0].body : m.drives[0].other, bc = c == 0 ? m.drives[0].body : m.drives[0].other;
+        auto body_of = [&](int p) { return p == 0 ? m.drives[0].body : m.drives[0].others[static_cast<size_t>(p - 1)]; };
+        const int br = body_of(r), bc = body_of(c);
         scale = std::max(scale, std::abs(H));
         worst = std::max(worst, std::abs(K(br, bc) - H));
       }
@@ -276,7 +284,7 @@ TEST_P(Conformance, OutputColumnsAreDescribed) {
   EXPECT_NE(e.describe(kind), "");
   EXPECT_STRNE(e.mode_name(0), "");
   const SimulationResult r = simulate(m);
-  EXPECT_NO_THROW(test::column(r, "e.torque_N_m"));
+  EXPECT_NO_THROW(test::column(r, "e.torque_" + unit_suffix(load_unit(kind))));
   for (const std::string& n : names) {
     const auto& col = test::series(r, "e." + n);
     for (double v : col) ASSERT_TRUE(std::isfinite(v)) << n;

@@ -15,9 +15,10 @@ namespace machdyn {
 /// the model (gaps: one per link, contacts and engaged: one per contact or empty).
 LinearModel linearize(const Model& m, const Topology& topo, double t = 0.0, const double* y = nullptr);
 
-/// Adds drive d's linear terms in `mode` (Element::add_linear) to lin: on its body, or, on a joint
-/// member without inertia (Drive::terms), a term c at X spread as ρ_i ρ_j c over its bodies i, j.
-void add_drive_linear(const Drive& d, int mode, LinearModel& lin);
+/// Adds drive d's linear terms in `mode` (Element::add_linear_at about positions q of the model's
+/// bodies and the element's states x; null: Element::add_linear) to lin: on its bodies, or, on a
+/// joint member without inertia (Drive::terms), a term c at X spread as ρ_i ρ_j c over its bodies i, j.
+void add_drive_linear(const Drive& d, int mode, LinearModel& lin, const double* q = nullptr, const double* x = nullptr);
 
 /// The topology the initial state implies: gaps closed where they press (LinkLaw::natural_mode),
 /// contacts stuck where the sliding velocity is zero, else sliding; brakes engaged when applied at t.

@@ -10,8 +10,8 @@
 /// file (its law, stated once, as a subclass), its compile function with its registration
 /// (src/model/element_types.hpp), its docs row and its test, and no consumer changes.
 ///
-/// Bodies: the element acts on bodies() = 1 or 2 bodies (its ports p = 0, 1; Drive::at maps them to
-/// the model's bodies). It sees each through its position q_p, velocity v_p and, where its law
+/// Bodies: the element acts on bodies() = 1 … ElementMotion::kMax bodies (its ports p = 0, 1, …;
+/// Drive::at maps them to the model's bodies). It sees each through its position q_p, velocity v_p and, where its law
 /// needs it, acceleration a_p (ElementMotion; rad, rad/s, rad/s² or m, m/s, m/s²) and puts the
 /// torque or force M_p (N·m or N, positive along +q_p) on it. Its states x (states() of them)
 /// follow [q; v] in the drive system's state.
@@ -44,7 +44,7 @@ struct LinearModel;  // elements/linear_model.hpp
 /// What an element sees of its bodies: per port p < n its position q[p], velocity v[p] and
 /// acceleration a[p] (a: filled only where the element reads_acceleration(mode); else 0).
 struct ElementMotion {
-  static constexpr int kMax = 2;
+  static constexpr int kMax = 8;  ///< a spatial rope: 3 load coordinates and 5 suspension bodies
   int n = 1;
   double q[kMax] = {};
   double v[kMax] = {};
@@ -71,7 +71,7 @@ class Element {
 
   /// Its `type:` (the registered name).
   [[nodiscard]] virtual const char* type() const = 0;
-  /// The number of bodies it acts on, 1 or 2 (≤ ElementMotion::kMax).
+  /// The number of bodies it acts on, 1 … ElementMotion::kMax.
   [[nodiscard]] virtual int bodies() const { return 1; }
   /// The number of its states (≤ ElementJacobian::kMax).
   [[nodiscard]] virtual int states() const = 0;
@@ -152,6 +152,13 @@ class Element {
   /// Its terms of the linear model in `mode`, its port p at coordinate body[p] of `lin`
   /// (elements/linear_model.hpp).
   virtual void add_linear(const int* /*body*/, int /*mode*/, LinearModel& /*lin*/) const {}
+  /// The same about the configuration b (positions; velocities and accelerations 0) and states x,
+  /// for an element whose linear terms depend on where it is (a spatial rope's geometric stiffness):
+  /// by default add_linear() above.
+  virtual void add_linear_at(const int* body, const ElementMotion& /*b*/, const double* /*x*/, int mode,
+                             LinearModel& lin) const {
+    add_linear(body, mode, lin);
+  }
   /// The fastest rate of its own states, 1/s (for the integrator choice).
   [[nodiscard]] virtual double rate_bound() const { return 0.0; }
 

@@ -327,7 +327,8 @@ struct Load {
 /// An element behind the one interface (model/element.hpp) placed on its bodies: from the section
 /// `drives:` an element on one body (`body`) with states of its own — a DC motor, a speed-controlled
 /// drive, an eddy-current brake with its temperature; from `links:` a registered element between
-/// two bodies (`body`, `other`) — an elastic gear mesh. Each type states its law and holds its compiled SI parameters in its own file under
+/// two bodies (`body`, `others`) — an elastic gear mesh — or on several (a spatial rope on its load
+/// and the bodies its suspension point follows). Each type states its law and holds its compiled SI parameters in its own file under
 /// elements/ (an Element, model/element.hpp) and registers its `type:` and compile function there;
 /// this struct only places it. Its states follow [q; v] in the drive system's state
 /// (analysis/drive_system.hpp), in the order of Model::drives.
@@ -343,12 +344,12 @@ struct Drive {
   int body2 = -1;
   double ratio2 = 0.0;
   std::string given_body;  ///< the body as the file names it (display; as Load::given_body)
-  /// The second body of an element between two bodies (Element::bodies() == 2, e.g. a gear mesh
-  /// under `links:`): its port 1 sees ρ_o x[other] and puts ρ_o M_1 on `other` (ρ_o ≠ 1 on a slaved
-  /// body, as ratio). −1: an element on one body.
-  int other = -1;
-  double other_ratio = 1.0;
-  std::string given_other;  ///< the second body as the file names it
+  /// Ports 1 … n−1 of an element on several bodies (Element::bodies() ≥ 2: a gear mesh under
+  /// `links:` on its second body, a spatial rope on its load's coordinates and its suspension
+  /// bodies): port p ≥ 1 sees x[others[p − 1]] and puts M_p on that body (a plain body with inertia
+  /// of its own; compile refuses a slaved one). Empty: an element on one body.
+  std::vector<int> others;
+  std::vector<std::string> given_others;  ///< those bodies as the file names them
 
   /// ρ x[body] + ρ₂ x[body2]: the element's own velocity (or acceleration) from the bodies' x.
   [[nodiscard]] double own(const double* x) const;
@@ -356,14 +357,16 @@ struct Drive {
   void spread(double M, double* f) const;
   /// Its bodies and weights into b[2], w[2]; returns how many (1 or 2).
   int terms(int* b, double* w) const;
-  /// The number of its ports (bodies it acts on as the element sees them): 1 or 2.
-  [[nodiscard]] int ports() const { return other >= 0 ? 2 : 1; }
-  /// Port p's coordinate from the bodies' x: own(x) for p = 0, ρ_o x[other] for p = 1.
-  [[nodiscard]] double at(const double* x, int p) const { return p == 0 ? own(x) : other_ratio * x[other]; }
+  /// The number of its ports (bodies it acts on as the element sees them): 1 + others.size().
+  [[nodiscard]] int ports() const { return 1 + static_cast<int>(others.size()); }
+  /// Port p's coordinate from the bodies' x: own(x) for p = 0, x[others[p − 1]] for p ≥ 1.
+  [[nodiscard]] double at(const double* x, int p) const {
+    return p == 0 ? own(x) : x[others[static_cast<size_t>(p - 1)]];
+  }
   /// Adds the forces M[p] of every port to f (port 0 by spread()).
   void spread_all(const double* M, double* f) const {
     spread(M[0], f);
-    if (other >= 0) f[other] += other_ratio * M[1];
+    for (size_t p = 0; p < others.size(); ++p) f[others[p]] += M[p + 1];
   }
 
   /// Number of continuous states (Element::states).
