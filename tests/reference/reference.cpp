@@ -664,8 +664,8 @@ class Sim {
         out.push_back({f.stop_max ? f.stop_pos - x : x - f.stop_pos, eps_x, -1, fi});
       } else if (md == FMode::stuck) {
         const double res = kLoadResolution * fscale_;  // a load's resolution (event_window)
-        if (f.one_sided()) out.push_back({lock(f) * lam[k] + f.kinetic_level(t) + 1e-9, eps_f, -1, fi, false, res});
-        else out.push_back({f.static_limit(t) - std::abs(lam[k]), 1e-13 * f.static_limit(t) + eps_f, -1, fi, false, res});
+        if (f.one_sided()) out.push_back({.g = lock(f) * lam[k] + f.kinetic_level(t) + 1e-9, .eps = eps_f, .fr = fi, .res = res});
+        else out.push_back({.g = f.static_limit(t) - std::abs(lam[k]), .eps = 1e-13 * f.static_limit(t) + eps_f, .fr = fi, .res = res});
       } else {
         out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
         // The kinks of a kinetic table over the sliding speed: located (no mode changes there), so
