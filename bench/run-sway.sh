@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# The swinging load's benchmarks (docs/benchmarks.md, "Swinging load"):
+#  1. a 60 s trolley move with sway and the drive line on one core: examples/crane/trolley-sway-drive.yaml
+#     (case unshaped, t_end 60 s), `machdyn simulate` pinned to CPU 0; the integration's wall time
+#     (summary.json solver.wall_time_s) and the whole command's CPU time, best of REPEAT;
+#  2. the sway sweep of bench/sway-sweep.yaml: 1000 moves (rope length 8–16 m × acceleration time
+#     2–5 s, unshaped and ZV-shaped, 500 each) with `machdyn sweep` on all cores and on one;
+#  3. scipy (bench/scipy_sway.py, the same equations written from docs/sway.md) on SCIPY_RUNS runs of
+#     each case spread over the grid, and machdyn's residual sway of the same runs (`simulate --set`)
+#     beside scipy's.
+# Usage: bash bench/run-sway.sh [BUILD_DIR]   (default build/release; REPEAT=3, SCIPY_RUNS=10)
+# Not a test: the numbers depend on the machine and its load (printed). Results go into
+# docs/benchmarks.md with this command.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+build=${1:-build/release}
+repeat=${REPEAT:-3}
+scipy_runs=${SCIPY_RUNS:-10}
+bin=$(cd "$build" && pwd)/apps/machdyn/machdyn
+model=$here/sway-sweep.yaml
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+TIMEFORMAT='%R %U %S'
+echo "== swinging load ($(nproc) cores, load average $(cut -d" " -f1-3 /proc/loadavg)), best of $repeat"
+
+# 1. The 60 s move on one core.
+best_int="" best_cpu="" all_int=""
+for r in $(seq 1 "$repeat"); do
+  t=$( { time taskset -c 0 "$bin" simulate "$here/../examples/crane/trolley-sway-drive.yaml" --case unshaped \
+           --set simulation.t_end=60 -o "$work/m60" >/dev/null 2>&1; } 2>&1 )
+  set -- $t
+  cpu=$(awk -v u="$2" -v s="$3" 'BEGIN{print u+s}')
+  int=$(/usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); print(s['solver']['wall_time_s'], s['solver']['steps'], len(s['events']))" \
+        "$work/m60/unshaped/summary.json")
+  set -- $int
+  all_int="$all_int $(awk -v x="$1" 'BEGIN{printf "%.1f", 1e3*x}')"
+  if [ -z "$best_int" ] || awk -v a="$1" -v b="$best_int" 'BEGIN{exit !(a<b)}'; then best_int=$1; steps=$2; events=$3; fi
+  if [ -z "$best_cpu" ] || awk -v a="$cpu" -v b="$best_cpu" 'BEGIN{exit !(a<b)}'; then best_cpu=$cpu; fi
+done
+# The command's own cost (reading, compiling, writing the files) at t_end = 10 ms, to take off.
+best_0=""
+for r in $(seq 1 "$repeat"); do
+  t=$( { time taskset -c 0 "$bin" simulate "$here/../examples/crane/trolley-sway-drive.yaml" --case unshaped \
+           --set simulation.t_end=0.01 -o "$work/m0" >/dev/null 2>&1; } 2>&1 )
+  set -- $t
+  cpu=$(awk -v u="$2" -v s="$3" 'BEGIN{print u+s}')
+  if [ -z "$best_0" ] || awk -v a="$cpu" -v b="$best_0" 'BEGIN{exit !(a<b)}'; then best_0=$cpu; fi
+done
+awk -v i="$best_int" -v c="$best_cpu" -v z="$best_0" -v s="$steps" -v e="$events" -v all="$all_int" 'BEGIN{
+  printf "60 s move     %d steps, %d events listed; CPU of the command %.0f ms, of the same at t_end 10 ms %.0f ms: the 60 s %.0f ms\n", s, e, 1e3*c, 1e3*z, 1e3*(c-z)
+  printf "              the integration'"'"'s wall time (solver.wall_time_s) %.1f ms (runs:%s ms)\n", 1e3*i, all}'
+
+# 2. The sweep: 2 × 500 runs, on all cores and on one. The ZV-shaped reference is set over the file's
+# (a sweep's --vary must name a field of the file's model, not only of a case's).
+zv='travel.reference={type: shaped, shaper: zv, length: 12 m, signal: {type: ramp, value: 0.63 m/s, end: 3 s}}'
+shape() {  # case -> the words that select it: --set ... and the varied field of the ramp's end
+  if [ "$1" = zv ]; then printf '%s\n' --set "$zv" travel.reference.signal.end; else printf '%s\n' travel.reference.end; fi
+}
+sweep() {  # jobs -> "wall cpu" of both halves
+  local jobs=$1 w=0 c=0 t
+  for case in unshaped zv; do
+    local -a sel; mapfile -t sel < <(shape "$case")
+    local field=${sel[-1]}; unset 'sel[-1]'
+    rm -rf "${work:?}/sw-$case"
+    t=$( { time "$bin" sweep "$model" "${sel[@]}" --vary rope.length=8:16:20 --vary "$field=2:5:25" --jobs "$jobs" \
+             -o "$work/sw-$case" >/dev/null 2>&1; } 2>&1 )
+    set -- $t
+    w=$(awk -v a="$w" -v b="$1" 'BEGIN{print a+b}'); c=$(awk -v a="$c" -v u="$2" -v s="$3" 'BEGIN{print a+u+s}')
+  done
+  echo "$w $c"
+}
+for jobs in 0 1; do
+  bw="" bc=""
+  for r in $(seq 1 "$repeat"); do
+    set -- $(sweep "$jobs")
+    if [ -z "$bw" ] || awk -v a="$1" -v b="$bw" 'BEGIN{exit !(a<b)}'; then bw=$1; bc=$2; fi
+  done
+  n=$(( $(wc -l <"$work/sw-unshaped/sweep.csv") + $(wc -l <"$work/sw-zv/sweep.csv") - 2 ))
+  ok=$(cat "$work/sw-unshaped/sweep.csv" "$work/sw-zv/sweep.csv" | grep -c ',ok,$' || true)
+  slips=$(awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="events_slip") k=i; next} $k!=0{n++} END{print n+0}' "$work/sw-unshaped/sweep.csv")
+  label="sweep all cores"; [ "$jobs" = 1 ] && label="sweep 1 thread "
+  awk -v l="$label" -v n="$n" -v w="$bw" -v c="$bc" -v ok="$ok" -v sl="$slips" 'BEGIN{
+    printf "%s %5d runs (%d ok, %d with a slip) %8.3f s %8.1f runs/s   CPU %7.3f s %8.1f runs/CPU-s\n", l, n, ok, sl, w, n/w, c, n/c}'
+done
+
+# 3. scipy on a sample, machdyn's residual sway of the same runs beside it.
+/usr/bin/python3 "$here/scipy_sway.py" 8 16 20 2 5 25 "$scipy_runs" >"$work/scipy.txt"
+head -1 "$work/scipy.txt"
+worst=0
+while read -r _ case len ta res; do
+  mapfile -t sel < <(shape "$case")
+  field=${sel[-1]}; unset 'sel[-1]'
+  "$bin" simulate "$model" "${sel[@]}" --set rope.length="$len" --set "$field=$ta" -o "$work/one" >/dev/null
+  md=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['sway']['rope']['residual_sway_rad'])" \
+       "$work/one/summary.json")
+  d=$(awk -v a="$md" -v b="$res" 'BEGIN{d=a-b; if(d<0)d=-d; printf "%.3g", d}')
+  worst=$(awk -v a="$worst" -v b="$d" 'BEGIN{print (b>a)?b:a}')
+  printf "  %-9s L %-6.4g T_a %-6.4g residual sway: machdyn %.9f  scipy %.9f rad  |diff| %s\n" "$case" "$len" "$ta" "$md" "$res" "$d"
+done < <(grep '^run ' "$work/scipy.txt")
+echo "largest |machdyn − scipy| of the residual sway: $worst rad"
