@@ -77,7 +77,8 @@ for jobs in 0 1; do
   done
   n=$(( $(wc -l <"$work/sw-unshaped/sweep.csv") + $(wc -l <"$work/sw-zv/sweep.csv") - 2 ))
   ok=$(cat "$work/sw-unshaped/sweep.csv" "$work/sw-zv/sweep.csv" | grep -c ',ok,$' || true)
-  slips=$(awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="events_slip") k=i; next} $k!=0{n++} END{print n+0}' "$work/sw-unshaped/sweep.csv")
+  slips=$(awk -F, 'FNR==1{for(i=1;i<=NF;i++) if($i=="events_slip") k=i; next} $k!=0{n++} END{print n+0}' \
+           "$work/sw-unshaped/sweep.csv" "$work/sw-zv/sweep.csv")
   label="sweep all cores"; [ "$jobs" = 1 ] && label="sweep 1 thread "
   awk -v l="$label" -v n="$n" -v w="$bw" -v c="$bc" -v ok="$ok" -v sl="$slips" 'BEGIN{
     printf "%s %5d runs (%d ok, %d with a slip) %8.3f s %8.1f runs/s   CPU %7.3f s %8.1f runs/CPU-s\n", l, n, ok, sl, w, n/w, c, n/c}'
