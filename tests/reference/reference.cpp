@@ -554,11 +554,15 @@ class Sim {
       f[static_cast<size_t>(G.a)] -= (wheel_drives ? G.eta : 1.0) * tau;
       f[static_cast<size_t>(G.b)] += (pinion_drives ? G.eta : 1.0) * G.i * tau;
     }
-    // Spatial ropes: the load's weight and the rope's pull F u on it, −F u_x on the trolley, −F u_y on
-    // the bridge, −F s − ½ (dc/dφ) e² on the drum.
+    // A point-mass load's weight on its z body (LOAD.z); spatial ropes: the rope's pull F u on the
+    // load, −F u_x on the trolley, −F u_y on the bridge, −F s − ½ (dc/dφ) e² on the drum.
+    for (int i = 0; i < n_; ++i) {
+      const Body& b = m_.bodies[static_cast<size_t>(i)];
+      if (b.load_coordinate && b.name.size() > 2 && b.name.compare(b.name.size() - 2, 2, ".z") == 0)
+        f[static_cast<size_t>(i)] -= mass_[static_cast<size_t>(i)] * m_.g;
+    }
     for (size_t k = 0; k < m_.sway.size(); ++k) {
       const SwayRope& R = m_.sway[k];
-      f[static_cast<size_t>(R.z)] -= mass_[static_cast<size_t>(R.z)] * m_.g;
       if (md.sway[k] != 0) continue;
       const RopeAt o = rope_at(R, y, 0);
       if (R.x >= 0) f[static_cast<size_t>(R.x)] += o.F * o.u[0];

@@ -250,7 +250,8 @@ struct DcMotor {
 /// its initial angle; L0 without a drum). ℓ = |p − r|, u = (p − r)/ℓ, e = ℓ − L, ė = u·(ṗ − ṙ) + s φ̇.
 /// Taut: F = c e + d ė with c = n EA/L(φ); slack: F = 0. Forces: the load F u, the trolley −F u_x,
 /// the bridge −F u_y, the drum −F s − ½ (dc/dφ) e² (dc/dφ = n EA s/L²). Modes taut (slack where
-/// F reaches 0) and slack (taut where e reaches 0). The load's z body carries −m g (g below).
+/// F reaches 0) and slack (taut where e reaches 0). A load's z body (a `load_coordinate` body named
+/// LOAD.z) carries −m g (RefModel::g), with or without a rope.
 struct SwayRope {
   std::string name, load;  ///< the rope's and the point-mass load's names
   int x = -1, y = -1, z = 0;  ///< the load's coordinate bodies (x or y −1: absent)
