@@ -74,6 +74,7 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
                       events, r.hybrid.slip_phases.size(), r.hybrid.energy.residual(), r.hybrid.energy.source_work);
   }
   os << brake_stops_text(brake_summaries(m, r));  // each brake's stops (analysis/brake_summary.hpp)
+  os << sway_text(sway_summaries(m, r));           // each spatial rope's sway (analysis/sway_summary.hpp)
   for (const auto& x : r.machines) {
     if (x.jumps > 0)
       os << fmt::format("{}: {} velocity jumps (stepwise ratio), {:.6g} J lost in them\n", x.body, x.jumps, x.jump_loss);
@@ -148,7 +149,7 @@ int run_all_cases(const SimulateArgs& a) {
   // A failure while writing (disk full) removes what this run wrote, so no half set is left.
   std::vector<std::filesystem::path> written;
   std::set<std::string> figure_names;  // --plot: the figure files written in the cases' folders
-  std::string brake_lines;  // each case's brake stops, printed under the table
+  std::string brake_lines;  // each case's brake stops and sway, printed under the table
   try {
     for (size_t c = 0; c < names.size(); ++c) {
       const Model& m = models[c];
@@ -170,6 +171,8 @@ int run_all_cases(const SimulateArgs& a) {
       }
       all.push_back(summary);
       for (const auto& line : split_lines(brake_stops_text(brake_summaries(m, r))))
+        brake_lines += fmt::format("case {}: {}\n", names[c], line);
+      for (const auto& line : split_lines(sway_text(sway_summaries(m, r))))
         brake_lines += fmt::format("case {}: {}\n", names[c], line);
       long events = 0;
       for (const auto& e : r.hybrid.events) events += e.kind != "initial";

@@ -9,8 +9,16 @@ namespace machdyn {
 
 SpatialRope::Geometry SpatialRope::geometry(const ElementMotion& b) const {
   Geometry g{};
-  const double x = at(b, Role::load_x), y = at(b, Role::load_y), z = at(b, Role::load_z);
+  double x = at(b, Role::load_x), y = at(b, Role::load_y), z = at(b, Role::load_z);
   double px = at(b, Role::trolley), py = at(b, Role::bridge);
+  // A planar load: its horizontal axis (x, or y for a yz load) carries the offset and a rigid load's
+  // attach point r = c + R(ψ) a.
+  const bool on_y = !has(Role::load_x) && has(Role::load_y);
+  (on_y ? py : px) += offset;
+  const double psi = at(b, Role::load_psi), cp = std::cos(psi), sp = std::sin(psi);
+  const double ra_h = attach[0] * cp - attach[1] * sp, ra_z = attach[0] * sp + attach[1] * cp;  // R(ψ) a
+  (on_y ? y : x) += ra_h;
+  z += ra_z;
   const bool jib = has(Role::jib);
   const double th = at(b, Role::jib), r = at(b, Role::radius, r0), ct = std::cos(th), st = std::sin(th);
   if (jib) px += r * ct, py += r * st;
@@ -38,6 +46,7 @@ SpatialRope::Geometry SpatialRope::geometry(const ElementMotion& b) const {
       case Role::jib: d[0] = -r * st, d[1] = r * ct; break;
       case Role::radius: d[0] = ct, d[1] = st; break;
       case Role::drum: break;
+      case Role::load_psi: d[on_y ? 1 : 0] = ra_z, d[2] = -ra_h; break;  // −∂(R a)/∂ψ = (a_h sψ + a_z cψ, −(R a)_h)
     }
     g.a[k] = g.u[0] * d[0] + g.u[1] * d[1] + g.u[2] * d[2] + (role[k] == Role::drum ? s : 0.0);
     g.rate += g.a[k] * b.v[k];
@@ -55,7 +64,14 @@ void SpatialRope::hessian(const ElementMotion& b, const Geometry& g, double* H) 
       const double dd = g.dw[k][0] * g.dw[j][0] + g.dw[k][1] * g.dw[j][1] + g.dw[k][2] * g.dw[j][2];
       H[k * n + j] = (dd - gl[k] * gl[j]) * inv;
     }
-  // u · ∂²w/∂q_k∂q_j: only the jib's terms (∂²p/∂θ² = −r (cos θ, sin θ), ∂²p/∂θ∂r = (−sin θ, cos θ)).
+  // u · ∂²w/∂q_k∂q_j: a rigid load's ψψ term (∂²w/∂ψ² = R(ψ) a) and the jib's (∂²p/∂θ² = −r (cos θ, sin θ), ∂²p/∂θ∂r = (−sin θ, cos θ)).
+  if (has(Role::load_psi)) {
+    const int P = port_of[static_cast<int>(Role::load_psi)];
+    const bool on_y = !has(Role::load_x);
+    const double psi = at(b, Role::load_psi), cp = std::cos(psi), sp = std::sin(psi);
+    const double ra_h = attach[0] * cp - attach[1] * sp, ra_z = attach[0] * sp + attach[1] * cp;
+    H[P * n + P] += g.u[on_y ? 1 : 0] * ra_h + g.u[2] * ra_z;
+  }
   if (has(Role::jib)) {
     const int J = port_of[static_cast<int>(Role::jib)], R = port_of[static_cast<int>(Role::radius)];
     const double th = at(b, Role::jib), r = at(b, Role::radius, r0), ct = std::cos(th), st = std::sin(th);
@@ -183,6 +199,8 @@ std::string SpatialRope::describe(BodyKind) const {
   std::string s = "L0 = " + num(law.L0) + " m, " + num(law.falls) + " fall(s), n E A = " + num(law.K) +
                   " N (c = " + num(law.c) + " N/m at L0), d = " + num(law.d) + " N·s/m, height " + num(h) + " m";
   if (has(Role::jib) && !has(Role::radius)) s += ", radius " + num(r0) + " m";
+  if (has(Role::load_psi)) s += ", attached at (" + num(attach[0]) + ", " + num(attach[1]) + ") m";
+  if (offset != 0.0) s += ", offset " + num(offset) + " m";
   if (has(Role::drum)) s += ", drum radius " + num(law.inv_ratio * law.falls) + " m";
   return s;
 }

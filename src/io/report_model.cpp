@@ -13,6 +13,7 @@
 #include "machdyn/io/crane_results.hpp"
 #include "machdyn/io/linear_results.hpp"
 #include "io/report_brakes.hpp"
+#include "io/report_sway.hpp"
 
 namespace machdyn::report {
 
@@ -380,6 +381,7 @@ Document simulation_report(const std::vector<Case>& cases, const std::string& co
       d.sections.push_back(std::move(run));
       d.sections.push_back(std::move(plots));
     }
+    if (auto sway = sway_section(m, r, c.name)) d.sections.push_back(std::move(*sway));  // io/report_sway.hpp
     if (c.crane) d.sections.push_back(crane_section(*c.crane, c.name));
   }
   return d;

@@ -132,6 +132,48 @@ TEST_P(Sway, SummaryOfAMove) {
   EXPECT_NEAR(*s[0].dynamic_factor, 2 * std::abs(std::sin(w * Ta / 2)), 1e-3);
 }
 
+/// The number after `key` in the line of `text` that starts with `line_start` (NaN if absent).
+double printed(const std::string& text, const std::string& line_start, const std::string& key) {
+  const size_t a = text.find(line_start);
+  if (a == std::string::npos) return std::nan("");
+  const size_t e = text.find('\n', a), k = text.find(key, a);
+  if (k == std::string::npos || k > e) return std::nan("");
+  return std::stod(text.substr(k + key.size()));
+}
+
+// Claim: `machdyn simulate` prints the sway summary: per case with --all-cases, the largest and the
+// residual sway in degrees, (2a/g)|sin(ω T_a/2)| (the summary's closed form above) for the two moves
+// T_a = 2 s and 3 s, and the horizontal dynamic factor 2|sin(ω T_a/2)| (within the four printed
+// digits); a model without a spatial rope prints no sway line.
+TEST(SwayCli, PrintsTheSummaryPerCase) {
+  const double m = 1000, L0 = 10, c = 1e9 / L0, l = L0 + m * kG / c, a = 0.02, w = std::sqrt(kG / l);
+  auto with = [](const std::string& T) { return "{type: table, points: [[0, 0.02], [" + T + ", 0.02], [" + T + ", 0], [100, 0]]}"; };
+  const std::string yaml = "bodies:\n  trolley: {type: translational, mass: 5 t, motion: {acceleration: " + with("2") + "}}\n"
+                           "  load: {type: point-mass, mass: 1 t, axes: [x, z]}\n"
+                           "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, length: 10 m, EA: 1e9 N, "
+                           "sway_after: 3 s}\n"
+                           "simulation: {t_end: 12 s, dt_out: 1 ms, rtol: 1e-10, atol: 1e-12}\n"
+                           "cases:\n  short: {description: two seconds}\n"
+                           "  long: {description: three seconds, bodies: {trolley: {motion: {acceleration: " + with("3") + "}}}}\n";
+  const auto path = test::write_temp("sway-cli.yaml", yaml);
+  const auto out = test::temp_dir() / "sway-cli-out";
+  const auto r = test::run_cli("simulate '" + path + "' --all-cases --quiet -o '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& [name, Ta] : {std::pair<std::string, double>{"short", 2.0}, {"long", 3.0}}) {
+    const double th = 2 * a / kG * std::abs(std::sin(w * Ta / 2)) * 180 / kPi, f = 2 * std::abs(std::sin(w * Ta / 2));
+    const std::string line = "case " + name + ": sway rope:";
+    EXPECT_NEAR(printed(r.out, line, "largest "), th, 1e-3 * th) << r.out;
+    EXPECT_NEAR(printed(r.out, line, "residual "), th, 1e-3 * th) << r.out;
+    EXPECT_NEAR(printed(r.out, line, "horizontal dynamic factor "), f, 1e-3) << r.out;
+    EXPECT_GT(printed(r.out, line, "horizontal force max "), 0.0) << r.out;
+  }
+  const auto none = test::write_temp("no-sway-cli.yaml", "bodies:\n  a: {inertia: 1}\nloads:\n  M: {type: constant, body: a, "
+                                                         "value: 1}\nsimulation: {t_end: 0.1 s, dt_out: 0.01 s}\n");
+  const auto r2 = test::run_cli("simulate '" + none + "' --quiet -o '" + (test::temp_dir() / "no-sway-out").string() + "'");
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  EXPECT_EQ(r2.out.find("\nsway "), std::string::npos) << r2.out;
+}
+
 /// K(k), the complete elliptic integral of the first kind, by the arithmetic–geometric mean:
 /// K = π / (2 AGM(1, √(1 − k²))).
 double elliptic_k(double k) {

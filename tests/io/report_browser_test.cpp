@@ -208,6 +208,35 @@ TEST(ReportBrowser, CraneExampleAllCasesEveryFigureReadable) {
   screenshot(exe, html, "report-crane32-screenshot", 12000);
 }
 
+// Claim (issue 31): the swinging load's report (the trolley move with and without shaping) has a
+// sway section per case — the summary table and the figure of the sway angles and the horizontal
+// force — and every figure is drawn, titled inside the page and has axis titles with units; a model
+// without a spatial rope (the hoist) has no sway section.
+TEST(ReportBrowser, SwaySectionEveryFigureReadable) {
+  if (!report::assets_available()) GTEST_SKIP() << "built with MACHDYN_REPORT=OFF: no report";
+  const fs::path hoist = test::temp_dir() / "browser-no-sway" / "report.html";
+  const auto h = test::run_cli("report '" + test::example("hoist-3mass.yaml") + "' --quiet -o '" + hoist.string() + "'");
+  ASSERT_EQ(h.exit_code, 0) << h.err;
+  const std::string hoist_page = test::slurp(hoist);
+  EXPECT_EQ(hoist_page.find("data-figure=\"sway-"), std::string::npos);
+  EXPECT_EQ(hoist_page.find("<h2>Sway"), std::string::npos);
+  const std::string exe = find_chromium();
+  if (exe.empty()) GTEST_SKIP() << "chromium is not installed: the HTML report was NOT checked in a browser";
+  const fs::path html = test::temp_dir() / "browser-sway" / "report.html";
+  const auto r = test::run_cli("report '" + test::example("crane/trolley-sway.yaml") + "' --all-cases --quiet -o '" +
+                               html.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = test::slurp(html);
+  size_t sections = 0, figures = 0;
+  for (size_t k = page.find("<h2>Sway — case "); k != std::string::npos; k = page.find("<h2>Sway — case ", k + 1)) ++sections;
+  for (size_t k = page.find("data-figure=\"sway-"); k != std::string::npos; k = page.find("data-figure=\"sway-", k + 1)) ++figures;
+  EXPECT_GE(sections, 2u) << "a sway section per case";
+  EXPECT_EQ(figures, sections) << "a sway figure per case";
+  EXPECT_NE(page.find("horizontal dynamic factor"), std::string::npos);
+  expect_every_figure_readable(page_status(exe, html, "dom-sway"), 2, "sway");
+  screenshot(exe, html, "report-sway-screenshot", 8000);
+}
+
 // Claim (issue 32 item 6): the report's duty section (the 32 t hoist's operations: cycles, load
 // spectra and exceedance diagrams per link) is drawn with every figure readable as above.
 TEST(ReportBrowser, DutySectionEveryFigureReadable) {

@@ -40,7 +40,7 @@ void audit_on(O& o) {
 
 const std::set<std::string>& compared_kinds() {
   static const std::set<std::string> k = {"gap_closed", "gap_opened", "stick", "slip", "reversal", "impact", "applied",
-                                          "mesh", "free play"};
+                                          "mesh", "free play", "taut", "slack"};
   return k;
 }
 
@@ -55,7 +55,7 @@ template <class List, class Get>
 std::vector<char> brief_phases(const List& list, double tol, Get get) {
   auto undoes = [](const std::string& a, const std::string& b) {
     return (a == "slip" && b == "stick") || (a == "stick" && b == "slip") || (a == "gap_opened" && b == "gap_closed") ||
-           (a == "gap_closed" && b == "gap_opened");
+           (a == "gap_closed" && b == "gap_opened") || (a == "taut" && b == "slack") || (a == "slack" && b == "taut");
   };
   std::vector<char> brief(list.size(), 0);
   for (size_t i = 0; i < list.size(); ++i) {
@@ -220,7 +220,7 @@ Outcome compare_results(const RefModel& m, const RefResult& ref, const Simulatio
     return {Outcome::Kind::state_mismatch, "output rows: engine " + std::to_string(ts ? ts->size() : 0) + ", reference " + std::to_string(ref.t.size()), 0.0};
   for (size_t i = 0; i < m.bodies.size(); ++i)
     for (int w = 0; w < 2; ++w) {
-      const bool rot = m.rotational && !m.bodies[i].linear;
+      const bool rot = (m.rotational && !m.bodies[i].linear) || m.bodies[i].angular;
       const std::string name = m.bodies[i].name + (w == 0 ? (rot ? ".position_rad" : ".position_m") : (rot ? ".velocity_rad_s" : ".velocity_m_s"));
       const auto* c = col(name);
       if (c == nullptr) return {Outcome::Kind::state_mismatch, "no column " + name, 0.0};
@@ -266,6 +266,12 @@ RefModel without_body(const RefModel& m, int i) {
   s.meshes.clear();
   for (auto G : m.meshes)
     if (G.a != i && G.b != i) G.a = map(G.a), G.b = map(G.b), s.meshes.push_back(G);
+  s.sway.clear();
+  for (auto R : m.sway) {
+    if (R.x == i || R.y == i || R.z == i || R.trolley == i || R.bridge == i || R.drum == i) continue;
+    R.x = map(R.x), R.y = map(R.y), R.z = map(R.z), R.trolley = map(R.trolley), R.bridge = map(R.bridge), R.drum = map(R.drum);
+    s.sway.push_back(R);
+  }
   s.gears.clear();
   for (auto g : m.gears)
     if (g.a != i && g.b != i && g.c != i) g.a = map(g.a), g.b = map(g.b), g.c = map(g.c), s.gears.push_back(g);

@@ -11,7 +11,7 @@ namespace machdyn::reference {
 const std::vector<std::string>& all_families() {
   static const std::vector<std::string> f = {"chain", "gap",   "one-sided", "ground-friction", "body-friction",
                                              "brake", "clutch", "freewheel", "stop",            "mixed", "signals", "gear", "planetary", "motion", "release", "kinetic", "buffer", "dc-motor", "drum",
-                                             "gear-mesh"};
+                                             "gear-mesh", "sway"};
   return f;
 }
 
@@ -554,6 +554,73 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       add(f);
     }
   }
+  // The swinging load (issue 31): a point-mass load L on a spatial rope from a chain body (the
+  // trolley, x) — in space also from another (the bridge, y) — at a fixed height; in some models the
+  // rope wound on a drum (a rotational body of J = (3–30) m s², its torque about the holding torque
+  // m g R/n, a constant or a ramp). The load hangs swinging (its rope taut, or slack by up to 1 % of
+  // its length: it falls first), or rests on a ground stop (plastic or with restitution) with its
+  // rope slack or carrying part of its weight, lifted off by the drum or pulled off obliquely as the
+  // trolley moves.
+  if (family == "sway") {
+    constexpr double g = 9.80665;
+    SwayRope R;
+    R.name = "rope", R.load = "L";
+    const bool space = r.p(0.4);
+    R.trolley = r.i(0, n - 1);
+    if (space) {
+      R.bridge = r.i(0, n - 2);
+      if (R.bridge >= R.trolley) ++R.bridge;
+    }
+    const double ml = sig(r.log_u(0.5, 10.0));
+    R.L0 = sig(r.u(0.8, 2.5));
+    R.falls = r.i(1, 2);
+    R.EA = sig(r.log_u(2e3, 5e4) * R.L0 / R.falls);
+    const double c = R.falls * R.EA / R.L0;
+    R.d = r.p(0.4) ? 0.0 : sig(r.u(0.0, 0.1) * 2 * std::sqrt(c * ml));
+    const bool lift = r.p(0.4), with_drum = r.p(0.5);
+    const double sx = sig(r.u(-0.3, 0.3)), sy = space ? sig(r.u(-0.3, 0.3)) : 0.0;
+    double x0 = 0, y0 = 0, z0 = 0;
+    if (lift) {  // on the stop at z = 0, e = ℓ₀ − L0 from −0.03 to 0.3 of the static stretch m g/c
+      x0 = sig(0.5 * sx * R.L0), y0 = sig(0.5 * sy * R.L0);
+      const double l0 = R.L0 + r.u(-0.03, 0.3) * ml * g / c;
+      R.h = sig(std::sqrt(l0 * l0 - x0 * x0 - y0 * y0), 6);
+    } else {  // hanging at sin θ = (sx, sy) from (0, 0, h), h = L0 + m g/c, ρ within 1 % of the static length
+      R.h = sig(R.L0 + ml * g / c, 6);
+      const double rho = (R.L0 + ml * g / c) * (1.0 + r.u(-0.01, 0.002));
+      x0 = sig(rho * sx, 6), y0 = sig(rho * sy, 6), z0 = sig(R.h - rho * std::sqrt(1.0 - sx * sx - sy * sy), 6);
+    }
+    auto coordinate = [&](const char* axis, double q0, double v0) {
+      m.bodies.push_back({std::string("L.") + axis, ml, q0, v0});
+      m.bodies.back().load_coordinate = true;
+      return static_cast<int>(m.bodies.size()) - 1;
+    };
+    const bool moving = !lift && r.p(0.5);
+    R.x = coordinate("x", x0, moving ? sig(r.u(-0.3, 0.3)) : 0.0);
+    if (space) R.y = coordinate("y", y0, moving ? sig(r.u(-0.3, 0.3)) : 0.0);
+    R.z = coordinate("z", z0, 0.0);
+    if (lift) {
+      Friction f;
+      f.kind = Friction::Kind::stop, f.name = "ground", f.a = R.z, f.b = kGround;
+      f.stop_pos = 0.0, f.e = r.p(0.5) ? 0.0 : sig(r.u(0.1, 0.5));
+      add(f);
+    }
+    if (with_drum) {
+      R.R = sig(r.u(0.05, 0.2));
+      const double s = R.R / R.falls, M0 = ml * g * s;
+      R.drum = static_cast<int>(m.bodies.size());
+      m.bodies.push_back({"drum", sig(ml * s * s * r.log_u(3.0, 30.0)), 0.0, 0.0});
+      m.bodies.back().angular = true;
+      Signal hoist;
+      if (r.p(0.5)) {
+        hoist.kind = Signal::Kind::constant, hoist.value = sig(M0 * r.u(0.9, 1.25));
+      } else {
+        hoist.kind = Signal::Kind::ramp, hoist.before = sig(M0 * r.u(0.9, 1.0)), hoist.value = sig(M0 * r.u(0.9, 1.25));
+        hoist.t0 = sig(r.u(0.0, 0.3) * m.t_end), hoist.t1 = sig(hoist.t0 + r.u(0.1, 0.5) * m.t_end);
+      }
+      m.loads.push_back({"hoist", R.drum, hoist});
+    }
+    m.sway.push_back(R);
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -627,7 +694,26 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
   const std::string q = std::string(" ") + U.q, F = std::string(" ") + U.F;
   auto lin = [&](int i) { return i >= 0 && m.bodies[static_cast<size_t>(i)].linear; };  // a hook in a rotational model
   y += "name: random reference model\nbodies:\n";
-  for (const auto& b : m.bodies)
+  std::set<std::string> loads_written;
+  for (const auto& b : m.bodies) {
+    if (b.load_coordinate) {  // a point-mass load: its coordinates LOAD.x, LOAD.y, LOAD.z as one body
+      const std::string load = b.name.substr(0, b.name.rfind('.'));
+      if (!loads_written.insert(load).second) continue;
+      std::string axes, pos, vel;
+      for (const auto& c : m.bodies)
+        if (c.load_coordinate && c.name.rfind(load + ".", 0) == 0) {
+          if (!axes.empty()) axes += ", ", pos += ", ", vel += ", ";
+          axes.append(c.name, load.size() + 1), pos += num(c.q0), pos += " m", vel += num(c.v0), vel += " m/s";
+        }
+      y += "  " + load + ": {type: point-mass, mass: " + num(b.m) + " kg, axes: [" + axes + "], position: [" + pos +
+           "], velocity: [" + vel + "]}\n";
+      continue;
+    }
+    if (b.angular) {  // a rotational body in a translational model (a spatial rope's drum)
+      y += "  " + b.name + ": {type: rotational, inertia: " + num(b.m) + " kg*m^2, position: " + num(b.q0) +
+           " rad, velocity: " + num(b.v0) + " rad/s}\n";
+      continue;
+    }
     y += "  " + b.name + (m.rotational && !b.linear ? ": {type: rotational, inertia: " + num(b.m) + " kg*m^2"
                                                     : ": {type: translational, mass: " + num(b.m) + " kg") +
          ", position: " + num(b.q0) + (b.linear ? std::string(" m") : q) +
@@ -636,6 +722,7 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
           : b.motion == Body::Motion::speed ? std::string(", motion: {speed: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s" : "m/s") + "}}"
                                             : std::string(", motion: {acceleration: {") + signal_yaml(b.prescribed, m.rotational ? "rad/s^2" : "m/s^2") + "}}") +
          "}\n";
+  }
   bool first_link = true;
   if (!m.links.empty()) y += "links:\n", first_link = false;
   for (const auto& g : m.gears) {
@@ -659,6 +746,13 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
     if (L.elasto) y += ", flank_law: elasto-backlash";
     y += "}\n";
   }
+  for (const auto& R : m.sway) {
+    if (first_link) y += "links:\n", first_link = false;
+    y += "  " + R.name + ": {type: spatial-rope, load: " + R.load + (R.trolley >= 0 ? ", trolley: " + end_name(m, R.trolley) : "") +
+         (R.bridge >= 0 ? ", bridge: " + end_name(m, R.bridge) : "") +
+         (R.drum >= 0 ? ", drum: " + end_name(m, R.drum) + ", drum_radius: " + num(R.R) + " m" : "") + ", falls: " + num(R.falls) +
+         ", length: " + num(R.L0) + " m, EA: " + num(R.EA) + " N, damping: " + num(R.d) + " N*s/m, height: " + num(R.h) + " m}\n";
+  }
   for (const auto& G : m.meshes) {
     if (first_link) y += "links:\n", first_link = false;
     y += "  " + G.name + ": {type: gear-mesh, between: [" + end_name(m, G.a) + ", " + end_name(m, G.b) + "], ratio: " + num(G.i) +
@@ -666,7 +760,9 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
          " rad, efficiency: " + num(G.eta) + "}\n";
   }
   if (!m.loads.empty()) y += "loads:\n";
-  for (const auto& l : m.loads) y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " + signal_yaml(l.s, lin(l.body) ? "N" : U.F) + "}\n";
+  for (const auto& l : m.loads)
+    y += "  " + l.name + ": {body: " + m.bodies[static_cast<size_t>(l.body)].name + ", " +
+         signal_yaml(l.s, lin(l.body) ? "N" : m.bodies[static_cast<size_t>(l.body)].angular ? "N*m" : U.F) + "}\n";
   auto section = [&](Friction::Kind k, const char* title) {
     bool first = true;
     for (const auto& f : m.frictions) {

@@ -187,6 +187,7 @@ struct Modes {
   std::vector<GMode> gap;
   std::vector<FMode> fr;
   std::vector<MeshMode> mesh;
+  std::vector<int> sway;  ///< per spatial rope: 0 taut, 1 slack
 };
 
 class Sim {
@@ -197,6 +198,7 @@ class Sim {
     md_.gap.assign(m.links.size(), GMode::open);
     md_.fr.assign(m.frictions.size(), FMode::released);
     md_.mesh.assign(m.meshes.size(), MeshMode{});
+    md_.sway.assign(m.sway.size(), 1);
     series_v_.assign(m.frictions.size(), 0.0);
     // The force scale of the model (the thresholds of the switching functions are relative to it).
     // (sampled over the run: every signal kind, its largest magnitude up to a sample's spacing).
@@ -235,6 +237,16 @@ class Sim {
       if (f.a >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.a)].m);
       if (f.b >= 0) mm = std::min(mm, m.bodies[static_cast<size_t>(f.b)].m);
       if (slope > 0.0) w = std::max(w, slope / ((f.a >= 0 && f.b >= 0) ? mm / 2 : mm));
+    }
+    // A spatial rope: its stretch √(c/m) at its shortest free length and d/m on the load; the drum's
+    // √(c s²/J) and d s²/J.
+    for (const auto& R : m.sway) {
+      const double ml = m.bodies[static_cast<size_t>(R.z)].m, c = R.falls * R.EA / (0.5 * R.L0);
+      w = std::max({w, std::sqrt(c / ml), R.d / ml});
+      if (R.drum >= 0) {
+        const double s = R.R / R.falls, J = m.bodies[static_cast<size_t>(R.drum)].m;
+        w = std::max({w, std::sqrt(c * s * s / J), R.d * s * s / J});
+      }
     }
     // A DC motor's electrical rates: R/L and the coupling k/√(L m).
     for (const auto& M : m.motors)
@@ -315,6 +327,28 @@ class Sim {
     const double ce = L.c * e, dd = L.d * ddl;
     if (!L.elasto) return ce + dd;
     return gm == GMode::closed_pos ? ce + std::min(ce, dd) : ce + std::max(ce, dd);
+  }
+
+  /// A spatial rope at the state y (docs/sway.md): its stretch e, ė, the unit vector u from the load
+  /// to the suspension point, c(φ), dc/dφ, s and the force F in `mode` (0 taut, 1 slack).
+  struct RopeAt {
+    double e = 0, rate = 0, u[3] = {0, 0, 1}, c = 0, dc = 0, s = 0, F = 0;
+  };
+  RopeAt rope_at(const SwayRope& R, const double* y, int mode) const {
+    RopeAt o;
+    const double w[3] = {qa(y, R.trolley) - qa(y, R.x), qa(y, R.bridge) - qa(y, R.y), R.h - y[R.z]};
+    const double wd[3] = {va(y, R.trolley) - va(y, R.x), va(y, R.bridge) - va(y, R.y), -y[n_ + R.z]};
+    const double l = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    if (l > 0.0)
+      for (int i = 0; i < 3; ++i) o.u[i] = w[i] / l;
+    o.s = R.drum >= 0 ? R.R / R.falls : 0.0;
+    const double phi = R.drum >= 0 ? y[R.drum] - m_.bodies[static_cast<size_t>(R.drum)].q0 : 0.0;
+    const double L = R.L0 - o.s * phi, K = R.falls * R.EA;
+    o.c = K / L, o.dc = K * o.s / (L * L);
+    o.e = l - L;
+    o.rate = o.u[0] * wd[0] + o.u[1] * wd[1] + o.u[2] * wd[2] + (R.drum >= 0 ? o.s * y[n_ + R.drum] : 0.0);
+    o.F = mode == 0 ? o.c * o.e + R.d * o.rate : 0.0;
+    return o;
   }
 
   /// A gear mesh's Δ = φ_a − i φ_b and Δ' (docs/model-files.md, "Elastic gear mesh").
@@ -520,6 +554,24 @@ class Sim {
       f[static_cast<size_t>(G.a)] -= (wheel_drives ? G.eta : 1.0) * tau;
       f[static_cast<size_t>(G.b)] += (pinion_drives ? G.eta : 1.0) * G.i * tau;
     }
+    // A point-mass load's weight on its z body (LOAD.z); spatial ropes: the rope's pull F u on the
+    // load, −F u_x on the trolley, −F u_y on the bridge, −F s − ½ (dc/dφ) e² on the drum.
+    for (int i = 0; i < n_; ++i) {
+      const Body& b = m_.bodies[static_cast<size_t>(i)];
+      if (b.load_coordinate && b.name.size() > 2 && b.name.compare(b.name.size() - 2, 2, ".z") == 0)
+        f[static_cast<size_t>(i)] -= mass_[static_cast<size_t>(i)] * m_.g;
+    }
+    for (size_t k = 0; k < m_.sway.size(); ++k) {
+      const SwayRope& R = m_.sway[k];
+      if (md.sway[k] != 0) continue;
+      const RopeAt o = rope_at(R, y, 0);
+      if (R.x >= 0) f[static_cast<size_t>(R.x)] += o.F * o.u[0];
+      if (R.y >= 0) f[static_cast<size_t>(R.y)] += o.F * o.u[1];
+      f[static_cast<size_t>(R.z)] += o.F * o.u[2];
+      if (R.trolley >= 0) f[static_cast<size_t>(R.trolley)] -= o.F * o.u[0];
+      if (R.bridge >= 0) f[static_cast<size_t>(R.bridge)] -= o.F * o.u[1];
+      if (R.drum >= 0) f[static_cast<size_t>(R.drum)] -= o.F * o.s + 0.5 * o.dc * o.e * o.e;
+    }
     unsigned mask = 0;
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& fr = m_.frictions[k];
@@ -604,6 +656,7 @@ class Sim {
     bool kink = false;
     int mesh = -1, slot = 0;  // a gear mesh: 0 its flank (or τ's sign), 1 and 2 its bodies' speeds
     double res = 0.0;  // its resolution δ (> 0: the events it fires get a resolution window)
+    int sway = -1;     // a spatial rope
   };
 
   std::vector<Fn> functions(double t_in, const std::vector<double>& y) {
@@ -653,6 +706,14 @@ class Sim {
       if (h > 0.0 && G.d > 0.0) out.push_back({mm.g * (ce - G.d * Dr), eps_f, -1, -1, true, mi, 3});
       out.push_back({mm.s1 * y[static_cast<size_t>(n_ + G.a)], eps_v, -1, -1, false, mi, 1});
       out.push_back({mm.s2 * y[static_cast<size_t>(n_ + G.b)], eps_v, -1, -1, false, mi, 2});
+    }
+    // Spatial ropes: taut, F (slack where it reaches 0); slack, −e (taut where the load reaches the
+    // rope's length) — past it (a damped rope gone slack while stretched, ė < 0) the flank's force
+    // −(c e + d ė), as a gap's open side: taut where it pulls again.
+    for (size_t k = 0; k < m_.sway.size(); ++k) {
+      const RopeAt o = rope_at(m_.sway[k], y.data(), 0);
+      if (md_.sway[k] == 0) out.push_back({.g = o.F, .eps = eps_f, .sway = static_cast<int>(k)});
+      else out.push_back({.g = o.e <= 0.0 ? -o.e : -o.F, .eps = o.e <= 0.0 ? eps_x : eps_f, .sway = static_cast<int>(k)});
     }
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
@@ -919,6 +980,9 @@ class Sim {
       else if (md == GMode::open && dl > L.hi() && gp > 0.0) md_.gap[k] = GMode::closed_pos, record(t, "gap_closed", L.name);
       else if (md == GMode::open && dl < L.lo() && gn < 0.0) md_.gap[k] = GMode::closed_neg, record(t, "gap_closed", L.name);
     }
+    // A taut spatial rope whose F turns negative with the jump goes slack (a slack one's e is continuous).
+    for (size_t k = 0; k < m_.sway.size(); ++k)
+      if (md_.sway[k] == 0 && rope_at(m_.sway[k], y.data(), 0).F < 0.0) md_.sway[k] = 1, record(t, "slack", m_.sway[k].name);
   }
 
   /// Engagement changes of brakes and clutches at t (a breakpoint or the start).
@@ -953,6 +1017,7 @@ class Sim {
       if (!f.kink && f.g < -f.eps)
         throw std::runtime_error("the decision at t = " + std::to_string(t) + " leaves a switching function negative (" +
                                  (f.gap >= 0    ? m_.links[static_cast<size_t>(f.gap)].name
+                                  : f.sway >= 0 ? m_.sway[static_cast<size_t>(f.sway)].name
                                   : f.mesh >= 0 ? m_.meshes[static_cast<size_t>(f.mesh)].name
                                                 : m_.frictions[static_cast<size_t>(f.fr)].name) +
                                  ": " + std::to_string(f.g) + ")");
@@ -990,6 +1055,11 @@ RefResult Sim::run() {
     else mm.g = G.c * D + G.d * mesh_Dr(G, y.data()) < 0.0 ? -1 : 1;
     mm.s1 = y[static_cast<size_t>(n_ + G.a)] < 0.0 ? -1 : 1;
     mm.s2 = y[static_cast<size_t>(n_ + G.b)] < 0.0 ? -1 : 1;
+  }
+  // Spatial ropes: taut where the load is beyond the rope's length (at it: where it moves away).
+  for (size_t k = 0; k < m_.sway.size(); ++k) {
+    const RopeAt o = rope_at(m_.sway[k], y.data(), 0);
+    md_.sway[k] = (o.e > 0.0 && o.F > 0.0) || (o.e == 0.0 && o.rate > 0.0) ? 0 : 1;
   }
   for (size_t k = 0; k < m_.frictions.size(); ++k) {
     const Friction& f = m_.frictions[k];
@@ -1081,6 +1151,18 @@ RefResult Sim::run() {
           if (by_position && ddl > 0.0) {
             RefEvent& ev = res_.events.back();
             ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = 1.0 / ddl;
+          }
+        } else if (ge[i].sway >= 0) {
+          // A spatial rope goes slack (F reaches 0) or taut (e reaches 0).
+          const size_t k = static_cast<size_t>(ge[i].sway);
+          const SwayRope& R = m_.sway[k];
+          const RopeAt o = rope_at(R, y.data(), 0);
+          const bool by_position = (md_.sway[k] == 1 && o.e <= 0.0) || R.d == 0.0;  // g = −e or c e: a distance
+          md_.sway[k] = 1 - md_.sway[k];
+          record(t, md_.sway[k] == 0 ? "taut" : "slack", R.name);
+          if (by_position && o.rate != 0.0) {
+            RefEvent& ev = res_.events.back();
+            ev.body = R.z, ev.body2 = R.x >= 0 ? R.x : R.y, ev.dt_dq = 1.0 / std::abs(o.rate);
           }
         } else if (ge[i].mesh >= 0) {
           // A gear mesh: the free play reaches a flank (the speeds' signs read again), the contact

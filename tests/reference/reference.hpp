@@ -52,6 +52,10 @@
 /// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
 ///
+/// Spatial ropes (SwayRope) are force elements on a point-mass load's coordinates, a trolley, a
+/// bridge and a drum, written from docs/sway.md: a mode per rope (taut, slack), its switching
+/// function F (taut) or −e (slack); a ground stop under the load's z makes the lift-off.
+///
 /// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
 /// motions, buffers other than linear, drives other than the DC motor, machines; releases only on free bodies without gears, at t_r > 0;
 /// prescribed bodies only with contacts to free bodies (no ground friction, freewheel, stop or gear on
@@ -115,6 +119,10 @@ struct Body {
   std::string name;
   double m = 1.0, q0 = 0.0, v0 = 0.0;  ///< kg, m, m/s
   bool linear = false;  ///< translational in a rotational model (a rope drum's hook: m, N)
+  bool angular = false;  ///< rotational in a translational model (a spatial rope's drum: rad, kg·m², N·m)
+  /// A coordinate of a point-mass load (a spatial rope's; its name LOAD.x, LOAD.y or LOAD.z): the
+  /// model file writes the load's coordinates as one `type: point-mass` body LOAD; z carries −m g.
+  bool load_coordinate = false;
   enum class Motion { free, acceleration, speed } motion = Motion::free;
   Signal prescribed;
   [[nodiscard]] double prescribed_acceleration(double t) const {
@@ -235,6 +243,22 @@ struct DcMotor {
   Signal u;                                     ///< V
 };
 
+/// A spatial rope (docs/sway.md, docs/model-files.md "Spatial rope"; `type: spatial-rope`): a
+/// point-mass load r = (x, y, z) (its coordinate bodies, y or x may be absent: 0) on a rope from the
+/// suspension point p = (x_t, y_b, h) (a trolley's and a bridge's positions, 0 without; a fixed
+/// height), its free length per fall L(φ) = L0 − s (φ − φ0), s = R/n, set by a drum's angle φ (φ0
+/// its initial angle; L0 without a drum). ℓ = |p − r|, u = (p − r)/ℓ, e = ℓ − L, ė = u·(ṗ − ṙ) + s φ̇.
+/// Taut: F = c e + d ė with c = n EA/L(φ); slack: F = 0. Forces: the load F u, the trolley −F u_x,
+/// the bridge −F u_y, the drum −F s − ½ (dc/dφ) e² (dc/dφ = n EA s/L²). Modes taut (slack where
+/// F reaches 0) and slack (taut where e reaches 0). A load's z body (a `load_coordinate` body named
+/// LOAD.z) carries −m g (RefModel::g), with or without a rope.
+struct SwayRope {
+  std::string name, load;  ///< the rope's and the point-mass load's names
+  int x = -1, y = -1, z = 0;  ///< the load's coordinate bodies (x or y −1: absent)
+  int trolley = -1, bridge = -1, drum = -1;
+  double L0 = 1.0, EA = 1e5, falls = 1.0, d = 0.0, h = 1.0, R = 0.1;  ///< m, N, -, N·s/m, m, m
+};
+
 struct RefModel {
   bool rotational = false;  ///< every body rotational (φ in rad, kg·m², N·m): the same equations
   std::vector<Body> bodies;
@@ -245,6 +269,8 @@ struct RefModel {
   std::vector<Release> releases;
   std::vector<DcMotor> motors;
   std::vector<Mesh> meshes;
+  std::vector<SwayRope> sway;
+  double g = 9.80665;  ///< gravity on the loads' z bodies, m/s²
   double t_end = 1.0, dt_out = 0.01;
 };
 

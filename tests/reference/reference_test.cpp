@@ -655,5 +655,64 @@ TEST(ReferenceSimulator, GearMeshContactThroughTheBacklashWithItsEfficiency) {
   EXPECT_NEAR(lost, (1.0 - 0.9) / 0.9 * 0.5 * 0.02 * r.v[k][1] * r.v[k][1], 1e-10);
 }
 
+// Claim: the reference's spatial rope (docs/sway.md) swings a load m = 1 kg on a free trolley
+// M = 2 kg with ω² = (g/ℓ)(1 + m/M) (the relative swing ξ = x_L − x_t: m x_L'' = −m g ξ/ℓ,
+// M x_t'' = m g ξ/ℓ), ℓ = L0 + m g/c the hanging length: ξ = a cos ωt within 1e-3 a over two periods
+// (the rope's elasticity shifts ω² by (g/ℓ)/(c/m) = 2.5e-5, the amplitude a/ℓ = 0.01 by θ²/16), and
+// the centre of mass stays at rest.
+TEST(ReferenceSimulator, SpatialRopeSwingsTheLoadOfAFreeTrolley) {
+  const double g = 9.80665, c = 4e5, L0 = 1.0, l = L0 + g / c, a = 0.01;
+  RefModel m;
+  m.bodies = {{"trolley", 2.0, 0.0, 0.0}, {"L.x", 1.0, a, 0.0}, {"L.z", 1.0, 0.0, 0.0}};
+  m.bodies[1].load_coordinate = m.bodies[2].load_coordinate = true;
+  SwayRope R;
+  R.name = "rope", R.load = "L", R.x = 1, R.z = 2, R.trolley = 0, R.L0 = L0, R.EA = c * L0, R.h = l;
+  m.bodies[2].q0 = l - std::sqrt(l * l - a * a);  // on the arc of radius ℓ
+  m.sway = {R};
+  const double w = std::sqrt(g / l * 1.5);
+  m.t_end = 2 * 2 * std::numbers::pi / w, m.dt_out = m.t_end / 400;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  double err = 0.0, cm = 0.0;
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    err = std::max(err, std::abs(r.q[k][1] - r.q[k][0] - a * std::cos(w * r.t[k])));
+    cm = std::max(cm, std::abs(2.0 * r.q[k][0] + r.q[k][1] - a));
+  }
+  EXPECT_LT(err, 1e-3 * a) << err;
+  EXPECT_LT(cm, 1e-9);
+  EXPECT_TRUE(of_kind(r, "slack").empty());
+}
+
+// Claim: the reference's lift-off: a load of 1 t resting on a ground stop at x = 0.2 m, 9.95 m below
+// the suspension point, its rope (2 falls, L0 = 10 m: slack) wound in by a drum (J = 50 kg·m²,
+// R = 0.3 m, a torque of 2 kN·m, unloaded while the rope is slack) at s = R/n = 0.15 m per radian:
+// taut at t = √(2 (L0 − ℓ₀)/(s M/J)), ℓ₀ = √(0.2² + 9.95²) (within 1e-9 s), the stop lets the load go
+// after that and the load rises.
+TEST(ReferenceSimulator, SpatialRopeLiftsTheLoadOffTheGround) {
+  RefModel m;
+  m.bodies = {{"drum", 50.0, 0.0, 0.0}, {"L.x", 1000.0, 0.2, 0.0}, {"L.z", 1000.0, 0.0, 0.0}};
+  m.bodies[0].angular = true;
+  m.bodies[1].load_coordinate = m.bodies[2].load_coordinate = true;
+  SwayRope R;
+  R.name = "rope", R.load = "L", R.x = 1, R.z = 2, R.drum = 0, R.R = 0.3, R.falls = 2, R.L0 = 10, R.EA = 5e7, R.h = 9.95,
+  R.d = 1e4;
+  m.sway = {R};
+  m.loads = {{"hoist", 0, constant(2000.0)}};
+  Friction f;
+  f.kind = Friction::Kind::stop, f.name = "ground", f.a = 2, f.b = kGround, f.stop_pos = 0.0;
+  m.frictions = {f};
+  m.t_end = 1.0, m.dt_out = 1e-3;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double l0 = std::hypot(0.2, 9.95), t_taut = std::sqrt(2 * (10 - l0) / (0.15 * 2000 / 50.0));
+  const auto taut = of_kind(r, "taut"), slip = of_kind(r, "slip");
+  ASSERT_FALSE(taut.empty());
+  EXPECT_NEAR(taut[0].t, t_taut, 1e-9);
+  ASSERT_FALSE(slip.empty());
+  EXPECT_EQ(slip[0].element, "ground");
+  EXPECT_GT(slip[0].t, taut[0].t);
+  EXPECT_GT(r.q.back()[2], 0.01);
+}
+
 }  // namespace
 }  // namespace machdyn::reference

@@ -7,10 +7,14 @@
 /// derivation and sign conventions: docs/sway.md).
 ///
 ///   load         r = (x, y, z), m: the coordinates of a point-mass load (model/compile_point_mass.hpp;
-///                absent ones 0), z up
+///                absent ones 0), z up; on a rigid load (planar, angle ψ) the rope's point
+///                r = c + R(ψ) a of its centre c and its `attach` point a = (a_h, a_z) in the load's
+///                frame, R(ψ) turning the plane's horizontal axis h towards z:
+///                r_h = c_h + a_h cos ψ − a_z sin ψ, r_z = c_z + a_h sin ψ + a_z cos ψ
 ///   suspension   p(q) = (x_t + r cos θ, y_b + r sin θ, h): trolley x_t, bridge y_b (m, 0 without),
 ///                jib angle θ (rad) with the radius r (a body's position, or a constant; no r term
-///                without a jib), a fixed height h
+///                without a jib), a fixed height h; a planar load's rope may hang from a point at
+///                `offset` d along the plane's horizontal axis (the two ropes of a spreader)
 ///   length       ℓ = |p − r|, u = (p − r)/ℓ the unit vector from the load to the suspension point
 ///   free length  L(φ) = L0 − s (φ − φ0) per fall, s = R/n (drum radius R, n falls, φ0 the drum's
 ///                initial angle: positive φ hoists); L0 without a drum
@@ -24,6 +28,8 @@
 ///                trolley and bridge back towards the load, the jib feels the moment r (u × …) of the
 ///                horizontal pull, the drum the rope torque F s (+ W)
 ///   energy       V = ½ c(φ) e² taut (0 slack); P_heat = d ė² taut; Σ M_k v_k = −dV/dt − P_heat
+///                A rigid load's ψ is a port like the others: ∂(p − r)/∂ψ = −R′(ψ) a, and the
+///                Hessian's u · ∂²(p − r)/∂ψ² = u · R(ψ) a.
 /// Modes: 0 taut, 1 slack. Events (≥ 0 while the mode holds): taut g₀ = c e + d ė (the rope goes slack
 /// where it reaches 0, the load in free flight: a load swinging past the horizontal is a slack rope);
 /// slack g₀ = −e (tightens). Valid for ℓ > 0 (at ℓ = 0, u is taken as (0, 0, 1)) and L above
@@ -40,13 +46,16 @@ class SpatialRope final : public Element {
  public:
   /// What each port is (the order of the ports: load z, x, y, then trolley, bridge, jib, radius, drum
   /// as present).
-  enum class Role : int { load_x, load_y, load_z, trolley, bridge, jib, radius, drum };
+  enum class Role : int { load_x, load_y, load_z, trolley, bridge, jib, radius, drum, load_psi };
+  static constexpr int kRoles = 9;
   Role role[ElementMotion::kMax] = {};
   int n_ports = 0;
-  int port_of[8] = {-1, -1, -1, -1, -1, -1, -1, -1};  ///< the port of each Role, −1 without
+  int port_of[kRoles] = {-1, -1, -1, -1, -1, -1, -1, -1, -1};  ///< the port of each Role, −1 without
   LinkLaw law;         ///< the scalar law: one positive flank at e = 0, c = nEA/L0, K = nEA, s, φ0, d
   double h = 0.0;      ///< the suspension point's height, m
   double r0 = 0.0;     ///< the jib's radius without a radius body, m
+  double attach[2] = {0.0, 0.0};  ///< a rigid load's rope point (a_h, a_z) in its frame, m
+  double offset = 0.0;            ///< a planar load's suspension offset d along its horizontal axis, m
   double mass = 0.0;   ///< the load's mass, kg (the description, the summary's rigid force)
   double sway_after = -1.0;  ///< t_r of the summary's residual sway, s (`sway_after`; < 0: none)
 

@@ -10,6 +10,7 @@
 #include "machdyn/analysis/brake_summary.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
+#include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/io/output_file.hpp"
 #include "machdyn/model/model.hpp"
 
@@ -38,6 +39,11 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r);
 /// for the run and one per stop).
 nlohmann::json brake_stops_json(const std::vector<BrakeSummary>& brakes);
 std::string brake_stops_text(const std::vector<BrakeSummary>& brakes);
+
+/// The lines `simulate` prints for the spatial ropes' sway (analysis/sway_summary.hpp), one per
+/// rope: the largest sway, the residual after `sway_after`, the largest horizontal force and the
+/// horizontal dynamic factor; empty without a spatial rope.
+std::string sway_text(const std::vector<SwaySummary>& sway);
 
 // `modes` writes its JSON with io/linear_results.hpp (every topology).
 

@@ -6,7 +6,9 @@
 //          hangs at rest),
 //          trolley: BODY (translational, x), bridge: BODY (translational, y),
 //          jib: BODY (rotational, θ) with radius: BODY (translational) or a length,
-//          drum: BODY (rotational, φ) with drum_radius (m), sway_after (s: the summary's residual sway)}
+//          drum: BODY (rotational, φ) with drum_radius (m), sway_after (s: the summary's residual sway),
+//          attach: [a_h, a_z] (m: the rope's point on a rigid load, its frame), offset (m: a planar
+//          load's suspension point along its horizontal axis)}
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -25,7 +27,7 @@ std::shared_ptr<const Element> place_spatial_rope(FieldReader& f, const Model& m
   using Role = SpatialRope::Role;
   auto rope = std::make_shared<SpatialRope>();
   bool ok = true;
-  int port_body[8] = {-1, -1, -1, -1, -1, -1, -1, -1};  // by Role
+  int port_body[SpatialRope::kRoles] = {-1, -1, -1, -1, -1, -1, -1, -1, -1};  // by Role
   // The load: its coordinates NAME.x, NAME.y, NAME.z.
   const std::optional<std::string> load = f.text("load");
   if (load) {
@@ -33,13 +35,14 @@ std::shared_ptr<const Element> place_spatial_rope(FieldReader& f, const Model& m
     if (z < 0) {
       f.error_at("load", m.body_index(*load) >= 0
                              ? fmt::format("'{}' is a body of its own; the load of a spatial rope is a body of "
-                                           "'type: point-mass'", *load)
-                             : fmt::format("unknown load '{}' (a body of 'type: point-mass')", *load));
+                                           "'type: point-mass' or 'type: rigid-load'", *load)
+                             : fmt::format("unknown load '{}' (a body of 'type: point-mass' or 'type: rigid-load')", *load));
       ok = false;
     } else {
       port_body[static_cast<int>(Role::load_z)] = z;
       port_body[static_cast<int>(Role::load_x)] = std::max(m.body_index(*load + ".x"), -1);
       port_body[static_cast<int>(Role::load_y)] = std::max(m.body_index(*load + ".y"), -1);
+      port_body[static_cast<int>(Role::load_psi)] = std::max(m.body_index(*load + ".psi"), -1);
       rope->mass = m.bodies[static_cast<size_t>(z)].inertia;
     }
   } else {
@@ -116,6 +119,35 @@ std::shared_ptr<const Element> place_spatial_rope(FieldReader& f, const Model& m
     if (!lx && f.map().find("trolley")) refuse("trolley", "a trolley moves its suspension point along x: give the load axes [x, y, z]");
     if ((!lx || !ly) && f.map().find("jib")) refuse("jib", "a slewing jib moves its suspension point in space: give the load axes [x, y, z]");
   }
+  // A rigid load's attach point (its frame) and a planar load's suspension offset.
+  if (const SpecNode* n = f.node("attach")) {
+    std::vector<double> a;
+    if (n->is_seq() && n->items.size() == 2)
+      for (const SpecNode& item : n->items) {
+        std::string err;
+        const std::optional<double> v = item.is_scalar() ? parse_as(item.scalar, dim::length, &err) : std::nullopt;
+        if (v) a.push_back(*v);
+      }
+    if (port_body[static_cast<int>(Role::load_psi)] < 0 && port_body[static_cast<int>(Role::load_z)] >= 0) {
+      f.error_at("attach", fmt::format("'attach' is a point on a rigid load; '{}' is a point mass", *load));
+      ok = false;
+    } else if (a.size() != 2) {
+      f.error_at("attach", "'attach' expected the rope's point on the load in its frame, two lengths "
+                           "[along its horizontal axis, up], e.g. [2 m, 0.5 m]");
+      ok = false;
+    } else {
+      rope->attach[0] = a[0], rope->attach[1] = a[1];
+    }
+  }
+  if (f.map().find("offset")) {
+    rope->offset = f.quantity("offset", dim::length).value_or(0.0);
+    const bool lx = port_body[static_cast<int>(Role::load_x)] >= 0, ly = port_body[static_cast<int>(Role::load_y)] >= 0;
+    if (lx && ly) {
+      f.error_at("offset", "an 'offset' of the suspension point is along a planar load's horizontal axis; the load "
+                           "moves in space");
+      ok = false;
+    }
+  }
   // The rope: its length, EA, falls, damping; the drum's radius.
   const std::optional<double> L0 = f.positive("length", dim::length);
   std::optional<double> EA;
@@ -145,7 +177,7 @@ std::shared_ptr<const Element> place_spatial_rope(FieldReader& f, const Model& m
   if (!ok || !L0 || !EA || (port_body[static_cast<int>(Role::drum)] >= 0 && !R)) return nullptr;
 
   // The ports in their order, each body once.
-  const Role kOrder[] = {Role::load_z, Role::load_x, Role::load_y, Role::trolley,
+  const Role kOrder[] = {Role::load_z, Role::load_x, Role::load_y, Role::load_psi, Role::trolley,
                          Role::bridge, Role::jib,    Role::radius, Role::drum};
   for (Role r : kOrder) {
     const int i = port_body[static_cast<int>(r)];
@@ -171,8 +203,14 @@ std::shared_ptr<const Element> place_spatial_rope(FieldReader& f, const Model& m
   } else {
     law.inv_ratio = 0.0;
   }
-  // The suspension height: given, or where the load at z = 0 hangs at rest below it, L0 + m g/c.
-  rope->h = height ? *height : *L0 + rope->mass * m.gravity / law.c;
+  // The suspension height: given, or where the load at z = 0 hangs at rest below it, L0 + m g/c
+  // (a rigid load's centre at z = 0: its rope point at (R(ψ0) a)_z).
+  double ra_z = 0.0;
+  if (rope->has(Role::load_psi)) {
+    const double psi0 = m.bodies[static_cast<size_t>(port_body[static_cast<int>(Role::load_psi)])].q0;
+    ra_z = rope->attach[0] * std::sin(psi0) + rope->attach[1] * std::cos(psi0);
+  }
+  rope->h = height ? *height : ra_z + *L0 + rope->mass * m.gravity / law.c;
   return rope;
 }
 
