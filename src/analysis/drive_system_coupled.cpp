@@ -1,5 +1,10 @@
 // The drive system's side of gears with clutches on their bodies (analysis/gear_clutch.hpp): the stuck
 // contacts solved with the compliance C of the bodies, whose gear blocks come from the gears' law.
+// Nothing here decides a mode: for the modes set, solve_coupled forms the stuck set's loads by the
+// decision rule's step 3 (docs/hybrid.md "Modes"): the weighted share with the one-sided rule, and where
+// it leaves a row beyond its bounds the bounded split with the stuck gears as rows
+// (split_stuck_gears, analysis/gear_split.hpp); enforce_coupled projects onto the stuck rows. The modes
+// are decided by analysis/contact_decision.hpp and decide_gear_at_rest, which read these loads.
 #include <algorithm>
 #include <cmath>
 

@@ -1,7 +1,9 @@
 // The drive system's side of the gear locks (analysis/gear_lock.hpp): a lossy gear stuck together
 // with the friction elements to the ground on its bodies. Their dynamics need nothing here (the stuck
 // gear holds both bodies at rest, its contacts' rows solve to λ = 0); what is set here is the split of
-// the holding torque (outputs, the gear's X and Y) and the joint event functions.
+// the holding torque (outputs, the gear's X and Y) and the joint event functions. Neither is a mode
+// decision: the split is the bounded split of the stuck set's rule (analysis/gear_split.hpp
+// gear_friction_split), the events are its admissible set's boundary.
 #include <cmath>
 
 #include <Eigen/Core>
