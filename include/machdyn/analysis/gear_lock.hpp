@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// A lossy gear decided together with the friction elements to the ground on its bodies (brakes,
-/// ground contacts, MSL's BearingFriction): the joint law at rest. The gear's law stays in
+/// ground contacts, MSL's BearingFriction, backstops): the joint law at rest. The gear's law stays in
 /// elements/lossy_gear.hpp, the friction's in elements/contact.hpp; this file only joins them.
 ///
 /// Such a contact k (row on one of the gear's bodies, to the fixed ground) slides with
