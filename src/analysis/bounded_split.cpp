@@ -95,7 +95,9 @@ std::optional<Eigen::VectorXd> bounded_split(const Eigen::MatrixXd& A, const Eig
   const Eigen::MatrixXd N = svd.matrixV().rightCols(k);
   // The bounds as rows G s ≥ h of the least-distance problem, in z units (λ_i = w_i (z₀ + N s)_i),
   // each row scaled to unit length; a row without s is met by λ₀ or by no split.
-  const double zs = std::max(z0.norm(), slack);  // s in units of zs: h stays O(1)
+  // s in units of zs: h stays O(1) (without a least-norm share, z₀ = 0: the bounds' scale in z units)
+  const double wmax = w.cwiseAbs().maxCoeff();
+  const double zs = z0.norm() > slack ? z0.norm() : std::max(wmax > 0.0 ? scale / wmax : 0.0, slack);
   std::vector<Eigen::VectorXd> G;
   std::vector<double> h;
   auto add = [&](const Eigen::VectorXd& g, double rhs) {

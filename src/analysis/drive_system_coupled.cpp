@@ -1,5 +1,10 @@
 // The drive system's side of gears with clutches on their bodies (analysis/gear_clutch.hpp): the stuck
 // contacts solved with the compliance C of the bodies, whose gear blocks come from the gears' law.
+// Nothing here decides a mode: for the modes set, solve_coupled forms the stuck set's loads by the
+// decision rule's step 3 (docs/hybrid.md "Modes"): the weighted share with the one-sided rule, and where
+// it leaves a row beyond its bounds the bounded split with the stuck gears as rows
+// (split_stuck_gears, analysis/gear_split.hpp); enforce_coupled projects onto the stuck rows. The modes
+// are decided by analysis/contact_decision.hpp and decide_gear_at_rest, which read these loads.
 #include <algorithm>
 #include <cmath>
 
@@ -107,16 +112,13 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
 
 bool DriveSystem::split_stuck_gears(double t, const double* acc, const double* im, const std::vector<double>& ka,
                                     const std::vector<double>& kb) {
-  // The stuck coupled gears the split can take as rows: both sides with inertia, no prescribed side,
-  // no backstop among their friction to the ground (its split is gear_lock's).
+  // The stuck coupled gears the split can take as rows: both sides with inertia, no prescribed side.
   std::vector<int> J;
   for (int g = 0; g < ng_; ++g) {
     const auto gi = static_cast<size_t>(g);
     const LossyGearLaw& k = gears_[gi];
-    const int li = locks_.of_gear[gi];
     if (gear_mode_[gi] != GearMode::stuck || !coupled_gear(g) || gear_motion_[gi] >= 0 || !std::isfinite(im[k.a]) ||
-        !std::isfinite(im[k.b]) || im[k.a] <= 0.0 || im[k.b] <= 0.0 ||
-        (li >= 0 && locks_.locks[static_cast<size_t>(li)].blocked != 0))
+        !std::isfinite(im[k.b]) || im[k.a] <= 0.0 || im[k.b] <= 0.0)
       continue;
     J.push_back(g);
   }
@@ -131,15 +133,17 @@ bool DriveSystem::split_stuck_gears(double t, const double* acc, const double* i
   for (size_t q = 0; q < J.size() && holds; ++q) {
     const auto gi = static_cast<size_t>(J[q]);
     const LossyGearLaw& k = gears_[gi];
-    double F[2] = {gear_fa_[gi], gear_fb_[gi]}, d[2] = {0.0, 0.0};
+    double F[2] = {gear_fa_[gi], gear_fb_[gi]};
     for (Eigen::Index j = 0; j < ns; ++j) {
       if (lock_owned(j)) continue;
       const VelocityRow& row = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])].row;
       for (int p = 0; p < row.terms; ++p)
         if (row.body[p] == k.a || row.body[p] == k.b) F[row.body[p] == k.a ? 0 : 1] -= row.w[p] * lam_(j);
     }
-    if (const int li = locks_.of_gear[gi]; li >= 0) locks_.locks[static_cast<size_t>(li)].limit_forces(contacts_.data(), t, d);
-    holds = lock_start(k, F[0], F[1], d, 0.0) == 0;
+    if (const int li = locks_.of_gear[gi]; li >= 0)
+      holds = locks_.locks[static_cast<size_t>(li)].start(k, contacts_.data(), t, F[0], F[1], 0.0) == 0;
+    else
+      holds = k.start_margin(+1, F[0], F[1]) >= 0.0 && k.start_margin(-1, F[0], F[1]) >= 0.0;
   }
   if (holds) return false;
   // 2. The split with the gears' rows: e_a and i e_b per gear of J, their bodies with their own 1/I.

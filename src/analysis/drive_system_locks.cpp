@@ -1,9 +1,15 @@
 // The drive system's side of the gear locks (analysis/gear_lock.hpp): a lossy gear stuck together
 // with the friction elements to the ground on its bodies. Their dynamics need nothing here (the stuck
 // gear holds both bodies at rest, its contacts' rows solve to λ = 0); what is set here is the split of
-// the holding torque (outputs, the gear's X and Y) and the joint event functions.
+// the holding torque (outputs, the gear's X and Y) and the joint event functions. Neither is a mode
+// decision: the split is the bounded split of the stuck set's rule (analysis/gear_split.hpp
+// gear_friction_split), the events are its admissible set's boundary.
 #include <cmath>
 
+#include <Eigen/Core>
+
+#include "analysis/bounded_share.hpp"
+#include "analysis/gear_split.hpp"
 #include "machdyn/analysis/drive_system.hpp"
 
 namespace machdyn {
@@ -19,24 +25,30 @@ void DriveSystem::share_locks(double t, double* fc) {
     const auto gi = static_cast<size_t>(L.gear);
     if (gear_mode_[gi] != GearMode::stuck) continue;
     const LossyGearLaw& k = gears_[gi];
-    const double Ia = 1.0 / inv_mass_[static_cast<size_t>(k.a)], Ib = 1.0 / inv_mass_[static_cast<size_t>(k.b)];
-    if (L.blocked != 0) {  // a backstop carries what the gear's locking range leaves
-      const auto c = static_cast<size_t>(L.contacts[0]);
-      const double lam = backstop_load(L, k, contacts_[c], gear_fa_[gi], gear_fb_[gi]);
-      double e[2];
-      backstop_direction(L, contacts_[c], e);
-      if (mode_[c] == ContactMode::stuck) fc[c] = lam;
-      gear_t_[gi] = k.solve(GearMode::stuck, gear_fa_[gi] + lam * e[0], gear_fb_[gi] + lam * e[1], Ia, Ib, 0.0);
-      continue;
+    const auto nk = static_cast<Eigen::Index>(L.contacts.size());
+    Eigen::VectorXd ea(nk), eb(nk), w(nk), lo(nk), hi(nk);
+    for (Eigen::Index j = 0; j < nk; ++j) {
+      const int c = L.contacts[static_cast<size_t>(j)];
+      ea(j) = L.ea[static_cast<size_t>(j)], eb(j) = L.eb[static_cast<size_t>(j)];
+      w(j) = share_weight(c, t);
+      detail::stuck_bounds(contacts_[static_cast<size_t>(c)], t, &lo(j), &hi(j));
     }
-    double d[2];
-    L.limit_forces(contacts_.data(), t, d);
-    const double th = lock_share(k, gear_fa_[gi], gear_fb_[gi], d);
-    for (size_t j = 0; j < L.contacts.size(); ++j) {
-      const auto c = static_cast<size_t>(L.contacts[j]);
-      if (mode_[c] == ContactMode::stuck) fc[c] = th * (L.kappa[j] > 0.0 ? 1.0 : -1.0) * contacts_[c].static_limit(t);
+    Eigen::VectorXd lam = Eigen::VectorXd::Zero(nk);
+    if (const auto split = detail::gear_friction_split(k, gear_fa_[gi], gear_fb_[gi], ea, eb, w, lo, hi)) {
+      lam = *split;
+    } else if (const int s = L.start(k, contacts_.data(), t, gear_fa_[gi], gear_fb_[gi], 0.0); s != 0) {
+      // Beyond the locking range by rounding (the decision's allowance): every contact at the bound
+      // that opposes the start.
+      for (Eigen::Index j = 0; j < nk; ++j) lam(j) = s * L.kappa[static_cast<size_t>(j)] > 0.0 ? hi(j) : lo(j);
     }
-    gear_t_[gi] = k.solve(GearMode::stuck, gear_fa_[gi] + th * d[0], gear_fb_[gi] + th * d[1], Ia, Ib, 0.0);
+    double Fa = gear_fa_[gi], Fb = gear_fb_[gi];
+    for (Eigen::Index j = 0; j < nk; ++j) {
+      const auto c = static_cast<size_t>(L.contacts[static_cast<size_t>(j)]);
+      if (mode_[c] == ContactMode::stuck) fc[c] = lam(j);
+      Fa += ea(j) * lam(j), Fb += eb(j) * lam(j);
+    }
+    gear_t_[gi] = k.solve(GearMode::stuck, Fa, Fb, 1.0 / inv_mass_[static_cast<size_t>(k.a)],
+                          1.0 / inv_mass_[static_cast<size_t>(k.b)], 0.0);
   }
 }
 
@@ -46,15 +58,9 @@ void DriveSystem::lock_event_functions(double t, double* g) const {
     const auto gi = static_cast<size_t>(L.gear);
     if (gear_mode_[gi] != GearMode::stuck) continue;
     double* ev = g + 2 * (nl_ + nc_ + nd_ + L.gear);
-    if (L.blocked != 0) {
-      backstop_events(L, gears_[gi], gear_fa_[gi], gear_fb_[gi], ev);
-      continue;
-    }
-    double d[2];
-    L.limit_forces(contacts_.data(), t, d);
-    lock_events(gears_[gi], gear_fa_[gi], gear_fb_[gi], d, ev);
+    L.events(gears_[gi], contacts_.data(), t, gear_fa_[gi], gear_fb_[gi], ev);
     if (gear_joint_[gi] != 0) {  // held on its locking range by the split (split_stuck_gears): its limit's allowance
-      const double tol = gears_[gi].allowance(std::abs(gear_fa_[gi]) + std::abs(d[0]), std::abs(gear_fb_[gi]) + std::abs(d[1]));
+      const double tol = L.allowance(gears_[gi], contacts_.data(), t, gear_fa_[gi], gear_fb_[gi]);
       ev[0] += tol, ev[1] += tol;
     }
   }

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "machdyn/analysis/contact_decision.hpp"
-#include "machdyn/analysis/gear_lock.hpp"
 #include "machdyn/common/diagnostics.hpp"
 
 namespace machdyn {
@@ -39,16 +38,17 @@ void DriveSystem::settle_gear_sides(double t, const double* y) {
   }
 }
 
-GearMode decide_gear_clutch(DriveSystem& sys, int g, double t, const double* y, bool strict,
-                            const std::vector<int>& strict_contacts) {
+GearMode decide_gear_at_rest(DriveSystem& sys, int g, double t, const double* y, bool strict,
+                             const std::vector<int>& strict_contacts) {
   const LossyGearLaw& k = sys.lossy_gear(g);
-  std::vector<int> Z;  // the contacts at zero sliding speed, decided with the gear
-  for (int c = 0; c < static_cast<int>(sys.model().contacts.size()); ++c) {
-    const ContactLaw& law = sys.contact(c);
-    if (law.joint || law.kinematic || sys.gear_locks().owner[static_cast<size_t>(c)] >= 0) continue;
-    if (sys.contact_mode(c) == ContactMode::stuck || sys.sliding_velocity(c, t, y) == 0.0) Z.push_back(c);
-  }
-  // The gear's friction to the ground (analysis/gear_lock.hpp), if any: stuck with it, d its limits.
+  std::vector<int> Z;  // the contacts at zero sliding speed, decided with the gear (with clutches on it)
+  if (sys.coupled_gear(g))
+    for (int c = 0; c < static_cast<int>(sys.model().contacts.size()); ++c) {
+      const ContactLaw& law = sys.contact(c);
+      if (law.joint || law.kinematic || sys.gear_locks().owner[static_cast<size_t>(c)] >= 0) continue;
+      if (sys.contact_mode(c) == ContactMode::stuck || sys.sliding_velocity(c, t, y) == 0.0) Z.push_back(c);
+    }
+  // The gear's friction to the ground (analysis/gear_lock.hpp), if any: stuck with it.
   const int li = sys.gear_locks().of_gear[static_cast<size_t>(g)];
   const GearLock* L = li >= 0 ? &sys.gear_locks().locks[static_cast<size_t>(li)] : nullptr;
   auto set_lock = [&](int s) {  // s = 0: stuck; else sliding with the gear rolling in s
@@ -64,17 +64,28 @@ GearMode decide_gear_clutch(DriveSystem& sys, int g, double t, const double* y, 
   sys.set_gear_mode(g, GearMode::stuck);
   set_lock(0);
   if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
-  double Fa = 0.0, Fb = 0.0, d[2] = {0.0, 0.0};
+  double Fa = 0.0, Fb = 0.0;
   sys.gear_loads(g, t, y, &Fa, &Fb);
-  if (L) L->limit_forces(&sys.contact(0), t, d);
-  const double tol = strict ? 0.0 : k.allowance(std::abs(Fa) + std::abs(d[0]), std::abs(Fb) + std::abs(d[1]));
-  const int s = lock_start(k, Fa, Fb, d, tol);  // d = 0: the gear's own margins
+  int s = 0;
+  if (L) {
+    const double tol = strict ? 0.0 : L->allowance(k, &sys.contact(0), t, Fa, Fb);
+    s = L->start(k, &sys.contact(0), t, Fa, Fb, tol);
+  } else {
+    const double tol = strict ? 0.0 : k.allowance(std::abs(Fa), std::abs(Fb));
+    s = k.start_margin(+1, Fa, Fb) < -tol ? 1 : k.start_margin(-1, Fa, Fb) < -tol ? -1 : 0;
+  }
   if (s == 0) return GearMode::stuck;
   // 2. It starts where its margin failed (its ground friction sliding with it), the contacts decided
   //    again with it rolling.
   sys.set_gear_mode(g, s > 0 ? GearMode::forward : GearMode::backward);
   set_lock(s);
   if (!Z.empty()) (void)decide_contacts(sys, t, y, Z, strict_contacts);
+  if (!sys.coupled_gear(g)) {  // its driving side by its law, at the contacts' kinetic forces
+    sys.gear_loads(g, t, y, &Fa, &Fb);
+    const GearMode md = k.rolling(s, Fa, Fb, sys.inertia(k.a), sys.inertia(k.b), 0.0);
+    sys.set_gear_mode(g, md);
+    return md;
+  }
   const GearMode md = settle_rolling_side(sys, g, s, t, y);
   const double a = sys.gear_torques(g, t, y).acc;
   if (L && a == 0.0) {

@@ -26,6 +26,35 @@ bool gear_holds(const LossyGearLaw& g, double X, double Y, double tol) {
   return fwd && bwd;
 }
 
+std::optional<Eigen::VectorXd> gear_friction_split(const LossyGearLaw& g, double Fa, double Fb, const Eigen::VectorXd& ea,
+                                                   const Eigen::VectorXd& eb, const Eigen::VectorXd& w,
+                                                   const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+  const Eigen::Index n = ea.size();
+  if (gear_holds(g, Fa, -Fb / g.i, 0.0)) return Eigen::VectorXd::Zero(n);
+  // No row of the dynamics: one zero row (rank 0), the split's null space every λ.
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Zero(1, n);
+  const Eigen::VectorXd r = Eigen::VectorXd::Zero(1);
+  Eigen::MatrixXd D(2, n);
+  Eigen::VectorXd e(2);
+  std::optional<Eigen::VectorXd> best;
+  double best_cost = HUGE_VAL;
+  for (int code = 0; code < 4; ++code) {
+    for (int k = 0; k < 2; ++k) {  // k = 0: s = +1 on side σ₊; k = 1: s = −1 on side σ₋
+      const int s = k == 0 ? 1 : -1;
+      const LossyGearLaw::Relation rl = g.relation(gear_split_mode(s, ((code >> k) & 1) != 0), 0.0);
+      // s (p X − q Y − c) ≤ 0 with X = F_a + e_a·λ, Y = −(F_b + e_b·λ)/i:
+      //   (−s p e_a − s q e_b / i)·λ ≥ −s c + s p F_a + s q F_b / i.
+      D.row(k) = (-s * rl.p) * ea.transpose() - (s * rl.q / g.i) * eb.transpose();
+      e(k) = -s * rl.c + s * rl.p * Fa + s * rl.q * Fb / g.i;
+    }
+    const auto lam = bounded_split(A, r, w, lo, hi, D, e);
+    if (!lam) continue;
+    const double cost = (lam->array() / w.array()).square().sum();
+    if (cost < best_cost) best_cost = cost, best = lam;
+  }
+  return best;
+}
+
 std::optional<Eigen::VectorXd> gear_bounded_split(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, const Eigen::VectorXd& w,
                                                   const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                                   const std::vector<const LossyGearLaw*>& gears) {

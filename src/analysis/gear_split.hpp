@@ -49,6 +49,17 @@ inline constexpr double kGearSplitWeight = 1e3;
                                                                 const Eigen::VectorXd& hi,
                                                                 const std::vector<const LossyGearLaw*>& gears);
 
+/// The loads λ_k of the friction elements to the ground on a stuck gear's bodies (analysis/gear_lock.hpp):
+/// the bounded split with no row of the dynamics (the gear holds both bodies at rest whatever λ is),
+/// each λ_k within [lo_k, hi_k], the gear's reactions X = F_a + e_a·λ, Y = −(F_b + e_b·λ)/i within its
+/// locking range (the pieces above as rows on λ), the least Σ (λ_k/w_k)²: λ = 0 where the gear holds
+/// alone. Nothing when no piece admits a split (the gear's joint events are then negative).
+/// ea, eb: each contact's force on a and on b per unit λ_k.
+[[nodiscard]] std::optional<Eigen::VectorXd> gear_friction_split(const LossyGearLaw& g, double Fa, double Fb,
+                                                                 const Eigen::VectorXd& ea, const Eigen::VectorXd& eb,
+                                                                 const Eigen::VectorXd& w, const Eigen::VectorXd& lo,
+                                                                 const Eigen::VectorXd& hi);
+
 /// Whether the gear holds the reactions (X, Y) (both start margins ≥ −tol), by the pieces of the
 /// header; the same set as LossyGearLaw::start_margin at F_a = X, F_b = −i Y (tested against it).
 [[nodiscard]] bool gear_holds(const LossyGearLaw& g, double X, double Y, double tol);

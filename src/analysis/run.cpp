@@ -911,18 +911,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       // The contact decision may have settled a coupled gear's driving side already: its mode before.
       const GearMode old = gear_before_.empty() ? sys_.gear_mode(g) : gear_before_[static_cast<size_t>(g)];
       GearMode now;
-      if (sys_.coupled_gear(g)) {  // with the clutches on its bodies (analysis/gear_clutch.hpp)
-        const double va = y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)];
-        if (va != 0.0) {
-          now = settle_rolling_side(sys_, g, va > 0.0 ? 1 : -1, t, y_.data());
-        } else {
-          const std::vector<ContactMode> before = sys_.contact_modes();
-          now = decide_gear_clutch(sys_, g, t, y_.data(), strict, broke);
-          if (!initial) apply_contact_modes(t, before, sys_.contact_modes(), false);
-        }
-      } else if (locked_at_rest(g)) {
+      const double va = y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)];
+      if (sys_.coupled_gear(g) && va != 0.0) {  // rolling with the clutches on its bodies (analysis/gear_clutch.hpp)
+        now = settle_rolling_side(sys_, g, va > 0.0 ? 1 : -1, t, y_.data());
+      } else if (decided_at_rest(g)) {  // with its friction and clutches (analysis/gear_clutch.hpp)
         const std::vector<ContactMode> before = sys_.contact_modes();
-        now = decide_gear_lock(sys_, g, t, y_.data(), strict);
+        now = decide_gear_at_rest(sys_, g, t, y_.data(), strict, broke);
         if (!initial) apply_contact_modes(t, before, sys_.contact_modes(), false);
       } else {
         now = sys_.natural_gear_mode(g, t, y_.data(), strict);
@@ -945,9 +939,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int g = 0; g < ng_; ++g) gear_before_[static_cast<size_t>(g)] = sys_.gear_mode(g);
   }
   std::vector<GearMode> gear_before_;
-  /// Whether gear g has friction elements on its bodies (a gear lock) and stands still.
-  bool locked_at_rest(int g) const {
-    return sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0 &&
+  /// Whether gear g stands still with friction elements or clutches on its bodies: decided together
+  /// with them (analysis/gear_clutch.hpp decide_gear_at_rest).
+  bool decided_at_rest(int g) const {
+    return (sys_.coupled_gear(g) || sys_.gear_locks().of_gear[static_cast<size_t>(g)] >= 0) &&
            y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0;
   }
   /// Whether contact k is decided again at any event: a stuck one (not a joint or a gear's), a
@@ -1190,14 +1185,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     sys_.set_contact_modes(modes);
     if (!Z.empty()) modes = decide_contacts(sys_, 0.0, y_.data(), Z, strict_);
-    // A gear at rest and its friction elements: decided together before the contacts are recorded
-    // (decide_gears below repeats the same decision and records the gear).
+    // A gear at rest with its friction elements and clutches: decided together before the contacts
+    // are recorded (decide_gears below repeats the same decision and records the gear).
     for (int g = 0; g < ng_; ++g)
-      if (locked_at_rest(g) && !sys_.coupled_gear(g)) (void)decide_gear_lock(sys_, g, 0.0, y_.data(), false);
-    // A gear with clutches at rest: decided with them (analysis/gear_clutch.hpp).
-    for (int g = 0; g < ng_; ++g)
-      if (sys_.coupled_gear(g) && y_[static_cast<size_t>(n_ + sys_.lossy_gear(g).a)] == 0.0)
-        (void)decide_gear_clutch(sys_, g, 0.0, y_.data(), false, {});
+      if (decided_at_rest(g)) (void)decide_gear_at_rest(sys_, g, 0.0, y_.data(), false, {});
     modes = sys_.contact_modes();
     apply_contact_modes(0.0, modes, modes, true);
     if (ng_ > 0) decide_gears(0.0, {}, true);

@@ -180,9 +180,6 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       continue;
     }
     bool ok = true;
-    int friction_elements = 0;  // on either body of the gear
-    for (const FrictionContact& c : m.contacts)
-      friction_elements += c.a == g.a || c.a == g.b || c.b == g.a || c.b == g.b;
     for (int e : {g.a, g.b}) {
       int& u = used[static_cast<size_t>(e)];
       if (u >= 0) {
@@ -198,12 +195,9 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       for (const FrictionContact& c : m.contacts) {
         if (c.a != e && c.b != e) continue;
         // A freewheel to another body is a one-sided clutch (analysis/gear_clutch.hpp); a backstop is
-        // decided with the gear alone (analysis/gear_lock.hpp).
+        // one more bounded row of the gear's friction (analysis/gear_lock.hpp).
         const char* why = c.b >= 0 ? nullptr
                           : c.stop ? "end stops on a lossy gear's bodies are not supported yet"
-                          : c.lock != 0 && friction_elements > 1
-                              ? "a backstop on a lossy gear's body must be the only friction element on the gear's "
-                                "bodies (no brake, contact or clutch beside it) for now"
                           : c.lock != 0 ? nullptr
                           : c.surface_times.size() > 1 ||
                                     (!c.surface_velocities.empty() && c.surface_velocities[0] != 0.0)

@@ -389,6 +389,60 @@ simulation: {{t_end: 1.5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}
   }
 }
 
+// The gear, clutch and ramp above with a backstop on A ([ground, A]: A may turn forward only) in place of
+// the brake, and the ramp reversed, −h t on C; everything at rest. One decision holds gear, backstop and
+// clutch (analysis/gear_clutch.hpp), one bounded split shares their loads (analysis/gear_lock.hpp).
+// 1. C's torque passes the stuck clutch to B (λ_K = h t < T0): F_a = 0, F_b' = −h t / i. The gear alone
+//    starts backward at once (B driving: N₋ = F_a + η_mf2 F_b' < 0); the backstop blocks that start (its
+//    margin is 1) and the forward margin holds. The split: the backstop's torque T ≥ 0 on A, the least
+//    with the gear in its locking range, on the B-driving piece T + η_mf2 F_b' ≥ 0 (the A-driving one
+//    needs T ≥ h t/(η_mf1 i), more): T = η_mf2 h t / i.
+// 2. The clutch slips at t_s = T0/h; C then runs alone, I_C a_C = −h t + T0 (kinetic = static):
+//    ω_C = −(h (t² − t_s²)/2 − T0 (t − t_s)) / I_C; B keeps the load −T0: T = η_mf2 T0 / i.
+// Claim: no event of the gear or the backstop, the clutch slips once at t_s (within 1e-8 s); A and B stay
+// at rest, C's speed follows the closed form (1e-8 rad/s, 1e-6 on BDF); the backstop carries η_mf2 h t/i,
+// then η_mf2 T0/i, the clutch h t, then T0 (1e-8 N·m).
+TEST_P(GearClutchSim, BackstopAndClutchOnOneGearHoldItWithTheSplitsShare) {
+  const double IA = 1.0, IB = 0.5, IC = 2.0, i = 2.0, e1 = 0.9, e2 = 0.7, T0 = 8.0, h = 10.0, ts = T0 / h;
+  const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+  C: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+freewheels:
+  bs: {{between: [ground, A]}}
+clutches:
+  K: {{between: [B, C], normal_force: {} N, mu_s: 0.5, mu_k: 0.5, radius: 1 m}}
+loads:
+  P: {{type: ramp, body: C, value: {} N*m, end: 2 s}}
+simulation: {{t_end: 1.5, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, IB, IC, i, e1, e2, 2.0 * T0, -2.0 * h, GetParam()), "gear.yaml"));
+  EXPECT_TRUE(events_of(r, "G").empty());
+  EXPECT_TRUE(events_of(r, "bs").empty());
+  const auto clutch = events_of(r, "K");
+  ASSERT_EQ(clutch.size(), 1u);
+  EXPECT_NE(clutch[0].to, "stuck");
+  EXPECT_NEAR(clutch[0].t, ts, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto &wa = series(r, "A.velocity_rad_s"), &wb = series(r, "B.velocity_rad_s"), &wc = series(r, "C.velocity_rad_s");
+  const auto &Fbs = series(r, "bs.force_N_m"), &FK = series(r, "K.force_N_m");
+  for (size_t j = 0; j < t.size(); ++j) {
+    EXPECT_NEAR(wa[j], 0.0, tol) << t[j];
+    EXPECT_NEAR(wb[j], 0.0, tol) << t[j];
+    const double w = t[j] <= ts ? 0.0 : -(h * (t[j] * t[j] - ts * ts) / 2.0 - T0 * (t[j] - ts)) / IC;
+    EXPECT_NEAR(wc[j], w, tol) << t[j];
+    if (t[j] < ts - 1e-9) {
+      EXPECT_NEAR(std::abs(Fbs[j]), e2 * h * t[j] / i, 1e-8) << t[j];
+      EXPECT_NEAR(std::abs(FK[j]), h * t[j], 1e-8) << t[j];
+    } else if (t[j] > ts + 1e-9) {
+      EXPECT_NEAR(std::abs(Fbs[j]), e2 * T0 / i, 1e-8) << t[j];
+      EXPECT_NEAR(std::abs(FK[j]), T0, 1e-12) << t[j];
+    }
+  }
+}
+
 // MSL's Rotational HeatLosses with its BearingFriction moved onto the gear's input inertia4: the gear,
 // the bearing friction and the clutch on its flange in one decision, while the chain flange – clutch –
 // inertia5 – one-way clutch – inertia6 – brake can hold the gear's output side against the ground.

@@ -148,6 +148,93 @@ TEST(GearSplit, BoundedSplitWithGeneralRowsEqualsTheOptimumOverEveryActiveSet) {
   EXPECT_GT(infeasible, 5);
 }
 
+// The friction to the ground on a stuck gear's bodies (analysis/gear_lock.hpp): contacts with e_k = −1 on a
+// or on b (κ_k = −e_a − e_b/i), brakes with |λ| ≤ F_s (weight √F_s) and backstops with λ ≥ 0 or λ ≤ 0
+// (weight 1). The joint events of the header: m_s(F + d_s) with every contact at its bound opposing s
+// (1 where the bound is infinite).
+double corner_margin(const LossyGearLaw& g, int s, double Fa, double Fb, const Eigen::VectorXd& ea, const Eigen::VectorXd& eb,
+                     const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+  for (Eigen::Index k = 0; k < ea.size(); ++k) {
+    const double kappa = -ea(k) - eb(k) / g.i, lam = s * kappa > 0.0 ? hi(k) : lo(k);
+    if (!std::isfinite(lam)) return 1.0;
+    Fa += ea(k) * lam, Fb += eb(k) * lam;
+  }
+  return g.start_margin(s, Fa, Fb);
+}
+
+// Claim: gear_friction_split finds a split exactly where both joint events are ≥ 0 (random gears, one to
+// three contacts on either body, forces; points within 1e-9 of an event's zero skipped), its split is
+// within every bound and leaves the gear within its locking range (1e-9 of the load scale), it is 0 where
+// the gear holds alone, and with one contact it is the admissible load nearest 0 — found here by
+// bisection of the gear's own start margins along the contact's line (the set is an interval: X_± rise
+// with Y) — within 1e-9 of the scale.
+TEST(GearSplit, FrictionSplitExistsExactlyWhereTheJointEventsHoldAndIsTheLeastLoad) {
+  std::mt19937 gen(4729);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  int held = 0, started = 0, single = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const double eta1 = 0.3 + 0.7 * U(gen), eta2 = trial % 4 == 0 ? 0.0 : 0.05 + 0.9 * U(gen);
+    const double bf = trial % 3 == 0 ? 0.0 : 2.0 * U(gen), ratio = (trial % 2 == 0 ? 1.0 : -1.0) * (0.5 + 10.0 * U(gen));
+    const Model m = split_gear_model(eta1, eta2, bf, bf, ratio);  // the law reads its spec
+    const LossyGearLaw g = LossyGearLaw::of(m.lossy_gears[0]);
+    const int n = 1 + trial % 3;
+    Eigen::VectorXd ea = Eigen::VectorXd::Zero(n), eb = Eigen::VectorXd::Zero(n), w(n), lo(n), hi(n);
+    for (int k = 0; k < n; ++k) {
+      (U(gen) < 0.5 ? ea : eb)(k) = -1.0;
+      const double Fs = 0.5 + 10.0 * U(gen), kind = U(gen);
+      if (kind < 0.7) lo(k) = -Fs, hi(k) = Fs, w(k) = std::sqrt(Fs);
+      else if (kind < 0.85) lo(k) = 0.0, hi(k) = HUGE_VAL, w(k) = 1.0;
+      else lo(k) = -HUGE_VAL, hi(k) = 0.0, w(k) = 1.0;
+    }
+    const double Fa = 30.0 * (U(gen) - 0.5), Fb = 30.0 * std::abs(g.i) * (U(gen) - 0.5);
+    const double mp = corner_margin(g, +1, Fa, Fb, ea, eb, lo, hi), mm = corner_margin(g, -1, Fa, Fb, ea, eb, lo, hi);
+    if (std::abs(mp) < 1e-9 || std::abs(mm) < 1e-9) continue;
+    const auto lam = detail::gear_friction_split(g, Fa, Fb, ea, eb, w, lo, hi);
+    auto state = [&] {
+      std::string o = fmt::format("trial {} m+ {} m- {} eta {} {} bf {} i {} F {} {}", trial, mp, mm, eta1, eta2, bf, g.i, Fa, Fb);
+      for (int k = 0; k < n; ++k) o += fmt::format(" [e {} {} lo {} hi {} w {}{}]", ea(k), eb(k), lo(k), hi(k), w(k),
+                                                   lam ? fmt::format(" lam {}", (*lam)(k)) : std::string());
+      return o;
+    };
+    ASSERT_EQ(lam.has_value(), mp >= 0.0 && mm >= 0.0) << state();
+    if (!lam) {
+      ++started;
+      continue;
+    }
+    ++held;
+    const double scale = 1.0 + std::abs(Fa) + std::abs(Fb);
+    double X = Fa, Fbp = Fb;
+    for (int k = 0; k < n; ++k) {
+      EXPECT_GE((*lam)(k), lo(k) - 1e-9 * scale);
+      EXPECT_LE((*lam)(k), hi(k) + 1e-9 * scale);
+      X += ea(k) * (*lam)(k), Fbp += eb(k) * (*lam)(k);
+    }
+    EXPECT_TRUE(detail::gear_holds(g, X, -Fbp / g.i, 1e-9 * scale)) << "trial " << trial;
+    if (detail::gear_holds(g, Fa, -Fb / g.i, 0.0)) {
+      EXPECT_EQ(lam->cwiseAbs().maxCoeff(), 0.0) << "trial " << trial;
+    }
+    if (n != 1) continue;
+    // One contact: the admissible λ nearest 0, by bisection of the gear's margins between 0 and the
+    // split (an admissible load: the interval's end nearest 0 lies between them).
+    auto holds = [&](double l) { return g.start_margin(+1, Fa + ea(0) * l, Fb + eb(0) * l) >= 0.0 &&
+                                        g.start_margin(-1, Fa + ea(0) * l, Fb + eb(0) * l) >= 0.0; };
+    double want = 0.0;
+    if (!holds(0.0)) {
+      double in = (*lam)(0), out = 0.0;
+      for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (in + out);
+        (holds(mid) ? in : out) = mid;
+      }
+      want = in;
+    }
+    ++single;
+    EXPECT_NEAR((*lam)(0), want, 1e-9 * scale) << "trial " << trial;
+  }
+  EXPECT_GT(held, 100);
+  EXPECT_GT(started, 50);
+  EXPECT_GT(single, 40);
+}
+
 class GearSplitSim : public ::testing::TestWithParam<const char*> {};
 INSTANTIATE_TEST_SUITE_P(BothIntegrators, GearSplitSim, ::testing::Values("dopri5", "bdf"));
 

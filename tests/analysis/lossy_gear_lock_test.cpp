@@ -326,10 +326,67 @@ simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
   }
 }
 
+// The hoist gear of the test above with a friction contact of H = 20 N·m (static = kinetic) on the drum B
+// beside the backstop on A: one bounded split decides both (analysis/gear_lock.hpp). Forward rolling
+// (A drives) the contact slides against it with −H on B: F_b' = (−L − H)/i = −6 N·m.
+// 1. From rest with τ0: the forward margin η_mf1 τ0 + F_b' = 2 > 0 (the contact at its bound
+//    opposing the start), so the gear starts at t = 0: a1 = (η_mf1 τ0 − (L + H)/i)/E, E = η_mf1 I_A + I_B/i².
+// 2. From t_off, τ = 0: a2 = (−(L + H)/i)/E (A still drives); rest at t_s = t_off (1 − a1/a2).
+// 3. At rest: backward (B driving) the gear holds while T_bs + η_mf2 (T_c − L)/i ≥ 0, T_bs ≥ 0 the
+//    backstop's torque on A, |T_c| ≤ H the contact's on B (both forward); the gear alone (−3 N·m) does not.
+//    The split takes the least T_bs²/1² + T_c²/(√H)² (the stuck set's weights: 1 for a lock, √F_s) on
+//    that line: T_bs = μ, T_c = μ H η_mf2/i, μ = (η_mf2 L/i)/(1 + H (η_mf2/i)²) (within |T_c| ≤ H).
+// 4. At t_on the forward margin is 2 again: gear, contact and backstop start together, v_A = a1 (t − t_on).
+// Claim: the gear stops at t_s and starts at t_on (each within 1e-8 s), A's speed follows the closed form
+// within 1e-8 rad/s (1e-6 on BDF), and while held the backstop carries μ and the contact μ H η_mf2/i
+// within 1e-9 N·m.
+TEST_P(GearLockSim, BackstopBesideAContactOnTheDrumShareTheHoldingTorqueByTheSplit) {
+  const double IA = 0.2, IB = 5.0, i = 20.0, e1 = 0.8, e2 = 0.6, L = 100.0, H = 20.0, tau0 = 10.0, t_off = 1.0,
+               t_on = 3.0;
+  const double E = e1 * IA + IB / (i * i), a1 = (e1 * tau0 - (L + H) / i) / E, a2 = (-(L + H) / i) / E;
+  const double ts = t_off * (1.0 - a1 / a2);
+  const double mu = (e2 * L / i) / (1.0 + H * (e2 / i) * (e2 / i)), Tc = mu * H * e2 / i;
+  const SimulationResult r = simulate(test::model_text(fmt::format(R"(bodies:
+  A: {{inertia: {} kg*m^2}}
+  B: {{inertia: {} kg*m^2}}
+links:
+  G: {{type: lossy-gear, between: [A, B], ratio: {}, efficiency: {}, efficiency_reverse: {}}}
+freewheels:
+  bs: {{between: [ground, A]}}
+contacts:
+  c: {{between: [B, ground], static: {} N*m, kinetic: {} N*m}}
+loads:
+  motor: {{type: table, body: A, points: [[0, {}], [{}, {}], [{}, 0], [{}, 0], [{}, {}], [5, {}]]}}
+  weight: {{type: constant, body: B, value: {} N*m}}
+simulation: {{t_end: 4, dt_out: 0.01, rtol: 1e-11, atol: 1e-13, integrator: {}}}
+)", IA, IB, i, e1, e2, H, H, tau0, t_off, tau0, t_off, t_on, t_on, tau0, tau0, -L, GetParam()), "gear.yaml"));
+  const auto gear = events_of(r, "G");
+  ASSERT_EQ(gear.size(), 2u);
+  EXPECT_EQ(gear[0].to, "stuck");
+  EXPECT_NEAR(gear[0].t, ts, 1e-8);
+  EXPECT_EQ(gear[1].to, "forward");
+  EXPECT_NEAR(gear[1].t, t_on, 1e-8);
+  const double tol = std::string(GetParam()) == "bdf" ? 1e-6 : 1e-8;
+  const auto& t = series(r, "t_s");
+  const auto& wa = series(r, "A.velocity_rad_s");
+  const auto& Fbs = series(r, "bs.force_N_m");
+  const auto& Fc = series(r, "c.force_N_m");
+  int held = 0;
+  for (size_t j = 0; j < t.size(); ++j) {
+    const double w = t[j] <= t_off ? a1 * t[j] : t[j] <= ts ? a1 * t_off + a2 * (t[j] - t_off) : t[j] <= t_on ? 0.0 : a1 * (t[j] - t_on);
+    EXPECT_NEAR(wa[j], w, tol) << t[j];
+    if (t[j] > ts + 1e-9 && t[j] < t_on - 1e-9) {
+      ++held;
+      EXPECT_NEAR(std::abs(Fbs[j]), mu, 1e-9) << t[j];
+      EXPECT_NEAR(std::abs(Fc[j]), Tc, 1e-9) << t[j];
+    }
+  }
+  EXPECT_GT(held, 50);
+}
+
 // Claim: the friction elements that remain unsupported on a lossy gear's bodies are located errors
-// that say why (a clutch between the gear's own bodies, a backstop beside a brake, an end stop, a moving
-// ground surface); a brake, a ground
-// contact and bearing friction compile.
+// that say why (a clutch between the gear's own bodies, an end stop, a moving ground surface); a brake, a
+// ground contact, bearing friction, and a backstop beside a brake or a clutch compile.
 TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
   const std::string head = "bodies:\n  A: {inertia: 1}\n  B: {inertia: 2}\n  C: {inertia: 3}\nlinks:\n"
                            "  G: {type: lossy-gear, between: [A, B], efficiency: 0.9}\n";
@@ -341,8 +398,6 @@ TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
   // A clutch to another body is decided with the gear (analysis/gear_clutch.hpp; beside friction to the
   // ground too), but not one between the gear's own bodies.
   check("contacts:\n  c: {between: [B, A], static: 1 N*m, kinetic: 1 N*m}\n", "joins the gear's own two bodies");
-  check("freewheels:\n  f: {between: [ground, A]}\nbrakes:\n  br: {body: B, holding: 5 N*m}\n",
-        "a backstop on a lossy gear's body must be the only friction element");
   check("stops:\n  s: {body: A, min: -1 rad}\n", "end stops on a lossy gear's bodies are not supported yet");
   check("contacts:\n  c: {between: [A, ground], static: 1 N*m, kinetic: 1 N*m, surface_velocity: 2 rad/s}\n",
         "moving surface");
@@ -351,6 +406,12 @@ TEST(GearLockCompile, UnsupportedFrictionOnAGearBodyIsALocatedError) {
                                     "gear.yaml");
   EXPECT_EQ(ok.lossy_gears.size(), 1u);
   EXPECT_EQ(ok.contacts.size(), 2u);
+  const Model backstop = test::model_text(head + "freewheels:\n  f: {between: [ground, A]}\nbrakes:\n  br: {body: B, holding: 5 N*m}\n",
+                                          "gear.yaml");
+  EXPECT_EQ(backstop.contacts.size(), 2u);
+  const Model clutched = test::model_text(head + "freewheels:\n  f: {between: [ground, A]}\ncontacts:\n"
+                                                 "  k: {between: [B, C], static: 5 N*m, kinetic: 5 N*m}\n", "gear.yaml");
+  EXPECT_EQ(clutched.contacts.size(), 2u);
 }
 
 }  // namespace

@@ -33,14 +33,14 @@
 /// mode equation and the clutch's holding torque, the combination consistent with both kept.
 ///
 /// At rest (v_a = 0) the gear, its friction to the ground (analysis/gear_lock.hpp: brakes, bearing
-/// friction on its bodies) and the contacts at zero sliding speed Z are decided together:
-///   1. the gear and its ground friction stuck, Z by the stick rule (where the weighted share leaves
-///      the gear beyond its locking range or a contact beyond its limit, the stuck set's split takes the
-///      gear as bounded rows, analysis/gear_split.hpp: a chain of stuck clutches to the ground beside the
-///      gear carries what the gear cannot); kept when the pair's events of
-///      analysis/gear_lock.hpp hold, m_{+1}(F + d) ≥ −tol and m_{−1}(F − d) ≥ −tol (d = 0 without
+/// friction, backstops on its bodies) and the contacts at zero sliding speed Z (clutches on its bodies;
+/// none without them) are decided together, one decision for every gear at rest:
+///   1. the gear and its ground friction stuck, Z by the stick rule (the stuck set's bounded split,
+///      with the gear as bounded rows where the weighted share leaves it beyond its locking range or a
+///      contact beyond its limit, analysis/gear_split.hpp); kept when the pair's events of
+///      analysis/gear_lock.hpp hold, m_{+1}(F + d_+) ≥ −tol and m_{−1}(F + d_−) ≥ −tol (d = 0 without
 ///      ground friction: the gear's own margins), with the stuck clutches' loads in F = (F_a, F_b);
-///      the split of the holding torque is gear_lock's rule at these F;
+///      the ground friction's loads are the bounded split of gear_lock.hpp at these F;
 ///   2. else the gear starts in the direction s whose margin failed, its ground friction sliding
 ///      with it, Z decided again with the gear rolling (its side settled as above); kept when s a ≥ 0
 ///      within rounding; with ground friction and a = 0 exactly the stuck contacts hold the gear's
@@ -65,10 +65,12 @@ namespace machdyn {
 /// leaves `sys` in that mode.
 GearMode settle_rolling_side(DriveSystem& sys, int g, int s, double t, const double* y);
 
-/// The joint decision at rest of coupled gear g and the contacts at zero sliding speed (header) at
-/// (t, y): sets their modes in `sys` and returns the gear's. `strict`: the gear's event fired;
-/// `strict_contacts`: contacts whose breakaway event fired (judged without the rounding allowance).
-GearMode decide_gear_clutch(DriveSystem& sys, int g, double t, const double* y, bool strict,
-                            const std::vector<int>& strict_contacts);
+/// The one decision of gear g at rest (v_a = 0; header, "At rest") at (t, y): the gear, its friction
+/// to the ground (analysis/gear_lock.hpp) and, with clutches on its bodies, the contacts at zero
+/// sliding speed, together; sets their modes in `sys` and returns the gear's. `strict`: the gear's
+/// event fired; `strict_contacts`: contacts whose breakaway event fired (judged without the rounding
+/// allowance).
+GearMode decide_gear_at_rest(DriveSystem& sys, int g, double t, const double* y, bool strict,
+                             const std::vector<int>& strict_contacts);
 
 }  // namespace machdyn

@@ -1,40 +1,36 @@
 #pragma once
 /// @file
 /// A lossy gear decided together with the friction elements to the ground on its bodies (brakes,
-/// ground contacts, MSL's BearingFriction): the joint law at rest. The gear's law stays in
+/// ground contacts, MSL's BearingFriction, backstops): the joint law at rest. The gear's law stays in
 /// elements/lossy_gear.hpp, the friction's in elements/contact.hpp; this file only joins them.
 ///
 /// Such a contact k (row on one of the gear's bodies, to the fixed ground) slides with
 /// u_k = κ_k v_a, κ_k = Σ w_j over a's terms + Σ w_j / i over b's. So while the gear rolls every
 /// contact slides (its kinetic force is one of the forces F_a, F_b the gear's law solves with), and
-/// at rest the gear and its contacts are stuck together or start together. Stuck together, any loads
-/// λ_k give a = 0: the split of the holding torque between the gear and the friction is not unique
-/// (MSL's LossyGearDemo2 notes it). Let F_a, F_b be the forces on the two bodies from everything
-/// else and d = (d_a, d_b) the forces of the contacts at their static limits against forward rolling,
-///   d_j = −Σ_k w_kj sign(κ_k) F_s,k(t)    (contact k puts −w_kj λ_k on body j).
-/// Since m_{+1} never increases and m_{−1} never decreases with the forward forces
-/// (elements/lossy_gear.hpp), the pair holds
-///   against a forward start   ⇔  m_{+1}(F + d) ≥ 0   (every contact at its limit against it),
-///   against a backward start  ⇔  m_{−1}(F − d) ≥ 0,
-/// and these are the joint event functions of the stuck pair (the contacts' own limits are not
-/// events while their gear is stuck: m_{+1}(F + θ d), m_{−1}(F + θ d) cannot both be negative, so
-/// both conditions give a split within every limit). The split (outputs, the held torques):
-///   λ_k = θ sign(κ_k) F_s,k(t),  θ ∈ [−1, 1] the value closest to 0 with m_{±1}(F + θ d) ≥ 0,
-/// i.e. the gear holds what its locking range allows and the friction elements carry only the rest,
-/// shared in proportion to their static limits (as stuck contacts share a locked load,
-/// docs/hybrid.md). θ is continuous in the forces; it reaches ±1 exactly where a joint event fires.
-/// A start in s sets the gear rolling in s (driving side by its law with the contacts' kinetic
-/// forces) and every contact sliding in sign(s κ_k): consistent, as F_k(0) ≤ F_s.
-/// Backstop: a freewheel to the ground ([ground, A], free direction −lock in u) on one of the gear's
-/// bodies blocks the gear's rolling direction s_b = lock·sign(κ) and lets it roll in −s_b, sliding
-/// freely with it. It has no upper limit, so stuck with it the gear never starts in s_b (that event
-/// is 1) and starts in −s_b where its own margin m_{−s_b}(F) < 0 (the backstop carries nothing against
-/// it). The split: the gear holds what its locking range allows, the backstop the rest: λ = 0 while
-/// m_{s_b}(F) ≥ 0, else the λ (lock·λ > 0) with m_{s_b}(F + λ e) = 0, e its force on (a, b) per unit λ.
+/// at rest the gear and its contacts are stuck together or start together. Stuck together, the gear
+/// holds both bodies at rest and the contacts' loads λ_k are not fixed by the dynamics: they are the
+/// rows of the bounded split (analysis/gear_split.hpp gear_friction_split) — each λ_k within its
+/// stick rule's bounds [lo_k, hi_k] (a brake or ground contact ±F_s(t); a backstop, a freewheel to
+/// the ground, lock·λ ≥ −F_d and unbounded in its locking direction), the gear's reactions
+/// X = F_a + e_a·λ, Y = −(F_b + e_b·λ)/i within its locking range, and the least Σ (λ_k/w_k)² (the
+/// weights of the stuck set's share, docs/hybrid.md): the gear holds what its locking range allows,
+/// the friction elements the least weighted norm of the rest. F_a, F_b are the forces on the two
+/// bodies from everything else, e_k = (e_a, e_b) the force contact k puts on them per unit λ_k.
+/// Events and decision. A start in s is resisted at most by every contact at the bound of its load
+/// that opposes it, λ_k = hi_k where s κ_k > 0, else lo_k; d_s = Σ e_k λ_k. Since m_{+1} never
+/// increases and m_{−1} never decreases with the forward forces (elements/lossy_gear.hpp), a split
+/// exists exactly while
+///   m_{+1}(F + d_+) ≥ 0  and  m_{−1}(F + d_−) ≥ 0
+/// (from the corner λ of d_+ to that of d_− every load moves forward, m_{+1} falls from ≥ 0, m_{−1}
+/// rises to ≥ 0, and they are never both negative: a point between holds), and these are the joint
+/// event functions of the stuck pair (the contacts' own limits are no events while their gear is
+/// stuck); a margin whose start a contact blocks (an infinite bound: a backstop) is 1. At rest they
+/// decide: stuck while both hold (within LossyGearLaw::allowance unless the gear's event fired), else
+/// the gear starts in the s whose margin failed, every contact sliding in sign(s κ_k) (consistent:
+/// F_k(0) ≤ F_s). The one decision of a gear at rest, with clutches on its bodies too, is
+/// analysis/gear_clutch.hpp's decide_gear_at_rest.
 /// Supported (compile checks): contacts with a row on exactly one of the gear's bodies and the
-/// ground, no moving surface, not a stop or joint; a backstop only as the one friction element on the
-/// gear's bodies (no brake or clutch beside it). With a clutch on the same gear the
-/// decision at rest is analysis/gear_clutch.hpp's, which takes these events and this split.
+/// ground, no moving surface, not a stop or joint.
 
 #include <vector>
 
@@ -49,11 +45,20 @@ struct GearLock {
   int a = 0, b = 0;           ///< the gear's bodies
   std::vector<int> contacts;  ///< contact indices
   std::vector<double> kappa;  ///< κ_k: the contact's sliding velocity per unit v_a of the gear
-  int blocked = 0;            ///< a backstop's blocked rolling direction s_b (header), 0: none
+  std::vector<double> ea, eb; ///< e_k: the force of the contact on a and on b per unit load λ_k
 
-  /// d (size 2: on a, on b): the contacts' forces at their static limits F_s(t) against forward
-  /// rolling (header); `c` the model's contact laws, in order.
-  void limit_forces(const ContactLaw* c, double t, double* d) const;
+  /// d_s (size 2: on a, on b): the contacts' forces at the bounds that oppose a start in s (header);
+  /// false when a contact blocks that start (no finite bound: a backstop). `c`: the model's contact
+  /// laws, in order.
+  bool resistance(const ContactLaw* c, double t, int s, double* d) const;
+  /// The joint event functions of the stuck gear and its contacts at the forces (F_a, F_b) from
+  /// everything else (header): ev[0] = m_{+1}(F + d_+), ev[1] = m_{−1}(F + d_−), 1 where blocked.
+  void events(const LossyGearLaw& g, const ContactLaw* c, double t, double Fa, double Fb, double* ev) const;
+  /// The rounding allowance of those margins (LossyGearLaw::allowance over the forces involved).
+  [[nodiscard]] double allowance(const LossyGearLaw& g, const ContactLaw* c, double t, double Fa, double Fb) const;
+  /// The direction the gear and its contacts start in at rest: +1, −1, or 0 (they stay stuck); a
+  /// margin counts as negative below −`tol` (allowance(), 0 for a fired event).
+  [[nodiscard]] int start(const LossyGearLaw& g, const ContactLaw* c, double t, double Fa, double Fb, double tol) const;
 };
 
 /// The locks of a model: `locks` one per lossy gear with such contacts, `of_gear[g]` the index of
@@ -66,26 +71,5 @@ struct GearLocks {
 
 /// The locks of the gears and contacts (those on a gear's body that compile admitted).
 GearLocks gear_locks(const std::vector<LossyGearLaw>& gears, const std::vector<ContactLaw>& contacts);
-
-/// The joint event functions of a stuck gear with its contacts stuck (header), ≥ 0 while they hold.
-void lock_events(const LossyGearLaw& g, double Fa, double Fb, const double* d, double* ev);
-/// The direction the gear and its contacts start in at rest: +1, −1, or 0 (they stay stuck); a
-/// margin counts as negative below −`tol` (LossyGearLaw::allowance, 0 for a fired event).
-[[nodiscard]] int lock_start(const LossyGearLaw& g, double Fa, double Fb, const double* d, double tol);
-/// θ of the split (header) for a pair that holds; clamped to [−1, 1] otherwise.
-[[nodiscard]] double lock_share(const LossyGearLaw& g, double Fa, double Fb, const double* d);
-
-/// A backstop lock (L.blocked ≠ 0; header): its joint events at the forces F on the gear's bodies.
-void backstop_events(const GearLock& L, const LossyGearLaw& g, double Fa, double Fb, double* ev);
-/// A backstop lock's load λ of the split (header) at F; its contact's row in `c`.
-[[nodiscard]] double backstop_load(const GearLock& L, const LossyGearLaw& g, const ContactLaw& c, double Fa, double Fb);
-/// The force (e_a, e_b) a backstop's load puts on the gear's bodies per unit λ.
-void backstop_direction(const GearLock& L, const ContactLaw& c, double* e);
-
-class DriveSystem;
-/// The joint decision at rest of gear g and its contacts at (t, y): sets their modes in `sys` (the gear
-/// stuck or rolling, the contacts stuck or sliding with it) and returns the gear's; `strict`: the
-/// gear's event fired (no rounding allowance). The gear's bodies must be at rest.
-GearMode decide_gear_lock(DriveSystem& sys, int g, double t, const double* y, bool strict);
 
 }  // namespace machdyn
