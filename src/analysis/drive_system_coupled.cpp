@@ -37,7 +37,11 @@ Eigen::MatrixXd weighted_solution(const Eigen::MatrixXd& S, const Eigen::VectorX
 void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* fc, const double* im, double* src,
                                 double* fric) {
   // Each gear's block of C: a = k_a F_a + k_b F_b + k_0 from its law at F = 0 and the unit forces.
-  std::vector<double> ka(static_cast<size_t>(ng_), 0.0), kb(static_cast<size_t>(ng_), 0.0);
+  CoupledSplit& cs = coupled_split_;
+  std::vector<double>& ka = cs.ka;
+  std::vector<double>& kb = cs.kb;
+  ka.assign(static_cast<size_t>(ng_), 0.0);
+  kb.assign(static_cast<size_t>(ng_), 0.0);
   for (int g = 0; g < ng_; ++g) {
     const auto gi = static_cast<size_t>(g);
     if (gear_mode_[gi] == GearMode::stuck) continue;
@@ -56,8 +60,10 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
     return x == k.a ? kz : kz / k.i;
   };
   const auto ns = static_cast<Eigen::Index>(stuck_.size());
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(ns, ns);
-  Eigen::VectorXd w(ns);
+  Eigen::MatrixXd& S = cs.S_now;
+  Eigen::VectorXd& w = cs.w_now;
+  S.setZero(ns, ns);
+  w.resize(ns);
   for (Eigen::Index i = 0; i < ns; ++i) {
     const ContactLaw& ci = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(i)])];
     w(i) = share_weight(stuck_[static_cast<size_t>(i)], t);
@@ -68,7 +74,12 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
         for (int q = 0; q < rj.terms; ++q) S(i, j) += ci.row.w[p] * C(ci.row.body[p], rj.body[q]) * rj.w[q];
     }
   }
-  lam_ = weighted_solution(S, w, false) * r_;
+  if (S.rows() != cs.S.rows() || S != cs.S || w != cs.w) {
+    cs.P = weighted_solution(S, w, false);
+    cs.S = S;
+    cs.w = w;
+  }
+  lam_.noalias() = cs.P * r_;
   // The one-sided rule (docs/hybrid.md): a freewheel loaded against its lock takes no share while
   // the others carry every load alone.
   bool masked = false;
@@ -84,7 +95,8 @@ void DriveSystem::solve_coupled(double t, const double* y, double* acc, double* 
   std::fill(gear_joint_.begin(), gear_joint_.end(), 0);
   split_stuck_gears(t, acc, im, ka, kb);
   // The loads on the bodies: the gears' sides through their law, the others through 1/I.
-  std::vector<double> df(static_cast<size_t>(n_), 0.0);
+  std::vector<double>& df = cs.df;
+  df.assign(static_cast<size_t>(n_), 0.0);
   for (Eigen::Index j = 0; j < ns; ++j) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
     fc[stuck_[static_cast<size_t>(j)]] = lam_(j);

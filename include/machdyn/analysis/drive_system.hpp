@@ -498,6 +498,13 @@ class DriveSystem final : public OdeSystem {
   Eigen::MatrixXd Pproj_;     // plain pseudo-inverse of G M⁻¹ Gᵀ (velocity projection)
   std::vector<double> f_, fc_;
   Eigen::VectorXd r_, lam_;
+  // solve_coupled's split λ = P r, P = D (S D)⁺, kept while S and the weights D stay bit for bit the
+  // same (they change with a gear's mode or direction of power flow, or a timed weight), and its scratch.
+  struct CoupledSplit {
+    Eigen::MatrixXd S, P, S_now;
+    Eigen::VectorXd w, w_now;
+    std::vector<double> ka, kb, df;
+  } coupled_split_;
   // Small chains without events (n ≤ 8): a = −M⁻¹K q − M⁻¹D v + M⁻¹ f_const by a fixed-size dense
   // kernel in the AffineRows slot (A = [−M⁻¹K, −M⁻¹D], c = M⁻¹ f_const), which beats the link loop.
   bool dense_ = false;
