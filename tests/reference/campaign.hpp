@@ -86,6 +86,13 @@ struct CampaignOptions {
 /// each integrator's events and outcome (machdyn_campaign --show FAMILY:INDEX).
 void show(const std::string& family, std::uint64_t seed, std::uint64_t index);
 
+/// Checks whether a state mismatch of model `index` is an amplified difference of the two runs'
+/// errors (machdyn_campaign --converge FAMILY:INDEX): prints the largest state differences, in units
+/// of the state tolerance, of the reference at h against h/4, of the engine at rtol 1e-10 against the
+/// reference at h and at rtol 1e-12 against h/4, and the comparison of the tight pair. An amplified
+/// error shrinks with both tolerances; a missed or extra event does not.
+void converge(const std::string& family, std::uint64_t seed, std::uint64_t index);
+
 /// Runs the campaign (models spread round-robin over the families, both integrators), prints a
 /// table per family and returns the number of failing (model, integrator) runs.
 long run_campaign(const CampaignOptions& o);

@@ -649,10 +649,16 @@ class Sim {
         continue;
       }
       const double ce = G.c * (D - mm.g * h);
-      out.push_back({mm.g * (ce + G.d * Dr), eps_f, -1, -1, false, mi, 0});
+      // Without backlash τ's sign (after a decision it is > 0 strictly: the bisection's side) fires
+      // at any negative value too: from rest τ grows as c (t − t₀)^k (a root at t₀, as a speed's).
+      out.push_back({mm.g * (ce + G.d * Dr), h > 0.0 ? eps_f : 0.0, -1, -1, false, mi, 0});
       if (h > 0.0 && G.d > 0.0) out.push_back({mm.g * (ce - G.d * Dr), eps_f, -1, -1, true, mi, 3});
-      out.push_back({mm.s1 * y[static_cast<size_t>(n_ + G.a)], eps_v, -1, -1, false, mi, 1});
-      out.push_back({mm.s2 * y[static_cast<size_t>(n_ + G.b)], eps_v, -1, -1, false, mi, 2});
+      // A speed's sign fires at any negative value, as the engine's: a body starting from rest as
+      // c (t − t₀)^k through k − 1 springs (after a load's step, or at the start) reaches −1e-12 only
+      // (1e-12/c)^(1/k) later (3e-6 to 6e-5 s) — its sign is − from t₀ on, a reversal at t₀ on
+      // both sides. A body at rest has ω = 0 exactly here (the projection), so no rounding fires.
+      out.push_back({mm.s1 * y[static_cast<size_t>(n_ + G.a)], 0.0, -1, -1, false, mi, 1});
+      out.push_back({mm.s2 * y[static_cast<size_t>(n_ + G.b)], 0.0, -1, -1, false, mi, 2});
     }
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
@@ -1094,13 +1100,23 @@ RefResult Sim::run() {
             if (first) mm.s1 = sign_after(y[static_cast<size_t>(n_ + G.a)], a[static_cast<size_t>(G.a)], mm.s1);
             if (second) mm.s2 = sign_after(y[static_cast<size_t>(n_ + G.b)], a[static_cast<size_t>(G.b)], mm.s2);
           };
+          // Reaching a flank (g its distance) or ending an undamped contact (g = c e): a zero of a
+          // function of Δ, moved by δΔ/|Δ'| = (δq_a + i δq_b)/|Δ'| (RefEvent), as a gap's.
+          const double Dr = std::abs(mesh_Dr(G, y.data()));
+          auto by_position = [&]() {
+            if (!(Dr > 0.0)) return;
+            RefEvent& ev = res_.events.back();
+            ev.body = G.a, ev.body2 = G.b, ev.w2 = G.i, ev.dt_dq = 1.0 / Dr;
+          };
           if (mm.g == 0) {
             mm.g = ge[i].slot == 0 ? 1 : -1;
             signs(true, true);
             record(t, "mesh", G.name);
+            by_position();
           } else if (ge[i].slot == 0) {
             if (G.backlash > 0.0) mm.g = 0, record(t, "free play", G.name);
             else mm.g = -mm.g, record(t, "mesh", G.name);
+            if (G.d == 0.0) by_position();
           } else {
             signs(ge[i].slot == 1, ge[i].slot == 2);
             record(t, "mesh", G.name);

@@ -282,7 +282,11 @@ struct RefEvent {
   /// a bounce is resolved by the position only while its apex height v_k²/(2a) exceeds δq, so
   /// v_k ≥ √(2 a δq) and dt_dsqrtq = (1 + e)/((1 − e) √(2a)); a velocity error moves it by
   /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact.
+  /// A gear mesh's free play reaching a flank, or its undamped contact ending (g the distance to the
+  /// flank, or c e, with Δ = φ_a − i φ_b: |ġ| = |Δ'|): dt_dq = 1/|Δ'| on the pinion and the wheel,
+  /// the wheel's δq, δv weighted by i (w2).
   int body = -1, body2 = -1;
+  double w2 = 1.0;         ///< the weight of body2's δq, δv (1; a gear mesh's wheel: its ratio i)
   double dt_dq = 0.0;      ///< s/m
   double dt_dsqrtq = 0.0;  ///< s/√m
   double dt_dv = 0.0;      ///< s/(m/s)
