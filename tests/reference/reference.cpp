@@ -1077,6 +1077,15 @@ RefResult Sim::run() {
           const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
           const double ddl = std::abs(va(y.data(), L.a) - va(y.data(), L.b));
           const bool by_position = md_.gap[k] == GMode::open || L.d == 0.0;  // g a distance (RefEvent)
+          // A damped flank opening at g = c e + d δ̇ = 0: δg = c δq + d δv moves it by δg/|ġ|, ġ = c δ̇ + d δ̈
+          // in the closed mode (RefEvent: dt_dq = c/|ġ|, dt_dv = d/|ġ|).
+          double gdot = 0.0;
+          if (!by_position) {
+            std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+            accel(t, y.data(), md_, a.data(), lam.data());
+            const double dda = (L.a >= 0 ? a[static_cast<size_t>(L.a)] : 0.0) - (L.b >= 0 ? a[static_cast<size_t>(L.b)] : 0.0);
+            gdot = std::abs(L.c * (va(y.data(), L.a) - va(y.data(), L.b)) + L.d * dda);
+          }
           if (md_.gap[k] == GMode::open) {
             md_.gap[k] = std::abs(dl - L.hi()) <= std::abs(dl - L.lo()) ? GMode::closed_pos : GMode::closed_neg;
             record(t, "gap_closed", L.name);
@@ -1087,6 +1096,9 @@ RefResult Sim::run() {
           if (by_position && ddl > 0.0) {
             RefEvent& ev = res_.events.back();
             ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = 1.0 / ddl;
+          } else if (!by_position && gdot > 0.0) {
+            RefEvent& ev = res_.events.back();
+            ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = L.c / gdot, ev.dt_dv = L.d / gdot;
           }
         } else if (ge[i].mesh >= 0) {
           // A gear mesh: the free play reaches a flank (the speeds' signs read again), the contact
@@ -1114,9 +1126,20 @@ RefResult Sim::run() {
             record(t, "mesh", G.name);
             by_position();
           } else if (ge[i].slot == 0) {
+            // Damped: g = c e + d Δ' moved by (c δΔ + d δΔ')/|ġ|, ġ = c Δ' + d Δ'' in the contact's mode.
+            double gdot = 0.0;
+            if (G.d > 0.0) {
+              accel(t, y.data(), md_, a.data(), lam.data());
+              gdot = std::abs(G.c * mesh_Dr(G, y.data()) + G.d * (a[static_cast<size_t>(G.a)] - G.i * a[static_cast<size_t>(G.b)]));
+            }
             if (G.backlash > 0.0) mm.g = 0, record(t, "free play", G.name);
             else mm.g = -mm.g, record(t, "mesh", G.name);
-            if (G.d == 0.0) by_position();
+            if (G.d == 0.0) {
+              by_position();
+            } else if (gdot > 0.0) {
+              RefEvent& ev = res_.events.back();
+              ev.body = G.a, ev.body2 = G.b, ev.w2 = G.i, ev.dt_dq = G.c / gdot, ev.dt_dv = G.d / gdot;
+            }
           } else {
             signs(ge[i].slot == 1, ge[i].slot == 2);
             record(t, "mesh", G.name);

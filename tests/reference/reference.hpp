@@ -274,7 +274,8 @@ struct RefEvent {
   /// body −1: none (the fixed tolerance alone); else the tolerance is
   /// dt_dq δq + dt_dsqrtq √δq + dt_dv δv of that body (and of body2: δq, δv are the sums over
   /// both). A gap closing (g the distance δ₊ − δ or δ − δ₋ of its flank, |ġ| = |v_a − v_b|), or
-  /// opening from a flank without damping (g = c e): dt_dq = 1/|v_a − v_b| on its two bodies. An end stop's impact at speed v⁻ (g its
+  /// opening from a flank without damping (g = c e): dt_dq = 1/|v_a − v_b| on its two bodies; a damped flank opening
+  /// (g = c e + d δ̇, δg = c δq + d δv): dt_dq = c/|ġ|, dt_dv = d/|ġ|, ġ = c δ̇ + d δ̈ in the closed mode. An end stop's impact at speed v⁻ (g its
   /// distance, |ġ| = |v⁻|): dt_dq = 1/|v⁻|. A plastic rest (e = 0) is that impact. The rest that
   /// ends a series of bounces (e > 0) is the accumulation instant t∞ = t_k + 2 e v_k/(a (1 − e)),
   /// from any bounce k at speed v_k under the acceleration a towards the stop: an offset δq of the
