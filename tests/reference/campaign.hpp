@@ -12,7 +12,9 @@
 ///           kEventTol·max(1, t_end) s, δg/|ġ| and the reference event's resolution window:
 ///           - δg/|ġ|: an event is a zero of a switching function g, and states within δx move
 ///             that zero by δg/|ġ| (RefEvent: dt_dq δq + dt_dv δv of its body). A comparison that
-///             accepts the states must accept the event times they imply: the n-th bounce of a Zeno
+///             accepts the states must accept the event times they imply: a damped flank's opening
+///             (g = c e + d δ̇) by (c δq + d δv)/|ġ|, a gear mesh reaching a flank by
+///             (δq_a + i δq_b)/|Δ'|; the n-th bounce of a Zeno
 ///             series under e < 1 meets its stop at |ġ| = |v⁻| ∝ eⁿ, its instant conditioned like
 ///             1/eⁿ; the rest at the accumulation instant t∞ is known to
 ///             √(δq/(2a)) (1 + e)/(1 − e) + 2 e δv/(a (1 − e)) (bounces whose apex height is below
