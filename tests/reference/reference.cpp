@@ -606,12 +606,26 @@ class Sim {
     double res = 0.0;  // its resolution δ (> 0: the events it fires get a resolution window)
   };
 
+  std::vector<char> held_;        // functions(): bodies held at rest by a stuck element to the ground
+  std::vector<char> sliding_on_;  // functions(): bodies a sliding friction element acts on
+
   std::vector<Fn> functions(double t_in, const std::vector<double>& y) {
     const double t = t_in == t_left_ ? std::nextafter(t_in, -HUGE_VAL) : t_in;
     std::vector<Fn> out;
     std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
     accel(t_in, y.data(), md_, a.data(), lam.data());
     const double eps_x = 0.0, eps_v = 1e-12, eps_f = 1e-13 * fscale_;
+    held_.assign(static_cast<size_t>(n_), 0);  // bodies a stuck element holds to the ground (at rest)
+    sliding_on_.assign(static_cast<size_t>(n_), 0);  // bodies a sliding element acts on
+    for (size_t k = 0; k < m_.frictions.size(); ++k) {
+      const Friction& f = m_.frictions[k];
+      if (sliding(md_.fr[k])) {
+        if (f.a >= 0) sliding_on_[static_cast<size_t>(f.a)] = 1;
+        if (f.b >= 0) sliding_on_[static_cast<size_t>(f.b)] = 1;
+      }
+      if (md_.fr[k] != FMode::stuck || (f.a >= 0 && f.b >= 0)) continue;
+      held_[static_cast<size_t>(f.a >= 0 ? f.a : f.b)] = 1;
+    }
     for (size_t k = 0; k < m_.links.size(); ++k) {
       const Link& L = m_.links[k];
       if (!L.has_flanks()) continue;
@@ -656,9 +670,16 @@ class Sim {
       // A speed's sign fires at any negative value, as the engine's: a body starting from rest as
       // c (t − t₀)^k through k − 1 springs (after a load's step, or at the start) reaches −1e-12 only
       // (1e-12/c)^(1/k) later (3e-6 to 6e-5 s) — its sign is − from t₀ on, a reversal at t₀ on
-      // both sides. A body at rest has ω = 0 exactly here (the projection), so no rounding fires.
-      out.push_back({mm.s1 * y[static_cast<size_t>(n_ + G.a)], 0.0, -1, -1, false, mi, 1});
-      out.push_back({mm.s2 * y[static_cast<size_t>(n_ + G.b)], 0.0, -1, -1, false, mi, 2});
+      // both sides. A body held by a stuck element to the ground has ω = 0 by its mode (RK4 leaves
+      // it rounding, ~1e-20, whose sign would fire over and over: campaign gear-mesh seed 2 #99).
+      // A body a sliding element acts on reverses where that element's slide function fires (u past
+      // ±1e-12: the same zero, located and decided together — its stick may hold the body): there
+      // the sign takes the slide's threshold (seed 2 #99: at 0 the sign flipped alone, back and
+      // forth inside the slide's threshold, the loss turning the body each time).
+      auto speed = [&](int b) { return held_[static_cast<size_t>(b)] ? 0.0 : y[static_cast<size_t>(n_ + b)]; };
+      auto eps_of = [&](int b) { return sliding_on_[static_cast<size_t>(b)] ? eps_v : 0.0; };
+      out.push_back({mm.s1 * speed(G.a), eps_of(G.a), -1, -1, false, mi, 1});
+      out.push_back({mm.s2 * speed(G.b), eps_of(G.b), -1, -1, false, mi, 2});
     }
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
@@ -1061,7 +1082,12 @@ RefResult Sim::run() {
       t = te;
       t_left_ = -1.0;
       if (t - last_event_t < 1e-9 * std::max(1.0, t)) {
-        if (++events_here > 200) throw std::runtime_error("chattering at t = " + std::to_string(t));
+        if (++events_here > 200) {
+          std::string last;  // the events that repeat
+          for (size_t j = res_.events.size() >= 4 ? res_.events.size() - 4 : 0; j < res_.events.size(); ++j)
+            last += (last.empty() ? "" : ", ") + res_.events[j].kind + " " + res_.events[j].element;
+          throw std::runtime_error("chattering at t = " + std::to_string(t) + " (last: " + last + ")");
+        }
       } else {
         events_here = 0, last_event_t = t;
       }
