@@ -12,7 +12,9 @@
 ///           kEventTol·max(1, t_end) s, δg/|ġ| and the reference event's resolution window:
 ///           - δg/|ġ|: an event is a zero of a switching function g, and states within δx move
 ///             that zero by δg/|ġ| (RefEvent: dt_dq δq + dt_dv δv of its body). A comparison that
-///             accepts the states must accept the event times they imply: the n-th bounce of a Zeno
+///             accepts the states must accept the event times they imply: a damped flank's opening
+///             (g = c e + d δ̇) by (c δq + d δv)/|ġ|, a gear mesh reaching a flank by
+///             (δq_a + i δq_b)/|Δ'|; the n-th bounce of a Zeno
 ///             series under e < 1 meets its stop at |ġ| = |v⁻| ∝ eⁿ, its instant conditioned like
 ///             1/eⁿ; the rest at the accumulation instant t∞ is known to
 ///             √(δq/(2a)) (1 + e)/(1 − e) + 2 e δv/(a (1 − e)) (bounces whose apex height is below
@@ -25,6 +27,15 @@
 ///             (tests/reference/event_window_test.cpp);
 ///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied, and a gear
 ///           mesh's `mesh` and `free play`;
+/// A state mismatch is decided again with both tolerances tightened (`tightened`: the engine at
+/// rtol 1e-12, atol 1e-14, the reference at a quarter of its step): a model whose trajectory
+/// amplifies a perturbation — a rattle through backlash, where each contact multiplies a phase
+/// error — carries the engine's error at rtol 1e-10 (bdf's ~50 times dopri5's) past kStateTol
+/// while both runs follow the law. Such a difference shrinks with both tolerances (it is the two
+/// runs' errors, amplified), a missed, extra or shifted event or a wrong law does not (the model
+/// is another motion): the run agrees only if the tightened pair passes every rule above
+/// (tests/analysis/campaign_defects_f_test.cpp: gap seed 4 #63 on bdf converges from 1.6 times
+/// the state tolerance to 0.02; a load's step 1e-3 s late is still a mismatch).
 /// Only the part of the run before the reference's `ambiguous_from` is compared. The states are
 /// compared even where the events differ: a state mismatch is a wrong motion, an event mismatch with
 /// every state agreeing ("states agree") a wrong event list.
@@ -41,6 +52,7 @@ namespace machdyn::reference {
 
 constexpr double kEventTol = 1e-6;
 constexpr double kStateTol = 1e-5;
+constexpr double kTightStep = 4.0;  ///< the tightened reference's step: h / kTightStep
 
 struct Outcome {
   enum class Kind { pass, engine_error, event_mismatch, state_mismatch, reference_error } kind = Kind::pass;
@@ -65,6 +77,11 @@ StateTolerances state_tolerances(const RefModel& m, const RefResult& ref);
 /// The time tolerance of reference event e: max(tol_t, dt_dq δq + dt_dsqrtq √δq + dt_dv δv of its body).
 double event_tolerance(const RefEvent& e, const StateTolerances& s, double tol_t);
 
+/// The engine on engine_model at rtol 1e-12 (atol 1e-14) against the reference of ref_model at a
+/// step h/kTightStep, compared by the same rules (a state mismatch decided again; the campaign passes
+/// ref_model = engine_model, a test a shifted engine_model).
+Outcome tightened(const RefModel& ref_model, const RefModel& engine_model, const std::string& integrator);
+
 /// Runs both on m (the reference once) and compares on `integrator`.
 Outcome check(const RefModel& m, const std::string& integrator, const RefOptions& o = {});
 
@@ -85,6 +102,13 @@ struct CampaignOptions {
 /// Prints model `index` of `family` (campaign seed `seed`): its file, the reference's events and
 /// each integrator's events and outcome (machdyn_campaign --show FAMILY:INDEX).
 void show(const std::string& family, std::uint64_t seed, std::uint64_t index);
+
+/// Checks whether a state mismatch of model `index` is an amplified difference of the two runs'
+/// errors (machdyn_campaign --converge FAMILY:INDEX): prints the largest state differences, in units
+/// of the state tolerance, of the reference at h against h/4, of the engine at rtol 1e-10 against the
+/// reference at h and at rtol 1e-12 against h/4, and the comparison of the tight pair. An amplified
+/// error shrinks with both tolerances; a missed or extra event does not.
+void converge(const std::string& family, std::uint64_t seed, std::uint64_t index);
 
 /// Runs the campaign (models spread round-robin over the families, both integrators), prints a
 /// table per family and returns the number of failing (model, integrator) runs.

@@ -3,6 +3,7 @@
 //   machdyn_campaign [--models N] [--seed S] [--families a,b,...] [--out DIR] [--no-shrink] [--verbose]
 //                    [--shard I/N]   (only the models i with i % N == I)
 //   machdyn_campaign [--seed S] --show FAMILY:INDEX   (one model: its file, both event lists, the outcome)
+//   machdyn_campaign [--seed S] --converge FAMILY:INDEX   (a state mismatch with both tolerances tightened)
 // Exit 0 when every run agrees, 1 when some fail (each written shrunk to DIR), 2 on bad arguments.
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +42,13 @@ int main(int argc, char** argv) {
         const size_t c = v.find(':');
         if (c == std::string::npos) throw std::invalid_argument(v);
         show(v.substr(0, c), o.seed, std::stoull(v.substr(c + 1)));
+        return 0;
+      }
+      else if (a == "--converge") {
+        const std::string v = value();
+        const size_t c = v.find(':');
+        if (c == std::string::npos) throw std::invalid_argument(v);
+        converge(v.substr(0, c), o.seed, std::stoull(v.substr(c + 1)));
         return 0;
       }
       else if (a == "--verbose") o.verbose = true;

@@ -659,12 +659,26 @@ class Sim {
     int sway = -1;     // a spatial rope
   };
 
+  std::vector<char> held_;        // functions(): bodies held at rest by a stuck element to the ground
+  std::vector<char> sliding_on_;  // functions(): bodies a sliding friction element acts on
+
   std::vector<Fn> functions(double t_in, const std::vector<double>& y) {
     const double t = t_in == t_left_ ? std::nextafter(t_in, -HUGE_VAL) : t_in;
     std::vector<Fn> out;
     std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
     accel(t_in, y.data(), md_, a.data(), lam.data());
     const double eps_x = 0.0, eps_v = 1e-12, eps_f = 1e-13 * fscale_;
+    held_.assign(static_cast<size_t>(n_), 0);  // bodies a stuck element holds to the ground (at rest)
+    sliding_on_.assign(static_cast<size_t>(n_), 0);  // bodies a sliding element acts on
+    for (size_t k = 0; k < m_.frictions.size(); ++k) {
+      const Friction& f = m_.frictions[k];
+      if (sliding(md_.fr[k])) {
+        if (f.a >= 0) sliding_on_[static_cast<size_t>(f.a)] = 1;
+        if (f.b >= 0) sliding_on_[static_cast<size_t>(f.b)] = 1;
+      }
+      if (md_.fr[k] != FMode::stuck || (f.a >= 0 && f.b >= 0)) continue;
+      held_[static_cast<size_t>(f.a >= 0 ? f.a : f.b)] = 1;
+    }
     for (size_t k = 0; k < m_.links.size(); ++k) {
       const Link& L = m_.links[k];
       if (!L.has_flanks()) continue;
@@ -702,10 +716,23 @@ class Sim {
         continue;
       }
       const double ce = G.c * (D - mm.g * h);
-      out.push_back({mm.g * (ce + G.d * Dr), eps_f, -1, -1, false, mi, 0});
+      // Without backlash τ's sign (after a decision it is > 0 strictly: the bisection's side) fires
+      // at any negative value too: from rest τ grows as c (t − t₀)^k (a root at t₀, as a speed's).
+      out.push_back({mm.g * (ce + G.d * Dr), h > 0.0 ? eps_f : 0.0, -1, -1, false, mi, 0});
       if (h > 0.0 && G.d > 0.0) out.push_back({mm.g * (ce - G.d * Dr), eps_f, -1, -1, true, mi, 3});
-      out.push_back({mm.s1 * y[static_cast<size_t>(n_ + G.a)], eps_v, -1, -1, false, mi, 1});
-      out.push_back({mm.s2 * y[static_cast<size_t>(n_ + G.b)], eps_v, -1, -1, false, mi, 2});
+      // A speed's sign fires at any negative value, as the engine's: a body starting from rest as
+      // c (t − t₀)^k through k − 1 springs (after a load's step, or at the start) reaches −1e-12 only
+      // (1e-12/c)^(1/k) later (3e-6 to 6e-5 s) — its sign is − from t₀ on, a reversal at t₀ on
+      // both sides. A body held by a stuck element to the ground has ω = 0 by its mode (RK4 leaves
+      // it rounding, ~1e-20, whose sign would fire over and over: campaign gear-mesh seed 2 #99).
+      // A body a sliding element acts on reverses where that element's slide function fires (u past
+      // ±1e-12: the same zero, located and decided together — its stick may hold the body): there
+      // the sign takes the slide's threshold (seed 2 #99: at 0 the sign flipped alone, back and
+      // forth inside the slide's threshold, the loss turning the body each time).
+      auto speed = [&](int b) { return held_[static_cast<size_t>(b)] ? 0.0 : y[static_cast<size_t>(n_ + b)]; };
+      auto eps_of = [&](int b) { return sliding_on_[static_cast<size_t>(b)] ? eps_v : 0.0; };
+      out.push_back({mm.s1 * speed(G.a), eps_of(G.a), -1, -1, false, mi, 1});
+      out.push_back({mm.s2 * speed(G.b), eps_of(G.b), -1, -1, false, mi, 2});
     }
     // Spatial ropes: taut, F (slack where it reaches 0); slack, −e (taut where the load reaches the
     // rope's length) — past it (a damped rope gone slack while stretched, ė < 0) the flank's force
@@ -1125,7 +1152,12 @@ RefResult Sim::run() {
       t = te;
       t_left_ = -1.0;
       if (t - last_event_t < 1e-9 * std::max(1.0, t)) {
-        if (++events_here > 200) throw std::runtime_error("chattering at t = " + std::to_string(t));
+        if (++events_here > 200) {
+          std::string last;  // the events that repeat
+          for (size_t j = res_.events.size() >= 4 ? res_.events.size() - 4 : 0; j < res_.events.size(); ++j)
+            last += (last.empty() ? "" : ", ") + res_.events[j].kind + " " + res_.events[j].element;
+          throw std::runtime_error("chattering at t = " + std::to_string(t) + " (last: " + last + ")");
+        }
       } else {
         events_here = 0, last_event_t = t;
       }
@@ -1141,6 +1173,15 @@ RefResult Sim::run() {
           const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
           const double ddl = std::abs(va(y.data(), L.a) - va(y.data(), L.b));
           const bool by_position = md_.gap[k] == GMode::open || L.d == 0.0;  // g a distance (RefEvent)
+          // A damped flank opening at g = c e + d δ̇ = 0: δg = c δq + d δv moves it by δg/|ġ|, ġ = c δ̇ + d δ̈
+          // in the closed mode (RefEvent: dt_dq = c/|ġ|, dt_dv = d/|ġ|).
+          double gdot = 0.0;
+          if (!by_position) {
+            std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+            accel(t, y.data(), md_, a.data(), lam.data());
+            const double dda = (L.a >= 0 ? a[static_cast<size_t>(L.a)] : 0.0) - (L.b >= 0 ? a[static_cast<size_t>(L.b)] : 0.0);
+            gdot = std::abs(L.c * (va(y.data(), L.a) - va(y.data(), L.b)) + L.d * dda);
+          }
           if (md_.gap[k] == GMode::open) {
             md_.gap[k] = std::abs(dl - L.hi()) <= std::abs(dl - L.lo()) ? GMode::closed_pos : GMode::closed_neg;
             record(t, "gap_closed", L.name);
@@ -1151,6 +1192,9 @@ RefResult Sim::run() {
           if (by_position && ddl > 0.0) {
             RefEvent& ev = res_.events.back();
             ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = 1.0 / ddl;
+          } else if (!by_position && gdot > 0.0) {
+            RefEvent& ev = res_.events.back();
+            ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = L.c / gdot, ev.dt_dv = L.d / gdot;
           }
         } else if (ge[i].sway >= 0) {
           // A spatial rope goes slack (F reaches 0) or taut (e reaches 0).
@@ -1176,13 +1220,34 @@ RefResult Sim::run() {
             if (first) mm.s1 = sign_after(y[static_cast<size_t>(n_ + G.a)], a[static_cast<size_t>(G.a)], mm.s1);
             if (second) mm.s2 = sign_after(y[static_cast<size_t>(n_ + G.b)], a[static_cast<size_t>(G.b)], mm.s2);
           };
+          // Reaching a flank (g its distance) or ending an undamped contact (g = c e): a zero of a
+          // function of Δ, moved by δΔ/|Δ'| = (δq_a + i δq_b)/|Δ'| (RefEvent), as a gap's.
+          const double Dr = std::abs(mesh_Dr(G, y.data()));
+          auto by_position = [&]() {
+            if (!(Dr > 0.0)) return;
+            RefEvent& ev = res_.events.back();
+            ev.body = G.a, ev.body2 = G.b, ev.w2 = G.i, ev.dt_dq = 1.0 / Dr;
+          };
           if (mm.g == 0) {
             mm.g = ge[i].slot == 0 ? 1 : -1;
             signs(true, true);
             record(t, "mesh", G.name);
+            by_position();
           } else if (ge[i].slot == 0) {
+            // Damped: g = c e + d Δ' moved by (c δΔ + d δΔ')/|ġ|, ġ = c Δ' + d Δ'' in the contact's mode.
+            double gdot = 0.0;
+            if (G.d > 0.0) {
+              accel(t, y.data(), md_, a.data(), lam.data());
+              gdot = std::abs(G.c * mesh_Dr(G, y.data()) + G.d * (a[static_cast<size_t>(G.a)] - G.i * a[static_cast<size_t>(G.b)]));
+            }
             if (G.backlash > 0.0) mm.g = 0, record(t, "free play", G.name);
             else mm.g = -mm.g, record(t, "mesh", G.name);
+            if (G.d == 0.0) {
+              by_position();
+            } else if (gdot > 0.0) {
+              RefEvent& ev = res_.events.back();
+              ev.body = G.a, ev.body2 = G.b, ev.w2 = G.i, ev.dt_dq = G.c / gdot, ev.dt_dv = G.d / gdot;
+            }
           } else {
             signs(ge[i].slot == 1, ge[i].slot == 2);
             record(t, "mesh", G.name);

@@ -300,7 +300,8 @@ struct RefEvent {
   /// body −1: none (the fixed tolerance alone); else the tolerance is
   /// dt_dq δq + dt_dsqrtq √δq + dt_dv δv of that body (and of body2: δq, δv are the sums over
   /// both). A gap closing (g the distance δ₊ − δ or δ − δ₋ of its flank, |ġ| = |v_a − v_b|), or
-  /// opening from a flank without damping (g = c e): dt_dq = 1/|v_a − v_b| on its two bodies. An end stop's impact at speed v⁻ (g its
+  /// opening from a flank without damping (g = c e): dt_dq = 1/|v_a − v_b| on its two bodies; a damped flank opening
+  /// (g = c e + d δ̇, δg = c δq + d δv): dt_dq = c/|ġ|, dt_dv = d/|ġ|, ġ = c δ̇ + d δ̈ in the closed mode. An end stop's impact at speed v⁻ (g its
   /// distance, |ġ| = |v⁻|): dt_dq = 1/|v⁻|. A plastic rest (e = 0) is that impact. The rest that
   /// ends a series of bounces (e > 0) is the accumulation instant t∞ = t_k + 2 e v_k/(a (1 − e)),
   /// from any bounce k at speed v_k under the acceleration a towards the stop: an offset δq of the
@@ -308,7 +309,11 @@ struct RefEvent {
   /// a bounce is resolved by the position only while its apex height v_k²/(2a) exceeds δq, so
   /// v_k ≥ √(2 a δq) and dt_dsqrtq = (1 + e)/((1 − e) √(2a)); a velocity error moves it by
   /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact.
+  /// A gear mesh's free play reaching a flank, or its undamped contact ending (g the distance to the
+  /// flank, or c e, with Δ = φ_a − i φ_b: |ġ| = |Δ'|): dt_dq = 1/|Δ'| on the pinion and the wheel,
+  /// the wheel's δq, δv weighted by i (w2).
   int body = -1, body2 = -1;
+  double w2 = 1.0;         ///< the weight of body2's δq, δv (1; a gear mesh's wheel: its ratio i)
   double dt_dq = 0.0;      ///< s/m
   double dt_dsqrtq = 0.0;  ///< s/√m
   double dt_dv = 0.0;      ///< s/(m/s)
