@@ -1404,19 +1404,24 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     sys_.project_velocities(t, y_.data());
   }
 
-  /// at_rest_together, with Z closed over the contacts its projection brings to rest: a sliding
-  /// contact whose bodies the stuck rows of Z tie (its u exactly 0 after the projection, not before)
-  /// is at zero sliding speed and decided with them. A contact stopping at an event (BDF: f0 on b1,
-  /// its u crossing 0) beside a stuck clutch to b2, where f1 slid on b2 at the drift of the clutch's
-  /// pair, 1e-13 m/s: f1 was left out of Z, kept sliding at u ≡ 0 beside the set that locks it
-  /// (`contact.locked_slide`, campaign `signals` seed 1 #78).
+  /// at_rest_together, with Z closed over the friction contacts its projection brings to rest: a
+  /// sliding contact whose bodies the stuck rows of Z tie (its u exactly 0 after the projection, not
+  /// before) cannot slide (u ≡ 0) and is decided with them. A contact stopping at an event (BDF: f0
+  /// on b1, its u crossing 0) beside a stuck clutch to b2, where f1 slid on b2 at the drift of the
+  /// clutch's pair, 1e-13 m/s: f1 was left out of Z, kept sliding at u ≡ 0 beside the set that locks
+  /// it (`contact.locked_slide`, campaign `signals` seed 1 #78). Two-sided friction only: a
+  /// freewheel overrunning at u ≡ 0 without load is a consistent mode of its own (the reference
+  /// keeps it), not a locked slide.
   void at_rest_together_closed(double t, std::vector<int>& Z) {
     for (;;) {
       at_rest_together(t, Z);
       const size_t before = Z.size();
-      for (int k = 0; k < nc_; ++k)
-        if (!std::binary_search(Z.begin(), Z.begin() + static_cast<std::ptrdiff_t>(before), k) && decided_at_event(k, t))
+      for (int k = 0; k < nc_; ++k) {
+        const ContactLaw& c = sys_.contact(k);
+        if (c.lock == 0 && !c.joint && !c.kinematic &&
+            !std::binary_search(Z.begin(), Z.begin() + static_cast<std::ptrdiff_t>(before), k) && decided_at_event(k, t))
           Z.push_back(k);
+      }
       if (Z.size() == before) return;
       std::sort(Z.begin(), Z.end());
     }

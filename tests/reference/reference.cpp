@@ -776,12 +776,23 @@ class Sim {
       const bool f_fired = std::find(fired.begin(), fired.end(), static_cast<int>(k)) != fired.end();
       if (md == FMode::stuck || rel_u(f, y.data()) == 0.0 || (f_fired && sliding(md))) Z.push_back(static_cast<int>(k));
     }
-    // Stops just come to rest (set by the impact) are in Z as stuck already.
-    project(y, Z);
     const int z = static_cast<int>(Z.size());
-    if (z == 0) return;
     auto is_fired = [&](int k) { return std::find(fired.begin(), fired.end(), k) != fired.end(); };
     std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    // A slide whose u reached 0 (its function s u fired): u̇ there in the mode it ends, for its
+    // event's sensitivity (RefEvent: δu/|u̇|).
+    std::vector<double> du_end(m_.frictions.size(), 0.0);
+    if (std::any_of(fired.begin(), fired.end(), [&](int k) { return sliding(md_.fr[static_cast<size_t>(k)]); })) {
+      accel(t, y.data(), md_, a.data(), lam.data());
+      for (int k : fired) {
+        const Friction& f = m_.frictions[static_cast<size_t>(k)];
+        if (sliding(md_.fr[static_cast<size_t>(k)]))
+          du_end[static_cast<size_t>(k)] = (f.a >= 0 ? a[static_cast<size_t>(f.a)] : 0.0) - (f.b >= 0 ? a[static_cast<size_t>(f.b)] : 0.0);
+      }
+    }
+    // Stops just come to rest (set by the impact) are in Z as stuck already.
+    project(y, Z);
+    if (z == 0) return;
 
     // Consistency of a trial (Modes tr): stuck within limits, sliding accelerating its way.
     auto consistent = [&](const Modes& tr) {
@@ -896,6 +907,14 @@ class Sim {
       if (now == FMode::stuck) record(t, "stick", name);
       else if (was == FMode::stuck) record(t, applied ? "applied" : "slip", name);
       else if (sliding(was) && sliding(now)) record(t, "reversal", name);
+      // The stick or reversal of a slide whose u reached 0 is a zero of u = v_a − v_b: states within
+      // δv_a, δv_b move it by (δv_a + δv_b)/|u̇| (RefEvent).
+      const double du = du_end[static_cast<size_t>(k)];
+      if (sliding(was) && du != 0.0 && (now == FMode::stuck || sliding(now))) {
+        const Friction& f = m_.frictions[static_cast<size_t>(k)];
+        RefEvent& ev = res_.events.back();
+        ev.body = f.a >= 0 ? f.a : f.b, ev.body2 = f.a >= 0 ? f.b : -1, ev.dt_dv = 1.0 / std::abs(du);
+      }
     }
     md_ = chosen;
     applied_at_rest_.clear();

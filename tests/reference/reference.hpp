@@ -281,7 +281,9 @@ struct RefEvent {
   /// body at bounce k moves t_k by δq/v_k and v_k by a δq/v_k, so t∞ by (δq/v_k)(1 + e)/(1 − e);
   /// a bounce is resolved by the position only while its apex height v_k²/(2a) exceeds δq, so
   /// v_k ≥ √(2 a δq) and dt_dsqrtq = (1 + e)/((1 − e) √(2a)); a velocity error moves it by
-  /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact.
+  /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact. A slide ending where
+  /// its u = v_a − v_b reaches 0 (its `stick` or `reversal`; g = s u, |ġ| = |u̇| in the slide):
+  /// dt_dv = 1/|u̇| on its two bodies.
   int body = -1, body2 = -1;
   double dt_dq = 0.0;      ///< s/m
   double dt_dsqrtq = 0.0;  ///< s/√m
