@@ -249,5 +249,32 @@ TEST_P(CampaignDefectsE, TheReversalsOfAZenoTailsBouncesAreNotCompared) {
   }
 }
 
+// Claim (campaign `signals` seed 5 model 22; the reference's rule): at 0.595 s the brake B2 on b0
+// breaks away while f0 (b1 to the ground) and f1 (b2 to the ground) are stuck: they tie b1 and b2
+// together, so the clutch K3 between b1 and b2 cannot slide (u ≡ 0) — it is stuck with them (the
+// decision's rule, docs/hybrid.md). The reference let K3 slide at u ≡ 0 from 0.595 s until f1 broke
+// away at 0.6036 s (the states agreed: it moved nothing); it now keeps it stuck as the engine does,
+// and K3's slip comes with f1's. Both agree on both integrators.
+TEST_P(CampaignDefectsE, TheReferenceKeepsAClutchStuckWhileStuckContactsTieItsBodies) {
+  const ref::RefModel m = ref::random_model("signals", 5, 22);
+  const ref::RefResult rr = ref::simulate_reference(m);
+  ASSERT_TRUE(rr.error.empty()) << rr.error;
+  double b2_slip = -1.0, f1_slip = -1.0;
+  for (const auto& e : rr.events) {
+    if (e.kind == "slip" && e.element == "B2" && e.t > 0.59 && e.t < 0.6) b2_slip = e.t;
+    if (e.kind == "slip" && e.element == "f1" && e.t > 0.6 && e.t < 0.61) f1_slip = e.t;
+  }
+  ASSERT_GT(b2_slip, 0.0);
+  ASSERT_GT(f1_slip, 0.0);
+  for (const auto& e : rr.events) {
+    if (e.element == "K3" && e.kind == "slip") {
+      EXPECT_FALSE(e.t >= b2_slip && e.t < f1_slip) << e.t;
+    }
+  }
+  const SimulationResult r = engine(m, GetParam());
+  const ref::Outcome o = ref::compare_results(m, rr, r);
+  EXPECT_EQ(o.kind, ref::Outcome::Kind::pass) << o.detail;
+}
+
 }  // namespace MACHDYN_UNITY_ID
 }  // namespace machdyn

@@ -794,6 +794,26 @@ class Sim {
     project(y, Z);
     if (z == 0) return;
 
+    // A two-sided friction element (contact, brake, clutch) sliding while the stuck two-sided ones
+    // tie its two bodies together (both in one component of their graph, the ground a node) would
+    // slide at u ≡ 0: no slide, it is stuck with that set (docs/hybrid.md, the decision at an event).
+    auto two_sided = [](const Friction& f) { return f.kind != Friction::Kind::freewheel && f.kind != Friction::Kind::stop; };
+    std::vector<int> comp(static_cast<size_t>(n_) + 1);
+    auto locked = [&](const Modes& tr, int k) {
+      for (size_t i = 0; i < comp.size(); ++i) comp[i] = static_cast<int>(i);
+      auto node = [&](int b) { return b < 0 ? n_ : b; };
+      auto find = [&](int x) {
+        while (comp[static_cast<size_t>(x)] != x) x = comp[static_cast<size_t>(x)];
+        return x;
+      };
+      for (size_t j = 0; j < m_.frictions.size(); ++j) {
+        const Friction& fj = m_.frictions[j];
+        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck || !two_sided(fj)) continue;
+        comp[static_cast<size_t>(find(node(fj.a)))] = find(node(fj.b));
+      }
+      const Friction& f = m_.frictions[static_cast<size_t>(k)];
+      return find(node(f.a)) == find(node(f.b));
+    };
     // Consistency of a trial (Modes tr): stuck within limits, sliding accelerating its way.
     auto consistent = [&](const Modes& tr) {
       accel(t, y.data(), tr, a.data(), lam.data());
@@ -812,7 +832,7 @@ class Sim {
           }
         } else if (md == FMode::off) {  // a resting stop left: the body moves off it
           if ((f.stop_max ? -aa : aa) < -tol_a) return false;
-        } else if (sign_of(md) * du < -tol_a) {
+        } else if (sign_of(md) * du < -tol_a || (two_sided(f) && locked(tr, k))) {
           return false;
         }
       }
