@@ -1265,7 +1265,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // or reverses, then starts on its event function's zero, not past it).
     for (int k : Z)
       if (before[static_cast<size_t>(k)] != ContactMode::stuck) sys_.zero_sliding_velocity(k, t, y_.data());
-    at_rest_together(t, Z);
+    at_rest_together_closed(t, Z);
     std::vector<ContactMode>& now = new_modes_;  // kept, as old_modes_
     decide_contacts(sys_, t, y_.data(), Z, strict_, now);
     strict_.clear();
@@ -1324,7 +1324,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (decided_at_event(k, t)) Z.push_back(k);
     if (Z.empty()) return;
     const std::vector<ContactMode> old = sys_.contact_modes();
-    at_rest_together(t, Z);
+    at_rest_together_closed(t, Z);
     apply_contact_modes(t, old, decide_contacts(sys_, t, y_.data(), Z, strict_), false);
   }
 
@@ -1393,6 +1393,29 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     for (int k : Z) rest[static_cast<size_t>(k)] = ContactMode::stuck;
     if (rest != sys_.contact_modes()) sys_.set_contact_modes(rest);
     sys_.project_velocities(t, y_.data());
+  }
+
+  /// at_rest_together, with Z closed over the friction contacts its projection brings to rest: a
+  /// sliding contact whose bodies the stuck rows of Z tie (its u exactly 0 after the projection, not
+  /// before) cannot slide (u ≡ 0) and is decided with them. A contact stopping at an event (BDF: f0
+  /// on b1, its u crossing 0) beside a stuck clutch to b2, where f1 slid on b2 at the drift of the
+  /// clutch's pair, 1e-13 m/s: f1 was left out of Z, kept sliding at u ≡ 0 beside the set that locks
+  /// it (`contact.locked_slide`, campaign `signals` seed 1 #78). Two-sided friction only: a
+  /// freewheel overrunning at u ≡ 0 without load is a consistent mode of its own (the reference
+  /// keeps it), not a locked slide.
+  void at_rest_together_closed(double t, std::vector<int>& Z) {
+    for (;;) {
+      at_rest_together(t, Z);
+      const size_t before = Z.size();
+      for (int k = 0; k < nc_; ++k) {
+        const ContactLaw& c = sys_.contact(k);
+        if (c.lock == 0 && !c.joint && !c.kinematic &&
+            !std::binary_search(Z.begin(), Z.begin() + static_cast<std::ptrdiff_t>(before), k) && decided_at_event(k, t))
+          Z.push_back(k);
+      }
+      if (Z.size() == before) return;
+      std::sort(Z.begin(), Z.end());
+    }
   }
 
   const Model& m_;

@@ -18,15 +18,26 @@
 ///             series under e < 1 meets its stop at |ġ| = |v⁻| ∝ eⁿ, its instant conditioned like
 ///             1/eⁿ; the rest at the accumulation instant t∞ is known to
 ///             √(δq/(2a)) (1 + e)/(1 − e) + 2 e δv/(a (1 − e)) (bounces whose apex height is below
-///             δq are rest at that tolerance), and an impact within that of the rest is not compared;
+///             δq are rest at that tolerance), and an impact within that of the rest is not compared,
+///             nor a reversal of a friction contact on the bouncing body there (each bounce's);
 ///           - the window (RefEvent::window): an event function known to δ (a load's:
 ///             kLoadResolution × the model's force scale) fixes a simple root to δ/|g'|, a root of
 ///             multiplicity k (g ≈ c (t − t₀)^k, a load growing from 0 through a chain of k/2
 ///             springs) only to (δ/c)^(1/k): the time over which g stays within δ of its value at the
 ///             root, so a steep root keeps kEventTol and a real shift of 1e-3 s is caught
 ///             (tests/reference/event_window_test.cpp);
+///           - a slide's `stick` or `reversal` (u = v_a − v_b reaching 0): (δv_a + δv_b)/|u̇|;
 ///           kinds gap_closed, gap_opened, stick, slip, reversal, impact, applied, and a gear
 ///           mesh's `mesh` and `free play`;
+///   not compared (on either side; the states are): a phase shorter than kEventTol·max(1, t_end)
+///           (slip or applied → stick, stick → slip, slip → released, a gap opened → closed and
+///           back): the instants are resolved only to that; an event within it of t = 0 (the
+///           start's decision: the engine's initial modes, the reference's located a step later);
+///           a `reversal` of a brake's or clutch's slide whose tolerance reaches back to its
+///           `applied` (u's sign at the application is fixed only to δv: applied the other way
+///           without a reversal is the same motion within the states' tolerance), and the
+///           engine's reversals of that element up to its instant plus tolerance. Each such rule
+///           still catches an event moved by 1e-3 s (tests/analysis/campaign_defects_e_test.cpp);
 /// A state mismatch is decided again with both tolerances tightened (`tightened`: the engine at
 /// rtol 1e-12, atol 1e-14, the reference at a quarter of its step): a model whose trajectory
 /// amplifies a perturbation — a rattle through backlash, where each contact multiplies a phase

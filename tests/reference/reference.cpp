@@ -864,13 +864,44 @@ class Sim {
       const bool f_fired = std::find(fired.begin(), fired.end(), static_cast<int>(k)) != fired.end();
       if (md == FMode::stuck || rel_u(f, y.data()) == 0.0 || (f_fired && sliding(md))) Z.push_back(static_cast<int>(k));
     }
-    // Stops just come to rest (set by the impact) are in Z as stuck already.
-    project(y, Z);
     const int z = static_cast<int>(Z.size());
-    if (z == 0) return;
     auto is_fired = [&](int k) { return std::find(fired.begin(), fired.end(), k) != fired.end(); };
     std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    // A slide whose u reached 0 (its function s u fired): u̇ there in the mode it ends, for its
+    // event's sensitivity (RefEvent: δu/|u̇|).
+    std::vector<double> du_end(m_.frictions.size(), 0.0);
+    if (std::any_of(fired.begin(), fired.end(), [&](int k) { return sliding(md_.fr[static_cast<size_t>(k)]); })) {
+      accel(t, y.data(), md_, a.data(), lam.data());
+      for (int k : fired) {
+        const Friction& f = m_.frictions[static_cast<size_t>(k)];
+        if (sliding(md_.fr[static_cast<size_t>(k)]))
+          du_end[static_cast<size_t>(k)] = (f.a >= 0 ? a[static_cast<size_t>(f.a)] : 0.0) - (f.b >= 0 ? a[static_cast<size_t>(f.b)] : 0.0);
+      }
+    }
+    // Stops just come to rest (set by the impact) are in Z as stuck already.
+    project(y, Z);
+    if (z == 0) return;
 
+    // A two-sided friction element (contact, brake, clutch) sliding while the stuck two-sided ones
+    // tie its two bodies together (both in one component of their graph, the ground a node) would
+    // slide at u ≡ 0: no slide, it is stuck with that set (docs/hybrid.md, the decision at an event).
+    auto two_sided = [](const Friction& f) { return f.kind != Friction::Kind::freewheel && f.kind != Friction::Kind::stop; };
+    std::vector<int> comp(static_cast<size_t>(n_) + 1);
+    auto locked = [&](const Modes& tr, int k) {
+      for (size_t i = 0; i < comp.size(); ++i) comp[i] = static_cast<int>(i);
+      auto node = [&](int b) { return b < 0 ? n_ : b; };
+      auto find = [&](int x) {
+        while (comp[static_cast<size_t>(x)] != x) x = comp[static_cast<size_t>(x)];
+        return x;
+      };
+      for (size_t j = 0; j < m_.frictions.size(); ++j) {
+        const Friction& fj = m_.frictions[j];
+        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck || !two_sided(fj)) continue;
+        comp[static_cast<size_t>(find(node(fj.a)))] = find(node(fj.b));
+      }
+      const Friction& f = m_.frictions[static_cast<size_t>(k)];
+      return find(node(f.a)) == find(node(f.b));
+    };
     // Consistency of a trial (Modes tr): stuck within limits, sliding accelerating its way.
     auto consistent = [&](const Modes& tr) {
       accel(t, y.data(), tr, a.data(), lam.data());
@@ -889,7 +920,7 @@ class Sim {
           }
         } else if (md == FMode::off) {  // a resting stop left: the body moves off it
           if ((f.stop_max ? -aa : aa) < -tol_a) return false;
-        } else if (sign_of(md) * du < -tol_a) {
+        } else if (sign_of(md) * du < -tol_a || (two_sided(f) && locked(tr, k))) {
           return false;
         }
       }
@@ -984,6 +1015,14 @@ class Sim {
       if (now == FMode::stuck) record(t, "stick", name);
       else if (was == FMode::stuck) record(t, applied ? "applied" : "slip", name);
       else if (sliding(was) && sliding(now)) record(t, "reversal", name);
+      // The stick or reversal of a slide whose u reached 0 is a zero of u = v_a − v_b: states within
+      // δv_a, δv_b move it by (δv_a + δv_b)/|u̇| (RefEvent).
+      const double du = du_end[static_cast<size_t>(k)];
+      if (sliding(was) && du != 0.0 && (now == FMode::stuck || sliding(now))) {
+        const Friction& f = m_.frictions[static_cast<size_t>(k)];
+        RefEvent& ev = res_.events.back();
+        ev.body = f.a >= 0 ? f.a : f.b, ev.body2 = f.a >= 0 ? f.b : -1, ev.dt_dv = 1.0 / std::abs(du);
+      }
     }
     md_ = chosen;
     applied_at_rest_.clear();

@@ -308,7 +308,9 @@ struct RefEvent {
   /// body at bounce k moves t_k by δq/v_k and v_k by a δq/v_k, so t∞ by (δq/v_k)(1 + e)/(1 − e);
   /// a bounce is resolved by the position only while its apex height v_k²/(2a) exceeds δq, so
   /// v_k ≥ √(2 a δq) and dt_dsqrtq = (1 + e)/((1 − e) √(2a)); a velocity error moves it by
-  /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact.
+  /// dt_dv = 2 e/(a (1 − e)); and dt_dq = 1/|v₀| of the series' first impact. A slide ending where
+  /// its u = v_a − v_b reaches 0 (its `stick` or `reversal`; g = s u, |ġ| = |u̇| in the slide):
+  /// dt_dv = 1/|u̇| on its two bodies.
   /// A gear mesh's free play reaching a flank, or its undamped contact ending (g the distance to the
   /// flank, or c e, with Δ = φ_a − i φ_b: |ġ| = |Δ'|): dt_dq = 1/|Δ'| on the pinion and the wheel,
   /// the wheel's δq, δv weighted by i (w2).
