@@ -18,6 +18,13 @@ const std::vector<double>* sway_column(const SimulationResult& r, const std::str
 
 }  // namespace
 
+std::vector<std::string> sway_rope_names(const Model& m) {
+  std::vector<std::string> out;
+  for (const Drive& d : m.drives)
+    if (dynamic_cast<const SpatialRope*>(d.law.get())) out.push_back(d.name);
+  return out;
+}
+
 std::vector<SwaySummary> sway_summaries(const Model& m, const SimulationResult& r) {
   std::vector<SwaySummary> out;
   const std::vector<double>* t = sway_column(r, "t_s");

@@ -29,15 +29,18 @@ const char* method_name(SweepMethod m) {
   return "?";
 }
 
-/// Checks one axis against the field it varies, by compiling the base with each written value
-/// (end points or list items). Adds diagnostics for an input error of the axis as a whole.
-void probe_axis(const SweepPlan& plan, const VaryAxis& axis, Diagnostics& diag) {
-  const Location where{"--vary " + axis.target, 0, 0};
+/// Checks one axis against the field it varies, by compiling `base` (the file and --set, or with
+/// cases the file, case `case_name` and --set: the spec the runs apply the axis to) with each written
+/// value (end points or list items). Adds diagnostics for an input error of the axis as a whole; with
+/// a case they name it (a field only some cases have).
+void probe_axis(const SpecNode& base, const std::string& model_path, const VaryAxis& axis,
+                const std::string& case_name, Diagnostics& diag) {
+  const Location where{"--vary " + axis.target + (case_name.empty() ? "" : " (case " + case_name + ")"), 0, 0};
   std::vector<Diagnostic> first_failure;
   int failures = 0;
   const auto written = axis.spec.written();
   for (const auto& text : written) {
-    SpecNode s = plan.base;
+    SpecNode s = base;
     try {
       apply_set(s, axis.target + "=" + text);  // unknown element: an error of the axis
     } catch (const InputError& e) {
@@ -45,7 +48,7 @@ void probe_axis(const SweepPlan& plan, const VaryAxis& axis, Diagnostics& diag) 
       return;
     }
     try {
-      (void)compile_model(s, plan.request.model_path);
+      (void)compile_model(s, model_path);
       continue;
     } catch (const InputError& e) {
       ++failures;
@@ -54,11 +57,11 @@ void probe_axis(const SweepPlan& plan, const VaryAxis& axis, Diagnostics& diag) 
       std::string err;
       const auto q = parse_quantity(text, &err);
       if (q && q->has_unit) {
-        SpecNode plain = plan.base;
+        SpecNode plain = base;
         apply_set(plain, fmt::format("{}={:.17g}", axis.target, q->value));
         bool plain_ok = true;
         try {
-          (void)compile_model(plain, plan.request.model_path);
+          (void)compile_model(plain, model_path);
         } catch (const InputError&) {
           plain_ok = false;
         }
@@ -130,7 +133,6 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
   if (!request.cases.empty() && !request.apply_case)
     diag.error({"--case", 0, 0}, "this model format has no named cases");
   diag.throw_if_any();
-  for (const auto& axis : plan.axes) probe_axis(plan, axis, diag);
   // Cases: file, case, --set (as `simulate --case NAME --set ...`), each compiled once here.
   for (size_t c = 0; c < request.cases.size(); ++c) {
     const auto& name = request.cases[c];
@@ -151,6 +153,31 @@ SweepPlan make_sweep_plan(const SweepRequest& request) {
     } catch (const InputError& e) {
       for (const auto& d : e.diagnostics()) diag.error(d.where, d.message);
     }
+  }
+  diag.throw_if_any();
+  // Each axis against the spec its runs apply it to: the base, or every case's (a field that only
+  // a case adds, `travel.reference.length` of a shaped reference, is checked on that case).
+  // An axis every case refuses alike (a unit that fits no case) is told once, without a case.
+  for (const auto& axis : plan.axes) {
+    if (plan.case_bases.empty()) {
+      probe_axis(plan.base, request.model_path, axis, "", diag);
+      continue;
+    }
+    std::vector<Diagnostics> per_case(plan.case_bases.size());
+    for (size_t c = 0; c < plan.case_bases.size(); ++c)
+      probe_axis(plan.case_bases[c], request.model_path, axis, request.cases[c], per_case[c]);
+    auto messages = [](const Diagnostics& d) {
+      std::vector<std::string> m;
+      for (const auto& x : d.list()) m.push_back(x.message);
+      return m;
+    };
+    const bool alike = std::all_of(per_case.begin(), per_case.end(), [&](const Diagnostics& d) {
+      return !d.empty() && messages(d) == messages(per_case.front());
+    });
+    if (alike && per_case.size() > 1) probe_axis(plan.case_bases.front(), request.model_path, axis, "", diag);
+    else
+      for (const auto& d : per_case)
+        for (const auto& x : d.list()) diag.error(x.where, x.message);
   }
   diag.throw_if_any();
 

@@ -205,6 +205,10 @@ plot::Axis column_axis(const std::string& column) {
     else if (field == "peak_dynamic_factor") quantity = "peak dynamic factor of " + elem;
     else if (field == "slips") quantity = "slips of " + elem;
     else if (field == "period") quantity = "self-oscillation period of " + elem;
+    else if (field == "max_sway") quantity = "largest sway of " + elem;  // sway_summary_columns()
+    else if (field == "residual_sway") quantity = "residual sway of " + elem;
+    else if (field == "max_horizontal_force") quantity = "largest horizontal force of " + elem;
+    else if (field == "horizontal_dynamic_factor") quantity = "horizontal dynamic factor of " + elem;
     else if (ends_with(field, "_max_over_static_limit"))
       quantity = "F_max(" + field.substr(0, field.size() - 22) + ") / F_s(" + elem + ")";
     else quantity = name;
@@ -272,6 +276,12 @@ std::string field_unit(const Model& m, const std::string& target) {
     if (d.name != elem) continue;
     const BodyKind k = m.bodies[static_cast<size_t>(d.body)].kind;
     if (field.find("time") != std::string::npos || field == "t0" || field == "t1") return "s";
+    if (field == "length" || field == "height" || field == "drum_radius") return "m";  // a spatial rope's
+    if (field == "EA") return "N";
+    // A field of a reference signal (`reference.end`, a shaped reference's `reference.length`).
+    const std::string last = field.substr(field.rfind('.') + 1);
+    if (last != field && (last == "end" || last == "start")) return "s";
+    if (last != field && last == "length") return "m";
     if (field.find("speed") != std::string::npos) return velocity_unit(k);
     if (field.find("torque") != std::string::npos || field.find("force") != std::string::npos ||
         field.find("limit") != std::string::npos)

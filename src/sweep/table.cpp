@@ -9,6 +9,7 @@
 
 #include "machdyn/elements/modes.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
+#include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/model/compile.hpp"
 
@@ -57,7 +58,26 @@ std::vector<SummaryColumns> standard_summary_columns() {
     v.push_back(static_cast<double>(r.stats.stepper.rejected));
     v.push_back(static_cast<double>(r.stats.stepper.rhs_evals));
   };
-  return {peaks, peak_summary_columns(), hybrid_summary_columns(), solver};
+  return {peaks, peak_summary_columns(), hybrid_summary_columns(), sway_summary_columns(), solver};
+}
+
+SummaryColumns sway_summary_columns() {
+  SummaryColumns g;
+  g.header = [](const Model& m) {
+    std::vector<std::string> h;
+    for (const auto& rope : sway_rope_names(m))
+      for (const char* f : {"max_sway_rad", "residual_sway_rad", "max_horizontal_force_N", "horizontal_dynamic_factor"})
+        h.push_back(rope + "." + f);
+    return h;
+  };
+  g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const SwaySummary& s : sway_summaries(m, r))  // the keys of summary.json's `sway` (io/results.cpp)
+      v.insert(v.end(), {s.max_sway_rad, s.residual_after ? s.residual_sway_rad : nan, s.max_horizontal_force_N,
+                         s.dynamic_factor.value_or(nan)});
+  };
+  g.needs_series = [](const Model& m) { return !sway_rope_names(m).empty(); };
+  return g;
 }
 
 bool runs_event_driven(const Model& m) {
@@ -195,9 +215,12 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     // The cases of a file run event-driven, smooth or not, as with `simulate --all-cases`: every row
     // of a case sweep is computed alike and has the quasi-static load at a negative peak.
     // The table needs the summaries only: event-driven runs skip the time series (a third of a
-    // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs).
+    // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs)
+    // unless a group takes its values from the output rows (the sway summary).
     SimulateOptions summaries_only;
     summaries_only.record_series = false;
+    for (const auto& g : columns)
+      if (g.needs_series && g.needs_series(m)) summaries_only.record_series = true;
     summaries_only.event_driven = runs_event_driven(m);
     const SimulationResult r = simulate(m, summaries_only);
     // Each group's values, in the table's columns: a column the run's model has no element for

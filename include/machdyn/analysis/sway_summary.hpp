@@ -37,4 +37,8 @@ struct SwaySummary {
 /// the run's time series.
 std::vector<SwaySummary> sway_summaries(const Model& m, const SimulationResult& r);
 
+/// The names of the ropes sway_summaries() reports on for a run of `m`, in its order (known before
+/// the run: a sweep's table columns).
+std::vector<std::string> sway_rope_names(const Model& m);
+
 }  // namespace machdyn

@@ -10,7 +10,8 @@
 /// (`L.max_U`, `L.min_U`, `L.t_max_s`, `L.static_U` at the peak, `L.dynamic_factor` = peak / static
 /// (LinkSummary) for every link L, U its load
 /// unit `N_m` or `N`), for event-driven runs (runs_event_driven()) the peaks of larger magnitude
-/// (peak_summary_columns()) and the hybrid figures (hybrid_summary_columns()), and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). A new
+/// (peak_summary_columns()) and the hybrid figures (hybrid_summary_columns()), the sway summary of
+/// every spatial rope (sway_summary_columns()), and the solver statistics (`steps`, `rejected_steps`, `rhs_evals`). A new
 /// analysis adds a group: a header function over a model and a value function over one run's model
 /// and result. The table's columns of a group are the union of its header over the sweep's models
 /// (column_models(): the base, or every case); a run fills the columns its own model has and leaves
@@ -33,6 +34,9 @@ struct SummaryColumns {
   std::function<std::vector<std::string>(const Model& m)> header;
   /// The values of one run, as many as header(run_model) gave, in its order; NaN is written `nan`.
   std::function<void(const Model& run_model, const SimulationResult& result, std::vector<double>& values)> values;
+  /// Whether the values need the run's time series on the output grid (SimulateOptions::record_series;
+  /// empty: no). A run records it when any group of the table asks for it.
+  std::function<bool(const Model& run_model)> needs_series;
 };
 
 /// The link peaks, the peaks of larger magnitude and the hybrid figures (event-driven runs only),
@@ -57,6 +61,14 @@ SummaryColumns peak_summary_columns();
 ///   mean interval between slip starts in the second half of the run; nan with fewer than two),
 ///   and per link L `C.L_max_over_static_limit` (peak load of L / static limit of C: F_max/F_sc).
 SummaryColumns hybrid_summary_columns();
+
+/// The sway summary of every spatial rope R (analysis/sway_summary.hpp; summary.json's `sway`, the same
+/// function over the same output rows, so the same numbers): `R.max_sway_rad` (the largest sway angle),
+/// `R.residual_sway_rad` (the largest from the rope's `sway_after` on; nan without it),
+/// `R.max_horizontal_force_N` (on the suspension point) and `R.horizontal_dynamic_factor` (that peak over
+/// m a; nan where summary.json has none: a jib, no travel, no acceleration). The summary is taken from
+/// the output rows, so a run with a spatial rope records its time series (needs_series).
+SummaryColumns sway_summary_columns();
 
 /// The column names of each group: the union of its header over column_models(plan), first seen first.
 std::vector<std::vector<std::string>> summary_column_names(const SweepPlan& plan,
