@@ -24,7 +24,7 @@ const std::vector<double>* report_sway_column(const SimulationResult& r, const s
 std::optional<Section> sway_section(const Model& m, const SimulationResult& r, const std::string& case_name) {
   const std::vector<SwaySummary> sway = sway_summaries(m, r);
   if (sway.empty()) return std::nullopt;
-  constexpr double kDeg = 180.0 / std::numbers::pi;
+  constexpr double deg_per_rad = 180.0 / std::numbers::pi;
   Section s;
   s.title = case_name.empty() ? "Sway" : "Sway — case " + case_name;
   Table t;
@@ -33,8 +33,8 @@ std::optional<Section> sway_section(const Model& m, const SimulationResult& r, c
               "m a, N", "horizontal dynamic factor", "largest tension, N"};
   auto num = [](double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("–"); };
   for (const SwaySummary& x : sway)
-    t.rows.push_back({x.rope, num(x.max_sway_rad * kDeg), num(x.t_max_sway),
-                      x.residual_after ? num(x.residual_sway_rad * kDeg) : "–",
+    t.rows.push_back({x.rope, num(x.max_sway_rad * deg_per_rad), num(x.t_max_sway),
+                      x.residual_after ? num(x.residual_sway_rad * deg_per_rad) : "–",
                       x.residual_after ? num(*x.residual_after) : "–", num(x.max_horizontal_force_N),
                       num(x.t_max_horizontal_force), x.rigid_force_N ? num(*x.rigid_force_N) : "–",
                       x.dynamic_factor ? fmt::format("{:.4g}", *x.dynamic_factor) : "–", num(x.max_tension_N)});
@@ -62,7 +62,7 @@ std::optional<Section> sway_section(const Model& m, const SimulationResult& r, c
       se.name = fmt::format("{} θ {}", x.rope, which);
       se.x = *time;
       se.y.reserve(th->size());
-      for (double v : *th) se.y.push_back(v * kDeg);
+      for (double v : *th) se.y.push_back(v * deg_per_rad);
       f.series.push_back(std::move(se));
     }
     if (const std::vector<double>* H = report_sway_column(r, x.rope + ".horizontal_force_N")) {

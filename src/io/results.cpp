@@ -4,6 +4,7 @@
 #include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/analysis/hybrid_stats.hpp"
 #include "machdyn/common/csv.hpp"
+#include "common/constants.hpp"
 #include "io/number_text.hpp"
 
 #include <cmath>
@@ -152,13 +153,12 @@ nlohmann::json brake_stops_json(const std::vector<BrakeSummary>& brakes) {
 }
 
 std::string sway_text(const std::vector<SwaySummary>& sway) {
-  constexpr double kDeg = 180.0 / 3.14159265358979323846;
   std::string out;
   for (const SwaySummary& s : sway) {
-    std::string line = fmt::format("sway {}: largest {:.4g} deg ({:.4g} rad) at {:.6g} s", s.rope, s.max_sway_rad * kDeg,
+    std::string line = fmt::format("sway {}: largest {:.4g} deg ({:.4g} rad) at {:.6g} s", s.rope, s.max_sway_rad / kDeg,
                                    s.max_sway_rad, s.t_max_sway);
     if (s.residual_after)
-      line += fmt::format("; residual {:.4g} deg after {:.6g} s", s.residual_sway_rad * kDeg, *s.residual_after);
+      line += fmt::format("; residual {:.4g} deg after {:.6g} s", s.residual_sway_rad / kDeg, *s.residual_after);
     line += fmt::format("; horizontal force max {:.6g} N at {:.6g} s", s.max_horizontal_force_N, s.t_max_horizontal_force);
     if (s.dynamic_factor)
       line += fmt::format(", horizontal dynamic factor {:.4g} (m a = {:.6g} N)", *s.dynamic_factor, *s.rigid_force_N);
