@@ -61,9 +61,9 @@ double dip(double t0, const double* g0, double t1, const double* g1, double t2, 
 /// < off, and whether some armed one passes dip()'s pre-test at a step's first check (it falls into
 /// the step, y1 < y0, and its convex lower bound y1 − (y0 − y1) h2/h1 comes within a quarter of its
 /// largest check of 0; times h1: no division). The pre-test only gates the call of dip(), which
-/// tests again. Two functions per SSE2 operation (every check of every step runs this scan: at six
-/// functions it was a quarter of the driver's own instructions in the travel start-up); the same
-/// comparisons and roundings as the scalar loop after it.
+/// tests again. Two functions per SSE2 operation (every check of every step runs this scan: one
+/// function at a time it was some 40 % of the driver's own instructions in the travel start-up, six
+/// functions); the same comparisons and roundings as the scalar loop after it.
 struct Scan {
   bool cross = false, may_dip = false;
 };
