@@ -997,8 +997,8 @@ bool gap_only(const LinkLaw& k) { return k.gap & !(k.capped | k.shaped | k.windi
 void DriveSystem::link_loads(const double* y, double* F) const {
   const LinkLaw* k = links_.data();  // walked by pointer, the bounds in registers
   for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
-    if (plain(*k)) F[l] = k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0);
-    else if (gap_only(*k)) F[l] = k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0);
+    if (!(k->capped | k->shaped | k->winding | k->point))  // plain or with a gap: the mode's flank
+      F[l] = k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0);
     else F[l] = link_load(l, y);
   }
 }
