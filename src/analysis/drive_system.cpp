@@ -991,14 +991,16 @@ bool plain(const LinkLaw& k) { return !(k.gap | k.capped | k.shaped | k.winding 
 /// A plain link with a gap (no cap, shape, winding or machine point): the same law from the flank of
 /// its mode, 0 while open; the same test lets the compiler drop the other branches.
 bool gap_only(const LinkLaw& k) { return k.gap & !(k.capped | k.shaped | k.winding | k.point); }
+/// A plain link or a gap link (no cap, shape, winding or machine point): the law with the flank of
+/// its mode at run time (a plain link has no flank but its rest length, whatever its mode).
+bool plain_or_gap(const LinkLaw& k) { return !(k.capped | k.shaped | k.winding | k.point); }
 
 }  // namespace
 
 void DriveSystem::link_loads(const double* y, double* F) const {
   const LinkLaw* k = links_.data();  // walked by pointer, the bounds in registers
   for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
-    if (plain(*k)) F[l] = k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0);
-    else if (gap_only(*k)) F[l] = k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0);
+    if (plain_or_gap(*k)) F[l] = k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0);
     else F[l] = link_load(l, y);
   }
 }
@@ -1018,10 +1020,7 @@ void DriveSystem::link_loads_and_rates(const double* y, const double* dy, double
     return;
   }
   for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
-    if (plain(*k)) {
-      F[l] = k->load(k->linear(y), k->linear(y + n_), GapMode::open, 0.0);
-      rate[l] = k->load_rate(y, dy, dy + n_, GapMode::open);
-    } else if (gap_only(*k)) {
+    if (plain_or_gap(*k)) {
       const GapMode g = gap_[static_cast<size_t>(l)];
       F[l] = k->load(k->linear(y), k->linear(y + n_), g, 0.0);
       rate[l] = k->load_rate(y, dy, dy + n_, g);

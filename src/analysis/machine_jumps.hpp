@@ -30,6 +30,8 @@ class MachineJumps {
   void on_segment(const Stepper& s, double ta, double tb) {
     if (!traces_.empty()) sample_piece(s, ta, tb);
   }
+  /// Whether on_segment() samples anything (a machine with jumps or a reported point speed).
+  [[nodiscard]] bool samples_pieces() const { return !traces_.empty(); }
   void event_functions(const double* y, double* g) const;
   /// The jump of event function `which` at t: maps y across it and re-arms.
   void jump(double t, double* y, int which);

@@ -109,6 +109,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     drive.outputs = opt_.record_series;
     if (jumps_.count() > 0) drive.event_tol = 4e-16;  // jump positions of stepwise gears: to the last bits of t
     start_ = start;
+    extremes_only_ = winding_links_.empty() && !(extra_.heat || heat_.any_thermal()) && !jumps_.samples_pieces() && !audit_;
     out_.stats = integrate(st, *this, 0.0, y_.data(), s.t_end, drive, *this);
     if (opt_.record_series)
       for (auto& col : out_.columns) col.resize(row_);
@@ -258,6 +259,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
+    if (!extremes_only_) [[unlikely]] return on_piece(st, ta, tb);
+    // Only the extremes follow the piece: the peak tracker by a tail call (no frame here).
+    if (tb >= opt_.extremes_from) return peaks_.on_segment(st, std::max(ta, opt_.extremes_from), tb, on_new_max_);
+  }
+  /// A piece with more to follow than the extremes: rope ends, heat, machine traces, the audit.
+  __attribute__((noinline)) void on_piece(const Stepper& st, double ta, double tb) {
     if (!winding_links_.empty()) check_rope_ends(st, ta, tb);
     if (extra_.heat || heat_.any_thermal()) heat_.close_piece(st, ta, tb);  // heat, temperatures over the piece
     // The extremes over [extremes_from, t_end] (SimulateOptions): the part of the piece from there.
@@ -296,10 +303,18 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
 
   void on_output(double t, const double* y) override {
     const size_t row = next_row();
+    if (audit_) [[unlikely]] return output_audited(row, t, y);
+    // Tail calls: the row's writer returns to the driver (no frame here, nothing kept across).
+    if (plain_rows_) return output_head(row, t, y);
+    if (contact_rows_) return output_contacts(row, t, y);
+    output(row, t, y);
+  }
+  /// A row with the audit on: the row, then its check (audit.hpp).
+  __attribute__((noinline)) void output_audited(size_t row, double t, const double* y) {
     if (plain_rows_) output_head(row, t, y);
     else if (contact_rows_) output_contacts(row, t, y);
     else output(row, t, y);
-    if (audit_) [[unlikely]] audit_->row(t, y);
+    audit_->row(t, y);
   }
   void on_event(double t, const double* y, const std::vector<int>& fired) override {
     peaks_.restart();
@@ -1443,6 +1458,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
   bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
   bool contact_rows_ = false;  // the rows end with the contacts and gap modes (output_contacts)
+  bool extremes_only_ = false;  // a piece has only the extremes to follow (on_segment)
   size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;

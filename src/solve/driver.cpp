@@ -5,6 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "machdyn/common/diagnostics.hpp"
 #include "machdyn/solve/roots.hpp"
 
@@ -52,6 +56,44 @@ double dip(double t0, const double* g0, double t1, const double* g1, double t2, 
   return best;
 }
 
+/// One check's scan over the event functions g at s against the check before, gp at a, and the one
+/// before that, gpp at t_pp (h1 = a − t_pp, h2 = s − a): whether some function crosses from ≥ off to
+/// < off, and whether some armed one passes dip()'s pre-test at a step's first check (it falls into
+/// the step, y1 < y0, and its convex lower bound y1 − (y0 − y1) h2/h1 comes within a quarter of its
+/// largest check of 0; times h1: no division). The pre-test only gates the call of dip(), which
+/// tests again. Two functions per SSE2 operation (every check of every step runs this scan: one
+/// function at a time it was some 40 % of the driver's own instructions in the travel start-up, six
+/// functions); the same comparisons and roundings as the scalar loop after it.
+struct Scan {
+  bool cross = false, may_dip = false;
+};
+inline Scan scan_checks(const double* gpp, const double* gp, const double* g, const double* off, size_t ne,
+                        double h1, double h2) {
+  Scan r;
+  size_t k = 0;
+  const double q = 0.25 * h1;
+#if defined(__SSE2__)
+  __m128d c = _mm_setzero_pd(), d = _mm_setzero_pd();
+  const __m128d H1 = _mm_set1_pd(h1), H2 = _mm_set1_pd(h2), Q = _mm_set1_pd(q), Z = _mm_setzero_pd();
+  for (; k + 2 <= ne; k += 2) {
+    const __m128d v0 = _mm_loadu_pd(gpp + k), v1 = _mm_loadu_pd(gp + k), v2 = _mm_loadu_pd(g + k),
+                  o = _mm_loadu_pd(off + k);
+    c = _mm_or_pd(c, _mm_and_pd(_mm_cmpge_pd(v1, o), _mm_cmplt_pd(v2, o)));
+    // max(v2, v0) as std::max(v0, v2): v2 where v0 < v2, else v0
+    const __m128d lhs = _mm_sub_pd(_mm_mul_pd(v1, H1), _mm_mul_pd(_mm_sub_pd(v0, v1), H2));
+    const __m128d rhs = _mm_mul_pd(Q, _mm_max_pd(v2, v0));
+    d = _mm_or_pd(d, _mm_and_pd(_mm_and_pd(_mm_cmpeq_pd(o, Z), _mm_cmplt_pd(v1, v0)), _mm_cmplt_pd(lhs, rhs)));
+  }
+  r.cross = _mm_movemask_pd(c) != 0, r.may_dip = _mm_movemask_pd(d) != 0;
+#endif
+  for (; k < ne; ++k) {
+    const double v0 = gpp[k], v1 = gp[k];
+    r.cross |= (v1 >= off[k]) & (g[k] < off[k]);
+    r.may_dip |= (off[k] == 0.0) & (v1 < v0) & (v1 * h1 - (v0 - v1) * h2 < q * std::max(v0, g[k]));
+  }
+  return r;
+}
+
 }  // namespace
 
 RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, double t_end,
@@ -82,17 +124,22 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
                         : std::numeric_limits<double>::infinity();
   auto out_time = [&](long k) { return k >= n_out ? t_end : t0 + static_cast<double>(k) * dt_out; };
   long k_out = 1;
+  // The time of output row k_out (∞ after the last or without outputs): formed once per row.
+  double t_out = outputs ? out_time(k_out) : std::numeric_limits<double>::infinity();
   // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
   auto segment = [&](double ta, double tb) {
-    const double ts = st.t();  // the step's end (the stepper's own state: exact there)
-    for (; outputs && k_out <= n_out && out_time(k_out) <= tb; ++k_out) {
-      const double tk = out_time(k_out);
-      if (tk == ts) {
-        obs.on_output(tk, st.y());
-      } else {
-        st.interpolate(tk, ytmp.data());
-        obs.on_output(tk, ytmp.data());
-      }
+    if (t_out <= tb) {
+      const double ts = st.t();  // the step's end (the stepper's own state: exact there)
+      do {
+        if (t_out == ts) {
+          obs.on_output(t_out, st.y());
+        } else {
+          st.interpolate(t_out, ytmp.data());
+          obs.on_output(t_out, ytmp.data());
+        }
+        ++k_out;
+        t_out = k_out <= n_out ? out_time(k_out) : std::numeric_limits<double>::infinity();
+      } while (t_out <= tb);
     }
     obs.on_segment(st, ta, tb);
   };
@@ -168,44 +215,43 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       // itself: [left check, dip] then brackets the crossing.
       bool crossed = false;
       auto check = [&](double s, const double* g) {
-        // A tight scan in registers: most checks cross nothing, and at a step's first check (the
-        // dip's vertex in (a, s)) most functions fail dip()'s pre-test on these same values.
-        // (dip()'s bound times h1 = a − t_pp: no division to wait for.)
+        // Most checks cross nothing, and at a step's first check (the dip's vertex in (a, s)) most
+        // functions fail dip()'s pre-test on these same values (scan_checks).
         const bool right = std::max(t_pp, ta) >= a;
-        const double h1 = a - t_pp, h2 = s - a;
-        bool c = false, may_dip = !right;
-        for (size_t k = 0; k < ne; ++k) {
-          const double v0 = g_pp[k], v1 = gp[k];
-          c |= (v1 >= off[k]) & (g[k] < off[k]);
-          may_dip |= (off[k] == 0.0) & (v1 < v0) & (v1 * h1 - (v0 - v1) * h2 < 0.25 * h1 * std::max(v0, g[k]));
-        }
+        const Scan sc = scan_checks(g_pp.data(), gp, g, off.data(), ne, a - t_pp, s - a);
         // One function crossing at s does not end the check: another's dip before it comes first
         // (a gap's relative motion, a free-flight parabola in one dopri5 step, touching one flank
         // and reaching the other at s: the first flank's closing was lost).
-        if (c) crossed = true, b = s, gn = g;
-        if (!may_dip || !(t_pp > -std::numeric_limits<double>::infinity())) return crossed;
-        const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
-        if (!(td > ta && td < s)) return crossed;
-        const bool crossed_at_s = crossed;
-        crossed = false;
-        st.interpolate(td, ytmp.data());
-        sys.event_functions(td, ytmp.data(), g_dip.data());
-        // A dip shallower than 1e-4 of the function's variation over the checks is a tangency
-        // within the integration's resolution (BDF's freewheel speed touching 0 at −8e-10 rad/s in
-        // MSL's OneWayClutch, 3e-6 of its variation), not an excursion (a stuck contact's load beyond
-        // its limit for 16 ms between step ends, 2e-3; a sine's peak beyond it, 0.1): no crossing.
-        for (size_t k = 0; k < ne; ++k) {
-          const double hi = std::max({g_pp[k], gp[k], g[k]});
-          if (g_dip[k] < off[k] && !(g_dip[k] < -1e-4 * (hi - g_dip[k]))) g_dip[k] = off[k];
-        }
-        for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g_dip[k] < off[k]);
-        if (!crossed && td < a) {  // between the two checks before: the crossing is from (t_pp, g_pp)
-          for (size_t k = 0; k < ne; ++k) crossed = crossed || (g_pp[k] >= off[k] && g_dip[k] < off[k]);
-          if (crossed) gp = g_pp.data(), a = t_pp;
-        }
-        if (crossed) b = td, gn = g_dip.data();
-        crossed = crossed || crossed_at_s;
-        return crossed;
+        if (sc.cross) crossed = true, b = s, gn = g;
+        if (!(sc.may_dip || !right) || !(t_pp > -std::numeric_limits<double>::infinity())) return crossed;
+        // The rare rest: a dip between the last three checks, (t_pp, g_pp), (a, gp), (s, g) (dip()),
+        // checked at its point — out of line, its closure formed only here, so that the scan above is
+        // all a check costs.
+        auto at_dip = [&]() __attribute__((noinline)) {
+          const double td = dip(t_pp, g_pp.data(), a, gp, s, g, off.data(), ne, ta);
+          if (!(td > ta && td < s)) return crossed;
+          const bool crossed_at_s = crossed;
+          crossed = false;
+          st.interpolate(td, ytmp.data());
+          sys.event_functions(td, ytmp.data(), g_dip.data());
+          // A dip shallower than 1e-4 of the function's variation over the checks is a tangency
+          // within the integration's resolution (BDF's freewheel speed touching 0 at −8e-10 rad/s in
+          // MSL's OneWayClutch, 3e-6 of its variation), not an excursion (a stuck contact's load beyond
+          // its limit for 16 ms between step ends, 2e-3; a sine's peak beyond it, 0.1): no crossing.
+          for (size_t k = 0; k < ne; ++k) {
+            const double hi = std::max({g_pp[k], gp[k], g[k]});
+            if (g_dip[k] < off[k] && !(g_dip[k] < -1e-4 * (hi - g_dip[k]))) g_dip[k] = off[k];
+          }
+          for (size_t k = 0; k < ne; ++k) crossed = crossed || (gp[k] >= off[k] && g_dip[k] < off[k]);
+          if (!crossed && td < a) {  // between the two checks before: the crossing is from (t_pp, g_pp)
+            for (size_t k = 0; k < ne; ++k) crossed = crossed || (g_pp[k] >= off[k] && g_dip[k] < off[k]);
+            if (crossed) gp = g_pp.data(), a = t_pp;
+          }
+          if (crossed) b = td, gn = g_dip.data();
+          crossed = crossed || crossed_at_s;
+          return crossed;
+        };
+        return at_dip();
       };
       for (double j = 1.0; t1 - ta > h_s; ++j) {
         const double s = ta + j * h_s;
