@@ -1115,17 +1115,24 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));
     return how != ContactLaw::Landing::rebound;
   }
-  /// Whether free end stop k, whose distance just crossed 0, reached its stop at rest: its body's
-  /// speed is within the integrator's resolution (at_rest_to_resolution). That is no impact (an
-  /// impact is the stop reached at v⁻ ≠ 0, docs/hybrid.md): the body is put on the stop at zero
-  /// speed and the stop decided with the contacts — free again, no event, where the loads pull it
-  /// off. It is where a load lifted off its stop is released with zero acceleration: the first step
-  /// after the release (BDF's) may dip the distance by an error within the tolerances, and the dip
-  /// was listed as an impact at the release (campaign `sway` class S1).
+  /// Whether free end stop k, whose distance just crossed 0, was touched at rest while the loads
+  /// pull its body off: its speed within the integrator's resolution (at_rest_to_resolution) and
+  /// its acceleration not towards the stop. That is no impact (an impact is the stop reached at
+  /// v⁻ ≠ 0, docs/hybrid.md): the body is put on the stop at zero speed and the stop decided with
+  /// the contacts — free again, no event. It is where a load lifted off its stop is released with
+  /// zero acceleration: the first step after the release (BDF's) may dip the distance by an error
+  /// within the tolerances, and the dip was listed as an impact at the release (campaign `sway`
+  /// class S1). A body pressed on (the end of a series of bounces) lands by impact() as before.
   bool reached_at_rest(int k, double t) {
     if (!at_rest_to_resolution(k, t)) return false;
     const ContactLaw& c = sys_.contact(k);
+    const double q = y_[static_cast<size_t>(c.a)];
     y_[static_cast<size_t>(c.a)] = c.stop_position;
+    sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
+    if (c.lock * acc_[static_cast<size_t>(c.a)] > 0.0) {  // back towards the stop: a landing
+      y_[static_cast<size_t>(c.a)] = q;
+      return false;
+    }
     sys_.zero_sliding_velocity(k, t, y_.data());
     return true;
   }
