@@ -102,27 +102,36 @@ TEST_P(CampaignDefectsG, ASwayLoadLiftedOffItsStopByItsRopeHasNoImpactAtTheRelea
 // undamped spatial rope (EA = 75 300 N, slack and taut every ~13 ms) is integrated by BDF at
 // rtol 1e-10 with an error that accumulates from bounce to bounce (the bouncer's period depends on
 // its amplitude: a phase error), L.z's velocity ~1.4 × kStateTol off the reference by 0.57 s. It is
-// the integration's error, not a missed or extra event: at rtol 1e-12 / atol 1e-14 the same engine
-// agrees with the reference to a tenth of the state tolerance without any allowance (the shrunk
-// model: max |Δv| 5e-8 against 2.6e-6 at rtol 1e-10, measured). Both integrators.
-TEST_P(CampaignDefectsG, ALoadBouncingOnAnUndampedRopeConvergesToTheReference) {
-  ref::RefModel rm = ref::random_model("sway", 1, 60);
-  const ref::RefResult rr = ref::simulate_reference(rm);
-  ASSERT_TRUE(rr.error.empty()) << rr.error;
-  const std::string ic = integrator_word(GetParam());
-  // Tighter on the engine's side: the states within kStateTol with no shift allowed at all.
+// the integration's error, not a missed or extra event: the difference from the reference shrinks
+// with the engine's tolerances (a missed or extra event would not; measured on the unshrunk model,
+// bdf: max |Δv| of L.z 7.5e-6 at rtol 1e-10, 2.2e-7 at rtol 1e-12), and at rtol 1e-12 / atol 1e-14
+// the states lie within the state tolerance with no shift allowed at all. Both integrators.
+double worst_load_speed_error(const ref::RefModel& rm, const ref::RefResult& rr, const std::string& ic, double rtol) {
   Model model = compile_model(parse_yaml_string(ref::to_yaml(rm, ic), "sway60.yaml"), "sway60.yaml");
-  model.simulation.rtol = 1e-12, model.simulation.atol = 1e-14;
+  model.simulation.rtol = rtol, model.simulation.atol = 1e-2 * rtol;
   SimulateOptions so;
   so.check = true;
   const SimulationResult r = simulate(model, so);
+  double worst = 0.0;
+  for (size_t i = 0; i < rm.bodies.size(); ++i)
+    if (rm.bodies[i].name == "L.z")
+      for (size_t k = 0; k < rr.t.size(); ++k) worst = std::max(worst, std::abs(at(r, "L.z.velocity_m_s", rr.t[k]) - rr.v[k][i]));
+  return worst;
+}
+
+TEST_P(CampaignDefectsG, ALoadBouncingOnAnUndampedRopeConvergesToTheReference) {
+  const ref::RefModel rm = ref::random_model("sway", 1, 60);
+  const ref::RefResult rr = ref::simulate_reference(rm);
+  ASSERT_TRUE(rr.error.empty()) << rr.error;
+  const std::string ic = integrator_word(GetParam());
   const ref::StateTolerances st = ref::state_tolerances(rm, rr);
-  for (size_t i = 0; i < rm.bodies.size(); ++i) {
-    if (rm.bodies[i].name != "L.z") continue;
-    double worst = 0.0;
-    for (size_t k = 0; k < rr.t.size(); ++k)
-      worst = std::max(worst, std::abs(at(r, "L.z.velocity_m_s", rr.t[k]) - rr.v[k][i]));
-    EXPECT_LT(worst, 0.1 * st.v[i]);
+  size_t z = 0;
+  while (z < rm.bodies.size() && rm.bodies[z].name != "L.z") ++z;
+  ASSERT_LT(z, rm.bodies.size());
+  const double e10 = worst_load_speed_error(rm, rr, ic, 1e-10), e12 = worst_load_speed_error(rm, rr, ic, 1e-12);
+  EXPECT_LT(e12, st.v[z]);
+  if (e10 > 0.1 * st.v[z]) {  // bdf: it converges (dopri5 is already far within)
+    EXPECT_LT(e12, 0.1 * e10);
   }
 }
 
