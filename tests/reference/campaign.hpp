@@ -71,7 +71,9 @@ double event_tolerance(const RefEvent& e, const StateTolerances& s, double tol_t
 /// engine whose matched events lie up to δt from the reference's runs the same motion shifted by up
 /// to δt — at row k a column then differs by its rate times δt, with δt the largest offset of the
 /// events matched up to t_k (0 before the first, and in a run without events: there the states
-/// alone decide). That offset is what the integration's error does to a motion between repeated
+/// alone decide), each offset taken up to the sharp events' tolerance 1e-6·max(1, t_end) s only (an
+/// event accepted further off — a grazing closure, a resolution window — is an ill-conditioned
+/// instant, not a shifted motion). That offset is what the integration's error does to a motion between repeated
 /// events (an undamped load bouncing on its rope: its period depends on its amplitude, so the phase
 /// error of the steps accumulates bounce by bounce; BDF at rtol 1e-10 3e-8 s after 0.45 s, L.z's
 /// velocity 1.4 × kStateTol off — converging with the tolerances, 50× less at 1e-12); a real shift
