@@ -1125,6 +1125,27 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       record(t, "impact", nl_ + k, to_string(sys_.contact_mode(k)), to_string(sys_.contact_mode(k)));
     return how != ContactLaw::Landing::rebound;
   }
+  /// Whether free end stop k, whose distance just crossed 0, was touched at rest while the loads
+  /// pull its body off: its speed within the integrator's resolution (at_rest_to_resolution) and
+  /// its acceleration not towards the stop. That is no impact (an impact is the stop reached at
+  /// v⁻ ≠ 0, docs/hybrid.md): the body is put on the stop at zero speed and the stop decided with
+  /// the contacts — free again, no event. It is where a load lifted off its stop is released with
+  /// zero acceleration: the first step after the release (BDF's) may dip the distance by an error
+  /// within the tolerances, and the dip was listed as an impact at the release (campaign `sway`
+  /// class S1). A body pressed on (the end of a series of bounces) lands by impact() as before.
+  bool reached_at_rest(int k, double t) {
+    if (!at_rest_to_resolution(k, t)) return false;
+    const ContactLaw& c = sys_.contact(k);
+    const double q = y_[static_cast<size_t>(c.a)];
+    y_[static_cast<size_t>(c.a)] = c.stop_position;
+    sys_.evaluate(t, y_.data(), acc_.data(), fc_.data());
+    if (c.lock * acc_[static_cast<size_t>(c.a)] > 0.0) {  // back towards the stop: a landing
+      y_[static_cast<size_t>(c.a)] = q;
+      return false;
+    }
+    sys_.zero_sliding_velocity(k, t, y_.data());
+    return true;
+  }
   /// Whether stop k's impacts accumulate beyond what its law foresees (a varying acceleration towards
   /// the stop): this one is the `chatter_count`-th within 1e-9·max(1, t) s — flights of 2e-11 s, some
   /// 200 times the events' location tolerance.
@@ -1256,8 +1277,12 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
         gap_changed = true;
         record(t, now == GapMode::open ? "gap_opened" : "gap_closed", e, to_string(old), to_string(now));
       } else if (sys_.contact(e).stop && sys_.contact_mode(e) != ContactMode::stuck) {
-        if (impact(e, t)) Z.push_back(e), rested_.push_back(e);  // at rest on the stop: decided with the others
-        impacted = true;
+        if (reached_at_rest(e, t)) {
+          Z.push_back(e);  // no impact: at rest on the stop, decided with the others (no event if it stays free)
+        } else {
+          if (impact(e, t)) Z.push_back(e), rested_.push_back(e);  // at rest on the stop: decided with the others
+          impacted = true;
+        }
       } else if (sys_.contact_mode(e) != ContactMode::stuck) {
         Z.push_back(e);  // sliding speed reached zero
       } else {

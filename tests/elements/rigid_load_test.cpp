@@ -17,6 +17,7 @@
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/elements/linear_model.hpp"
 #include "machdyn/elements/linearize.hpp"
+#include "machdyn/model/element.hpp"
 #include "support/support.hpp"
 
 namespace machdyn {

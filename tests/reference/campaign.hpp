@@ -52,7 +52,9 @@
 /// every state agreeing ("states agree") a wrong event list.
 
 #include <cstdint>
+#include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reference/reference.hpp"
@@ -92,6 +94,20 @@ double event_tolerance(const RefEvent& e, const StateTolerances& s, double tol_t
 /// step h/kTightStep, compared by the same rules (a state mismatch decided again; the campaign passes
 /// ref_model = engine_model, a test a shifted engine_model).
 Outcome tightened(const RefModel& ref_model, const RefModel& engine_model, const std::string& integrator);
+/// The states' allowance for a time shift: the events are matched within their tolerances, and an
+/// engine whose matched events lie up to δt from the reference's runs the same motion shifted by up
+/// to δt — at row k a column then differs by its rate times δt, with δt the largest offset of the
+/// events matched up to t_k (0 before the first, and in a run without events: there the states
+/// alone decide), each offset taken up to the sharp events' tolerance 1e-6·max(1, t_end) s only (an
+/// event accepted further off — a grazing closure, a resolution window — is an ill-conditioned
+/// instant, not a shifted motion). That offset is what the integration's error does to a motion between repeated
+/// events (an undamped load bouncing on its rope: its period depends on its amplitude, so the phase
+/// error of the steps accumulates bounce by bounce; BDF at rtol 1e-10 3e-8 s after 0.45 s, L.z's
+/// velocity 1.4 × kStateTol off — converging with the tolerances, 50× less at 1e-12); a real shift
+/// (1e-3 s) is an event mismatch. Rate: the reference's velocity for a position, the largest
+/// difference quotient of its velocity over the neighbouring rows for a velocity. (body: column
+/// index, w: 0 position, 1 velocity; shifts: (reference time, |offset|) per matched event.)
+double shift_allowance(const RefResult& ref, const std::vector<std::pair<double, double>>& shifts, std::size_t body, int w, std::size_t k);
 
 /// Runs both on m (the reference once) and compares on `integrator`.
 Outcome check(const RefModel& m, const std::string& integrator, const RefOptions& o = {});
