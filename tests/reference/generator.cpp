@@ -99,7 +99,13 @@ Signal random_signal(Rng& r, double t_end, double scale, bool every_kind) {
       s.t0 = r.p(0.6) ? 0.0 : sig(r.u(0.05, 0.5) * t_end);
       break;
     case 4: s = random_table(r, t_end, [&](Rng& g) { return sig(g.u(-1, 1) * scale); }, true); break;
-    case 5: s = random_pulse(r, t_end, r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale), sig(r.u(-1, 1) * scale)); break;
+    case 5: {  // the draws in sequence (a function's arguments are evaluated in an unspecified order:
+               // GCC's right to left, clang's left to right gave two compilers two models)
+      const double high = sig(r.u(-1, 1) * scale);
+      const double low = r.p(0.5) ? 0.0 : sig(r.u(-0.5, 0.5) * scale);
+      s = random_pulse(r, t_end, low, high);
+      break;
+    }
     default: s = random_expression(r, t_end, scale); break;
   }
   return s;
