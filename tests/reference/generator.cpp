@@ -248,7 +248,8 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
           L->flank = sig(r.log_u(5e-4, 5e-3));
         } else {
           L->kind = Link::Kind::one_sided;
-          L->flank = sig((r.p(0.5) ? 1 : -1) * r.log_u(5e-4, 5e-3));
+          const double side = r.p(0.5) ? 1.0 : -1.0;  // drawn first, in sequence (a product's operands are not)
+          L->flank = sig(side * r.log_u(5e-4, 5e-3));
         }
         L->elasto = L->d > 0 && r.p(0.3);
       }
