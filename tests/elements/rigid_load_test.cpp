@@ -19,26 +19,18 @@
 #include "machdyn/elements/linearize.hpp"
 #include "machdyn/model/element.hpp"
 #include "support/support.hpp"
+#include "support/timed_model.hpp"
 
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::num;
 using test::series;
 constexpr double kG = 9.80665;
 
 class RigidLoad : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, RigidLoad, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          test::IntegratorName{});
-
-std::string num(double x) { return fmt::format("{:.17g}", x); }
-
-Model rigid_model(const std::string& yaml, double t_end, double dt_out, IntegratorChoice integ) {
-  Model m = test::model_text(yaml + "simulation: {t_end: " + num(t_end) + " s, dt_out: " + num(dt_out) +
-                                 " s, rtol: 1e-10, atol: 1e-12}\n",
-                             "rigid.yaml");
-  m.simulation.integrator = integ;
-  return m;
-}
 
 // The compound pendulum: a body of mass m and inertia J about its centre on a rope of length L
 // attached a above the centre, hung from a fixed point. With the rope's angle θ and the body's ψ
@@ -101,7 +93,7 @@ TEST_P(RigidLoad, CompoundPendulumSwingsInItsModes) {
   const double eps = 1e-3, T1 = 2 * std::numbers::pi / std::sqrt(p.lambda(0));
   for (int k = 0; k < 2; ++k) {
     const double lam = p.lambda(k), w = std::sqrt(lam), theta0 = eps * lam * p.a / (kG - lam * p.l());
-    const Model md = rigid_model(p.yaml(theta0, eps), 3 * T1, 1e-2, GetParam());
+    const Model md = test::timed_model(p.yaml(theta0, eps), 3 * T1, 1e-2, GetParam());
     const SimulationResult r = simulate(md);
     const double err = test::max_error(r, "beam.psi.position_rad", [&](double t) { return eps * std::cos(w * t); });
     EXPECT_LT(err, 1e-3 * eps) << "mode " << k << ": " << test::sci(err / eps);
@@ -120,7 +112,7 @@ TEST_P(RigidLoad, SpreaderOnParallelRopesStaysLevel) {
   const double m = 20000, L0 = 8, EA = 2e10, c = EA / L0, l = L0 + 0.5 * m * kG / c, x0 = 0.05, h = l + 0.4;
   const double z0 = h - 0.4 - std::sqrt(l * l - x0 * x0), w = std::sqrt(kG / l);
   const std::string rope = "type: spatial-rope, load: spreader, length: 8 m, EA: 2e10 N, height: " + num(h) + " m";
-  const Model md = rigid_model("bodies:\n  spreader: {type: rigid-load, mass: 20 t, inertia: 9e4 kg*m^2, position: [" +
+  const Model md = test::timed_model("bodies:\n  spreader: {type: rigid-load, mass: 20 t, inertia: 9e4 kg*m^2, position: [" +
                                    num(x0) + " m, " + num(z0) + " m]}\n"
                                    "links:\n  left: {" + rope + ", attach: [-3 m, 0.4 m], offset: -3 m}\n"
                                    "  right: {" + rope + ", attach: [3 m, 0.4 m], offset: 3 m}\n",
@@ -140,7 +132,7 @@ TEST_P(RigidLoad, EnergyBooksBalance) {
   // The ropes from (±1 m, 6.5 m) to (±2.5 m, 0.5 m) of the level beam at z = 0: 1 mm shorter than that.
   const std::string rope = "type: spatial-rope, load: beam, trolley: trolley, length: " + num(std::hypot(1.5, 6.0) - 1e-3) +
                            " m, EA: 5e8 N, damping: 2e4 N*s/m, height: 6.5 m";
-  Model md = rigid_model("bodies:\n  trolley: {type: translational, mass: 4 t}\n"
+  Model md = test::timed_model("bodies:\n  trolley: {type: translational, mass: 4 t}\n"
                          "  beam: {type: rigid-load, mass: 10 t, inertia: 3e4 kg*m^2, angular_velocity: 0.1}\n"
                          "links:\n  left: {" + rope + ", attach: [-2.5 m, 0.5 m], offset: -1 m}\n"
                          "  right: {" + rope + ", attach: [2.5 m, 0.5 m], offset: 1 m}\n"

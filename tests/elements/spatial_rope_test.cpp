@@ -20,10 +20,12 @@
 #include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/elements/linearize.hpp"
 #include "support/support.hpp"
+#include "support/timed_model.hpp"
 
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::num;
 using test::series;
 constexpr double kG = 9.80665;
 constexpr double kPi = std::numbers::pi;
@@ -31,16 +33,6 @@ constexpr double kPi = std::numbers::pi;
 class Sway : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, Sway, ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf),
                          test::IntegratorName{});
-
-std::string num(double x) { return fmt::format("{:.17g}", x); }
-
-Model sway_model(const std::string& yaml, double t_end, double dt_out, IntegratorChoice integ) {
-  Model m = test::model_text(yaml + "simulation: {t_end: " + num(t_end) + " s, dt_out: " + num(dt_out) +
-                                 " s, rtol: 1e-10, atol: 1e-12}\n",
-                             "sway.yaml");
-  m.simulation.integrator = integ;
-  return m;
-}
 
 /// The times where column y crosses 0 (linear interpolation between rows).
 std::vector<double> zero_crossings(const SimulationResult& r, const std::string& y) {
@@ -62,7 +54,7 @@ std::vector<double> zero_crossings(const SimulationResult& r, const std::string&
 TEST_P(Sway, SmallSwingsOnAFreeTrolley) {
   const double M = 2000, m = 1000, L0 = 5, EA = 1e9, c = EA / L0, l = L0 + m * kG / c, a = 0.02;
   const double z0 = l - std::sqrt(l * l - a * a), w = std::sqrt(kG / l * (1 + m / M));
-  const Model md = sway_model("bodies:\n  trolley: {type: translational, mass: 2000 kg}\n"
+  const Model md = test::timed_model("bodies:\n  trolley: {type: translational, mass: 2000 kg}\n"
                               "  load: {type: point-mass, mass: 1000 kg, axes: [x, z], position: [0.02 m, " + num(z0) +
                                   " m]}\nlinks:\n  rope: {type: spatial-rope, load: load, trolley: trolley, length: 5 m, "
                                   "EA: 1e9 N}\n",
@@ -86,7 +78,7 @@ TEST_P(Sway, SmallSwingsOnAFreeTrolley) {
 // the nonlinear terms are O(θ²) ≈ 2e-5).
 TEST_P(Sway, PrescribedTrolleyAccelerationSwingsTheLinearPendulum) {
   const double m = 1000, L0 = 10, c = 1e9 / L0, l = L0 + m * kG / c, a = 0.02, w2 = kG / l, amp = 2 * a / w2;
-  const Model md = sway_model("bodies:\n  trolley: {type: translational, mass: 5 t, motion: {acceleration: 0.02 m/s^2}}\n"
+  const Model md = test::timed_model("bodies:\n  trolley: {type: translational, mass: 5 t, motion: {acceleration: 0.02 m/s^2}}\n"
                               "  load: {type: point-mass, mass: 1 t, axes: [x, z]}\n"
                               "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, length: 10 m, EA: 1e9 N}\n",
                               10.0, 1e-3, GetParam());
@@ -113,7 +105,7 @@ TEST_P(Sway, PrescribedTrolleyAccelerationSwingsTheLinearPendulum) {
 TEST_P(Sway, SummaryOfAMove) {
   const double m = 1000, L0 = 10, c = 1e9 / L0, l = L0 + m * kG / c, a = 0.02, Ta = 2.0, w = std::sqrt(kG / l);
   const double th = 2 * a / kG * std::abs(std::sin(w * Ta / 2));
-  const Model md = sway_model("bodies:\n  trolley: {type: translational, mass: 5 t, motion: {acceleration: {type: table, "
+  const Model md = test::timed_model("bodies:\n  trolley: {type: translational, mass: 5 t, motion: {acceleration: {type: table, "
                               "points: [[0, 0.02], [2, 0.02], [2, 0], [100, 0]]}}}\n"
                               "  load: {type: point-mass, mass: 1 t, axes: [x, z]}\n"
                               "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, length: 10 m, EA: 1e9 N, "
@@ -194,7 +186,7 @@ TEST_P(Sway, LargeSwingPeriodIsTheEllipticIntegral) {
     const double m = 1000, L0 = 5, c = 1e9 / L0, th0 = deg * kPi / 180, h = L0 + m * kG / c;
     const double l0 = L0 + m * kG * std::cos(th0) / c;  // the stretch of the tension at rest there
     const double T = 4 * std::sqrt(L0 / kG) * elliptic_k(std::sin(th0 / 2));
-    const Model md = sway_model("bodies:\n  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [" +
+    const Model md = test::timed_model("bodies:\n  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [" +
                                     num(l0 * std::sin(th0)) + " m, " + num(h - l0 * std::cos(th0)) + " m]}\n"
                                     "links:\n  rope: {type: spatial-rope, load: load, length: 5 m, EA: 1e9 N}\n",
                                 1.4 * T, 1e-3, GetParam());
@@ -213,7 +205,7 @@ TEST_P(Sway, LargeSwingPeriodIsTheEllipticIntegral) {
 TEST_P(Sway, PastTheHorizontalTheRopeGoesSlack) {
   const double L0 = 5, th0 = 150 * kPi / 180, l0 = 0.9 * L0, h = L0 + 1000 * kG / (1e8 / L0);
   const double x0 = l0 * std::sin(th0), z0 = h - l0 * std::cos(th0);
-  Model md = sway_model("bodies:\n  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [" + num(x0) + " m, " +
+  Model md = test::timed_model("bodies:\n  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [" + num(x0) + " m, " +
                             num(z0) + " m]}\nlinks:\n  rope: {type: spatial-rope, load: load, length: 5 m, EA: 1e8 N, "
                             "damping: 2e4 N*s/m}\n",
                         3.0, 1e-3, GetParam());
@@ -250,7 +242,7 @@ TEST_P(Sway, UniformSlewingIsTheConicalPendulum) {
     th = std::atan(w * w * (r0 + l * std::sin(th)) / kG);
   }
   const double rho = r0 + l * std::sin(th), T = m * kG / std::cos(th);
-  const Model md = sway_model("bodies:\n  jib: {inertia: 1e5 kg*m^2, motion: {speed: 0.4 rad/s}}\n"
+  const Model md = test::timed_model("bodies:\n  jib: {inertia: 1e5 kg*m^2, motion: {speed: 0.4 rad/s}}\n"
                               "  load: {type: point-mass, mass: 1 t, position: [" + num(rho) + " m, 0 m, " +
                                   num(h - l * std::cos(th)) + " m], velocity: [0 m/s, " + num(w * rho) + " m/s, 0 m/s]}\n"
                                   "links:\n  rope: {type: spatial-rope, load: load, jib: jib, radius: 10 m, length: 8 m, "
@@ -278,7 +270,7 @@ TEST_P(Sway, UniformSlewingIsTheConicalPendulum) {
 // law is exactly the linear spring there), within 1e-6 δ over 2 s (six periods).
 TEST_P(Sway, StretchModeIsSqrtCOverM) {
   const double m = 1000, c = 2 * 2e6 / 10, w = std::sqrt(c / m), dz = 0.01;
-  const Model md = sway_model("bodies:\n  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [0, -0.01 m]}\n"
+  const Model md = test::timed_model("bodies:\n  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [0, -0.01 m]}\n"
                               "links:\n  rope: {type: spatial-rope, load: load, length: 10 m, EA: 2e6 N, falls: 2}\n",
                               2.0, 1e-3, GetParam());
   const SimulationResult r = simulate(md);
@@ -290,7 +282,7 @@ TEST_P(Sway, StretchModeIsSqrtCOverM) {
 // bridge travel (a load in space, damping in the rope): the residual is below 1e-6 of the work
 // turned over, the rope's damping is the only loss, and the rope stays taut (its L shortens).
 TEST_P(Sway, EnergyBooksBalanceHoistingAndTravelling) {
-  Model md = sway_model("bodies:\n  trolley: {type: translational, mass: 3 t}\n  bridge: {type: translational, mass: 8 t}\n"
+  Model md = test::timed_model("bodies:\n  trolley: {type: translational, mass: 3 t}\n  bridge: {type: translational, mass: 8 t}\n"
                         "  drum: {inertia: 50 kg*m^2}\n  load: {type: point-mass, mass: 1 t}\n"
                         "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, bridge: bridge, drum: drum, "
                         "drum_radius: 0.3 m, falls: 2, length: 10 m, EA: 5e7 N, damping: 5e3 N*s/m}\n"
@@ -316,7 +308,7 @@ TEST_P(Sway, EnergyBooksBalanceHoistingAndTravelling) {
 // the stop lets the load go after that (an event of the stop), the load rises, and the energy books
 // balance within 1e-6 of the work turned over.
 TEST_P(Sway, LiftOffFromAGroundStop) {
-  Model md = sway_model("bodies:\n  drum: {inertia: 50 kg*m^2}\n  trolley: {type: translational, mass: 3 t}\n"
+  Model md = test::timed_model("bodies:\n  drum: {inertia: 50 kg*m^2}\n  trolley: {type: translational, mass: 3 t}\n"
                         "  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [0.2 m, 0 m]}\n"
                         "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, drum: drum, drum_radius: 0.3 m, "
                         "falls: 2, length: 10 m, EA: 5e7 N, height: 9.95 m, damping: 1e4 N*s/m}\n"
