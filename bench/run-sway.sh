@@ -3,10 +3,10 @@
 #  1. a 60 s trolley move with sway and the drive line on one core: examples/crane/trolley-sway-drive.yaml
 #     (case unshaped, t_end 60 s), `machdyn simulate` pinned to CPU 0; the integration's wall time
 #     (summary.json solver.wall_time_s) and the whole command's CPU time, best of REPEAT;
-#  2. the sway sweep of bench/sway-sweep.yaml: 1000 moves (rope length 8–16 m × acceleration time
-#     2–5 s, its cases unshaped and zv, 500 each) with `machdyn sweep --case` on all cores and on one;
+#  2. the sway sweep of bench/sway-sweep.yaml: 1000 moves as ONE sweep, rope length 8–16 m (10) ×
+#     acceleration time 2–5 s (25) × shaper (none, zv, zvd, two-step), on all cores and on one;
 #  3. scipy (bench/scipy_sway.py, the same equations written from docs/sway.md) on SCIPY_RUNS runs of
-#     each case spread over the grid, and the sweep table's residual sway of the same runs
+#     each shaper spread over the grid, and the sweep table's residual sway of the same runs
 #     (`rope.residual_sway_rad`) beside scipy's.
 # Usage: bash bench/run-sway.sh [BUILD_DIR]   (default build/release; REPEAT=3, SCIPY_RUNS=10)
 # Not a test: the numbers depend on the machine and its load (printed). Results go into
@@ -50,20 +50,16 @@ awk -v i="$best_int" -v c="$best_cpu" -v z="$best_0" -v s="$steps" -v e="$events
   printf "60 s move     %d steps, %d events listed; CPU of the command %.0f ms, of the same at t_end 10 ms %.0f ms: the 60 s %.0f ms\n", s, e, 1e3*c, 1e3*z, 1e3*(c-z)
   printf "              the integration'"'"'s wall time (solver.wall_time_s) %.1f ms (runs:%s ms)\n", 1e3*i, all}'
 
-# 2. The sweep: 2 × 500 runs (`--case unshaped`, `--case zv`: the ramp's end is `travel.reference.end`
-# in the one and the shaped reference's `travel.reference.signal.end` in the other, so the halves are
-# two sweeps), on all cores and on one.
-field() { if [ "$1" = zv ]; then echo travel.reference.signal.end; else echo travel.reference.end; fi; }
-sweep() {  # jobs -> "wall cpu" of both halves
-  local jobs=$1 w=0 c=0 t
-  for case in unshaped zv; do
-    rm -rf "${work:?}/sw-$case"
-    t=$( { time "$bin" sweep "$model" --case "$case" --vary rope.length=8:16:20 --vary "$(field "$case")=2:5:25" \
-             --jobs "$jobs" -o "$work/sw-$case" >/dev/null 2>&1; } 2>&1 )
-    set -- $t
-    w=$(awk -v a="$w" -v b="$1" 'BEGIN{print a+b}'); c=$(awk -v a="$c" -v u="$2" -v s="$3" 'BEGIN{print a+u+s}')
-  done
-  echo "$w $c"
+# 2. The sweep: the 1000 moves in one `machdyn sweep` (the shaper is a --vary: `shaper: none` is the
+# unshaped move), on all cores and on one thread.
+vary=(--vary rope.length=8:16:10 --vary travel.reference.signal.end=2:5:25
+      --vary travel.reference.shaper=none,zv,zvd,two-step)
+sweep() {  # jobs -> "wall cpu"
+  local t
+  rm -rf "${work:?}/sw"
+  t=$( { time "$bin" sweep "$model" "${vary[@]}" --jobs "$1" -o "$work/sw" >/dev/null 2>&1; } 2>&1 )
+  set -- $t
+  echo "$1 $(awk -v u="$2" -v s="$3" 'BEGIN{print u+s}')"
 }
 for jobs in 0 1; do
   bw="" bc=""
@@ -71,30 +67,30 @@ for jobs in 0 1; do
     set -- $(sweep "$jobs")
     if [ -z "$bw" ] || awk -v a="$1" -v b="$bw" 'BEGIN{exit !(a<b)}'; then bw=$1; bc=$2; fi
   done
-  n=$(( $(wc -l <"$work/sw-unshaped/sweep.csv") + $(wc -l <"$work/sw-zv/sweep.csv") - 2 ))
-  ok=$(cat "$work/sw-unshaped/sweep.csv" "$work/sw-zv/sweep.csv" | grep -c ',ok,$' || true)
-  slips=$(awk -F, 'FNR==1{for(i=1;i<=NF;i++) if($i=="events_slip") k=i; next} $k!=0{n++} END{print n+0}' \
-           "$work/sw-unshaped/sweep.csv" "$work/sw-zv/sweep.csv")
+  n=$(( $(wc -l <"$work/sw/sweep.csv") - 1 ))
+  ok=$(grep -c ',ok,$' "$work/sw/sweep.csv" || true)
+  slips=$(awk -F, 'FNR==1{for(i=1;i<=NF;i++) if($i=="events_slip") k=i; next} $k!=0{n++} END{print n+0}' "$work/sw/sweep.csv")
   label="sweep all cores"; [ "$jobs" = 1 ] && label="sweep 1 thread "
   awk -v l="$label" -v n="$n" -v w="$bw" -v c="$bc" -v ok="$ok" -v sl="$slips" 'BEGIN{
     printf "%s %5d runs (%d ok, %d with a slip) %8.3f s %8.1f runs/s   CPU %7.3f s %8.1f runs/CPU-s\n", l, n, ok, sl, w, n/w, c, n/c}'
 done
-awk -F, 'FNR==1{for(i=1;i<=NF;i++) if($i=="rope.residual_sway_rad") k=i; next}
-  {f=FILENAME; sub(/.*sw-/,"",f); sub(/\/sweep.csv/,"",f); if(!(f in lo)||$k<lo[f]) lo[f]=$k; if(!(f in hi)||$k>hi[f]) hi[f]=$k}
+awk -F, 'FNR==1{for(i=1;i<=NF;i++){if($i=="rope.residual_sway_rad") k=i; if($i=="travel.reference.shaper") f=i}; next}
+  {if(!($f in lo)||$k<lo[$f]) lo[$f]=$k; if(!($f in hi)||$k>hi[$f]) hi[$f]=$k}
   END{for(f in lo) printf "  residual sway from 14 s on, %-8s %.4g–%.4g rad (the table'"'"'s rope.residual_sway_rad)\n", f, lo[f], hi[f]}' \
-  "$work/sw-unshaped/sweep.csv" "$work/sw-zv/sweep.csv"
+  "$work/sw/sweep.csv"
 
-# 3. scipy on a sample; the sweep tables' residual sway of the same runs beside it (the row whose
-# rope.length and ramp end are scipy's point, to 1e-9: numpy's linspace and the grid may differ in
-# the last bits).
-/usr/bin/python3 "$here/scipy_sway.py" 8 16 20 2 5 25 "$scipy_runs" >"$work/scipy.txt"
+# 3. scipy on a sample; the sweep table's residual sway of the same runs beside it (the row of that
+# shaper whose rope.length and ramp end are scipy's point, to 1e-9: numpy's linspace and the grid may
+# differ in the last bits).
+/usr/bin/python3 "$here/scipy_sway.py" 8 16 10 2 5 25 "$scipy_runs" >"$work/scipy.txt"
 head -1 "$work/scipy.txt"
 grep '^run ' "$work/scipy.txt" | while read -r _ case len ta res; do
-  awk -F, -v f="$(field "$case")" -v len="$len" -v ta="$ta" -v res="$res" -v case="$case" '
-    FNR==1{for(i=1;i<=NF;i++){if($i=="rope.length")a=i; if($i==f)b=i; if($i=="rope.residual_sway_rad")k=i}; next}
+  awk -F, -v len="$len" -v ta="$ta" -v res="$res" -v case="$case" '
+    FNR==1{for(i=1;i<=NF;i++){if($i=="rope.length")a=i; if($i=="travel.reference.signal.end")b=i;
+                              if($i=="travel.reference.shaper")s=i; if($i=="rope.residual_sway_rad")k=i}; next}
     function d(x,y){return x>y?x-y:y-x}
-    d($a,len)<1e-9 && d($b,ta)<1e-9 {printf "  %-9s L %-6.4g T_a %-6.4g residual sway: machdyn %.9f  scipy %.9f rad  |diff| %.3g\n",
+    $s==case && d($a,len)<1e-9 && d($b,ta)<1e-9 {printf "  %-9s L %-6.4g T_a %-6.4g residual sway: machdyn %.9f  scipy %.9f rad  |diff| %.3g\n",
                                      case, len, ta, $k, res, d($k,res); found=1}
-    END{if(!found) printf "  %s L %s T_a %s: no row of the sweep\n", case, len, ta}' "$work/sw-$case/sweep.csv"
+    END{if(!found) printf "  %s L %s T_a %s: no row of the sweep\n", case, len, ta}' "$work/sw/sweep.csv"
 done | tee "$work/cmp.txt"
 awk '/\|diff\|/{d=$NF+0; if(d>w)w=d} END{printf "largest |machdyn sweep − scipy| of the residual sway: %.3g rad\n", w}' "$work/cmp.txt"

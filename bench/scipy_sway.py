@@ -10,12 +10,14 @@ from docs/sway.md and docs/model-files.md (Drives: the speed drive) — not from
   rope      suspension point p = (x_c, h), h = L0 + m g/c; l = |p − r|, u = (p − r)/l, e = l − L0,
             e' = u·(p' − r'), F = c e + d e' (c = n E A/L0; taut throughout: checked)
   sway      θ = atan2(x − x_c, h − z); the residual sway is max |θ| on the 10 ms grid from 14 s on
-  reference a ramp 0 → v over T_a, or its ZV-shaped form for 12 m: ½ s(t) + ½ s(t − π/ω), ω² = g/12 m
+  reference a ramp s(t) 0 → v over T_a, shaped for 12 m (docs/sway.md, ω² = g/12 m, τ = π/ω, ζ = 0):
+            none s(t); zv ½ s(t) + ½ s(t − τ); zvd ¼ s(t) + ½ s(t − τ) + ¼ s(t − 2τ); two-step two
+            ramps 0 → v/2 over T_a/2 from 0 and from τ
 
 Usage: /usr/bin/python3 scipy_sway.py LA LB NL TA TB NT [MAX_RUNS] [--rtol R]
-  the grid rope.length LA:LB:NL (slowest) × ramp end TA:TB:NT, both cases (unshaped first); MAX_RUNS
-  runs of each case's grid, drawn with a fixed seed. Prints the runs/s and one line per run:
-  `case length T_a residual_sway_rad`, for bench/run-sway.sh to compare with machdyn's."""
+  the grid rope.length LA:LB:NL (slowest) × ramp end TA:TB:NT, each shaper (none, zv, zvd, two-step);
+  MAX_RUNS runs of each shaper's grid, drawn with a fixed seed. Prints the runs/s and one line per run:
+  `shaper length T_a residual_sway_rad`, for bench/run-sway.sh to compare with machdyn's."""
 import math
 import sys
 import time
@@ -35,13 +37,22 @@ def ramp(t, ta):
     return V * min(max(t / ta, 0.0), 1.0)
 
 
-def run(length, ta, shaped, rtol=1e-8, atol=1e-10):
+SHAPERS = ("none", "zv", "zvd", "two-step")
+
+
+def run(length, ta, shaper, rtol=1e-8, atol=1e-10):
     c = FALLS * EA / length
     h = length + M_L * G / c
     half = math.pi / W_SHAPER
 
     def vref(t):
-        return 0.5 * ramp(t, ta) + 0.5 * ramp(t - half, ta) if shaped else ramp(t, ta)
+        if shaper == "zv":
+            return 0.5 * ramp(t, ta) + 0.5 * ramp(t - half, ta)
+        if shaper == "zvd":
+            return 0.25 * ramp(t, ta) + 0.5 * ramp(t - half, ta) + 0.25 * ramp(t - 2 * half, ta)
+        if shaper == "two-step":
+            return 0.5 * ramp(t, 0.5 * ta) + 0.5 * ramp(t - half, 0.5 * ta)
+        return ramp(t, ta)
 
     def rhs(t, y):
         xc, vc, xi, x, z, vx, vz = y
@@ -73,7 +84,7 @@ def main():
     la, lb, nl, ta, tb, nt = (float(args[0]), float(args[1]), int(args[2]), float(args[3]), float(args[4]), int(args[5]))
     grid = [(lv, tv) for lv in np.linspace(la, lb, nl) for tv in np.linspace(ta, tb, nt)]
     runs = []
-    for case in ("unshaped", "zv"):
+    for case in SHAPERS:
         pts = grid
         if len(args) > 6:  # a sample across the case's grid (fixed seed: the same runs every time)
             n = min(int(args[6]), len(grid))
@@ -82,7 +93,7 @@ def main():
     out, nfev = [], 0
     a, cpu = time.perf_counter(), time.process_time()
     for case, lv, tv in runs:
-        res, nf = run(lv, tv, case == "zv", rtol=rtol, atol=rtol * 1e-2)
+        res, nf = run(lv, tv, case, rtol=rtol, atol=rtol * 1e-2)
         out.append((case, lv, tv, res))
         nfev += nf
     dt, cpu = time.perf_counter() - a, time.process_time() - cpu

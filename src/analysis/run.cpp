@@ -25,6 +25,7 @@
 #include "machdyn/analysis/load_history.hpp"
 #include "machdyn/analysis/peak_tracker.hpp"
 #include "machdyn/analysis/static_loads.hpp"
+#include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/model/reeving.hpp"
 #include "analysis/heat.hpp"
 #include "analysis/impact.hpp"
@@ -94,6 +95,10 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       audit_ = std::make_unique<Audit>(m_, sys_, E, release_loss_);
       audit_->after_event(0.0, y_.data(), false);
     }
+    // The sway summary of the spatial ropes (analysis/sway_summary.hpp): an observer of the output
+    // rows, which the run visits for it even when it keeps no series.
+    if (SwayObserver sway(m_); !sway.empty()) sway_ = std::make_unique<SwayObserver>(std::move(sway));
+    observed_rows_ = audit_ || sway_;
     StepperOptions so;
     so.rtol = s.rtol;
     so.atol = s.atol;
@@ -106,7 +111,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     Stepper& st = *stepper;
     DriveOptions drive;
     drive.dt_out = s.dt_out;
-    drive.outputs = opt_.record_series;
+    drive.outputs = opt_.record_series || sway_;
     if (jumps_.count() > 0) drive.event_tol = 4e-16;  // jump positions of stepwise gears: to the last bits of t
     start_ = start;
     extremes_only_ = winding_links_.empty() && !(extra_.heat || heat_.any_thermal()) && !jumps_.samples_pieces() && !audit_;
@@ -131,6 +136,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     }
     summarize_links();
     out_.machines = jumps_.reports();
+    if (sway_) out_.sway = sway_->summaries();
     if (sys_.has_machines())  // I(q), ε, inertia moments, output points (analysis/machine_outputs.hpp)
       append_machine_outputs(
           m_, out_,
@@ -302,19 +308,24 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void on_output(double t, const double* y) override {
+    if (observed_rows_) [[unlikely]] return output_observed(t, y);
     const size_t row = next_row();
-    if (audit_) [[unlikely]] return output_audited(row, t, y);
     // Tail calls: the row's writer returns to the driver (no frame here, nothing kept across).
     if (plain_rows_) return output_head(row, t, y);
     if (contact_rows_) return output_contacts(row, t, y);
     output(row, t, y);
   }
-  /// A row with the audit on: the row, then its check (audit.hpp).
-  __attribute__((noinline)) void output_audited(size_t row, double t, const double* y) {
-    if (plain_rows_) output_head(row, t, y);
-    else if (contact_rows_) output_contacts(row, t, y);
-    else output(row, t, y);
-    audit_->row(t, y);
+  /// A row with observers of the rows: the row (when the series is kept) and the audit's check of it
+  /// (audit.hpp), the sway summary (sway_summary.hpp).
+  __attribute__((noinline)) void output_observed(double t, const double* y) {
+    if (opt_.record_series) {
+      const size_t row = next_row();
+      if (plain_rows_) output_head(row, t, y);
+      else if (contact_rows_) output_contacts(row, t, y);
+      else output(row, t, y);
+      if (audit_) audit_->row(t, y);
+    }
+    if (sway_) sway_->row(sys_, t, y);
   }
   void on_event(double t, const double* y, const std::vector<int>& fired) override {
     peaks_.restart();
@@ -1529,6 +1540,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<int> released_bodies_ = released_bodies(m_);  // their mass columns
   std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
   std::unique_ptr<Audit> audit_;  // the invariant audit, when SimulateOptions::check (else none)
+  std::unique_ptr<SwayObserver> sway_;  // the spatial ropes' sway summary (none without a spatial rope)
+  bool observed_rows_ = false;          // audit_ or sway_: on_output goes through output_observed()
 };
 
 }  // namespace

@@ -3,20 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "machdyn/analysis/drive_system.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/elements/spatial_rope.hpp"
 
 namespace machdyn {
-
-namespace {
-
-/// The column called `name` of r, or null.
-const std::vector<double>* sway_column(const SimulationResult& r, const std::string& name) {
-  for (size_t k = 0; k < r.column_names.size(); ++k)
-    if (r.column_names[k] == name) return &r.columns[k];
-  return nullptr;
-}
-
-}  // namespace
 
 std::vector<std::string> sway_rope_names(const Model& m) {
   std::vector<std::string> out;
@@ -25,54 +16,78 @@ std::vector<std::string> sway_rope_names(const Model& m) {
   return out;
 }
 
-std::vector<SwaySummary> sway_summaries(const Model& m, const SimulationResult& r) {
+SwayObserver::SwayObserver(const Model& m) {
+  const int n = m.dof();
+  size_t outputs = 0;
+  for (size_t k = 0; k < m.drives.size(); ++k) {
+    const Drive& d = m.drives[k];
+    const auto* law = dynamic_cast<const SpatialRope*>(d.law.get());
+    if (!law) continue;
+    Rope r;
+    r.drive = static_cast<int>(k);
+    r.law = law;
+    r.s.rope = d.name;
+    if (law->sway_after >= 0.0) r.s.residual_after = law->sway_after;
+    const std::vector<std::string> names = law->output_names(m.bodies[static_cast<size_t>(d.body)].kind);
+    outputs = std::max(outputs, names.size());
+    for (size_t j = 0; j < names.size(); ++j) {
+      if (names[j] == "sway_x_rad" || names[j] == "sway_y_rad" || names[j] == "sway_radial_rad" ||
+          names[j] == "sway_tangential_rad")
+        r.sway.push_back(static_cast<int>(j));
+      if (names[j] == "horizontal_force_N") r.horizontal = static_cast<int>(j);
+    }
+    // The suspension point's travel: the velocities of its trolley and bridge bodies (with a jib the
+    // point also turns, and its acceleration is not theirs: no dynamic factor).
+    if (!law->has(SpatialRope::Role::jib))
+      for (const SpatialRope::Role role : {SpatialRope::Role::trolley, SpatialRope::Role::bridge}) {
+        const int p = law->port_of[static_cast<int>(role)];
+        if (p < 0) continue;
+        const int b = p == 0 ? d.body : d.others[static_cast<size_t>(p - 1)];
+        r.travel.push_back(n + b);
+      }
+    r.v_prev.assign(r.travel.size(), 0.0);
+    ropes_.push_back(std::move(r));
+  }
+  out_.assign(outputs, 0.0);
+}
+
+void SwayObserver::row(const DriveSystem& sys, double t, const double* y) {
+  for (Rope& r : ropes_) {
+    sys.drive_outputs(r.drive, t, y, out_.data());  // the row's own columns of the rope
+    SwaySummary& s = r.s;
+    s.max_tension_N = std::max(s.max_tension_N, out_[0]);  // output 0: the tension
+    for (const int j : r.sway) {
+      const double a = std::abs(out_[static_cast<size_t>(j)]);
+      if (a > s.max_sway_rad) s.max_sway_rad = a, s.t_max_sway = t;
+      if (s.residual_after && t >= *s.residual_after) s.residual_sway_rad = std::max(s.residual_sway_rad, a);
+    }
+    const double H = out_[static_cast<size_t>(r.horizontal)];
+    if (H > s.max_horizontal_force_N) s.max_horizontal_force_N = H, s.t_max_horizontal_force = t;
+    if (r.travel.empty()) continue;
+    // |a| of the suspension point between the previous row and this one: |Δv|/Δt over its travel.
+    if (r.started && t - r.t_prev > 0.0) {
+      const double dt = t - r.t_prev;
+      double a2 = 0.0;
+      for (size_t k = 0; k < r.travel.size(); ++k)
+        a2 += std::pow((y[r.travel[k]] - r.v_prev[k]) / dt, 2);
+      r.a_max = std::max(r.a_max, std::sqrt(a2));
+    }
+    for (size_t k = 0; k < r.travel.size(); ++k) r.v_prev[k] = y[r.travel[k]];
+    r.t_prev = t, r.started = true;
+  }
+}
+
+std::vector<SwaySummary> SwayObserver::summaries() const {
   std::vector<SwaySummary> out;
-  const std::vector<double>* t = sway_column(r, "t_s");
-  if (!t) return out;
-  for (const Drive& d : m.drives) {
-    const auto* rope = dynamic_cast<const SpatialRope*>(d.law.get());
-    if (!rope) continue;
-    SwaySummary s;
-    s.rope = d.name;
-    if (rope->sway_after >= 0.0) s.residual_after = rope->sway_after;
-    for (const char* col : {"sway_x_rad", "sway_y_rad", "sway_radial_rad", "sway_tangential_rad"}) {
-      const std::vector<double>* th = sway_column(r, d.name + "." + col);
-      if (!th) continue;
-      for (size_t k = 0; k < th->size() && k < t->size(); ++k) {
-        const double a = std::abs((*th)[k]);
-        if (a > s.max_sway_rad) s.max_sway_rad = a, s.t_max_sway = (*t)[k];
-        if (s.residual_after && (*t)[k] >= *s.residual_after) s.residual_sway_rad = std::max(s.residual_sway_rad, a);
-      }
-    }
-    if (const std::vector<double>* H = sway_column(r, d.name + ".horizontal_force_N"))
-      for (size_t k = 0; k < H->size() && k < t->size(); ++k)
-        if ((*H)[k] > s.max_horizontal_force_N) s.max_horizontal_force_N = (*H)[k], s.t_max_horizontal_force = (*t)[k];
-    if (const std::vector<double>* F = sway_column(r, d.name + ".tension_N"))
-      for (double f : *F) s.max_tension_N = std::max(s.max_tension_N, f);
-    // The suspension point's largest horizontal acceleration from its travel bodies' speeds.
-    const std::vector<double>* v[2] = {nullptr, nullptr};
-    const SpatialRope::Role travel[2] = {SpatialRope::Role::trolley, SpatialRope::Role::bridge};
-    for (int k = 0; k < 2; ++k) {
-      const int p = rope->port_of[static_cast<int>(travel[k])];
-      if (p < 0) continue;
-      const int b = p == 0 ? d.body : d.others[static_cast<size_t>(p - 1)];
-      v[k] = sway_column(r, m.bodies[static_cast<size_t>(b)].name + ".velocity_m_s");
-    }
-    if ((v[0] || v[1]) && !rope->has(SpatialRope::Role::jib)) {
-      double a_max = 0.0;
-      for (size_t k = 1; k < t->size(); ++k) {
-        const double dt = (*t)[k] - (*t)[k - 1];
-        if (dt <= 0.0) continue;
-        double a2 = 0.0;
-        for (const auto* vk : v)
-          if (vk && k < vk->size()) a2 += std::pow(((*vk)[k] - (*vk)[k - 1]) / dt, 2);
-        a_max = std::max(a_max, std::sqrt(a2));
-      }
-      if (a_max > 0.0) s.rigid_force_N = rope->mass * a_max, s.dynamic_factor = s.max_horizontal_force_N / *s.rigid_force_N;
-    }
+  out.reserve(ropes_.size());
+  for (const Rope& r : ropes_) {
+    SwaySummary s = r.s;
+    if (r.a_max > 0.0) s.rigid_force_N = r.law->mass * r.a_max, s.dynamic_factor = s.max_horizontal_force_N / *s.rigid_force_N;
     out.push_back(std::move(s));
   }
   return out;
 }
+
+std::vector<SwaySummary> sway_summaries(const Model&, const SimulationResult& r) { return r.sway; }
 
 }  // namespace machdyn

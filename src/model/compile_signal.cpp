@@ -82,17 +82,25 @@ std::optional<double> unit_factor(FieldReader& f, std::string_view key, const Di
 
 /// `type: shaped`: a reference `signal` shaped against an oscillation of `frequency` (or of a
 /// pendulum of `length`, ω² = g/L with standard gravity) and `damping` ζ (model/shaper.hpp).
+/// `shaper: none` passes the signal through unchanged (the same Signal), so that one file states a
+/// move and a sweep over `shaper` runs it unshaped and shaped; its frequency (or length) and damping
+/// may be left out and are checked as for the others when given.
 std::optional<Signal> read_shaped(FieldReader& f, const Dim& d, int depth) {
-  auto kind = f.word("shaper", {"zv", "zvd", "two-step"});
+  auto kind = f.word("shaper", {"none", "zv", "zvd", "two-step"});
+  const bool pass = kind && *kind == "none";
   const bool by_length = f.node("length") != nullptr;
   std::optional<double> omega;
+  bool design_ok = true;  // the frequency or length, where one is needed or given
   if (by_length && f.map().find("frequency")) {
     f.error_at("length", "give either 'frequency' or 'length' (a pendulum's, ω² = g/L), not both");
+    design_ok = false;
   } else if (by_length) {
     auto L = f.positive("length", dim::length);
     if (L) omega = std::sqrt(kStandardGravity / *L);
-  } else {
+    design_ok = omega.has_value();
+  } else if (!pass || f.map().find("frequency")) {
     omega = read_frequency(f);
+    design_ok = omega.has_value();
   }
   const std::optional<double> damping = f.quantity("damping", dim::none, 0.0);
   bool ok = damping.has_value();
@@ -108,7 +116,8 @@ std::optional<Signal> read_shaped(FieldReader& f, const Dim& d, int depth) {
   std::optional<Signal> s;
   if (!base) f.error_at("signal", "missing field 'signal' (the reference to shape, e.g. {type: ramp, value: 1 m/s, end: 2 s})");
   else s = compile_signal_at(*base, d, fmt::format("{}: field 'signal'", f.what()), f.diagnostics(), depth + 1);
-  if (!kind || !omega || !ok || !s) return std::nullopt;
+  if (!kind || !design_ok || !ok || !s) return std::nullopt;
+  if (pass) return s;
   try {
     if (*kind == "two-step") return two_step_signal(*s, *omega);
     return shaped_signal(*s, shaper_impulses(*kind == "zv" ? ShaperKind::zv : ShaperKind::zvd, *omega, zeta));

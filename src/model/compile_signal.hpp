@@ -14,7 +14,7 @@
 //     pulse      high, low (0), period, width (a time, or a % of the period), start (0), count
 //     expression expression (of t)
 //     sum        terms: [signal, ...]
-//     shaped     shaper: zv|zvd|two-step, frequency | length, damping (0), signal (model/shaper.hpp)
+//     shaped     shaper: none|zv|zvd|two-step, frequency | length, damping (0), signal (model/shaper.hpp)
 //     file       a CSV file: replaced by a table when the model file is read (io/model_file.hpp)
 #include <cstddef>
 #include <optional>

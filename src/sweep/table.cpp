@@ -76,7 +76,6 @@ SummaryColumns sway_summary_columns() {
       v.insert(v.end(), {s.max_sway_rad, s.residual_after ? s.residual_sway_rad : nan, s.max_horizontal_force_N,
                          s.dynamic_factor.value_or(nan)});
   };
-  g.needs_series = [](const Model& m) { return !sway_rope_names(m).empty(); };
   return g;
 }
 
@@ -215,12 +214,10 @@ std::string execute_run(const SweepPlan& plan, const SweepRun& run, const std::v
     // The cases of a file run event-driven, smooth or not, as with `simulate --all-cases`: every row
     // of a case sweep is computed alike and has the quasi-static load at a negative peak.
     // The table needs the summaries only: event-driven runs skip the time series (a third of a
-    // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs)
-    // unless a group takes its values from the output rows (the sway summary).
+    // travel start-up run; the smooth path needs its series for machines, analysis/machine_outputs),
+    // and so do runs with a spatial rope: their sway summary is taken during the run.
     SimulateOptions summaries_only;
     summaries_only.record_series = false;
-    for (const auto& g : columns)
-      if (g.needs_series && g.needs_series(m)) summaries_only.record_series = true;
     summaries_only.event_driven = runs_event_driven(m);
     const SimulationResult r = simulate(m, summaries_only);
     // Each group's values, in the table's columns: a column the run's model has no element for

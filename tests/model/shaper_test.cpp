@@ -183,10 +183,39 @@ TEST_P(Shaping, TheShippedExampleSwingsOnlyUnshaped) {
   }
 }
 
+// Claim: `shaper: none` passes the reference through: the run is the unshaped model's, every column
+// of every row the same bits, whether the design (a length, or a frequency and damping) is given or not.
+TEST_P(Shaping, NoneIsTheUnshapedReference) {
+  const double w = std::sqrt(kStandardGravity / kL), c = kM * w * w;
+  const SimulationResult plain = run(kRamp, c, 0, 8);
+  for (const std::string& none : {"{type: shaped, shaper: none, length: 10 m, signal: " + kRamp + "}",
+                                  "{type: shaped, shaper: none, frequency: 0.2 Hz, damping: 0.1, signal: " + kRamp + "}",
+                                  "{type: shaped, shaper: none, signal: " + kRamp + "}"}) {
+    const SimulationResult r = run(none, c, 0, 8);
+    ASSERT_EQ(r.column_names, plain.column_names) << none;
+    ASSERT_GT(plain.columns[0].size(), 1000u);
+    for (size_t j = 0; j < r.columns.size(); ++j) EXPECT_EQ(r.columns[j], plain.columns[j]) << none << ": " << r.column_names[j];
+    EXPECT_EQ(r.stats.stepper.steps, plain.stats.stepper.steps) << none;
+  }
+  // and the shapers do change it (the comparison above can fail)
+  EXPECT_NE(run("{type: shaped, shaper: zv, length: 10 m, signal: " + kRamp + "}", c, 0, 8).columns[1], plain.columns[1]);
+}
+
 // Claim: bad shaping is a located error naming what was expected.
 TEST(Shaper, BadShapingIsALocatedError) {
   auto err = [](const std::string& speed) { return test::compile_errors(trolley(speed, 1000, 0, 5)); };
-  EXPECT_NE(err("{type: shaped, shaper: zx, length: 10 m, signal: 1 m/s}").find("test.yaml:2:"), std::string::npos);
+  const std::string kind = err("{type: shaped, shaper: zx, length: 10 m, signal: 1 m/s}");
+  EXPECT_NE(kind.find("test.yaml:2:"), std::string::npos) << kind;
+  for (const char* k : {"none", "zv", "zvd", "two-step"}) EXPECT_NE(kind.find(k), std::string::npos) << kind;
+  // `none` needs no design, but one given is checked as for the others.
+  EXPECT_EQ(err("{type: shaped, shaper: none, signal: 1 m/s}"), "");
+  EXPECT_NE(err("{type: shaped, shaper: none, length: -1 m, signal: 1 m/s}").find("length"), std::string::npos);
+  EXPECT_NE(err("{type: shaped, shaper: none, frequency: 0 Hz, signal: 1 m/s}").find("'frequency'"), std::string::npos);
+  EXPECT_NE(err("{type: shaped, shaper: none, frequency: 1 Hz, damping: 2, signal: 1 m/s}").find("[0, 1)"),
+            std::string::npos);
+  EXPECT_NE(err("{type: shaped, shaper: none}").find("missing field 'signal'"), std::string::npos);
+  EXPECT_NE(err("{type: shaped, shaper: none, length: 10 m, frequency: 1 Hz, signal: 1 m/s}").find("not both"),
+            std::string::npos);
   EXPECT_NE(err("{type: shaped, shaper: zv, length: 10 m, frequency: 1 Hz, signal: 1 m/s}").find("not both"),
             std::string::npos);
   EXPECT_NE(err("{type: shaped, shaper: zv, frequency: 1 Hz, damping: 1, signal: 1 m/s}").find("[0, 1)"),

@@ -210,5 +210,81 @@ TEST(SweepSway, CommandLineCaseSweepAndPlot) {
   EXPECT_FALSE(fs::exists(test::temp_dir() / "bad" / "sweep.csv"));
 }
 
+/// A trolley move of 40 t on 12 m (the PI drive of examples/crane/trolley-sway.yaml): 0 → 0.63 m/s
+/// over the ramp's `end`, its reference `reference` (a `shaped` one with `shaper: none`, or the ramp).
+std::string move_model(const std::string& reference) {
+  return "name: trolley move\nbodies:\n  trolley: {type: translational, mass: 8 t}\n"
+         "  load: {type: point-mass, mass: 40 t, axes: [x, z]}\n"
+         "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, length: 12 m, EA: 1.2e8 N, falls: 4, "
+         "damping: 20 kN*s/m, sway_after: 14 s}\n"
+         "drives:\n  travel:\n    type: speed-drive\n    body: trolley\n    reference: " + reference + "\n"
+         "    gain: 4e5 N*s/m\n    integral_time: 0.5 s\n    torque_limit: 60 kN\n"
+         "simulation: {t_end: 20 s, dt_out: 10 ms}\n";
+}
+
+// Claim: one model file states the move and one --vary over `travel.reference.shaper` runs it unshaped
+// (`none`) and shaped (zv, zvd, two-step) in ONE sweep, over the ramp's end: every ok row's sway columns
+// and steps are `simulate`'s of the same point, bit for bit (the sweep keeps no series, its summary is
+// the run's own); the `none` rows are the unshaped model's (the ramp itself as reference); the shapers
+// designed for the rope's 12 m leave a fifth of the unshaped residual at most; the two-step move that
+// cannot coast (a ramp of 8 s: its first half outlasts half a period, 3.5 s) is an error row with its
+// message, and the sweep's other rows are all there (run_sweep: 7 ok, 1 error, the table complete).
+TEST_P(SweepSwayBoth, OneSweepOverTheShaperKind) {
+  const std::string shaped = test::write_temp(
+      "move-shaped.yaml", move_model("{type: shaped, shaper: none, length: 12 m, signal: {type: ramp, value: 0.63 m/s, end: 3 s}}"));
+  const std::string plain = test::write_temp("move-plain.yaml", move_model("{type: ramp, value: 0.63 m/s, end: 3 s}"));
+  SweepRequest req;
+  req.model_path = shaped;
+  req.sets = {"simulation.integrator=" + GetParam()};
+  req.vary = {"travel.reference.signal.end=3 s,8 s", "travel.reference.shaper=none,zv,zvd,two-step"};
+  const auto plan = make_sweep_plan(req);
+  ASSERT_EQ(plan.runs.size(), 8u);
+  const auto cols = standard_summary_columns();
+  const auto header = split_csv_line(sweep_header(plan, cols));
+  const size_t status = sway_column(header, "status"), residual = sway_column(header, "rope.residual_sway_rad");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& run : plan.runs) rows.push_back(split_csv_line(execute_run(plan, run, cols)));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& run = plan.runs[i];
+    const std::string end = run.values[0].text, kind = run.values[1].text, what = kind + ", end " + end;
+    ASSERT_EQ(rows[i].size(), header.size()) << what;
+    if (kind == "two-step" && end == "8 s") {
+      EXPECT_EQ(rows[i][status], "error") << what;
+      EXPECT_NE(rows[i].back().find("no coasting"), std::string::npos) << rows[i].back();
+      EXPECT_EQ(rows[i][residual], "") << what;
+      continue;
+    }
+    ASSERT_EQ(rows[i][status], "ok") << what << ": " << rows[i].back();
+    auto sets = req.sets;
+    sets.push_back("travel.reference.signal.end=" + end);
+    sets.push_back("travel.reference.shaper=" + kind);
+    const Model m = load_model(shaped, sets);
+    const SimulationResult r = simulate(m);
+    EXPECT_EQ(std::stol(rows[i][sway_column(header, "steps")]), r.stats.stepper.steps) << what;
+    expect_sway_equal(header, rows[i], simulation_summary(m, r), what);
+    if (kind == "none") {  // the unshaped model: the same run
+      const Model u = load_model(plain, {"simulation.integrator=" + GetParam(), "travel.reference.end=" + end});
+      const SimulationResult ru = simulate(u);
+      EXPECT_EQ(std::stol(rows[i][sway_column(header, "steps")]), ru.stats.stepper.steps) << what;
+      expect_sway_equal(header, rows[i], simulation_summary(u, ru), what + " against the plain ramp");
+    }
+  }
+  // Rows 0–3: end 3 s, none, zv, zvd, two-step (the last --vary fastest).
+  const double unshaped = std::stod(rows[0][residual]);
+  EXPECT_GT(unshaped, 0.01);
+  for (size_t i = 1; i < 4; ++i) EXPECT_LT(std::stod(rows[i][residual]), unshaped / 5) << plan.runs[i].values[1].text;
+  // The whole sweep on two threads: every finished row in the table, the failing one reported.
+  SweepOptions opt;
+  opt.out_dir = (test::temp_dir() / ("shapers-" + GetParam())).string();
+  opt.jobs = 2;
+  const SweepOutcome out = run_sweep(plan, opt);
+  ASSERT_TRUE(out.complete);
+  EXPECT_EQ(out.ok, 7);
+  EXPECT_EQ(out.errors, 1);
+  const auto table = test::lines_of(test::slurp(out.table_path));
+  ASSERT_EQ(table.size(), 9u);
+  for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(split_csv_line(table[i + 1]), rows[i]) << "run " << i;
+}
+
 }  // namespace MACHDYN_UNITY_ID
 }  // namespace machdyn

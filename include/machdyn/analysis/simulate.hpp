@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "machdyn/analysis/hybrid_report.hpp"
+#include "machdyn/analysis/sway_summary.hpp"
 #include "machdyn/model/model.hpp"
 #include "machdyn/solve/driver.hpp"
 #include "machdyn/solve/stepper.hpp"
@@ -69,6 +70,7 @@ struct SimulationResult {
   std::string method_reason;                  ///< why this integrator (for `integrator: auto`)
   HybridReport hybrid;                        ///< events, slip phases, energy (models with gaps or friction)
   std::vector<MachineRunReport> machines;     ///< machines with velocity jumps or a point-speed report
+  std::vector<SwaySummary> sway;              ///< per spatial rope, taken on the output grid during the run
 };
 
 /// The integrator `auto` picks, from O(n) Gershgorin bounds ρ_D ≥ |Re λ| of M⁻¹D and ω_K ≥ ω_max:

@@ -1,26 +1,30 @@
 #pragma once
 /// @file
-/// The summary values of every spatial rope in one run (summary.json `sway`; elements/spatial_rope.hpp,
-/// docs/sway.md), read from the run's output columns:
-///   largest sway   max over the rows of |θ| over the rope's sway columns (x, y; radial, tangential
-///                  with a jib), rad, and its time
+/// The summary values of every spatial rope in one run (summary.json `sway`, SimulationResult::sway;
+/// elements/spatial_rope.hpp, docs/sway.md), taken during the run from each row of its output grid
+/// (SwayObserver: no time series needed or kept):
+///   largest sway   max over the rows of |θ| over the rope's sway outputs (x, y; radial, tangential
+///                  with a jib), rad, and its time (the earliest row that reaches it)
 ///   residual sway  the same over the rows at t ≥ t_r (the rope's `sway_after`: the end of a move) —
 ///                  the residual amplitude, rad
 ///   horizontal     the largest horizontal force on the suspension point, N, and its time; the
 ///                  largest tension, N
 ///   dynamic factor the horizontal force's peak over the force of rigid acceleration m a of the load
 ///                  (EN 13001-2's φ5 for drive forces), a the largest horizontal acceleration of the
-///                  suspension point's travel (trolley and bridge; from their velocity columns'
-///                  differences between rows); absent for a rope without a trolley or bridge, with a
-///                  jib, or when the suspension point never accelerates
+///                  suspension point's travel (trolley and bridge; from their velocities' differences
+///                  between consecutive rows, |Δv|/Δt); absent for a rope without a trolley or bridge,
+///                  with a jib, or when the suspension point never accelerates
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/model/model.hpp"
 
 namespace machdyn {
+
+class DriveSystem;
+class SpatialRope;
+struct SimulationResult;
 
 struct SwaySummary {
   std::string rope;                          ///< the rope's name
@@ -33,8 +37,37 @@ struct SwaySummary {
   std::optional<double> dynamic_factor;      ///< max horizontal force / (m a)
 };
 
-/// One entry per spatial rope of `m` (model order) for the run `r` of `m`; empty without one. Needs
-/// the run's time series.
+/// The run's observer of the sway summary: one call per output row, in time order, with the state
+/// the row is written from; the summaries at the end. Holds a few numbers per rope, never a series.
+class SwayObserver {
+ public:
+  /// The spatial ropes of `m` (model order); none: empty().
+  explicit SwayObserver(const Model& m);
+  [[nodiscard]] bool empty() const { return ropes_.empty(); }
+  /// The row at t of the state y (positions, then velocities, then the elements' states) of the run's
+  /// drive system `sys`, whose elements are `m`'s drives.
+  void row(const DriveSystem& sys, double t, const double* y);
+  /// One entry per spatial rope (model order).
+  [[nodiscard]] std::vector<SwaySummary> summaries() const;
+
+ private:
+  struct Rope {
+    int drive = 0;                  ///< its index in Model::drives
+    const SpatialRope* law = nullptr;
+    std::vector<int> sway;          ///< the sway angles' places in its outputs
+    int horizontal = 0;             ///< the horizontal force's place
+    std::vector<int> travel;        ///< the velocity states (y index) of its trolley and bridge (no jib)
+    std::vector<double> v_prev;     ///< their velocities at the previous row
+    double t_prev = 0.0;
+    bool started = false;           ///< a previous row exists
+    double a_max = 0.0;             ///< the largest horizontal acceleration so far, m/s²
+    SwaySummary s;
+  };
+  std::vector<Rope> ropes_;
+  std::vector<double> out_;  ///< one rope's outputs
+};
+
+/// The sway summary of the run `r` (r.sway, computed by the run's SwayObserver); `m` is the model run.
 std::vector<SwaySummary> sway_summaries(const Model& m, const SimulationResult& r);
 
 /// The names of the ropes sway_summaries() reports on for a run of `m`, in its order (known before

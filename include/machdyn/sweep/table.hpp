@@ -34,9 +34,6 @@ struct SummaryColumns {
   std::function<std::vector<std::string>(const Model& m)> header;
   /// The values of one run, as many as header(run_model) gave, in its order; NaN is written `nan`.
   std::function<void(const Model& run_model, const SimulationResult& result, std::vector<double>& values)> values;
-  /// Whether the values need the run's time series on the output grid (SimulateOptions::record_series;
-  /// empty: no). A run records it when any group of the table asks for it.
-  std::function<bool(const Model& run_model)> needs_series;
 };
 
 /// The link peaks, the peaks of larger magnitude and the hybrid figures (event-driven runs only),
@@ -63,11 +60,11 @@ SummaryColumns peak_summary_columns();
 SummaryColumns hybrid_summary_columns();
 
 /// The sway summary of every spatial rope R (analysis/sway_summary.hpp; summary.json's `sway`, the same
-/// function over the same output rows, so the same numbers): `R.max_sway_rad` (the largest sway angle),
-/// `R.residual_sway_rad` (the largest from the rope's `sway_after` on; nan without it),
+/// numbers: the run's observer of its output rows, SimulationResult::sway): `R.max_sway_rad` (the largest
+/// sway angle), `R.residual_sway_rad` (the largest from the rope's `sway_after` on; nan without it),
 /// `R.max_horizontal_force_N` (on the suspension point) and `R.horizontal_dynamic_factor` (that peak over
-/// m a; nan where summary.json has none: a jib, no travel, no acceleration). The summary is taken from
-/// the output rows, so a run with a spatial rope records its time series (needs_series).
+/// m a; nan where summary.json has none: a jib, no travel, no acceleration). Taken during the run: the
+/// sweep's runs keep no time series.
 SummaryColumns sway_summary_columns();
 
 /// The column names of each group: the union of its header over column_models(plan), first seen first.
