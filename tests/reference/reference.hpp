@@ -52,9 +52,10 @@
 /// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
 ///
-/// Spatial ropes (SwayRope) are force elements on a point-mass load's coordinates, a trolley, a
-/// bridge and a drum, written from docs/sway.md: a mode per rope (taut, slack), its switching
-/// function F (taut) or −e (slack); a ground stop under the load's z makes the lift-off.
+/// Spatial ropes (SwayRope) are force elements on a point-mass load's coordinates (or a planar rigid
+/// load's x, z and ψ, pulled at a point of its own), a trolley, a bridge and a drum, written from
+/// docs/sway.md: a mode per rope (taut, slack), its switching function F (taut) or −e (slack); a
+/// ground stop under the load's z makes the lift-off. No jib.
 ///
 /// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
 /// motions, buffers other than linear, drives other than the DC motor, machines; releases only on free bodies without gears, at t_r > 0;
