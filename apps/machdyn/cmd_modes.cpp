@@ -12,6 +12,7 @@
 #include "machdyn/io/folder_lock.hpp"
 #include "machdyn/analysis/frequency_response.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
+#include "machdyn/analysis/mode_kinds.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
 #include "machdyn/elements/linearize.hpp"
@@ -87,10 +88,15 @@ void print_topology(const Model& m, const TopologyModes& t, size_t index, size_t
   }
   std::string names;
   for (const auto& b : m.bodies) names += (names.empty() ? "" : ", ") + b.name;
-  std::cout << fmt::format("  {:>4} {:>16} {:>14}   mass-normalized shape ({})\n", "mode", "omega [rad/s]", "f [Hz]", names);
+  // A swinging load's model: each mode's kind (pendulum, rope stretch, drive line; analysis/mode_kinds.hpp).
+  const bool kinds = has_swinging_load(m);
+  const std::vector<ModeKind> kind = kinds ? mode_kinds(m, t.modes.shapes) : std::vector<ModeKind>{};
+  std::cout << fmt::format("  {:>4} {:>16} {:>14} {}  mass-normalized shape ({})\n", "mode", "omega [rad/s]", "f [Hz]",
+                           kinds ? fmt::format("{:<12} ", "kind") : std::string(), names);
   const Eigen::Index shown = std::min<Eigen::Index>(t.modes.omega.size(), 20);
   for (Eigen::Index k = 0; k < shown; ++k) {
     std::string shape;
+    if (kinds) shape = fmt::format(" {:<12}", to_string(kind[static_cast<size_t>(k)]));
     for (Eigen::Index i = 0; i < std::min<Eigen::Index>(t.modes.shapes.rows(), 12); ++i)
       shape += fmt::format(" {:+.4f}", t.modes.shapes(i, k));
     if (t.modes.shapes.rows() > 12) shape += " ...";

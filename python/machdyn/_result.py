@@ -203,6 +203,9 @@ class Modes:
     ``omega``: elastic natural frequencies, rad/s, ascending. ``frequencies_hz``: the same in Hz.
     ``shapes``: bodies × modes, mass-normalized (φᵀ M φ = 1). ``bodies``: the row names.
     ``rigid_body_modes``: how many (ω = 0). ``summary``: the dict of ``machdyn modes --json``.
+    ``kinds``: per mode ``"pendulum"``, ``"rope stretch"`` or ``"drive line"`` (a model with a
+    spatial rope: by the loads' share of the mode's kinetic energy, docs/sway.md "Pendulum modes";
+    every mode ``"drive line"`` without one); ``pendulum_modes``: the indices of the pendulum modes.
     ``topology``: the topology (mode of every gap, contact, brake and stop) these arrays belong to —
     without a ``topology`` argument the first listed, the initial state's (a load resting on the
     floor has no rope mode there). ``topologies``: the labels of every topology in ``summary``;
@@ -219,6 +222,8 @@ class Modes:
         self.rigid_body_modes: int = summary["rigid_body_modes"]
         self.topology: str = summary.get("topology", "")
         self.topologies: list[str] = [t["topology"] for t in summary.get("topologies", [])]
+        self.kinds: list[str] = list(summary.get("kinds", ["drive line"] * len(self.omega)))
+        self.pendulum_modes: list[int] = [k for k, kind in enumerate(self.kinds) if kind == "pendulum"]
         self._model = model
 
     def select(self, topology: int | str) -> "Modes":
@@ -245,8 +250,10 @@ class Modes:
                 f"f = {np.array2string(self.frequencies_hz, precision=4)} Hz{more}>")
 
     def _repr_html_(self) -> str:
-        rows = [[k + 1, _g(w, 8), _g(w / (2 * np.pi), 8)] + [f"{self.shapes[i, k]:+.4f}" for i in range(len(self.bodies))]
+        named = "kinds" in self.summary  # a swinging load's model: each mode's kind
+        rows = [[k + 1, _g(w, 8), _g(w / (2 * np.pi), 8)] + ([self.kinds[k]] if named else []) +
+                [f"{self.shapes[i, k]:+.4f}" for i in range(len(self.bodies))]
                 for k, w in enumerate(self.omega)]
         where = f"topology {self.topology}; " if self.topology else ""
-        return _table_html(["mode", "ω [rad/s]", "f [Hz]"] + self.bodies, rows,
+        return _table_html(["mode", "ω [rad/s]", "f [Hz]"] + (["kind"] if named else []) + self.bodies, rows,
                            f"{where}{self.rigid_body_modes} rigid-body mode(s)")

@@ -58,3 +58,28 @@ def test_a_model_without_a_spatial_rope_has_no_sway():
     model = {"bodies": {"a": {"inertia": 1.0}}, "loads": {"M": {"type": "constant", "body": "a", "value": 1.0}},
              "simulation": {"t_end": 0.1, "dt_out": 0.01}}
     assert "sway" not in machdyn.simulate(machdyn.from_dict(model)).summary
+
+
+def test_modes_name_the_pendulum_and_the_stretch_mode():
+    """A load m on a free trolley M: one pendulum mode at ω² = (g/ℓ)(1 + m/M) (ℓ = L0 + m g/c the
+    hanging length, c = EA/L0), one rope-stretch mode at c/m, the kinds equal to the CLI's
+    `modes --json`; a model without a spatial rope has drive-line modes only (docs/sway.md,
+    "Pendulum modes")."""
+    free = dict(MOVE, bodies={"trolley": {"type": "translational", "mass": 5000},
+                              "load": {"type": "point-mass", "mass": M_LOAD, "axes": ["x", "z"]}})
+    md = machdyn.modes(machdyn.from_dict(free))
+    c = EA / L0
+    ell = L0 + M_LOAD * G / c
+    assert md.kinds == ["pendulum", "rope stretch"]
+    assert md.pendulum_modes == [0]
+    assert md.omega[0] ** 2 == pytest.approx(G / ell * (1 + M_LOAD / 5000), rel=1e-9)
+    assert md.omega[1] ** 2 == pytest.approx(c / M_LOAD, rel=1e-9)
+    shares = md.summary["shapes"][0]["energy_shares"]
+    assert shares["sway"] == pytest.approx(5000 / (5000 + M_LOAD), rel=1e-6)
+    assert "pendulum" in md._repr_html_()
+    chain = machdyn.from_dict({"name": "two masses", "bodies": {"a": {"type": "translational", "mass": 1},
+                                                                 "b": {"type": "translational", "mass": 1}},
+                               "links": {"s": {"type": "spring", "between": ["a", "b"], "stiffness": 100}}})
+    plain = machdyn.modes(chain)
+    assert plain.kinds == ["drive line"] and plain.pendulum_modes == []
+    assert "kinds" not in plain.summary

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include "machdyn/analysis/mode_kinds.hpp"
+#include "machdyn/analysis/modes.hpp"
 #include "machdyn/common/csv.hpp"
 #include "io/number_text.hpp"
 
@@ -26,6 +28,14 @@ nlohmann::json shapes_json(const Model& m, const Eigen::VectorXd& omega, const E
     out.push_back({{"mode", k + 1}, {"frequency_rad_s", omega(k)}, {"frequency_hz", omega(k) / kTwoPi},
                    {"amplitudes", amp}});
   }
+  // A swinging load's model: each mode's kind and kinetic energy shares (analysis/mode_kinds.hpp).
+  if (has_swinging_load(m)) {
+    const std::vector<ModeShares> s = mode_shares(m, mass_diagonal(m), shapes);
+    for (size_t k = 0; k < s.size(); ++k) {
+      out[k]["kind"] = to_string(mode_kind(s[k]));
+      out[k]["energy_shares"] = {{"sway", s[k].sway}, {"stretch", s[k].stretch}, {"drive", s[k].drive}};
+    }
+  }
   return out;
 }
 }  // namespace
@@ -44,6 +54,11 @@ nlohmann::json topology_modes_json(const Model& m, const TopologyModes& t) {
   j["frequencies_rad_s"] = w;
   j["frequencies_hz"] = hz;
   j["shapes"] = shapes_json(m, t.modes.omega, t.modes.shapes);
+  if (has_swinging_load(m)) {
+    nlohmann::json kinds = nlohmann::json::array();
+    for (const auto& s : j["shapes"]) kinds.push_back(s["kind"]);
+    j["kinds"] = kinds;
+  }
   if (t.damped_skipped) j["damped_modes_skipped"] = "more coordinates than the dense state-space solver takes";
   if (t.damped) {
     nlohmann::json d = nlohmann::json::array();
@@ -79,6 +94,7 @@ nlohmann::json linear_modes_json(const Model& m, const std::vector<TopologyModes
   if (!list.empty()) {
     for (const char* k : {"rigid_body_modes", "frequencies_rad_s", "frequencies_hz", "shapes", "topology"})
       j[k] = all[0][k];
+    if (all[0].contains("kinds")) j["kinds"] = all[0]["kinds"];
   }
   j["topologies"] = all;
   return j;

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "machdyn/analysis/mode_kinds.hpp"
 #include "machdyn/model/describe.hpp"
 #include "machdyn/model/element.hpp"
 #include "machdyn/model/sheaves.hpp"
@@ -144,9 +145,14 @@ Table results_table(const Model& m, const SimulationResult& r) {
 
 Table modes_table(const Model& m, const Modes& modes) {
   Table t = table("Natural frequencies and mass-normalized mode shapes", {"mode", "ω, rad/s", "f, Hz"});
+  // A swinging load's model: each mode's kind (analysis/mode_kinds.hpp).
+  const bool kinds = has_swinging_load(m);
+  const std::vector<ModeKind> kind = kinds ? mode_kinds(m, modes.shapes) : std::vector<ModeKind>{};
+  if (kinds) t.header.push_back("kind");
   for (const auto& b : m.bodies) t.header.push_back("φ(" + b.name + ")");
   for (Eigen::Index k = 0; k < modes.omega.size(); ++k) {
     std::vector<std::string> row{fmt::format("{}", k + 1), num(modes.omega(k)), num(modes.omega(k) / (2 * std::numbers::pi))};
+    if (kinds) row.push_back(to_string(kind[static_cast<size_t>(k)]));
     for (Eigen::Index i = 0; i < modes.shapes.rows(); ++i) row.push_back(fmt::format("{:+.4f}", modes.shapes(i, k)));
     t.rows.push_back(std::move(row));
   }

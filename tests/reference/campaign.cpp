@@ -369,8 +369,9 @@ RefModel without_body(const RefModel& m, int i) {
     if (G.a != i && G.b != i) G.a = map(G.a), G.b = map(G.b), s.meshes.push_back(G);
   s.sway.clear();
   for (auto R : m.sway) {
-    if (R.x == i || R.y == i || R.z == i || R.trolley == i || R.bridge == i || R.drum == i) continue;
-    R.x = map(R.x), R.y = map(R.y), R.z = map(R.z), R.trolley = map(R.trolley), R.bridge = map(R.bridge), R.drum = map(R.drum);
+    if (R.x == i || R.y == i || R.z == i || R.psi == i || R.trolley == i || R.bridge == i || R.drum == i) continue;
+    R.x = map(R.x), R.y = map(R.y), R.z = map(R.z), R.psi = map(R.psi), R.trolley = map(R.trolley), R.bridge = map(R.bridge),
+    R.drum = map(R.drum);
     s.sway.push_back(R);
   }
   s.gears.clear();
@@ -480,7 +481,7 @@ namespace {
 /// engine run's column (NaN where it has none).
 double state_of(const RefResult& r, size_t k, size_t i, int w) { return w == 0 ? r.q[k][i] : r.v[k][i]; }
 double state_of(const RefModel& m, const SimulationResult& r, size_t k, size_t i, int w) {
-  const bool rot = m.rotational && !m.bodies[i].linear;
+  const bool rot = (m.rotational && !m.bodies[i].linear) || m.bodies[i].angular;
   const std::string name = m.bodies[i].name + (w == 0 ? (rot ? ".position_rad" : ".position_m") : (rot ? ".velocity_rad_s" : ".velocity_m_s"));
   for (size_t c = 0; c < r.column_names.size(); ++c)
     if (r.column_names[c] == name) return k < r.columns[c].size() ? r.columns[c][k] : std::nan("");

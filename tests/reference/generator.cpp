@@ -626,7 +626,55 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       }
       m.loads.push_back({"hoist", R.drum, hoist});
     }
-    m.sway.push_back(R);
+    // A rigid load (type: rigid-load, planar) in some planar models, from a stream of its own so
+    // that every other model of the family keeps its numbers: the point-mass load above becomes a
+    // body of inertia J = m (0.05–2) m² with its angle ψ, hung either by one rope at a point
+    // a = (a_h, a_z) of its own (a_z 0.05–0.5 m above the centre; a_h within ±0.3 m: a compound
+    // pendulum, turning when a is off the vertical) where the point mass was, or as a spreader on
+    // two ropes at a = (±a_h, a_z) from suspension points ±d along x (d within 10 % of a_h: a
+    // parallelogram or nearly), each carrying half the weight, both on the drum if there is one.
+    Rng rr{seed * 0x2545F4914F6CDD1Dull + index * 0x9E3779B97F4A7C15ull + fnv("sway: the rigid load")};
+    for (int k = 0; k < 4; ++k) rr.next();
+    if (!space && rr.p(0.4)) {
+      const bool spreader = rr.p(0.5);
+      const double J = sig(ml * rr.log_u(0.05, 2.0));
+      const double az = sig(rr.u(0.05, 0.5)), ah = spreader ? sig(rr.u(0.3, 1.5)) : sig(rr.u(-0.3, 0.3));
+      const double psi0 = rr.p(0.5) ? 0.0 : sig(rr.u(-0.05, 0.05)), w0 = moving && rr.p(0.5) ? sig(rr.u(-0.2, 0.2)) : 0.0;
+      Body& X = m.bodies[static_cast<size_t>(R.x)];
+      Body& Z = m.bodies[static_cast<size_t>(R.z)];
+      R.attach[0] = ah, R.attach[1] = az;
+      const double ra_h = ah * std::cos(psi0) - az * std::sin(psi0), ra_z = ah * std::sin(psi0) + az * std::cos(psi0);
+      if (!spreader) {  // the rope's point where the point mass was: the centre c = r − R(ψ0) a
+        X.q0 = sig(X.q0 - ra_h, 6);
+        if (lift) R.h = sig(R.h + ra_z, 6);  // the centre on the stop at z = 0
+        else Z.q0 = sig(Z.q0 - ra_z, 6);
+      } else {  // each rope carries m g/2: its static stretch m g/(2c)
+        const double off = sig(ah * rr.u(0.9, 1.1)), half = ml * g / (2.0 * c);
+        if (lift) {  // the centre on the stop, the ropes from −0.03 to 0.3 of the static stretch long
+          const double l0 = R.L0 + rr.u(-0.03, 0.3) * half;
+          X.q0 = sig(0.5 * sx * R.L0);
+          R.h = sig(std::sqrt(l0 * l0 - X.q0 * X.q0) + az, 6);
+        } else {  // hanging at sin θ = sx, within 1 % of the static length
+          const double rho = (R.L0 + half) * (1.0 + rr.u(-0.01, 0.002));
+          R.h = sig(R.L0 + half + az, 6);
+          X.q0 = sig(rho * sx, 6), Z.q0 = sig(R.h - az - rho * std::sqrt(1.0 - sx * sx), 6);
+        }
+        R.offset = off;
+      }
+      R.psi = static_cast<int>(m.bodies.size());
+      m.bodies.push_back({"L.psi", J, psi0, w0});
+      m.bodies.back().load_coordinate = true, m.bodies.back().angular = true;
+      if (spreader) {
+        SwayRope R2 = R;
+        R2.name = "rope2", R2.attach[0] = -ah, R2.offset = -R.offset;
+        m.sway.push_back(R);
+        m.sway.push_back(R2);
+      } else {
+        m.sway.push_back(R);
+      }
+    } else {
+      m.sway.push_back(R);
+    }
   }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
@@ -707,13 +755,23 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
       const std::string load = b.name.substr(0, b.name.rfind('.'));
       if (!loads_written.insert(load).second) continue;
       std::string axes, pos, vel;
+      const Body* psi = nullptr;  // a rigid load's angle LOAD.psi
       for (const auto& c : m.bodies)
         if (c.load_coordinate && c.name.rfind(load + ".", 0) == 0) {
+          if (c.angular) {
+            psi = &c;
+            continue;
+          }
           if (!axes.empty()) axes += ", ", pos += ", ", vel += ", ";
           axes.append(c.name, load.size() + 1), pos += num(c.q0), pos += " m", vel += num(c.v0), vel += " m/s";
         }
-      y += "  " + load + ": {type: point-mass, mass: " + num(b.m) + " kg, axes: [" + axes + "], position: [" + pos +
-           "], velocity: [" + vel + "]}\n";
+      if (psi)
+        y += "  " + load + ": {type: rigid-load, mass: " + num(b.m) + " kg, inertia: " + num(psi->m) + " kg*m^2, axes: [" + axes +
+             "], position: [" + pos + "], velocity: [" + vel + "], angle: " + num(psi->q0) + " rad, angular_velocity: " +
+             num(psi->v0) + " rad/s}\n";
+      else
+        y += "  " + load + ": {type: point-mass, mass: " + num(b.m) + " kg, axes: [" + axes + "], position: [" + pos +
+             "], velocity: [" + vel + "]}\n";
       continue;
     }
     if (b.angular) {  // a rotational body in a translational model (a spatial rope's drum)
@@ -758,7 +816,9 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
     y += "  " + R.name + ": {type: spatial-rope, load: " + R.load + (R.trolley >= 0 ? ", trolley: " + end_name(m, R.trolley) : "") +
          (R.bridge >= 0 ? ", bridge: " + end_name(m, R.bridge) : "") +
          (R.drum >= 0 ? ", drum: " + end_name(m, R.drum) + ", drum_radius: " + num(R.R) + " m" : "") + ", falls: " + num(R.falls) +
-         ", length: " + num(R.L0) + " m, EA: " + num(R.EA) + " N, damping: " + num(R.d) + " N*s/m, height: " + num(R.h) + " m}\n";
+         ", length: " + num(R.L0) + " m, EA: " + num(R.EA) + " N, damping: " + num(R.d) + " N*s/m, height: " + num(R.h) + " m" +
+         (R.psi >= 0 ? ", attach: [" + num(R.attach[0]) + " m, " + num(R.attach[1]) + " m]" : std::string()) +
+         (R.offset != 0.0 ? ", offset: " + num(R.offset) + " m" : std::string()) + "}\n";
   }
   for (const auto& G : m.meshes) {
     if (first_link) y += "links:\n", first_link = false;

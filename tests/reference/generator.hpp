@@ -39,6 +39,10 @@
 ///   gear-mesh        rotational bodies with 1–2 chain links made elastic gear meshes (ratio 0.3–3,
 ///                    damping, backlash 0 or 0.5–5 mrad, efficiency 1 or 0.85–0.99), a contact and a
 ///                    brake to the ground
+///   sway             a load on a spatial rope from a chain body (the trolley; in space also the
+///                    bridge), wound on a drum in some, hanging swinging or resting on a ground stop;
+///                    in some planar models a rigid load (from a stream of its own: the other models
+///                    keep their numbers) on one rope at a point of its own or a spreader on two ropes
 /// The first seven families draw their loads from constant, step, ramp and sine only (their models
 /// are those of the first campaigns); brake, clutch, mixed, signals, gear, planetary, motion, release and kinetic from every kind.
 

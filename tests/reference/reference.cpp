@@ -247,6 +247,10 @@ class Sim {
         const double s = R.R / R.falls, J = m.bodies[static_cast<size_t>(R.drum)].m;
         w = std::max({w, std::sqrt(c * s * s / J), R.d * s * s / J});
       }
+      if (R.psi >= 0) {  // a rigid load's rotation on the rope: √(c |a|²/J), d |a|²/J
+        const double a2 = R.attach[0] * R.attach[0] + R.attach[1] * R.attach[1], J = m.bodies[static_cast<size_t>(R.psi)].m;
+        w = std::max({w, std::sqrt(c * a2 / J), R.d * a2 / J});
+      }
     }
     // A DC motor's electrical rates: R/L and the coupling k/√(L m).
     for (const auto& M : m.motors)
@@ -334,10 +338,20 @@ class Sim {
   struct RopeAt {
     double e = 0, rate = 0, u[3] = {0, 0, 1}, c = 0, dc = 0, s = 0, F = 0;
   };
+  /// A rigid load's rope point relative to its centre, R(ψ) a, and its derivative ∂(R(ψ) a)/∂ψ, in (h, z).
+  static void attach_at(const SwayRope& R, double psi, double ra[2], double dra[2]) {
+    const double c = std::cos(psi), s = std::sin(psi);
+    ra[0] = R.attach[0] * c - R.attach[1] * s, ra[1] = R.attach[0] * s + R.attach[1] * c;
+    dra[0] = -R.attach[0] * s - R.attach[1] * c, dra[1] = R.attach[0] * c - R.attach[1] * s;
+  }
   RopeAt rope_at(const SwayRope& R, const double* y, int mode) const {
     RopeAt o;
-    const double w[3] = {qa(y, R.trolley) - qa(y, R.x), qa(y, R.bridge) - qa(y, R.y), R.h - y[R.z]};
-    const double wd[3] = {va(y, R.trolley) - va(y, R.x), va(y, R.bridge) - va(y, R.y), -y[n_ + R.z]};
+    double ra[2] = {0, 0}, dra[2] = {0, 0};
+    const double psi_dot = R.psi >= 0 ? y[n_ + R.psi] : 0.0;
+    if (R.psi >= 0) attach_at(R, y[R.psi], ra, dra);
+    const double w[3] = {qa(y, R.trolley) + R.offset - qa(y, R.x) - ra[0], qa(y, R.bridge) - qa(y, R.y), R.h - y[R.z] - ra[1]};
+    const double wd[3] = {va(y, R.trolley) - va(y, R.x) - dra[0] * psi_dot, va(y, R.bridge) - va(y, R.y),
+                          -y[n_ + R.z] - dra[1] * psi_dot};
     const double l = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     if (l > 0.0)
       for (int i = 0; i < 3; ++i) o.u[i] = w[i] / l;
@@ -571,6 +585,11 @@ class Sim {
       if (R.trolley >= 0) f[static_cast<size_t>(R.trolley)] -= o.F * o.u[0];
       if (R.bridge >= 0) f[static_cast<size_t>(R.bridge)] -= o.F * o.u[1];
       if (R.drum >= 0) f[static_cast<size_t>(R.drum)] -= o.F * o.s + 0.5 * o.dc * o.e * o.e;
+      if (R.psi >= 0) {  // the pull F u at the rope point r = c + R(ψ) a: its moment F u · ∂r/∂ψ
+        double ra[2], dra[2];
+        attach_at(R, y[R.psi], ra, dra);
+        f[static_cast<size_t>(R.psi)] += o.F * (o.u[0] * dra[0] + o.u[2] * dra[1]);
+      }
     }
     unsigned mask = 0;
     for (size_t k = 0; k < m_.frictions.size(); ++k) {

@@ -52,9 +52,10 @@
 /// A prescribed body (speed or acceleration) has no row or column in P; its acceleration is the
 /// signal's (a speed's right slope), so a stuck contact's λ carries its neighbour along.
 ///
-/// Spatial ropes (SwayRope) are force elements on a point-mass load's coordinates, a trolley, a
-/// bridge and a drum, written from docs/sway.md: a mode per rope (taut, slack), its switching
-/// function F (taut) or −e (slack); a ground stop under the load's z makes the lift-off.
+/// Spatial ropes (SwayRope) are force elements on a point-mass load's coordinates (or a planar rigid
+/// load's x, z and ψ, pulled at a point of its own), a trolley, a bridge and a drum, written from
+/// docs/sway.md: a mode per rope (taut, slack), its switching function F (taut) or −e (slack); a
+/// ground stop under the load's z makes the lift-off. No jib.
 ///
 /// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
 /// motions, buffers other than linear, drives other than the DC motor, machines; releases only on free bodies without gears, at t_r > 0;
@@ -252,11 +253,21 @@ struct DcMotor {
 /// the bridge −F u_y, the drum −F s − ½ (dc/dφ) e² (dc/dφ = n EA s/L²). Modes taut (slack where
 /// F reaches 0) and slack (taut where e reaches 0). A load's z body (a `load_coordinate` body named
 /// LOAD.z) carries −m g (RefModel::g), with or without a rope.
+/// A rigid load (docs/sway.md, docs/model-files.md "Rigid loads"; `type: rigid-load`, planar in x, z):
+/// its centre c = (x, z) and its angle ψ (the rotational body LOAD.psi of inertia J, no weight); the
+/// rope pulls at its point r = c + R(ψ) a, a = (a_h, a_z) the rope's `attach` point in the load's
+/// frame, R(ψ) turning the horizontal axis towards z: r_h = x + a_h cos ψ − a_z sin ψ,
+/// r_z = z + a_h sin ψ + a_z cos ψ; the suspension point lies `offset` d along x from the trolley's
+/// (the two ropes of a spreader). The pull F u at r: F u on the centre's coordinates and the moment
+/// F u · ∂r/∂ψ = F (u_h (−a_h sin ψ − a_z cos ψ) + u_z (a_h cos ψ − a_z sin ψ)) on ψ.
 struct SwayRope {
   std::string name, load;  ///< the rope's and the point-mass load's names
   int x = -1, y = -1, z = 0;  ///< the load's coordinate bodies (x or y −1: absent)
+  int psi = -1;               ///< a rigid load's angle body (−1: a point mass)
   int trolley = -1, bridge = -1, drum = -1;
   double L0 = 1.0, EA = 1e5, falls = 1.0, d = 0.0, h = 1.0, R = 0.1;  ///< m, N, -, N·s/m, m, m
+  double attach[2] = {0.0, 0.0};  ///< a rigid load's rope point (a_h, a_z) in its frame, m
+  double offset = 0.0;            ///< the suspension point's offset along x, m
 };
 
 struct RefModel {

@@ -714,5 +714,62 @@ TEST(ReferenceSimulator, SpatialRopeLiftsTheLoadOffTheGround) {
   EXPECT_GT(r.q.back()[2], 0.01);
 }
 
+// Claim: the reference's rigid load (docs/sway.md: the rope's point c + R(ψ) a, its moment
+// F u·∂r/∂ψ on ψ) swings the compound pendulum — a body m = 1 kg, J = 2 kg·m² on a rope of hanging
+// length ℓ attached a = 1 m above its centre, from a fixed point — in its first mode: with the rope's
+// angle θ and ψ small, T = ½ m (ℓ θ' + a ψ')² + ½ J ψ'², V = ½ m g (ℓ θ² + a ψ²), so
+// det(K − λ M) = 0 is ℓ J λ² − g (m a² + J + m a ℓ) λ + m g² a = 0 and the mode's shape
+// θ/ψ = λ a/(g − λ ℓ); started there at ψ0 = 0.01 rad, ψ = ψ0 cos(√λ₁ t) within 2e-3 ψ0 over two
+// periods (the nonlinear terms O(ψ0²), the rope's stretch (g/ℓ)/(c/m) = 1e-4 relative in λ), and
+// a spreader on two parallel ropes (a = (±1 m, 0.2 m) from offsets ±1 m: a parallelogram) swings
+// its centre as the point pendulum x0 cos(√(g/ℓ) t) whatever J (within 2e-3 x0: the swing's
+// nonlinear frequency shift θ²/16 over 2 s) and barely turns: the ropes' horizontal pulls, m g u_h
+// in all, act a_z above the centre, a moment m g u_h a_z that the ropes' stretch answers with the
+// roll stiffness 2 c a_h², so ψ stays within twice the quasi-static tilt m g (x0/ℓ) a_z/(2 c a_h²)
+// (the roll mode, 100 times faster than the swing, started from ψ = 0: at most twice it, within 10 %).
+TEST(ReferenceSimulator, RigidLoadSwingsAsTheCompoundPendulum) {
+  const double g = 9.80665, m0 = 1.0, J = 2.0, a = 1.0, L0 = 1.0, c = 1e5, l = L0 + m0 * g / c, h = l + a;
+  const double A = l * J, B = g * (m0 * a * a + J + m0 * a * l), C = m0 * g * g * a;
+  const double lam = (B - std::sqrt(B * B - 4 * A * C)) / (2 * A), psi0 = 0.01, th0 = psi0 * lam * a / (g - lam * l);
+  const double xr = l * std::sin(th0), zr = h - l * std::cos(th0);  // the rope's point; the centre R(ψ0)(0, a) below it
+  RefModel m;
+  m.bodies = {{"L.x", m0, xr + a * std::sin(psi0), 0.0}, {"L.z", m0, zr - a * std::cos(psi0), 0.0}, {"L.psi", J, psi0, 0.0}};
+  for (auto& b : m.bodies) b.load_coordinate = true;
+  m.bodies[2].angular = true;
+  SwayRope R;
+  R.name = "rope", R.load = "L", R.x = 0, R.z = 1, R.psi = 2, R.L0 = L0, R.EA = c * L0, R.h = h, R.attach[1] = a;
+  m.sway = {R};
+  const double w = std::sqrt(lam);
+  m.t_end = 2 * 2 * std::numbers::pi / w, m.dt_out = m.t_end / 400;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  double err = 0.0;
+  for (size_t k = 0; k < r.t.size(); ++k) err = std::max(err, std::abs(r.q[k][2] - psi0 * std::cos(w * r.t[k])));
+  EXPECT_LT(err, 2e-3 * psi0) << err;
+  EXPECT_TRUE(of_kind(r, "slack").empty());
+
+  // The spreader: both ropes carry m g/2, ℓ = L0 + m g/(2c); the centre 0.05 m aside.
+  RefModel s;
+  const double ls = L0 + m0 * g / (2 * c), hs = ls + 0.2, x0 = 0.05;
+  s.bodies = {{"L.x", m0, x0, 0.0}, {"L.z", m0, hs - 0.2 - std::sqrt(ls * ls - x0 * x0), 0.0}, {"L.psi", J, 0.0, 0.0}};
+  for (auto& b : s.bodies) b.load_coordinate = true;
+  s.bodies[2].angular = true;
+  SwayRope P = R;
+  P.h = hs, P.attach[0] = 1.0, P.attach[1] = 0.2, P.offset = 1.0;
+  SwayRope Q = P;
+  Q.name = "rope2", Q.attach[0] = -1.0, Q.offset = -1.0;
+  s.sway = {P, Q};
+  s.t_end = 2.0, s.dt_out = 0.01;
+  const RefResult rs = simulate_reference(s);
+  ASSERT_TRUE(rs.error.empty()) << rs.error;
+  double psi = 0.0, swing = 0.0;
+  const double ws = std::sqrt(g / ls);
+  for (size_t k = 0; k < rs.t.size(); ++k)
+    psi = std::max(psi, std::abs(rs.q[k][2])), swing = std::max(swing, std::abs(rs.q[k][0] - x0 * std::cos(ws * rs.t[k])));
+  const double tilt = m0 * g * (x0 / ls) * 0.2 / (2 * c * 1.0 * 1.0);
+  EXPECT_LT(psi, 2.2 * tilt) << psi / tilt;
+  EXPECT_LT(swing, 2e-3 * x0) << swing;
+}
+
 }  // namespace
 }  // namespace machdyn::reference

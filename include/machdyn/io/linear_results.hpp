@@ -19,11 +19,12 @@ namespace machdyn {
 
 /// One topology: label, intervals, counts, frequencies (rad/s and Hz), mass-normalized shapes by
 /// body name, and with damping the damped modes (ω_n, ω_d, ζ, decay rate, complex shape as
-/// magnitude and phase in degrees).
+/// magnitude and phase in degrees). With a spatial rope each shape also has its `kind` ("pendulum",
+/// "rope stretch", "drive line") and `energy_shares` (analysis/mode_kinds.hpp), and "kinds" lists them.
 nlohmann::json topology_modes_json(const Model& m, const TopologyModes& t);
 
 /// Every topology analysed, under "topologies"; the first one's frequencies, shapes and rigid-body
-/// count also at the top level (the fields `modes --json` always had).
+/// count (and "kinds") also at the top level (the fields `modes --json` always had).
 nlohmann::json linear_modes_json(const Model& m, const std::vector<TopologyModes>& list);
 
 /// CSV, one row per mode: topology,mode,omega_rad_s,f_Hz,zeta,omega_d_rad_s (ζ empty when undamped).
