@@ -254,7 +254,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
-    if (st.t() >= bp_next_) [[unlikely]] next_breakpoint(st.t());
+    // No breakpoint ahead (bp_next_ = ∞): no call of t() (virtual) per step.
+    if (bp_next_ != std::numeric_limits<double>::infinity() && st.t() >= bp_next_) [[unlikely]]
+      next_breakpoint(st.t());
     if (audit_) [[unlikely]] audit_->settle();
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
