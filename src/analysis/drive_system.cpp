@@ -995,13 +995,20 @@ bool gap_only(const LinkLaw& k) { return k.gap & !(k.capped | k.shaped | k.windi
 /// its mode at run time (a plain link has no flank but its rest length, whatever its mode).
 bool plain_or_gap(const LinkLaw& k) { return !(k.capped | k.shaped | k.winding | k.point); }
 
+/// The loads of links [l, nl) by the general law (link_load: the plain and gap links' own arithmetic
+/// for them too). Out of line: link_loads' loop over plain and gap links (every link of most models),
+/// which ends here by a tail call, calls nothing else and keeps no frame (an output row's link loads).
+__attribute__((noinline)) void general_link_loads(const DriveSystem& s, int l, int nl, const double* y, double* F) {
+  for (; l < nl; ++l) F[l] = s.link_load(l, y);
+}
+
 }  // namespace
 
 void DriveSystem::link_loads(const double* y, double* F) const {
   const LinkLaw* k = links_.data();  // walked by pointer, the bounds in registers
   for (int l = 0, nl = nl_; l < nl; ++l, ++k) {
-    if (plain_or_gap(*k)) F[l] = k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0);
-    else F[l] = link_load(l, y);
+    if (!plain_or_gap(*k)) [[unlikely]] return general_link_loads(*this, l, nl, y, F);
+    F[l] = k->load(k->linear(y), k->linear(y + n_), gap_[static_cast<size_t>(l)], 0.0);
   }
 }
 

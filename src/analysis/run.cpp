@@ -260,7 +260,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
-    if (st.t() >= bp_next_) [[unlikely]] next_breakpoint(st.t());
+    // No breakpoint ahead (bp_next_ = ∞): no call of t() (virtual) per step.
+    if (bp_next_ != std::numeric_limits<double>::infinity() && st.t() >= bp_next_) [[unlikely]]
+      next_breakpoint(st.t());
     if (audit_) [[unlikely]] audit_->settle();
     if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
   }
@@ -847,11 +849,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       }
       return it->second;
     };
+    // Link l off its flank at the extreme's instant carries 0 whatever the solution (static_loads
+    // sets it so): no solver for that extreme's problem (a gap link's minimum, open at 0).
+    auto static_load = [&](const Extreme& e, int l) {
+      return std::binary_search(e.off.begin(), e.off.end(), l) ? 0.0 : static_loads(e)(l);
+    };
     for (int l = 0; l < nl_; ++l) {
       LinkSummary s;
       s.max = peaks_.max(l), s.min = peaks_.min(l), s.t_max = peaks_.t_max(l), s.t_min = peaks_.t_min(l);
-      s.static_at_max = static_loads(at_max_[static_cast<size_t>(l)])(l);
-      s.static_at_min = static_loads(at_min_[static_cast<size_t>(l)])(l);
+      s.static_at_max = static_load(at_max_[static_cast<size_t>(l)], l);
+      s.static_at_min = static_load(at_min_[static_cast<size_t>(l)], l);
       set_peak(s);
       // A buffer's force has no quasi-static counterpart (it is zero until the impact, and the
       // impact's reference is the rigid-body peak of φ7, analysis/crane.hpp): no dynamic factor.

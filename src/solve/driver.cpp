@@ -126,11 +126,11 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
   long k_out = 1;
   // The time of output row k_out (∞ after the last or without outputs): formed once per row.
   double t_out = outputs ? out_time(k_out) : std::numeric_limits<double>::infinity();
-  // The solution on [ta, tb] of the current step: outputs inside it, then the observers' piece.
-  auto segment = [&](double ta, double tb) {
+  // The solution on [ta, tb] of the current step ending at ts = st.t(): outputs inside it, then the
+  // observers' piece.
+  auto segment = [&](double ta, double tb, double ts) {
     if (t_out <= tb) {
-      const double ts = st.t();  // the step's end (the stepper's own state: exact there)
-      do {
+      do {  // a row at the step's end from the stepper's own state (exact there)
         if (t_out == ts) {
           obs.on_output(t_out, st.y());
         } else {
@@ -282,7 +282,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
       }
     }
     if (first < 0) {
-      segment(ta, t1);
+      segment(ta, t1, t1);
       t_pp = last_t, g_pp.swap(*last_g);  // the check before t1: the next step's first triple
       g_prev.swap(g_new);
       if (any_off) {  // a function armed below 0 that is ≥ 0 again is armed from 0
@@ -306,7 +306,7 @@ RunStats integrate(Stepper& st, EventSystem& sys, double t0, const double* y0, d
     }
     // An event at te (the right end of the final bracket: the crossing has happened there). The
     // solution up to te belongs to the old modes.
-    segment(ta, te);
+    segment(ta, te, t1);
     st.interpolate(te, y.data());
     sys.event_functions(te, y.data(), g_tmp.data());
     fired.assign(1, first);
