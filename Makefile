@@ -57,10 +57,20 @@ demo:
 	@$(BUILD_RELEASE)/apps/machdyn/machdyn demo
 
 # The whole suite (release build), then the same suite and each fuzzer for 20 s under ASan + UBSan.
-test: build-test build-asan
-	@cd $(BUILD_TEST) && ctest --output-on-failure -j $(JOBS)
-	@command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed (MACHDYN_WITH_CHROMIUM=0?), so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"
-	@$(MAKE) --no-print-directory test-asan
+# The release suite runs while the sanitizer tree builds (its output to build/test/suite.log, printed
+# when it ends): the suite's tail and the build's links and test discovery each leave a core idle,
+# which the other fills. Any part failing fails `make test`, after the parts that could still run.
+test: build-test
+	@echo "make test: the release suite runs in the background while the sanitizer tree builds ($(BUILD_TEST)/suite.log)"
+	@(cd $(BUILD_TEST) && ctest --output-on-failure -j $(JOBS) > suite.log 2>&1) & suite_pid=$$!; \
+	  $(MAKE) --no-print-directory build-asan; asan_build=$$?; \
+	  wait $$suite_pid; suite=$$?; \
+	  echo "---- the release suite ($(BUILD_TEST)/suite.log) ----"; cat $(BUILD_TEST)/suite.log; \
+	  command -v chromium >/dev/null 2>&1 || echo "note: chromium is not installed (MACHDYN_WITH_CHROMIUM=0?), so the browser test of the HTML report was SKIPPED (make deps-browser installs it)"; \
+	  if [ $$asan_build -ne 0 ]; then echo "make test: the sanitizer tree did not build"; exit 1; fi; \
+	  $(MAKE) --no-print-directory test-asan; asan=$$?; \
+	  if [ $$suite -ne 0 ]; then echo "make test: the release suite FAILED ($(BUILD_TEST)/suite.log)"; exit 1; fi; \
+	  exit $$asan
 
 # Not the browser tests (ReportBrowser.*: Chromium draws the release tree's report and they check its
 # figures); the sanitizer run writes the same reports through the report and CLI tests.
