@@ -1,4 +1,4 @@
-# Unity ("jumbo") builds (build time only): MACHDYN_UNITY_BATCH files compiled as one translation unit.
+# Unity ("jumbo") builds (build time only): a batch of source files compiled as one translation unit.
 # Each test file and each CLI file includes gtest or CLI11 plus Eigen, fmt and nlohmann json: parsing
 # them was most of a file's time (docs/benchmarks.md "Build and test time"). The library's Eigen-heavy
 # files instantiate the same decompositions, each once per translation unit.
@@ -15,12 +15,21 @@
 # `namespace { ... }`: CMake defines MACHDYN_UNITY_ID to a name unique per file inside a batch; outside
 # a unity build it is empty, which leaves the anonymous namespace.
 option(MACHDYN_UNITY "Compile the test suite and the CLI in batches (faster builds)" ON)
-set(MACHDYN_UNITY_BATCH 8 CACHE STRING "source files per translation unit of a unity build")
+set(MACHDYN_UNITY_BATCH 8 CACHE STRING "source files per translation unit of a unity build (the CLI)")
+# The test suite in batches of 16: two batches of 8 took 134 s of CPU under clang with ASan and UBSan,
+# the same 16 files as one 117 s (GCC at -O1: 58 against 53 s); fewer batches parse gtest, Eigen and
+# json fewer times (docs/benchmarks.md "Build and test time").
+set(MACHDYN_UNITY_TEST_BATCH 16 CACHE STRING "test files per translation unit of a unity build")
 
-# machdyn_unity(TARGET): a unity build of TARGET when MACHDYN_UNITY is on.
+# machdyn_unity(TARGET [BATCH]): a unity build of TARGET when MACHDYN_UNITY is on, BATCH files per
+# translation unit (MACHDYN_UNITY_BATCH by default).
 function(machdyn_unity target)
+  set(batch ${MACHDYN_UNITY_BATCH})
+  if(ARGC GREATER 1)
+    set(batch ${ARGV1})
+  endif()
   if(MACHDYN_UNITY)
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${MACHDYN_UNITY_BATCH}
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${batch}
                                                UNITY_BUILD_UNIQUE_ID MACHDYN_UNITY_ID)
     # GCC 12 at -O3 reports -Wrestrict inside std::string's operator+(const char*, string&&) when enough
     # code is inlined around it (a false positive, GCC bug 105651); which batch meets it depends on the
