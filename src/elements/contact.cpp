@@ -61,8 +61,10 @@ double ContactLaw::hold_stiffness(const FrictionContact& c, const Model& m) {
     // A rope of EA: its stiffness n EA/L_f0 at its free length; d per 1 s (a rate known to atol in m/s).
     const double c_l = l.EA > 0.0 && l.length > 0.0 ? l.falls * l.EA / l.length : l.c;
     const double cd = c_l + l.d;
+    // Each link once: one between the lock's two bodies enters λ once (its force on both cancels in
+    // their relative motion but for one share), at b, else at a divided by i (its force acts on a as F/i).
     if (on(l.b)) k += cd;
-    if (on(l.a)) k += cd / (l.ratio * l.ratio);  // acts on a divided by i
+    else if (on(l.a)) k += cd / (l.ratio * l.ratio);
   }
   return k;
 }

@@ -73,8 +73,8 @@ struct ContactLaw {
   static ContactLaw of(const FrictionContact& c);
   /// With `kinematic` from the motions of m's bodies and a lock's `hold_tol` from m's links and atol.
   static ContactLaw of(const FrictionContact& c, const Model& m);
-  /// k of the hold allowance: Σ (c + d·1 s⁻¹) of m's links on c's bodies, each at that body (1/i² on
-  /// a link's a side), N/m or N·m/rad (elements/hold_allowance.hpp).
+  /// k of the hold allowance: Σ (c + d·1 s⁻¹) of m's links on c's bodies, each once (1/i² on a
+  /// link's a side), N/m or N·m/rad (elements/hold_allowance.hpp).
   [[nodiscard]] static double hold_stiffness(const FrictionContact& c, const Model& m);
   /// The mode of a kinematic contact at a decision, from its sliding velocity u and acceleration u̇
   /// (`rounding`: the rounding of u̇): sliding in the direction of u̇ if |u̇| > rounding, else of u if

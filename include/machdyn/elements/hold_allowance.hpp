@@ -20,9 +20,9 @@
 /// λ = −1e-15 beside a clutch that just broke away starts armed). A real violation is a load
 /// beyond the limit by far more (1.01 F_d of a drag of 1 N: 1e-2 N against ε_h ~ 1e-8 N).
 ///
-/// k: stiffness and damping summed, each link's at the lock's body (a link's force acts on its a
-/// side divided by its ratio i, so its c and d count 1/i² there); the damping's d counts per 1 s
-/// (a rate known to atol in m/s); `stiffness` ≥ 0, `atol` > 0; returns N or N·m.
+/// k: stiffness and damping summed, each link on the lock's bodies once (one between its two bodies
+/// too), at its b side, else at its a side with 1/i² (its force acts on a as F/i); the damping's d
+/// counts per 1 s (a rate known to atol in m/s); `stiffness` ≥ 0, `atol` > 0; returns N or N·m.
 
 #include <algorithm>
 
