@@ -65,14 +65,15 @@ void check_contact(const ContactLaw& law, const std::string& name, double t, con
       return;
     }
     if (law.lock != 0) {
-      // A freewheel (or an end stop the body rests on) holds while lock·λ ≥ −F_d (allowance 1e-9): its
-      // drag at rest F_d = F_k0(0) is the static limit of its free direction (0 for an end stop).
+      // A freewheel (or an end stop the body rests on) holds while lock·λ ≥ −F_d (allowance ε_h, the
+      // resolution of λ: elements/hold_allowance.hpp): its drag at rest F_d = F_k0(0) is the static
+      // limit of its free direction (0 for an end stop).
       const double Fd = law.stop ? 0.0 : c.kinetic_level(0.0);
-      if (law.lock * x.F < -(Fd + 1e-9))
+      if (law.lock * x.F < -(Fd + x.hold_allowance))
         fail(name, t, law.stop ? "stop.hold" : "freewheel.hold",
              fmt::format("stuck with lock·λ = {:.17g} < −F_d = {:.17g} (λ = {:.17g}, lock {:+d}): it holds against "
-                         "its free direction beyond its drag",
-                         law.lock * x.F, -Fd, x.F, law.lock));
+                         "its free direction beyond its drag and its allowance {:.3g}",
+                         law.lock * x.F, -Fd, x.F, law.lock, x.hold_allowance));
       return;
     }
     const double Fs = r * c.static_limit;
@@ -252,6 +253,8 @@ void check_event_list(const Model& m, const SimulationResult& r) {
 Audit::Audit(const Model& m, DriveSystem& sys, const EnergyBalance& E, const double& release_loss)
     : m_(m), sys_(sys), E_(E), release_loss_(release_loss) {
   fc_.assign(m.contacts.size(), 0.0);
+  for (const FrictionContact& c : m.contacts)
+    hold_.push_back(hold_allowance(ContactLaw::hold_stiffness(c, m), m.simulation.atol));
   // The books are quadrature states of the same integration: O(rtol) per unit energy, accumulated.
   tol_E_ = std::max(1e-6, kGlobal * m.simulation.rtol);
   // Their absolute part the same way: atol (J for these states) accumulated. BDF on
@@ -324,6 +327,7 @@ void Audit::check_at(double t, const double* y) {
       // u = 0 of t = 1.5 s it reads +7.7e-10 (test AuditTolerance.SpeedsAreResolvedToTheirGlobalError).
       x.resolution = kGlobal * (m_.simulation.atol + m_.simulation.rtol * x.speed_scale);
       x.position_resolution = m_.simulation.atol + m_.simulation.rtol * std::abs(x.q);
+      x.hold_allowance = hold_[static_cast<size_t>(k)];
       audit::check_contact(law, m_.contacts[static_cast<size_t>(k)].name, t, x);
     }
     // A friction contact sliding at u = 0 exactly: is its motion locked by the stuck ones beside it?

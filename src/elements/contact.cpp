@@ -37,6 +37,35 @@ ContactLaw ContactLaw::of(const FrictionContact& c, const Model& m) {
   for (int j = 0; j < k.row.terms; ++j)
     k.kinematic = k.kinematic && k.row.body[j] >= 0 &&
                   m.bodies[static_cast<size_t>(k.row.body[j])].motion != MotionKind::free;
+  if (k.lock != 0) k.hold_tol = hold_allowance(hold_stiffness(c, m), m.simulation.atol);
+  return k;
+}
+
+double ContactLaw::hold_stiffness(const FrictionContact& c, const Model& m) {
+  // The lock's bodies: its row's (a, b; a general row's terms).
+  int body[VelocityRow::kMaxTerms + 2] = {};
+  int n = 0;
+  if (c.row.terms > 0) {
+    for (int j = 0; j < c.row.terms; ++j) body[n++] = c.row.body[j];
+  } else {
+    body[n++] = c.a, body[n++] = c.b;
+  }
+  auto on = [&](int x) {
+    if (x < 0) return false;
+    for (int j = 0; j < n; ++j)
+      if (body[j] == x) return true;
+    return false;
+  };
+  double k = 0.0;
+  for (const Link& l : m.links) {
+    // A rope of EA: its stiffness n EA/L_f0 at its free length; d per 1 s (a rate known to atol in m/s).
+    const double c_l = l.EA > 0.0 && l.length > 0.0 ? l.falls * l.EA / l.length : l.c;
+    const double cd = c_l + l.d;
+    // Each link once: one between the lock's two bodies enters λ once (its force on both cancels in
+    // their relative motion but for one share), at b, else at a divided by i (its force acts on a as F/i).
+    if (on(l.b)) k += cd;
+    else if (on(l.a)) k += cd / (l.ratio * l.ratio);
+  }
   return k;
 }
 

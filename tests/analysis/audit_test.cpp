@@ -159,7 +159,7 @@ TEST(AuditChecks, SlidingContactKineticLawAndDirection) {
   expect_violation([&] { audit::check_contact(law, "k", 1.0, x); }, "contact.sliding_direction", "k", 1.0, "u = -1");
 }
 
-// Claim: a freewheel (lock +1) holds only while λ ≥ 0 (allowance 1e-9 N) and slides only in its
+// Claim: a freewheel (lock +1) holds only while λ ≥ 0 (allowance ε_h, 1e-9 N without a model) and slides only in its
 // free direction −lock.
 TEST(AuditChecks, FreewheelNeverHoldsAgainstItsFreeDirection) {
   const Model m = model_of(kElements);

@@ -10,6 +10,8 @@
 
 #include <Eigen/Dense>
 
+#include "machdyn/elements/hold_allowance.hpp"
+
 namespace machdyn::reference {
 
 double Signal::at(double t) const {
@@ -200,6 +202,14 @@ class Sim {
     md_.mesh.assign(m.meshes.size(), MeshMode{});
     md_.sway.assign(m.sway.size(), 1);
     series_v_.assign(m.frictions.size(), 0.0);
+    // A lock's hold allowance ε_h = hold_allowance(k, atol): k = Σ (c + d·1 s⁻¹) of the links on its
+    // bodies, atol the engine's (λ is known only to k atol: elements/hold_allowance.hpp).
+    for (const auto& f : m.frictions) {
+      double k = 0.0;
+      for (const auto& l : m.links)
+        if ((l.a >= 0 && (l.a == f.a || l.a == f.b)) || (l.b >= 0 && (l.b == f.a || l.b == f.b))) k += l.c + l.d;
+      hold_.push_back(hold_allowance(k, kCampaignAtol));
+    }
     // The force scale of the model (the thresholds of the switching functions are relative to it).
     // (sampled over the run: every signal kind, its largest magnitude up to a sample's spacing).
     for (int i = 0; i <= 2000; ++i) {
@@ -402,6 +412,7 @@ class Sim {
   std::vector<double> y_back_;
   std::vector<int> applied_at_rest_;  // brakes and clutches applied at rest now (engage → decide)
   std::vector<double> f_, lamv_, bv_;
+  std::vector<double> hold_;  // each friction element's hold allowance ε_h (locks)
 
   StuckSet& stuck_set(unsigned mask) {
     auto it = sets_.find(mask);
@@ -771,7 +782,7 @@ class Sim {
         out.push_back({f.stop_max ? f.stop_pos - x : x - f.stop_pos, eps_x, -1, fi});
       } else if (md == FMode::stuck) {
         const double res = kLoadResolution * fscale_;  // a load's resolution (event_window)
-        if (f.one_sided()) out.push_back({.g = lock(f) * lam[k] + f.kinetic_level(t) + 1e-9, .eps = eps_f, .fr = fi, .res = res});
+        if (f.one_sided()) out.push_back({.g = lock(f) * lam[k] + f.kinetic_level(t) + hold_[k], .eps = eps_f, .fr = fi, .res = res});
         else out.push_back({.g = f.static_limit(t) - std::abs(lam[k]), .eps = 1e-13 * f.static_limit(t) + eps_f, .fr = fi, .res = res});
       } else {
         out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
@@ -931,7 +942,7 @@ class Sim {
         const double du = aa - ab, tol_a = 1e-12 * (std::abs(aa) + std::abs(ab)) + 1e-14;
         if (md == FMode::stuck) {
           if (f.one_sided()) {
-            if (lock(f) * lam[static_cast<size_t>(k)] + f.kinetic_level(t) < -1e-9) return false;
+            if (lock(f) * lam[static_cast<size_t>(k)] + f.kinetic_level(t) < -hold_[static_cast<size_t>(k)]) return false;
           } else {
             const double Fs = f.static_limit(t);
             const double allow = is_fired(k) ? 0.0 : 1e-14 * (Fs + fscale_);
@@ -989,7 +1000,7 @@ class Sim {
         const double l = lam[static_cast<size_t>(k)];
         double r = 0.0;
         if (f.one_sided()) {
-          r = lock(f) * l + f.kinetic_level(t) < -1e-9 ? HUGE_VAL : 0.0;
+          r = lock(f) * l + f.kinetic_level(t) < -hold_[static_cast<size_t>(k)] ? HUGE_VAL : 0.0;
         } else {
           const double Fs = f.static_limit(t), allow = is_fired(k) ? 0.0 : 1e-14 * (Fs + fscale_);
           r = std::abs(l) > Fs + allow ? (Fs > 0 ? std::abs(l) / Fs : HUGE_VAL) : 0.0;

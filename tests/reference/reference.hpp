@@ -285,8 +285,13 @@ struct RefModel {
   double t_end = 1.0, dt_out = 0.01;
 };
 
+/// The engine's absolute tolerance in the campaign (to_yaml: rtol 1e-10, atol 1e-12): a lock's hold
+/// allowance ε_h = hold_allowance(k, atol) (machdyn/elements/hold_allowance.hpp, the one allowance of
+/// the engine, its audit and this reference: the resolution of λ) is formed with it.
+constexpr double kCampaignAtol = 1e-12;
+
 /// The resolution of a load the integration forms, relative to the model's force scale: an event
-/// function of loads (a stuck contact's F_s − |λ|, a freewheel's lock·λ + F_d + 1e-9) is known to
+/// function of loads (a stuck contact's F_s − |λ|, a freewheel's lock·λ + F_d + ε_h) is known to
 /// δ = kLoadResolution × that scale — the engine at rtol 1e-10 accumulates 1e3 rtol over a run (the
 /// allowance of its energy books), the reference's own error is 4.4e-8 of a velocity's scale
 /// (self-convergence, reference_test.cpp).
@@ -302,7 +307,7 @@ struct RefEvent {
   /// that fired lies within its resolution δ of its value at t (0: sharper than 1e-7 s, or an
   /// instant of a signal). A root of multiplicity k, g ≈ c (t − t₀)^k, moves by (δ/c)^(1/k) for an
   /// error δ in g: a freewheel whose load grows from 0 as c (t − t₀)⁶ through a chain of springs
-  /// slips where it passes the 1e-9 N allowance of the hold rule, and 1e-11 N of λ, far below any
+  /// slips where it passes the allowance ε_h of the hold rule, and 1e-11 N of λ, far below any
   /// integration's resolution of the loads, moves that instant by 1e-6 s. Events at the same instant
   /// as the one that fired (its decision's) share its window.
   double window = 0.0;

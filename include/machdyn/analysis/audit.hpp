@@ -18,9 +18,10 @@
 ///                            atol and rtol, accumulated over the steps — BDF's u on MSL OneWayClutch
 ///                            is 14 rtol S off its closed form, a tangency u = 0 reads +7.7e-10)
 ///   contact.kinematic_load   stuck between prescribed motions: λ = 0 (its bodies are held by them)
-///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −F_d − 1e-9 (F_d = F_k0(0),
+///   freewheel.hold           stuck freewheel or resting end stop:  lock·λ ≥ −F_d − ε_h (F_d = F_k0(0),
 ///                            a freewheel's drag at rest, the static limit of its free direction; 0 for
-///                            an end stop; 1e-9 its hold rule's allowance); sliding only in its free
+///                            an end stop; ε_h its hold rule's allowance, the resolution of λ,
+///                            elements/hold_allowance.hpp); sliding only in its free
 ///                            direction −lock
 ///   stop.position            end stop:  −lock (q − q_stop) ≥ −(1e-12 max(1, |q_stop|) + atol + rtol |q|)
 ///   gap.flank_sign           closed on the positive flank F ≥ 0, on the negative one F ≤ 0, to
@@ -97,6 +98,8 @@ struct ContactValues {
   /// The integrator's resolution of u and of q (its error control: atol + rtol |state|, SI): a
   /// direction or a side within it is within the solution's own accuracy.
   double resolution = 0.0, position_resolution = 0.0;
+  /// A lock's hold allowance ε_h (elements/hold_allowance.hpp: the resolution of its λ), N or N·m.
+  double hold_allowance = 1e-9;
 };
 /// Checks contact `law` named `name` at t (limits at t: the caller passes t⁻ in a mode).
 void check_contact(const ContactLaw& law, const std::string& name, double t, const ContactValues& x);
@@ -177,6 +180,7 @@ class Audit {
   const EnergyBalance& E_;
   const double& release_loss_;
   std::vector<double> fc_;
+  std::vector<double> hold_;  // each contact's hold allowance (locks), from the model's links and atol
   double tol_E_ = 0.0, abs_E_ = 1e-9, E_max_ = 0.0;
   std::unique_ptr<AuditError> pending_;  // the earliest failure in a mode, until it is settled
 };

@@ -19,8 +19,8 @@
 /// free direction −lock with its drag as kinetic level. F_d = F_k0(0), its drag at zero speed, is the
 /// static limit of its free direction: a backstop with drag at rest stays at rest until the push in
 /// its free direction exceeds the drag (without it neither stuck nor overrunning would be consistent
-/// there). Its stuck event is its hold rule, lock·λ + F_d + 1e-9 (the allowance: one held unloaded
-/// at λ = −1e-15 starts armed). An end stop (no drag: F_d = 0) is such a
+/// there). Its stuck event is its hold rule, lock·λ + F_d + ε_h (ε_h the hold allowance, the
+/// resolution of its load: elements/hold_allowance.hpp). An end stop (no drag: F_d = 0) is such a
 /// lock to the ground that engages by position: while free its event is the distance to the stop.
 /// A general row (model/model.hpp VelocityRow: a joint, or a contact on a planetary gear's member
 /// without inertia) has u = Σ_j w_j v_j (− w(t) to the ground) and puts −w_j F on body j: the
@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "machdyn/elements/hold_allowance.hpp"
 #include "machdyn/elements/linear_model.hpp"
 #include "machdyn/elements/modes.hpp"
 #include "machdyn/model/model.hpp"
@@ -65,10 +66,16 @@ struct ContactLaw {
   double kinetic0 = 0.0, surface0 = 0.0;  ///< the constant kinetic level and ground velocity
 
   bool kinematic = false;  ///< every body of its row prescribed (or the ground): see the header
+  /// A lock's hold allowance ε_h, N or N·m (elements/hold_allowance.hpp; of(c, m) forms it from the
+  /// model's links and atol, the floor 1e-9 without a model).
+  double hold_tol = 1e-9;
 
   static ContactLaw of(const FrictionContact& c);
-  /// With `kinematic` from the motions of m's bodies.
+  /// With `kinematic` from the motions of m's bodies and a lock's `hold_tol` from m's links and atol.
   static ContactLaw of(const FrictionContact& c, const Model& m);
+  /// k of the hold allowance: Σ (c + d·1 s⁻¹) of m's links on c's bodies, each once (1/i² on a
+  /// link's a side), N/m or N·m/rad (elements/hold_allowance.hpp).
+  [[nodiscard]] static double hold_stiffness(const FrictionContact& c, const Model& m);
   /// The mode of a kinematic contact at a decision, from its sliding velocity u and acceleration u̇
   /// (`rounding`: the rounding of u̇): sliding in the direction of u̇ if |u̇| > rounding, else of u if
   /// u ≠ 0, else stuck.
@@ -125,12 +132,12 @@ struct ContactLaw {
   /// a load exactly at the limit holds. The stick rule and the stuck events both read this one value.
   [[nodiscard]] double holding_limit(double t) const { return static_limit(t) + 1e-12 * spec->static_limit; }
   /// The stick rule: whether λ is within the static limit at t (strict: without the allowance).
-  /// A freewheel holds while lock·λ ≥ −F_d (allowance 1e-9 N or N·m: an unloaded freewheel holds).
+  /// A freewheel holds while lock·λ ≥ −F_d (allowance ε_h = hold_tol, the resolution of λ).
   /// Not strict, it is exactly "both stuck events are ≥ 0" (events()): a contact the decision keeps
   /// stuck starts armed.
   [[nodiscard]] bool holds(double lambda, double t, bool strict) const {
     if (joint) return true;
-    if (lock != 0) return strict ? lock * lambda >= -free_limit() : lock * lambda + free_limit() + 1e-9 >= 0.0;
+    if (lock != 0) return strict ? lock * lambda >= -free_limit() : lock * lambda + free_limit() + hold_tol >= 0.0;
     const double F = std::abs(lambda);
     return strict ? F <= static_limit(t) : F <= holding_limit(t);
   }
@@ -202,9 +209,9 @@ struct ContactLaw {
       ev[1] = -u;
     } else if (md == ContactMode::stuck && lock != 0) {
       // The load turns against the lock: it overruns (a stop: the body leaves it). The event is the
-      // hold rule, allowance included, so one held unloaded at λ = −1e-15 (beside a clutch that just
-      // broke away) starts armed.
-      ev[0] = lock * lambda + free_limit() + 1e-9;
+      // hold rule, allowance included (the resolution of λ), so one held unloaded at λ = −1e-15
+      // (beside a clutch that just broke away) starts armed and λ's noise never fires it.
+      ev[0] = lock * lambda + free_limit() + hold_tol;
       ev[1] = 1.0;
     } else if (md == ContactMode::stuck) {
       const double Fs = holding_limit(t);  // the stick rule's own limit (holds)
