@@ -849,19 +849,20 @@ class Sim {
     }
     // Two-stage lossy trains: stuck, −s α_s for both s; rolling, s v_a and each stage's side function.
     const std::vector<double> ft = f_;
+    const double res_f = kLoadResolution * fscale_;  // functions of loads: their resolution (event_window)
     for (size_t k = 0; k < m_.trains.size(); ++k) {
       const LossyTrain& T = m_.trains[k];
       const TrainMode& tm = md_.train[k];
       const int ti = static_cast<int>(k);
       if (tm.s == 0) {
-        out.push_back({.g = train_margin(T, 1, ft.data()), .eps = eps_f, .train = ti, .tslot = 0});
-        out.push_back({.g = train_margin(T, -1, ft.data()), .eps = eps_f, .train = ti, .tslot = 1});
+        out.push_back({.g = train_margin(T, 1, ft.data()), .eps = eps_f, .res = res_f, .train = ti, .tslot = 0});
+        out.push_back({.g = train_margin(T, -1, ft.data()), .eps = eps_f, .res = res_f, .train = ti, .tslot = 1});
         continue;
       }
       const TrainSol x = train_solve(T, tm.b1, tm.b2, ft.data());
       out.push_back({.g = tm.s * y[static_cast<size_t>(n_ + T.a)], .eps = 0.0, .train = ti, .tslot = 2});
-      out.push_back({.g = tm.b1 ? -tm.s * x.Y1 : tm.s * x.X1, .eps = eps_f, .train = ti, .tslot = 3});
-      out.push_back({.g = tm.b2 ? -tm.s * x.Y2 : tm.s * x.X2, .eps = eps_f, .train = ti, .tslot = 4});
+      out.push_back({.g = tm.b1 ? -tm.s * x.Y1 : tm.s * x.X1, .eps = eps_f, .res = res_f, .train = ti, .tslot = 3});
+      out.push_back({.g = tm.b2 ? -tm.s * x.Y2 : tm.s * x.X2, .eps = eps_f, .res = res_f, .train = ti, .tslot = 4});
     }
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
