@@ -192,8 +192,17 @@ DriveSystem::DriveSystem(const Model& model, bool energy_books)
     for (int p = 0; p < c.row.terms && !c.grounded && !c.joint; ++p)
       if (const int g = gear_of_body_[static_cast<size_t>(c.row.body[p])]; g >= 0) gear_clutch_[static_cast<size_t>(g)] = 1;
   for (char c : gear_clutch_) coupled_ = coupled_ || c != 0;
-  for (const LossyGearLaw& k : gears_)  // a massless side: 1/I is infinite, C is not
-    coupled_ = coupled_ || inertia_[static_cast<size_t>(k.a)] == 0.0 || inertia_[static_cast<size_t>(k.b)] == 0.0;
+  // Two lossy gears on one body (analysis/gear_train.hpp): their own joint solve, no contacts on them.
+  trains_ = find_gear_trains(gears_, inertia_);
+  train_of_gear_.assign(static_cast<size_t>(ng_), -1);
+  for (size_t t = 0; t < trains_.size(); ++t)
+    for (int g : trains_[t].gears) train_of_gear_[static_cast<size_t>(g)] = static_cast<int>(t);
+  train_f_.assign(trains_.size(), {});
+  for (int g = 0; g < ng_; ++g) {  // a massless side: 1/I is infinite, C is not
+    const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
+    if (train_of_gear_[static_cast<size_t>(g)] < 0)
+      coupled_ = coupled_ || inertia_[static_cast<size_t>(k.a)] == 0.0 || inertia_[static_cast<size_t>(k.b)] == 0.0;
+  }
   general_ = has_machines_ || nd_ > 0 || !motions_.empty();
   drive_mode_.assign(static_cast<size_t>(nd_), 0);
   f_const_.assign(static_cast<size_t>(n_), 0.0);
@@ -644,9 +653,11 @@ void DriveSystem::enforce_motions(double t, double* acc) const {
 }
 
 void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fric) {
+  for (size_t tr = 0; tr < trains_.size(); ++tr) apply_train(static_cast<int>(tr), y, f, p_fric);
   for (int g = 0; g < ng_; ++g) {
     const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
     const auto gi = static_cast<size_t>(g);
+    if (train_of_gear_[gi] >= 0) [[unlikely]] continue;
     gear_fa_[gi] = f[k.a];
     gear_fb_[gi] = f[k.b];
     const double va = y[n_ + k.a];
@@ -657,6 +668,36 @@ void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fr
                             1.0 / inv_mass_[static_cast<size_t>(k.b)], va);
     k.apply(gear_t_[gi], f);
     if (p_fric) *p_fric += LossyGearLaw::loss_power(gear_t_[gi], va);
+  }
+}
+
+std::array<double, 3> DriveSystem::train_inertia(int t) const {
+  const GearTrain& tr = trains_[static_cast<size_t>(t)];
+  return {inertia_[static_cast<size_t>(tr.bodies[0])], inertia_[static_cast<size_t>(tr.bodies[1])],
+          inertia_[static_cast<size_t>(tr.bodies[2])]};
+}
+
+void DriveSystem::apply_train(int t, const double* y, double* f, double* p_fric) {
+  // Both gears from the forces on the three bodies before either acts (analysis/gear_train.hpp).
+  const GearTrain& tr = trains_[static_cast<size_t>(t)];
+  std::array<double, 3>& F = train_f_[static_cast<size_t>(t)];
+  for (size_t j = 0; j < 3; ++j) F[j] = f[tr.bodies[j]];
+  const auto g0 = static_cast<size_t>(tr.gears[0]), g1 = static_cast<size_t>(tr.gears[1]);
+  for (size_t g : {g0, g1}) gear_fa_[g] = f[gears_[g].a], gear_fb_[g] = f[gears_[g].b];
+  const double v_r = y[n_ + tr.bodies[0]];
+  const int s = direction(gear_mode_[g0]) * (tr.rho_of(gears_[g0].a) > 0.0 ? 1 : -1);
+  if (s != 0 && direction(gear_mode_[g1]) != 0) {
+    const TrainSolution x =
+        train_roll(tr, gears_, s, {b_drives(gear_mode_[g0]), b_drives(gear_mode_[g1])}, F, train_inertia(t), v_r);
+    gear_t_[g0] = x.T[0], gear_t_[g1] = x.T[1];
+  } else {  // stuck (a mixed pair only inside a decision: held until it is decided)
+    const std::array<LossyGearLaw::Torques, 2> T = stuck_train_torques(tr, gears_, F);
+    gear_t_[g0] = T[0], gear_t_[g1] = T[1];
+    gear_t_[g0].acc = gear_t_[g1].acc = 0.0;
+  }
+  for (size_t g : {g0, g1}) {
+    gears_[g].apply(gear_t_[g], f);
+    if (p_fric) *p_fric += LossyGearLaw::loss_power(gear_t_[g], y[n_ + gears_[g].a]);
   }
 }
 
@@ -690,6 +731,7 @@ void DriveSystem::enforce_gears(double* acc) const {
     const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
     const auto gi = static_cast<size_t>(g);
     const double a = gear_mode_[gi] == GearMode::stuck && gear_motion_[gi] < 0 ? 0.0 : gear_t_[gi].acc;
+    // (A gear of a train: gear_t_ holds 0 for a stuck pair, also while the other gear is decided.)
     acc[k.a] = a;
     acc[k.b] = a / k.i;
   }
@@ -701,6 +743,15 @@ GearMode DriveSystem::natural_gear_mode(int g, double t, const double* y, bool s
   const double Fa = gear_fa_[static_cast<size_t>(g)], Fb = gear_fb_[static_cast<size_t>(g)];
   // A prescribed side: the evaluation has decided it (given_gear_torques, from a(t) and v_a(t)).
   if (gear_motion_[static_cast<size_t>(g)] >= 0) return gear_now_[static_cast<size_t>(g)];
+  if (const int tn = train_of_gear_[static_cast<size_t>(g)]; tn >= 0) {  // decided with its train
+    const GearTrain& tr = trains_[static_cast<size_t>(tn)];
+    const std::array<double, 3>& F = train_f_[static_cast<size_t>(tn)];
+    const auto g0 = static_cast<size_t>(tr.gears[0]), g1 = static_cast<size_t>(tr.gears[1]);
+    const std::array<GearMode, 2> md = decide_train(tr, gears_, F, train_inertia(tn), y[n_ + tr.bodies[0]],
+                                                    strict ? 0.0 : train_allowance(tr, gears_, F),
+                                                    {gear_mode_[g0], gear_mode_[g1]});
+    return md[g == tr.gears[0] ? 0 : 1];
+  }
   return k.decide(Fa, Fb, 1.0 / inv_mass_[static_cast<size_t>(k.a)], 1.0 / inv_mass_[static_cast<size_t>(k.b)],
                   y[n_ + k.a], strict ? 0.0 : k.allowance(Fa, Fb));
 }
@@ -713,6 +764,8 @@ LossyGearLaw::Torques DriveSystem::gear_torques(int g, double t, const double* y
 void DriveSystem::stop_gear(int g, double* y) const {
   const LossyGearLaw& k = gears_[static_cast<size_t>(g)];
   y[n_ + k.a] = y[n_ + k.b] = 0.0;
+  if (const int tn = train_of_gear_[static_cast<size_t>(g)]; tn >= 0)
+    for (int b : trains_[static_cast<size_t>(tn)].bodies) y[n_ + b] = 0.0;
 }
 
 void DriveSystem::enforce_stuck(double t, double* acc) const {
@@ -1096,6 +1149,19 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
         const PrescribedMotionLaw& p = motions_[static_cast<size_t>(gear_motion_[u])];
         k.events_given(gear_mode_[u], gear_now_[u], given_speed(p, k, gear_b_given_[u] != 0, t, y + n_), gear_t_[u],
                        g + 2 * (nl_ + nc_ + nd_ + gi));
+        continue;
+      }
+      if (const int tn = train_of_gear_[u]; tn >= 0 && gear_mode_[u] == GearMode::stuck) [[unlikely]] {
+        // A stuck train: its two start margins in its first gear's slots (analysis/gear_train.hpp).
+        const GearTrain& tr = trains_[static_cast<size_t>(tn)];
+        double* ev = g + 2 * (nl_ + nc_ + nd_ + gi);
+        if (gi == static_cast<int>(tr.gears[0])) {
+          const std::array<double, 3>& F = train_f_[static_cast<size_t>(tn)];
+          ev[0] = train_start_margin(tr, gears_, +1, F, train_inertia(tn));
+          ev[1] = train_start_margin(tr, gears_, -1, F, train_inertia(tn));
+        } else {
+          ev[0] = ev[1] = 1.0;
+        }
         continue;
       }
       k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],

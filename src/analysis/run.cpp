@@ -933,14 +933,16 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
            : e < nl_ + nc_ + nd_ ? m_.drives[static_cast<size_t>(e - nl_ - nc_)].name
                                  : m_.lossy_gears[static_cast<size_t>(e - nl_ - nc_ - nd_)].name;
   }
-  /// Decides every lossy gear at (t, y_) with the other elements in their new modes (no two gears
-  /// share a body, so the gears decide independently); a gear at rest with friction elements to the
+  /// Decides every lossy gear at (t, y_) with the other elements in their new modes (the gears decide
+  /// independently, but for the two gears of a two-stage train: analysis/gear_train.hpp); a gear at rest with friction elements to the
   /// ground on its bodies is decided together with them (analysis/gear_lock.hpp), their changes
   /// recorded as contact events. `fired`: gears whose event fired, judged without the rounding
   /// allowance. Records the changes (`initial`: all).
   void decide_gears(double t, const std::vector<int>& fired, bool initial, const std::vector<int>& broke = {}) {
     for (int g = 0; g < ng_; ++g) {
-      const bool strict = std::find(fired.begin(), fired.end(), g) != fired.end();
+      bool strict = std::find(fired.begin(), fired.end(), g) != fired.end();
+      if (const int tr = sys_.gear_train_of(g); tr >= 0)  // a two-stage train is decided as one (gear_train.hpp)
+        for (int h : sys_.gear_train(tr).gears) strict = strict || std::find(fired.begin(), fired.end(), h) != fired.end();
       // The contact decision may have settled a coupled gear's driving side already: its mode before.
       const GearMode old = gear_before_.empty() ? sys_.gear_mode(g) : gear_before_[static_cast<size_t>(g)];
       GearMode now;

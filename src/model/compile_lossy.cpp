@@ -165,6 +165,8 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       if (sl.name == name) *body = sl.master, *rho = sl.ratio;
   };
   std::vector<int> used(m.bodies.size(), -1);
+  std::vector<char> in_train(gears.size(), 0);          // per gear read: one of a two-stage train
+  std::vector<std::pair<int, Location>> train_body;      // the trains' shared bodies
   std::vector<Location> where;  // of each gear in m.lossy_gears
   for (size_t k = 0; k < gears.size(); ++k) {
     const LossyGearSpec& s = gears[k];
@@ -180,14 +182,25 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       continue;
     }
     bool ok = true;
+    // Two gears on one body are a two-stage train (analysis/gear_train.hpp): one shared body, two gears.
+    const int ua = used[static_cast<size_t>(g.a)], ub = used[static_cast<size_t>(g.b)];
     for (int e : {g.a, g.b}) {
       int& u = used[static_cast<size_t>(e)];
       if (u >= 0) {
-        diag.error(s.where, fmt::format("lossy gear '{}': body '{}' is already geared by lossy gear '{}'; two lossy "
-                                        "gears on one body (a multi-stage lossy gearbox) are not supported yet: put "
-                                        "an inertia or a stiff spring between the stages", g.name,
-                                        m.bodies[static_cast<size_t>(e)].name, gears[static_cast<size_t>(u)].gear.name));
-        ok = false;
+        const std::string other = gears[static_cast<size_t>(u)].gear.name;
+        const std::string why = ua >= 0 && ub >= 0 ? std::string("both its bodies are geared already (a loop or a third stage)")
+                                : in_train[static_cast<size_t>(u)] ? fmt::format("'{}' is a stage of a two-stage train already", other)
+                                                                   : std::string();
+        if (!why.empty()) {
+          diag.error(s.where, fmt::format("lossy gear '{}': body '{}' is already geared by lossy gear '{}' and {}; "
+                                          "more than two lossy gears in one train are not supported yet: put an "
+                                          "inertia and a stiff spring between the stages",
+                                          g.name, m.bodies[static_cast<size_t>(e)].name, other, why));
+          ok = false;
+        } else {
+          in_train[static_cast<size_t>(u)] = in_train[k] = 1;
+          train_body.push_back({e, s.where});
+        }
       }
       u = static_cast<int>(k);
       // Friction to the fixed ground on a gear's body is decided with the gear (analysis/gear_lock.hpp),
@@ -243,6 +256,42 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
     m.lossy_gears.push_back(std::move(g));
     where.push_back(s.where);
   }
+  // A two-stage train (analysis/gear_train.hpp): nothing but links and loads on its three bodies, and
+  // inertia on the two outer ones (the shared shaft may be massless).
+  for (const auto& [shared, at] : train_body) {
+    std::vector<int> bodies{shared};
+    std::vector<std::string> names;
+    for (const LossyGear& g : m.lossy_gears)
+      if (g.a == shared || g.b == shared) bodies.push_back(g.a == shared ? g.b : g.a), names.push_back(g.name);
+    if (names.size() != 2) continue;  // one of the two was refused above
+    const std::string pre = fmt::format("lossy gears '{}' and '{}' (a two-stage train on '{}')", names[0], names[1],
+                                        m.bodies[static_cast<size_t>(shared)].name);
+    for (int e : bodies) {
+      const Body& B = m.bodies[static_cast<size_t>(e)];
+      for (const FrictionContact& c : m.contacts)
+        if (c.a == e || c.b == e || (c.row.terms > 0 && std::find(c.row.body, c.row.body + c.row.terms, e) != c.row.body + c.row.terms))
+          diag.error(at, fmt::format("{}: body '{}' has the friction element '{}'; friction elements, clutches and end "
+                                     "stops on a two-stage train's bodies are not supported yet", pre, B.name, c.name));
+      if (B.motion != MotionKind::free)
+        diag.error(at, fmt::format("{}: body '{}' has a prescribed motion; not supported on a two-stage train yet", pre,
+                                   B.name));
+      if (e != shared && B.inertia == 0.0)
+        diag.error(at, fmt::format("{}: the outer body '{}' has zero inertia; give it an inertia (only the shared shaft "
+                                   "may be massless)", pre, B.name));
+    }
+  }
+  // The initial velocities across the train: both gears' v_a = i v_b (the value given on one body).
+  for (int pass = 0; pass < 2 && !train_body.empty(); ++pass)
+    for (const LossyGear& g : m.lossy_gears) {
+      Body& A = m.bodies[static_cast<size_t>(g.a)];
+      Body& B = m.bodies[static_cast<size_t>(g.b)];
+      if (A.v0 == 0.0 && B.v0 != 0.0) A.v0 = g.ratio * B.v0;
+      else if (B.v0 == 0.0 && A.v0 != 0.0) B.v0 = A.v0 / g.ratio;
+      else if (pass == 1 && !initial_values_agree(A.v0, g.ratio * B.v0))
+        diag.error(m.where(g.name), fmt::format("lossy gear '{}': the initial velocities of its train contradict it: {} "
+                                                "{:.12g} and {} {:.12g}; give the velocity on one body of the train only",
+                                                g.name, A.name, A.v0, B.name, B.v0));
+    }
   // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear (friction to
   // the ground beside them is decided in the same decision).
   auto gear_of = [&](int body) {

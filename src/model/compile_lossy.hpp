@@ -25,8 +25,9 @@ void read_lossy_gear(const std::string& name, const SpecNode& spec, const Model&
                      Diagnostics& diag);
 
 /// Puts the gears on the bodies left by the ideal-gear merge (ratio and speeds through ρ of slaved
-/// ends), checks what the law does not support (both ends one rigid group, a body in two lossy gears,
-/// contacts on its bodies) and the initial velocities v_a = i v_b, and fills m.lossy_gears.
+/// ends), checks what the law does not support (both ends one rigid group, a body in three lossy gears
+/// or a train of more than two, contacts on its bodies or on a two-stage train's) and the initial
+/// velocities v_a = i v_b (across a two-stage train too), and fills m.lossy_gears.
 void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostics& diag);
 
 }  // namespace machdyn::detail

@@ -40,7 +40,7 @@ void audit_on(O& o) {
 
 const std::set<std::string>& compared_kinds() {
   static const std::set<std::string> k = {"gap_closed", "gap_opened", "stick", "slip", "reversal", "impact", "applied",
-                                          "mesh", "free play", "taut", "slack"};
+                                          "mesh", "free play", "taut", "slack", "driving_side"};
   return k;
 }
 
@@ -377,6 +377,9 @@ RefModel without_body(const RefModel& m, int i) {
   s.gears.clear();
   for (auto g : m.gears)
     if (g.a != i && g.b != i && g.c != i) g.a = map(g.a), g.b = map(g.b), g.c = map(g.c), s.gears.push_back(g);
+  s.trains.clear();
+  for (auto T : m.trains)
+    if (T.a != i && T.m != i && T.c != i) T.a = map(T.a), T.m = map(T.m), T.c = map(T.c), s.trains.push_back(T);
   return s;
 }
 

@@ -676,6 +676,33 @@ RefModel random_model(const std::string& family, std::uint64_t seed, std::uint64
       m.sway.push_back(R);
     }
   }
+  // The family `gear`: a two-stage lossy gearbox (LossyTrain) in half the models, on three bodies of
+  // its own driven from a chain body through a spring, with loads on its ends; drawn from a stream of
+  // its own, so the family's other elements are as they were.
+  if (family == "gear") {
+    Rng q{seed * 0x2545F4914F6CDD1Dull + index * 0x9E3779B97F4A7C15ull + fnv("gear-train")};
+    if (q.p(0.5)) {
+      LossyTrain T;
+      T.name1 = "LG1", T.name2 = "LG2";
+      T.a = static_cast<int>(m.bodies.size()), T.m = T.a + 1, T.c = T.a + 2;
+      T.i1 = sig(q.log_u(0.4, 3.0)), T.i2 = sig(q.log_u(0.4, 3.0));
+      T.e1 = sig(q.u(0.5, 1.0)), T.e2 = sig(q.u(0.5, 1.0));
+      T.r1 = q.p(0.2) ? 0.0 : sig(q.u(0.3, 1.0)), T.r2 = q.p(0.3) ? 0.0 : sig(q.u(0.3, 1.0));
+      const double v = q.p(0.3) ? sig(q.u(-0.5, 0.5)) : 0.0;
+      m.bodies.push_back({"t0", sig(q.log_u(0.5, 10.0)), 0.0, v});
+      m.bodies.push_back({"t1", sig(q.log_u(0.2, 5.0)), 0.0, v / T.i1});
+      m.bodies.push_back({"t2", sig(q.log_u(1.0, 20.0)), 0.0, v / (T.i1 * T.i2)});
+      Link L;
+      L.name = "kt";
+      L.a = q.i(0, n - 1), L.b = T.a;
+      L.c = sig(q.log_u(2e3, 5e4));
+      L.d = q.p(0.5) ? 0.0 : sig(q.u(0.0, 0.1) * 2 * std::sqrt(L.c * m.bodies[static_cast<size_t>(T.a)].m));
+      m.links.push_back(L);
+      if (q.p(0.6)) m.loads.push_back({"Pt0", T.a, random_signal(q, m.t_end, force, true)});
+      m.loads.push_back({"Pt2", T.c, random_signal(q, m.t_end, sig(force * T.i1 * T.i2), true)});
+      m.trains.push_back(T);
+    }
+  }
   for (const auto& g : m.gears)
     if (!g.planetary) m.bodies[static_cast<size_t>(g.b)].v0 = m.bodies[static_cast<size_t>(g.a)].v0 / g.ratio;
   return m;
@@ -798,6 +825,13 @@ std::string to_yaml(const RefModel& m, const std::string& integrator, const std:
     else
       y += "  " + g.name + ": {type: ideal-gear, between: [" + end_name(m, g.a) + ", " + end_name(m, g.b) + "], ratio: " + num(g.ratio) +
            (m.bodies[static_cast<size_t>(g.b)].linear ? " rad/m" : "") + "}\n";
+  }
+  for (const auto& T : m.trains) {  // two lossy gears on one body (a two-stage gearbox)
+    if (first_link) y += "links:\n", first_link = false;
+    y += "  " + T.name1 + ": {type: lossy-gear, between: [" + end_name(m, T.a) + ", " + end_name(m, T.m) + "], ratio: " +
+         num(T.i1) + ", efficiency: " + num(T.e1) + ", efficiency_reverse: " + num(T.r1) + "}\n";
+    y += "  " + T.name2 + ": {type: lossy-gear, between: [" + end_name(m, T.m) + ", " + end_name(m, T.c) + "], ratio: " +
+         num(T.i2) + ", efficiency: " + num(T.e2) + ", efficiency_reverse: " + num(T.r2) + "}\n";
   }
   for (const auto& L : m.links) {
     if (L.buffer) continue;  // under buffers:

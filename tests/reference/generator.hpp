@@ -21,6 +21,9 @@
 ///                    with an application signal, clutches opened and closed by their normal force
 ///   gear             bodies slaved to the chain by ideal gears (ratio ±0.3–3), with loads and
 ///                    links of their own, a contact and a brake on the masters
+///                    (in half its models, from a stream of its own, a two-stage lossy gearbox on
+///                    three bodies of its own, ratios 0.4–3, efficiencies 0.5–1, reverse ones 0.3–1
+///                    or 0, driven from a chain body through a spring, with loads on its ends)
 ///   planetary        rotational bodies (inertias, torques) with a planetary gear among three of
 ///                    them (z = 1.5–5), a contact and a brake (time, ramp or application) on members
 ///   motion           a chain body moved by a prescribed speed (ramp, sine from its zero, table

@@ -185,7 +185,16 @@ struct MeshMode {
   int g = 0, s1 = 1, s2 = 1;
 };
 
+/// A two-stage lossy train's mode: s = 0 stuck, else rolling in s with each stage's driving side
+/// (true: side b drives).
+struct TrainMode {
+  int s = 0;
+  bool b1 = false, b2 = false;
+  bool operator==(const TrainMode&) const = default;
+};
+
 struct Modes {
+  std::vector<TrainMode> train;
   std::vector<GMode> gap;
   std::vector<FMode> fr;
   std::vector<MeshMode> mesh;
@@ -201,6 +210,7 @@ class Sim {
     md_.fr.assign(m.frictions.size(), FMode::released);
     md_.mesh.assign(m.meshes.size(), MeshMode{});
     md_.sway.assign(m.sway.size(), 1);
+    md_.train.assign(m.trains.size(), TrainMode{});
     series_v_.assign(m.frictions.size(), 0.0);
     // A lock's hold allowance ε_h = hold_allowance(k, atol): k = Σ (c + d·1 s⁻¹) of the links on its
     // bodies, atol the engine's (λ is known only to k atol: elements/hold_allowance.hpp).
@@ -555,7 +565,101 @@ class Sim {
   }
 
   /// Accelerations a (n) and the stuck loads λ (per friction element, 0 if not stuck) at (t, y).
+  /// The accelerations in mode md; a two-stage lossy train's bodies by its own law (train_solve).
   void accel(double t_in, const double* y, const Modes& md, double* a, double* lam) {
+    accel_core(t_in, y, md, a, lam);
+    for (size_t k = 0; k < m_.trains.size(); ++k) {
+      const LossyTrain& T = m_.trains[k];
+      const TrainMode& tm = md.train[k];
+      const double al = tm.s == 0 ? 0.0 : train_solve(T, tm.b1, tm.b2, f_.data()).alpha;
+      a[T.a] = al, a[T.m] = al / T.i1, a[T.c] = al / (T.i1 * T.i2);
+    }
+  }
+
+  // ---- two-stage lossy trains --------------------------------------------------------------------
+  struct TrainSol {
+    double alpha = 0.0, X1 = 0.0, Y1 = 0.0, X2 = 0.0, Y2 = 0.0;
+  };
+  /// Rolling with the sides b1, b2 (true: side b drives) under the forces f: reduced from the last
+  /// body inward, every torque affine in α = a_a (k0 + k1 α):
+  ///   c: J_c α/(i1 i2) = f_c + i2 Y2;  m: J_m α/i1 = f_m + i1 Y1 − X2;  a: J_a α = f_a − X1,
+  /// each stage's X from its Y by its side (a drives: X = Y/e, b drives: X = r Y).
+  TrainSol train_solve(const LossyTrain& T, bool b1, bool b2, const double* f) const {
+    const double Ja = mass_[static_cast<size_t>(T.a)], Jm = mass_[static_cast<size_t>(T.m)], Jc = mass_[static_cast<size_t>(T.c)];
+    const double Y2_0 = -f[T.c] / T.i2, Y2_1 = Jc / (T.i1 * T.i2 * T.i2);
+    const double w2 = b2 ? T.r2 : 1.0 / T.e2;
+    const double X2_0 = w2 * Y2_0, X2_1 = w2 * Y2_1;
+    const double Y1_0 = (X2_0 - f[T.m]) / T.i1, Y1_1 = (Jm / T.i1 + X2_1) / T.i1;
+    const double w1 = b1 ? T.r1 : 1.0 / T.e1;
+    const double X1_0 = w1 * Y1_0, X1_1 = w1 * Y1_1;
+    TrainSol x;
+    x.alpha = (f[T.a] - X1_0) / (Ja + X1_1);
+    x.X1 = X1_0 + X1_1 * x.alpha, x.Y1 = Y1_0 + Y1_1 * x.alpha;
+    x.X2 = X2_0 + X2_1 * x.alpha, x.Y2 = Y2_0 + Y2_1 * x.alpha;
+    return x;
+  }
+  /// How far the sides disagree with the power flow in direction s (0: consistent).
+  static double train_violation(const TrainSol& x, int s, bool b1, bool b2) {
+    const double v1 = b1 ? std::max(0.0, s * x.Y1) : std::max(0.0, -s * x.X1);
+    const double v2 = b2 ? std::max(0.0, s * x.Y2) : std::max(0.0, -s * x.X2);
+    return v1 + v2;
+  }
+  /// The consistent sides rolling in s (the least violation of the four).
+  TrainMode train_sides(const LossyTrain& T, int s, const double* f) const {
+    TrainMode best{s, false, false};
+    double worst = HUGE_VAL;
+    for (int combo = 0; combo < 4; ++combo) {
+      const bool b1 = (combo & 1) != 0, b2 = (combo & 2) != 0;
+      const double v = train_violation(train_solve(T, b1, b2, f), s, b1, b2);
+      if (v < worst) worst = v, best = TrainMode{s, b1, b2};
+    }
+    return best;
+  }
+  /// The stuck train's function of a start in s: −s α_s (J_a + J_m/i1² + J_c/(i1 i2)²), α_s rolling in s.
+  double train_margin(const LossyTrain& T, int s, const double* f) const {
+    const TrainMode x = train_sides(T, s, f);
+    const double I = mass_[static_cast<size_t>(T.a)] + mass_[static_cast<size_t>(T.m)] / (T.i1 * T.i1) +
+                     mass_[static_cast<size_t>(T.c)] / (T.i1 * T.i1 * T.i2 * T.i2);
+    return -s * train_solve(T, x.b1, x.b2, f).alpha * I;
+  }
+  std::vector<int> fired_trains_;  ///< trains whose function fired (decided strictly)
+  /// Decides every train (docs/hybrid.md step 5): rolling, the consistent sides in sign(v_a); at rest
+  /// a start in the s whose function is negative (beyond 1e-13 of the force scale unless it fired),
+  /// else stuck. Records each stage's change as the engine names it.
+  void decide_trains(double t, const std::vector<double>& y, bool initial) {
+    for (size_t k = 0; k < m_.trains.size(); ++k) {
+      const LossyTrain& T = m_.trains[k];
+      std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+      accel(t, y.data(), md_, a.data(), lam.data());
+      const std::vector<double> f = f_;
+      const double v = y[static_cast<size_t>(n_ + T.a)];
+      TrainMode now;
+      if (v != 0.0) {
+        now = train_sides(T, v > 0.0 ? 1 : -1, f.data());
+      } else {
+        const bool fired = std::find(fired_trains_.begin(), fired_trains_.end(), static_cast<int>(k)) != fired_trains_.end();
+        const double eps = fired ? 0.0 : 1e-13 * fscale_;
+        int found = 0;
+        for (int s : {1, -1})
+          if (train_margin(T, s, f.data()) < -eps) {
+            if (found++ == 0) now = train_sides(T, s, f.data());
+          }
+        if (found > 1) res_.ambiguous_from = std::min(res_.ambiguous_from, t);
+      }
+      const TrainMode was = md_.train[k];
+      md_.train[k] = now;
+      if (initial) continue;
+      auto log = [&](const std::string& name, bool bw, bool bn) {
+        if (was.s == now.s && (now.s == 0 || bw == bn)) return;
+        record(t, now.s == 0 ? "stick" : was.s == 0 ? "slip" : was.s != now.s ? "reversal" : "driving_side", name);
+      };
+      log(T.name1, was.b1, now.b1);
+      log(T.name2, was.b2, now.b2);
+    }
+    fired_trains_.clear();
+  }
+
+  void accel_core(double t_in, const double* y, const Modes& md, double* a, double* lam) {
     // A step that ends on a breakpoint sees the signals' left limits there (the next step starts
     // with the new values), as every step of the engine does.
     const double t = t_in == t_left_ ? std::nextafter(t_in, -HUGE_VAL) : t_in;
@@ -687,6 +791,7 @@ class Sim {
     int mesh = -1, slot = 0;  // a gear mesh: 0 its flank (or τ's sign), 1 and 2 its bodies' speeds
     double res = 0.0;  // its resolution δ (> 0: the events it fires get a resolution window)
     int sway = -1;     // a spatial rope
+    int train = -1, tslot = 0;  // a two-stage lossy train: 0, 1 its margins (stuck), 2 its rest, 3, 4 its stages' sides
   };
 
   std::vector<char> held_;        // functions(): bodies held at rest by a stuck element to the ground
@@ -771,6 +876,23 @@ class Sim {
       const RopeAt o = rope_at(m_.sway[k], y.data(), 0);
       if (md_.sway[k] == 0) out.push_back({.g = o.F, .eps = eps_f, .sway = static_cast<int>(k)});
       else out.push_back({.g = o.e <= 0.0 ? -o.e : -o.F, .eps = o.e <= 0.0 ? eps_x : eps_f, .sway = static_cast<int>(k)});
+    }
+    // Two-stage lossy trains: stuck, −s α_s for both s; rolling, s v_a and each stage's side function.
+    const std::vector<double> ft = f_;
+    const double res_f = kLoadResolution * fscale_;  // functions of loads: their resolution (event_window)
+    for (size_t k = 0; k < m_.trains.size(); ++k) {
+      const LossyTrain& T = m_.trains[k];
+      const TrainMode& tm = md_.train[k];
+      const int ti = static_cast<int>(k);
+      if (tm.s == 0) {
+        out.push_back({.g = train_margin(T, 1, ft.data()), .eps = eps_f, .res = res_f, .train = ti, .tslot = 0});
+        out.push_back({.g = train_margin(T, -1, ft.data()), .eps = eps_f, .res = res_f, .train = ti, .tslot = 1});
+        continue;
+      }
+      const TrainSol x = train_solve(T, tm.b1, tm.b2, ft.data());
+      out.push_back({.g = tm.s * y[static_cast<size_t>(n_ + T.a)], .eps = 0.0, .train = ti, .tslot = 2});
+      out.push_back({.g = tm.b1 ? -tm.s * x.Y1 : tm.s * x.X1, .eps = eps_f, .res = res_f, .train = ti, .tslot = 3});
+      out.push_back({.g = tm.b2 ? -tm.s * x.Y2 : tm.s * x.X2, .eps = eps_f, .res = res_f, .train = ti, .tslot = 4});
     }
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
@@ -886,6 +1008,7 @@ class Sim {
   /// Decides the friction elements at zero sliding speed (`zero`: their indices) by enumeration;
   /// `fired` are those whose switching function fired (judged strictly).
   void decide(double t, std::vector<double>& y, const std::vector<int>& fired, bool initial = false) {
+    decide_trains(t, y, initial);
     std::vector<int> Z;
     for (size_t k = 0; k < m_.frictions.size(); ++k) {
       const Friction& f = m_.frictions[k];
@@ -1115,6 +1238,7 @@ class Sim {
                                  (f.gap >= 0    ? m_.links[static_cast<size_t>(f.gap)].name
                                   : f.sway >= 0 ? m_.sway[static_cast<size_t>(f.sway)].name
                                   : f.mesh >= 0 ? m_.meshes[static_cast<size_t>(f.mesh)].name
+                                  : f.train >= 0 ? m_.trains[static_cast<size_t>(f.train)].name1
                                                 : m_.frictions[static_cast<size_t>(f.fr)].name) +
                                  ": " + std::to_string(f.g) + ")");
   }
@@ -1265,6 +1389,11 @@ RefResult Sim::run() {
             RefEvent& ev = res_.events.back();
             ev.body = L.a >= 0 ? L.a : L.b, ev.body2 = L.a >= 0 ? L.b : -1, ev.dt_dq = L.c / gdot, ev.dt_dv = L.d / gdot;
           }
+        } else if (ge[i].train >= 0) {
+          // A train: at its rest every speed of its bodies is 0 (the bisection's side), then decided.
+          const LossyTrain& T = m_.trains[static_cast<size_t>(ge[i].train)];
+          if (ge[i].tslot == 2) y[static_cast<size_t>(n_ + T.a)] = y[static_cast<size_t>(n_ + T.m)] = y[static_cast<size_t>(n_ + T.c)] = 0.0;
+          fired_trains_.push_back(ge[i].train);
         } else if (ge[i].sway >= 0) {
           // A spatial rope goes slack (F reaches 0) or taut (e reaches 0).
           const size_t k = static_cast<size_t>(ge[i].sway);

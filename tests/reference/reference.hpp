@@ -57,7 +57,13 @@
 /// docs/sway.md: a mode per rope (taut, slack), its switching function F (taut) or −e (slack); a
 /// ground stop under the load's z makes the lift-off. No jib.
 ///
-/// Limits (what the generator respects): link ratio 1, no lossy gears, massless gear members, `position`
+/// Two-stage lossy gearboxes (LossyTrain) are solved by reducing the train from its last body inward
+/// (each stage's relation turns the bodies behind it into an inertia and a force on its input), their
+/// mode (stuck, or rolling in s with each stage's driving side) decided at every event by enumerating
+/// the directions and side combinations; switching functions: stuck, −s α_s for both s; rolling, s v_a
+/// (rest) and each stage's side function s X or −s Y.
+///
+/// Limits (what the generator respects): link ratio 1, no lossy gears but two-stage trains, massless gear members, `position`
 /// motions, buffers other than linear, drives other than the DC motor, machines; releases only on free bodies without gears, at t_r > 0;
 /// prescribed bodies only with contacts to free bodies (no ground friction, freewheel, stop or gear on
 /// them), a speed without jumps; at most two friction elements to the ground on a planetary gear's
@@ -270,6 +276,20 @@ struct SwayRope {
   double offset = 0.0;            ///< the suspension point's offset along x, m
 };
 
+/// A two-stage lossy gearbox (docs/model-files.md "Two stages", docs/hybrid.md "Modes" step 5): the
+/// lossy gear `name1` between a and m (v_a = i1 v_m) and `name2` between m and c (v_m = i2 v_c), ratios
+/// > 0, no bearing friction. Each gear: X the torque its side a delivers into it, Y the torque it
+/// delivers to side b (its body b receives i Y, a receives −X); side a drives (power a → b): Y = e X,
+/// side b drives: X = r Y (e, r: `efficiency`, `efficiency_reverse`); rolling in s = sign(v_a) side a
+/// drives while s X ≥ 0, side b while s Y ≤ 0. At rest the train starts in s where the rolling motion
+/// in s with consistent sides has s α > 0, else it is stuck (every speed 0). No friction element,
+/// ideal gear or mesh on its bodies.
+struct LossyTrain {
+  std::string name1, name2;
+  int a = 0, m = 1, c = 2;
+  double i1 = 1.0, i2 = 1.0, e1 = 1.0, r1 = 1.0, e2 = 1.0, r2 = 1.0;
+};
+
 struct RefModel {
   bool rotational = false;  ///< every body rotational (φ in rad, kg·m², N·m): the same equations
   std::vector<Body> bodies;
@@ -281,6 +301,7 @@ struct RefModel {
   std::vector<DcMotor> motors;
   std::vector<Mesh> meshes;
   std::vector<SwayRope> sway;
+  std::vector<LossyTrain> trains;
   double g = 9.80665;  ///< gravity on the loads' z bodies, m/s²
   double t_end = 1.0, dt_out = 0.01;
 };

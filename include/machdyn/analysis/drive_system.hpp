@@ -52,6 +52,7 @@
 #include <Eigen/Core>
 
 #include "machdyn/analysis/gear_lock.hpp"
+#include "machdyn/analysis/gear_train.hpp"
 #include "machdyn/elements/contact.hpp"
 #include "machdyn/elements/link.hpp"
 #include "machdyn/elements/lossy_gear.hpp"
@@ -194,8 +195,12 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] GearMode natural_gear_mode(int g, double t, const double* y, bool strict);
   /// Gear g's torques X, Y and the acceleration of its body a at (t, y) in its mode.
   [[nodiscard]] LossyGearLaw::Torques gear_torques(int g, double t, const double* y);
-  /// Puts both bodies of gear g exactly at rest (its speed reached zero: decided at rest, as a contact).
+  /// Puts both bodies of gear g exactly at rest (its speed reached zero: decided at rest, as a contact);
+  /// a gear of a two-stage train (analysis/gear_train.hpp) with all the train's bodies.
   void stop_gear(int g, double* y) const;
+  /// The two-stage train gear g belongs to (analysis/gear_train.hpp), −1 for none.
+  [[nodiscard]] int gear_train_of(int g) const { return train_of_gear_[static_cast<size_t>(g)]; }
+  [[nodiscard]] const GearTrain& gear_train(int t) const { return trains_[static_cast<size_t>(t)]; }
   /// The friction elements to the ground on the gears' bodies (analysis/gear_lock.hpp). While a gear
   /// is stuck with them, evaluate() reports the split of the holding torque and event_functions() the
   /// joint margins in the gear's slots (its contacts' slots read 1: the gear's events are theirs).
@@ -349,6 +354,13 @@ class DriveSystem final : public OdeSystem {
   [[nodiscard]] LossyGearLaw::Torques given_gear_torques(int g, double t, const double* y, const double* f);
   /// a_b = a_a / i exactly (0 when stuck; a with a prescribed side), after the inertias divided the forces.
   void enforce_gears(double* acc) const;
+  // Two lossy gears on one body (analysis/gear_train.hpp): solved, decided and evented together.
+  std::vector<GearTrain> trains_;
+  std::vector<int> train_of_gear_;                // per gear: its train, −1
+  std::vector<std::array<double, 3>> train_f_;    // per train: the last evaluation's F on its bodies
+  /// Solves train t in its gears' modes on the forces f and adds their torques (apply_gears).
+  void apply_train(int t, const double* y, double* f, double* p_fric);
+  [[nodiscard]] std::array<double, 3> train_inertia(int t) const;
   /// The split of each stuck gear's holding torque with its stuck contacts (gear_lock.hpp): their
   /// loads into fc, the gear's X, Y (analysis/drive_system_locks.cpp).
   void share_locks(double t, double* fc);
