@@ -74,7 +74,7 @@ void print_simulation_table(const Model& m, const SimulationResult& r, std::ostr
                       events, r.hybrid.slip_phases.size(), r.hybrid.energy.residual(), r.hybrid.energy.source_work);
   }
   os << brake_stops_text(brake_summaries(m, r));  // each brake's stops (analysis/brake_summary.hpp)
-  os << sway_text(sway_summaries(m, r));           // each spatial rope's sway (analysis/sway_summary.hpp)
+  os << sway_text(r.sway);           // each spatial rope's sway (analysis/sway_summary.hpp)
   for (const auto& x : r.machines) {
     if (x.jumps > 0)
       os << fmt::format("{}: {} velocity jumps (stepwise ratio), {:.6g} J lost in them\n", x.body, x.jumps, x.jump_loss);
@@ -172,7 +172,7 @@ int run_all_cases(const SimulateArgs& a) {
       all.push_back(summary);
       for (const auto& line : split_lines(brake_stops_text(brake_summaries(m, r))))
         brake_lines += fmt::format("case {}: {}\n", names[c], line);
-      for (const auto& line : split_lines(sway_text(sway_summaries(m, r))))
+      for (const auto& line : split_lines(sway_text(r.sway)))
         brake_lines += fmt::format("case {}: {}\n", names[c], line);
       long events = 0;
       for (const auto& e : r.hybrid.events) events += e.kind != "initial";

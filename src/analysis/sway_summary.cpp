@@ -88,6 +88,4 @@ std::vector<SwaySummary> SwayObserver::summaries() const {
   return out;
 }
 
-std::vector<SwaySummary> sway_summaries(const Model&, const SimulationResult& r) { return r.sway; }
-
 }  // namespace machdyn

@@ -21,8 +21,8 @@ const std::vector<double>* report_sway_column(const SimulationResult& r, const s
 
 }  // namespace
 
-std::optional<Section> sway_section(const Model& m, const SimulationResult& r, const std::string& case_name) {
-  const std::vector<SwaySummary> sway = sway_summaries(m, r);
+std::optional<Section> sway_section(const Model&, const SimulationResult& r, const std::string& case_name) {
+  const std::vector<SwaySummary>& sway = r.sway;
   if (sway.empty()) return std::nullopt;
   constexpr double deg_per_rad = 180.0 / std::numbers::pi;
   Section s;

@@ -225,7 +225,7 @@ nlohmann::json simulation_summary(const Model& m, const SimulationResult& r) {
   j["links"] = links;
   if (r.hybrid.active) add_hybrid_summary(m, r, j);
   if (const auto brakes = brake_summaries(m, r); !brakes.empty()) j["brakes"] = brake_stops_json(brakes);
-  if (const auto sway = sway_summaries(m, r); !sway.empty()) {  // spatial ropes: analysis/sway_summary.hpp
+  if (const auto& sway = r.sway; !sway.empty()) {  // spatial ropes: analysis/sway_summary.hpp
     nlohmann::json js = nlohmann::json::object();
     for (const SwaySummary& x : sway) {
       nlohmann::json e = {{"max_sway_rad", x.max_sway_rad}, {"t_max_sway_s", x.t_max_sway},

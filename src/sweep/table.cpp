@@ -70,9 +70,9 @@ SummaryColumns sway_summary_columns() {
         h.push_back(rope + "." + f);
     return h;
   };
-  g.values = [](const Model& m, const SimulationResult& r, std::vector<double>& v) {
+  g.values = [](const Model&, const SimulationResult& r, std::vector<double>& v) {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    for (const SwaySummary& s : sway_summaries(m, r))  // the keys of summary.json's `sway` (io/results.cpp)
+    for (const SwaySummary& s : r.sway)  // the keys of summary.json's `sway` (io/results.cpp)
       v.insert(v.end(), {s.max_sway_rad, s.residual_after ? s.residual_sway_rad : nan, s.max_horizontal_force_N,
                          s.dynamic_factor.value_or(nan)});
   };

@@ -112,7 +112,7 @@ TEST_P(Sway, SummaryOfAMove) {
                               "sway_after: 2 s}\n",
                               12.0, 1e-3, GetParam());
   const SimulationResult r = simulate(md);
-  const std::vector<SwaySummary> s = sway_summaries(md, r);
+  const std::vector<SwaySummary> s = r.sway;
   ASSERT_EQ(s.size(), 1u);
   EXPECT_EQ(s[0].rope, "rope");
   EXPECT_NEAR(s[0].max_sway_rad, th, 1e-3 * th);

@@ -67,10 +67,7 @@ class SwayObserver {
   std::vector<double> out_;  ///< one rope's outputs
 };
 
-/// The sway summary of the run `r` (r.sway, computed by the run's SwayObserver); `m` is the model run.
-std::vector<SwaySummary> sway_summaries(const Model& m, const SimulationResult& r);
-
-/// The names of the ropes sway_summaries() reports on for a run of `m`, in its order (known before
+/// The names of the ropes SimulationResult::sway reports on for a run of `m`, in its order (known before
 /// the run: a sweep's table columns).
 std::vector<std::string> sway_rope_names(const Model& m);
 
