@@ -882,9 +882,11 @@ class Sim {
     project(y, Z);
     if (z == 0) return;
 
-    // A two-sided friction element (contact, brake, clutch) sliding while the stuck two-sided ones
-    // tie its two bodies together (both in one component of their graph, the ground a node) would
-    // slide at u ≡ 0: no slide, it is stuck with that set (docs/hybrid.md, the decision at an event).
+    // A two-sided friction element (contact, brake, clutch) sliding while the stuck ones tie its two
+    // bodies together (both in one component of their graph, the ground a node) would slide at
+    // u ≡ 0: no slide, it is stuck with that set (docs/hybrid.md, the decision at an event). A stuck
+    // freewheel or resting stop ties too (stuck, it is a constraint; campaign `mixed` seed 1 #61, #67:
+    // a contact slid at u ≡ 0 on a body two stuck freewheels tied to the ground).
     auto two_sided = [](const Friction& f) { return f.kind != Friction::Kind::freewheel && f.kind != Friction::Kind::stop; };
     std::vector<int> comp(static_cast<size_t>(n_) + 1);
     auto locked = [&](const Modes& tr, int k) {
@@ -896,7 +898,7 @@ class Sim {
       };
       for (size_t j = 0; j < m_.frictions.size(); ++j) {
         const Friction& fj = m_.frictions[j];
-        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck || !two_sided(fj)) continue;
+        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck) continue;
         comp[static_cast<size_t>(find(node(fj.a)))] = find(node(fj.b));
       }
       const Friction& f = m_.frictions[static_cast<size_t>(k)];
