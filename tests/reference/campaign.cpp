@@ -74,7 +74,8 @@ std::vector<char> brief_phases(const List& list, double tol, Get get) {
 
 /// The events of `list` that open and close an unloaded stuck phase of a freewheel without drag: its
 /// `stick` and the `slip` that ends it, where its load stays within δ of 0 at every output row of the
-/// phase, and it has one (`load(element, t0, t1)`: the largest |λ| over those rows, ∞ without one). Stuck with λ = 0 and overrunning
+/// phase, and it has one (`load(element, t0, t1)`: the largest |λ| of both runs over those rows, ∞
+/// without one). Stuck with λ = 0 and overrunning
 /// at u = 0 it exerts the same force (none: no drag) on the same velocities (u = 0 either way), so the
 /// two modes are one motion and the mode a label — which one a run shows is its rounding: BDF's
 /// Newton corrections leave a body tied to the ground by stuck contacts 1e-20 m/s off rest, and the
@@ -94,7 +95,9 @@ std::vector<char> label_phases(const List& list, const RefModel& m, double t_cmp
     if (f == nullptr || f->kind != Friction::Kind::freewheel || f->drag != 0.0) continue;
     size_t j = i + 1;
     while (j < list.size() && get(list[j]).element != e.element) ++j;
-    if (j == list.size() || get(list[j]).kind != "slip" || get(list[j]).t >= t_cmp) continue;  // a phase to the end: compared
+    // A phase to the end, or whose slip is not compared (at the reference's ambiguity, on both sides
+    // alike): compared.
+    if (j == list.size() || get(list[j]).kind != "slip" || get(list[j]).t >= t_cmp) continue;
     if (load(e.element, e.t, get(list[j]).t) <= delta) label[i] = label[j] = 1;
   }
   return label;
@@ -229,8 +232,11 @@ Outcome compare_results(const RefModel& m, const RefResult& ref, const Simulatio
       if ((*ts)[k] > t0 && (*ts)[k] < t1) worst = std::isinf(worst) ? std::abs((*F)[k]) : std::max(worst, std::abs((*F)[k]));
     return worst;
   };
-  const auto eng_label = label_phases(r.hybrid.events, m, t_cmp, lam_delta, [](const ModeEvent& x) -> const ModeEvent& { return x; }, eng_load);
-  const auto ref_label = label_phases(ref.events, m, t_cmp, lam_delta, [](const RefEvent& x) -> const RefEvent& { return x; }, ref_load);
+  // Unloaded in both runs (one side's label phase is the other's unloaded stuck or overrun phase:
+  // a side whose freewheel carries a load there is compared on both).
+  auto both_load = [&](const std::string& name, double t0, double t1) { return std::max(eng_load(name, t0, t1), ref_load(name, t0, t1)); };
+  const auto eng_label = label_phases(r.hybrid.events, m, t_cmp - tol_t, lam_delta, [](const ModeEvent& x) -> const ModeEvent& { return x; }, both_load);
+  const auto ref_label = label_phases(ref.events, m, t_cmp - tol_t, lam_delta, [](const RefEvent& x) -> const RefEvent& { return x; }, both_load);
   // The rest that ends a series of bounces is its accumulation instant t∞, known to its tolerance
   // only: an impact of the same stop within that tolerance of it belongs to the series' tail (either
   // side may resolve fewer or more of those bounces) and is not compared either.

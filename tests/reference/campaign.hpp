@@ -38,7 +38,7 @@
 ///           without a reversal is the same motion within the states' tolerance), and the
 ///           engine's reversals of that element up to its instant plus tolerance; a `stick` and
 ///           the `slip` that ends it of a freewheel without drag whose load stays within
-///           kLoadResolution × the run's largest stuck load at every row between them (stuck with
+///           kLoadResolution × the largest stuck load at every row between them, in both runs (stuck with
 ///           λ = 0 and overrunning at u = 0 it exerts the same force, none, on the same velocities:
 ///           one motion, the mode a label that rounding picks — BDF's 1e-20 m/s off rest on a body
 ///           stuck contacts tie to the ground fired a backstop's overrun function, `mixed` seed 1
