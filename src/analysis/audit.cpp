@@ -326,8 +326,7 @@ void Audit::check_at(double t, const double* y) {
       x.position_resolution = m_.simulation.atol + m_.simulation.rtol * std::abs(x.q);
       audit::check_contact(law, m_.contacts[static_cast<size_t>(k)].name, t, x);
     }
-    // A friction contact sliding at u = 0 exactly: is its motion locked by the stuck ones beside it
-    // (contacts, brakes, clutches, freewheels and resting stops: each stuck row a constraint)?
+    // A friction contact sliding at u = 0 exactly: is its motion locked by the stuck ones beside it?
     // Not a released one, nor one whose r is 0 up to rounding (its mode a label until the
     // application's breakpoint decides it: the left limit of a normal force's rising zero).
     for (int k = 0; k < nc; ++k) {
@@ -344,7 +343,7 @@ void Audit::check_at(double t, const double* y) {
       std::vector<std::vector<double>> rows;
       for (int j = 0; j < nc; ++j) {
         const ContactLaw& c = sys_.contact(j);
-        if (sys_.contact_mode(j) == ContactMode::stuck && !c.joint && !c.kinematic) rows.push_back(dense(c));
+        if (sys_.contact_mode(j) == ContactMode::stuck && c.lock == 0 && !c.joint && !c.kinematic) rows.push_back(dense(c));
       }
       audit::check_locked_slide(m_.contacts[static_cast<size_t>(k)].name, t, sys_.contact_mode(k), 0.0, rows, dense(law));
     }

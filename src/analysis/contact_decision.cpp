@@ -81,8 +81,11 @@ class Decision {
     std::vector<int> rows;
     for (size_t j = 0; j < modes.size(); ++j) {
       const ContactLaw& cj = sys_.contact(static_cast<int>(j));
+      // A stuck freewheel or stop counts too — not yet beside a lossy gear that clutches couple
+      // (analysis/gear_clutch.hpp): there a clutch beside a loaded freewheel (MSL's one-way clutch in
+      // examples/msl/heat-losses.yaml) finds no other consistent mode in that decision (open).
       if (static_cast<int>(j) != k && modes[j] == ContactMode::stuck && !cj.joint && !cj.kinematic &&
-          !cj.released(t_))
+          !cj.released(t_) && (cj.lock == 0 || !sys_.has_coupled_gears()))
         rows.push_back(static_cast<int>(j));
     }
     if (rows.empty()) return false;
