@@ -65,11 +65,15 @@ class Decision {
     return true;
   }
   /// Whether friction contact k (not a freewheel, stop or joint) is held at u ≡ 0 by the friction
-  /// contacts stuck in `modes`: its row in the span of theirs (rank test to 1e-9). Such a contact
+  /// contacts, freewheels and stops stuck in `modes`: its row in the span of theirs (rank test to 1e-9). Such a contact
   /// cannot slide — its slide from rest is consistent only at u̇ = 0, by rounding — it is stuck with
   /// the set, its load within the set's limits (the bounded split; the audit's contact.locked_slide).
   /// Two parallel contacts to the ground, one breaking away at the instant another contact of the
-  /// set did: the other kept it at u ≡ 0 (campaign `mixed` seed 2 model 83).
+  /// set did: the other kept it at u ≡ 0 (campaign `mixed` seed 2 model 83). A stuck freewheel or
+  /// resting stop is such a row too (stuck, it is a constraint like any other: u ≡ 0 on its row): a
+  /// contact beside a backstop that holds its body was released first where the set had no split
+  /// (the weighted share overloading it, not the freewheel beyond its drag) and left "sliding" at
+  /// u ≡ 0 (campaign `mixed` seed 1 #69; CampaignDefectsH).
   bool locked(int k, const std::vector<ContactMode>& modes) const {
     const ContactLaw& c = sys_.contact(k);
     if (c.lock != 0 || c.joint || c.kinematic) return false;
@@ -77,8 +81,11 @@ class Decision {
     std::vector<int> rows;
     for (size_t j = 0; j < modes.size(); ++j) {
       const ContactLaw& cj = sys_.contact(static_cast<int>(j));
-      if (static_cast<int>(j) != k && modes[j] == ContactMode::stuck && cj.lock == 0 && !cj.joint && !cj.kinematic &&
-          !cj.released(t_))
+      // A stuck freewheel or stop counts too — not yet beside a lossy gear that clutches couple
+      // (analysis/gear_clutch.hpp): there a clutch beside a loaded freewheel (MSL's one-way clutch in
+      // examples/msl/heat-losses.yaml) finds no other consistent mode in that decision (open).
+      if (static_cast<int>(j) != k && modes[j] == ContactMode::stuck && !cj.joint && !cj.kinematic &&
+          !cj.released(t_) && (cj.lock == 0 || !sys_.has_coupled_gears()))
         rows.push_back(static_cast<int>(j));
     }
     if (rows.empty()) return false;

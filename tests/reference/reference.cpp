@@ -1035,9 +1035,14 @@ class Sim {
     project(y, Z);
     if (z == 0) return;
 
-    // A two-sided friction element (contact, brake, clutch) sliding while the stuck two-sided ones
-    // tie its two bodies together (both in one component of their graph, the ground a node) would
-    // slide at u ≡ 0: no slide, it is stuck with that set (docs/hybrid.md, the decision at an event).
+    // A two-sided friction element (contact, brake, clutch) sliding while the stuck ones tie its two
+    // bodies together (both in one component of their graph, the ground a node) would slide at
+    // u ≡ 0: no slide, it is stuck with that set (docs/hybrid.md, the decision at an event). A stuck
+    // freewheel or resting stop ties too (stuck, it is a constraint; campaign `mixed` seed 1 #61, #67:
+    // a contact slid at u ≡ 0 on a body two stuck freewheels tied to the ground). Not one whose static
+    // limit is below a load's resolution (a clutch at the zero of its normal force, breaking away
+    // there as it opens: it holds nothing, sliding or stuck, and its loop of a clutch and a stuck
+    // freewheel would have it slide the other clutch with it; `mixed` seed 2 #68).
     auto two_sided = [](const Friction& f) { return f.kind != Friction::Kind::freewheel && f.kind != Friction::Kind::stop; };
     std::vector<int> comp(static_cast<size_t>(n_) + 1);
     auto locked = [&](const Modes& tr, int k) {
@@ -1049,7 +1054,7 @@ class Sim {
       };
       for (size_t j = 0; j < m_.frictions.size(); ++j) {
         const Friction& fj = m_.frictions[j];
-        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck || !two_sided(fj)) continue;
+        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck) continue;
         comp[static_cast<size_t>(find(node(fj.a)))] = find(node(fj.b));
       }
       const Friction& f = m_.frictions[static_cast<size_t>(k)];
@@ -1073,7 +1078,7 @@ class Sim {
           }
         } else if (md == FMode::off) {  // a resting stop left: the body moves off it
           if ((f.stop_max ? -aa : aa) < -tol_a) return false;
-        } else if (sign_of(md) * du < -tol_a || (two_sided(f) && locked(tr, k))) {
+        } else if (sign_of(md) * du < -tol_a || (two_sided(f) && f.static_limit(t) > kLoadResolution * fscale_ && locked(tr, k))) {
           return false;
         }
       }
