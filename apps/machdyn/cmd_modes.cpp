@@ -12,6 +12,7 @@
 #include "machdyn/io/folder_lock.hpp"
 #include "machdyn/analysis/frequency_response.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
+#include "machdyn/analysis/hanging_rest.hpp"
 #include "machdyn/analysis/mode_kinds.hpp"
 #include "machdyn/analysis/modes.hpp"
 #include "machdyn/analysis/simulate.hpp"
@@ -186,7 +187,8 @@ int run(const ModesArgs& a) {
     od.throw_if_any();
     if (outs.empty())
       for (const Link& l : m.links) outs.push_back(linear_output(m, lin_topo, l.name + ".load", Location{"--output", 1, 1}));
-    const LinearModel lin = linearize(m, lin_topo);
+    const std::vector<double> y = linearization_state(m, lin_topo);  // a load that starts on the floor hangs
+    const LinearModel lin = linearize(m, lin_topo, 0.0, y.empty() ? nullptr : y.data());
     frf = frequency_response(lin, in, outs, omega_grid(a, undamped_modes(lin)));
   }
   if (a.plot) plot::find_gnuplot();

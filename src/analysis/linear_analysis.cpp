@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "machdyn/analysis/hanging_rest.hpp"
 #include "machdyn/elements/linearize.hpp"
 
 namespace machdyn {
@@ -16,7 +17,8 @@ TopologyModes analyse_topology(const Model& m, const Topology& topo, double t, i
   TopologyModes out;
   out.topology = topo;
   out.label = topology_label(m, topo);
-  const LinearModel lin = linearize(m, topo, t);
+  const std::vector<double> y = linearization_state(m, topo);  // a load that starts on the floor hangs
+  const LinearModel lin = linearize(m, topo, t, y.empty() ? nullptr : y.data());
   out.modes = undamped_modes(lin);
   bool has_damping = false;
   for (const auto& e : lin.D) has_damping = has_damping || e.value() != 0.0;
@@ -82,7 +84,8 @@ std::unique_ptr<FrequencyResponse> default_frequency_response(const Model& m, co
       for (const Link& l : m.links) outs.push_back(linear_output(m, t.topology, l.name + ".load", at_output));
     else
       for (const auto& o : choice.outputs) outs.push_back(linear_output(m, t.topology, o, at_output));
-    const LinearModel lin = linearize(m, t.topology);
+    const std::vector<double> y = linearization_state(m, t.topology);
+    const LinearModel lin = linearize(m, t.topology, 0.0, y.empty() ? nullptr : y.data());
     const double two_pi = 2.0 * std::numbers::pi;
     if (label) *label = t.label;
     if (band_given)

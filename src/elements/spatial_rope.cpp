@@ -83,6 +83,18 @@ void SpatialRope::hessian(const ElementMotion& b, const Geometry& g, double* H) 
   }
 }
 
+bool SpatialRope::hang(ElementMotion& b, double gravity) const {
+  if (has(Role::load_psi)) return false;
+  const Geometry g = geometry(b);  // p does not depend on a point-mass load's coordinates
+  const double s = has(Role::drum) ? law.inv_ratio : 0.0;
+  // e = ℓ − L0 + s (φ − φ0) at the tension c(φ) e = m g
+  const double l = law.L0 - s * (g.qa - law.u0) + mass * gravity / law.stiffness(g.qa);
+  if (has(Role::load_x)) b.q[port_of[static_cast<int>(Role::load_x)]] = g.p[0];
+  if (has(Role::load_y)) b.q[port_of[static_cast<int>(Role::load_y)]] = g.p[1];
+  b.q[port_of[static_cast<int>(Role::load_z)]] = h - l;
+  return true;
+}
+
 double SpatialRope::tension(const Geometry& g, int mode) const {
   return mode == 0 ? law.load(g.e, g.rate, GapMode::closed_pos, g.qa) : 0.0;
 }

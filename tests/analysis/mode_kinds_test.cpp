@@ -12,9 +12,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "machdyn/analysis/hanging_rest.hpp"
 #include "machdyn/analysis/linear_analysis.hpp"
 #include "machdyn/analysis/mode_kinds.hpp"
 #include "machdyn/analysis/modes.hpp"
+#include "machdyn/analysis/simulate.hpp"
 #include "machdyn/analysis/topology.hpp"
 #include "machdyn/elements/linearize.hpp"
 #include "machdyn/io/linear_results.hpp"
@@ -200,6 +202,142 @@ TEST(ModeKinds, CliAndReportShowThePendulumMode) {
   const std::string f = fmt::format("{:.5g} (pendulum)", std::sqrt(lam) / (2 * 3.14159265358979323846));
   EXPECT_NE(page.find(f), std::string::npos) << f;
   EXPECT_NE(page.find("(rope stretch)"), std::string::npos);
+}
+
+// A load that starts on the floor is linearized about its hanging rest in the topologies that free
+// it (analysis/hanging_rest.hpp, docs/sway.md "Pendulum modes", docs/modes.md): the hanging topology
+// of a floor-start variant of examples/crane/trolley-sway.yaml shows the pendulum mode of the
+// hanging model at the closed forms; the topology with the floor holding keeps the linearization at
+// the start; models that start hanging are linearized at their start, unchanged.
+
+/// trolley-sway.yaml with its load at z = 0 on a floor (a lower end stop on load.z at 0 m), hung
+/// from the height h (the example's own: L0 + m g/c), the drive's integral time T_i.
+Model floor_variant(double h, const std::string& integral_time = "0.5 s") {
+  std::string text = test::slurp(test::example("crane/trolley-sway.yaml"));
+  const std::string rope_end = "sway_after: 20 s}", ti = "integral_time: 0.5 s";
+  const size_t r = text.find(rope_end), i = text.find(ti);
+  EXPECT_NE(r, std::string::npos);
+  EXPECT_NE(i, std::string::npos);
+  text.replace(r, rope_end.size(), "sway_after: 20 s, height: " + num(h) + " m}");
+  text.replace(text.find(ti), ti.size(), "integral_time: " + integral_time);
+  return test::model_text(text + "stops:\n  floor: {body: load.z, min: 0 m}\n");
+}
+
+/// ω² of the modes of `t` named `k`.
+std::vector<double> omega2(const Model& m, const TopologyModes& t, ModeKind k) {
+  const std::vector<ModeKind> kind = mode_kinds(m, t.modes.shapes);
+  std::vector<double> w;
+  for (size_t i = 0; i < kind.size(); ++i)
+    if (kind[i] == k) w.push_back(t.modes.omega(static_cast<Eigen::Index>(i)) * t.modes.omega(static_cast<Eigen::Index>(i)));
+  return w;
+}
+
+/// The lower root λ of M m λ² − ((k + p) m + p M) λ + k p = 0: a trolley M on a spring k to the ground
+/// with a load m whose horizontal coordinate is tied to it by the geometric stiffness p = F/ℓ of a
+/// rope of tension F and length ℓ (M = diag(M, m), K = [[k + p, −p], [−p, p]], det(K − λ M) = 0).
+double pendulum_root(double M, double m, double k, double p) {
+  const double A = M * m, B = (k + p) * m + p * M, C = k * p;
+  return (B - std::sqrt(B * B - 4 * A * C)) / (2 * A);
+}
+
+// Claim: the load on the floor (its rope slack: h = 11.5 m below L0 = 12 m; or carrying half the
+// weight: h = L0 + ½ m g/c) is linearized, where the floor does not hold it (floor=open, and
+// all_topologies' floor sliding off), about its hanging rest: x under the trolley, z = h − ℓ with
+// ℓ = L0 + m g/c (the rope's tension c e = m g), at rest — so that topology has one pendulum mode at
+// the hanging model's frequency (trolley-sway.yaml's, within 1e-9: the same K and M), the lower root
+// of the trolley-on-its-drive quadratic with p = m g/ℓ (k = K_p/T_i, as in ModeKinds'
+// TrolleySwayPendulumFrequency) and, with the drive's spring removed (T_i = 1e12 s), ω² =
+// (g/ℓ)(1 + m/M), and one stretch mode c/m. Where the floor holds (floor=closed) the start is kept:
+// the half-weight rope's geometric stiffness p = F/h with F = ½ m g gives its pendulum root.
+TEST(ModeKinds, FloorStartHangsInItsHangingTopology) {
+  const double M = 8000, ml = 40000, L0 = 12, c = 4 * 1.2e8 / L0, l = L0 + ml * kG / c, k = 4e5 / 0.5;
+  const Model hanging = load_model(test::example("crane/trolley-sway.yaml"));
+  const TopologyModes ref = analyse_topology(hanging, initial_topology(hanging));
+  for (const double h : {11.5, L0 + 0.5 * ml * kG / c}) {
+    SCOPED_TRACE(h);
+    const Model m = floor_variant(h);
+    const Topology open = parse_topology(m, "floor=open", Location{"t", 1, 0});
+    const std::vector<double> y = linearization_state(m, open);
+    ASSERT_EQ(y.size(), static_cast<size_t>(2 * m.dof()));
+    const auto z = static_cast<size_t>(m.body_index("load.z")), x = static_cast<size_t>(m.body_index("load.x"));
+    EXPECT_NEAR(y[z], h - l, 1e-12 * l);
+    EXPECT_EQ(y[x], 0.0);  // under the trolley at 0
+    for (const Topology& topo : {open, parse_topology(m, "floor=sliding", Location{"t", 1, 0})}) {
+      const TopologyModes t = analyse_topology(m, topo);
+      ASSERT_EQ(t.modes.omega.size(), ref.modes.omega.size()) << t.label;
+      for (Eigen::Index i = 0; i < t.modes.omega.size(); ++i)
+        EXPECT_NEAR(t.modes.omega(i), ref.modes.omega(i), 1e-9 * ref.modes.omega(i)) << t.label << " " << i;
+      const std::vector<double> pend = omega2(m, t, ModeKind::pendulum), st = omega2(m, t, ModeKind::rope_stretch);
+      ASSERT_EQ(pend.size(), 1u) << t.label;
+      ASSERT_EQ(st.size(), 1u) << t.label;
+      const double lam = pendulum_root(M, ml, k, ml * kG / l);
+      EXPECT_NEAR(pend[0], lam, 1e-9 * lam) << t.label;
+      EXPECT_NEAR(st[0], c / ml, 1e-9 * c / ml) << t.label;
+    }
+    const Model free = floor_variant(h, "1e12 s");
+    const TopologyModes f = analyse_topology(free, parse_topology(free, "floor=open", Location{"t", 1, 0}));
+    const std::vector<double> pend = omega2(free, f, ModeKind::pendulum);
+    ASSERT_EQ(pend.size(), 1u);
+    EXPECT_NEAR(pend[0], kG / l * (1 + ml / M), 1e-9 * kG / l * (1 + ml / M));
+
+    // The floor holding: linearized at the start (the state untouched), as linearize() there.
+    const Topology held = parse_topology(m, "floor=closed", Location{"t", 1, 0});
+    EXPECT_TRUE(linearization_state(m, held).empty());
+    const TopologyModes t = analyse_topology(m, held);
+    const UndampedModes at_start = undamped_modes(linearize(m, held));
+    ASSERT_EQ(t.modes.omega.size(), at_start.omega.size());
+    for (Eigen::Index i = 0; i < t.modes.omega.size(); ++i) EXPECT_EQ(t.modes.omega(i), at_start.omega(i)) << i;
+  }
+  // The half-weight rope held on the floor: its tension F = c (h − L0) = ½ m g at the length h, the
+  // load's z held, so the horizontal pair has p = F/h: the pendulum root of the start.
+  const double h = L0 + 0.5 * ml * kG / c;
+  const Model m = floor_variant(h);
+  const TopologyModes t = analyse_topology(m, parse_topology(m, "floor=closed", Location{"t", 1, 0}));
+  const std::vector<double> pend = omega2(m, t, ModeKind::pendulum);
+  ASSERT_EQ(pend.size(), 1u);
+  const double lam = pendulum_root(M, ml, k, 0.5 * ml * kG / h);
+  EXPECT_NEAR(pend[0], lam, 1e-8 * lam);
+}
+
+// Claim: models whose loads start hanging (every crane example with a spatial rope; a floor below a
+// hanging load: the load not on it) are linearized at their start in every topology —
+// linearization_state is empty, so `machdyn modes` prints them as before.
+TEST(ModeKinds, LoadsThatStartHangingKeepTheirStart) {
+  for (const char* file : {"crane/trolley-sway.yaml", "crane/trolley-sway-drive.yaml", "crane/bridge-trolley-sway.yaml",
+                           "crane/slewing-jib-sway.yaml"}) {
+    const Model m = load_model(test::example(file));
+    for (const Topology& topo : all_topologies(m)) EXPECT_TRUE(linearization_state(m, topo).empty()) << file;
+  }
+  std::string text = test::slurp(test::example("crane/trolley-sway.yaml"));
+  const Model above = test::model_text(text + "stops:\n  floor: {body: load.z, min: -1 m}\n");
+  for (const Topology& topo : all_topologies(above)) EXPECT_TRUE(linearization_state(above, topo).empty());
+}
+
+// Claim: `modes --from-run` of a load hoisted off the floor (tests/elements/spatial_rope_test.cpp's
+// LiftOffFromAGroundStop: 1 t at x = 0.2 m on the floor, its rope of 2 falls slack, a drum winding it
+// in, below a free 3 t trolley) shows, in the run's topology after lift-off, the hanging load's
+// pendulum mode at ω² = (g/ℓ)(1 + m/M), ℓ = L0 + m g/c (c = n EA/L0, the drum at its initial
+// angle), within 1e-9 — on both integrators; the topology on the floor before it has none.
+TEST(ModeKinds, FromRunLiftOffShowsThePendulum) {
+  const double m = 1000, M = 3000, L0 = 10, c = 2 * 5e7 / L0, l = L0 + m * kG / c, w2 = kG / l * (1 + m / M);
+  for (const IntegratorChoice integ : {IntegratorChoice::dopri5, IntegratorChoice::bdf}) {
+    const Model md = test::timed_model(
+        "bodies:\n  drum: {inertia: 50 kg*m^2}\n  trolley: {type: translational, mass: 3 t}\n"
+        "  load: {type: point-mass, mass: 1 t, axes: [x, z], position: [0.2 m, 0 m]}\n"
+        "links:\n  rope: {type: spatial-rope, load: load, trolley: trolley, drum: drum, drum_radius: 0.3 m, "
+        "falls: 2, length: 10 m, EA: 5e7 N, height: 9.95 m, damping: 1e4 N*s/m}\n"
+        "loads:\n  hoist: {type: constant, body: drum, value: 2000 N*m}\n"
+        "stops:\n  ground: {body: load.z, min: 0 m}\n",
+        1.0, 1e-3, integ);
+    SimulateOptions o;
+    o.event_driven = true;
+    const std::vector<TopologyModes> list = run_topology_modes(md, simulate(md, o).hybrid, md.simulation.t_end);
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_TRUE(omega2(md, list[0], ModeKind::pendulum).empty()) << list[0].label;
+    const std::vector<double> pend = omega2(md, list[1], ModeKind::pendulum);
+    ASSERT_EQ(pend.size(), 1u) << list[1].label;
+    EXPECT_NEAR(pend[0], w2, 1e-9 * w2);
+  }
 }
 
 }  // namespace MACHDYN_UNITY_ID

@@ -73,6 +73,11 @@ class SpatialRope final : public Element {
   void hessian(const ElementMotion& b, const Geometry& g, double* H) const;
   /// F in `mode`.
   [[nodiscard]] double tension(const Geometry& g, int mode) const;
+  /// A point-mass load's hanging rest under the suspension point at the bodies' positions b: its
+  /// x, y under p (the offset and the jib included), z = h − (L(φ) + m g/c(φ)), where the rope's
+  /// tension c e is the weight m g (`gravity` g); b's load ports are set, the rest kept. False (b
+  /// unchanged) for a rigid load (its rest depends on ψ and on its other ropes).
+  bool hang(ElementMotion& b, double gravity) const;
   [[nodiscard]] bool has(Role r) const { return port_of[static_cast<int>(r)] >= 0; }
   [[nodiscard]] double at(const ElementMotion& b, Role r, double fallback = 0.0) const {
     return has(r) ? b.q[port_of[static_cast<int>(r)]] : fallback;
