@@ -48,12 +48,18 @@ TEST(GearTrain, MarginsAndSplitAgree) {
   for (int n = 0; n < 4000; ++n) {
     // Bodies 0 (outer of gear 1), 1 (shared), 2 (outer of gear 2); each gear in either orientation.
     const bool flip1 = U(rng) < 0.5, flip2 = U(rng) < 0.5;
-    auto ratio = [&] { return (U(rng) < 0.3 ? -1.0 : 1.0) * std::exp(std::log(0.2) + U(rng) * std::log(25.0)); };
+    // Every draw in its own statement: function arguments and a product's operands are evaluated in
+    // the compiler's order (GCC and clang differ), and both builds must test the same cases.
+    auto ratio = [&] {
+      const double sign = U(rng) < 0.3 ? -1.0 : 1.0;
+      return sign * std::exp(std::log(0.2) + U(rng) * std::log(25.0));
+    };
     auto eta = [&] { return 0.3 + 0.7 * U(rng); };
     const double e2a = U(rng) < 0.2 ? 0.0 : eta(), e2b = U(rng) < 0.2 ? 0.0 : eta();
     const double bf = U(rng) < 0.5 ? 0.0 : 0.5 * U(rng);
-    std::vector<GearSpec> specs{flip1 ? make_gear(1, 0, ratio(), eta(), e2a, bf, bf) : make_gear(0, 1, ratio(), eta(), e2a, bf, bf),
-                                flip2 ? make_gear(2, 1, ratio(), eta(), e2b) : make_gear(1, 2, ratio(), eta(), e2b)};
+    const double eta1 = eta(), i1 = ratio(), eta2 = eta(), i2 = ratio();
+    std::vector<GearSpec> specs{flip1 ? make_gear(1, 0, i1, eta1, e2a, bf, bf) : make_gear(0, 1, i1, eta1, e2a, bf, bf),
+                                flip2 ? make_gear(2, 1, i2, eta2, e2b) : make_gear(1, 2, i2, eta2, e2b)};
     std::vector<LossyGearLaw> laws{specs[0].law(), specs[1].law()};
     laws[0].spec = &specs[0].g, laws[1].spec = &specs[1].g;
     const std::vector<double> inertia{0.5 + U(rng), U(rng) < 0.3 ? 0.0 : U(rng), 0.5 + 2.0 * U(rng)};
