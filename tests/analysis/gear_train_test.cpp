@@ -75,7 +75,7 @@ TEST(GearTrain, MarginsAndSplitAgree) {
     const auto T = stuck_train_torques(tr, laws, F, &iv);
     const bool holds = mp >= 0.0 && mm >= 0.0;
     EXPECT_EQ(holds, iv[0] <= iv[1] + 1e-9 * (1.0 + std::abs(iv[0]))) << "case " << n << " margins " << mp << " " << mm
-                                                                      << " interval " << iv[0] << " " << iv[1];
+                                                                      << " interval " << iv[0] << " " << iv[1] << fmt::format(" flip {} {} i {:.17g} {:.17g} e {:.17g} {:.17g} r {:.17g} {:.17g} bf {:.17g} J {:.17g} {:.17g} {:.17g} F {:.17g} {:.17g} {:.17g}", flip1, flip2, i1, i2, eta1, eta2, e2a, e2b, bf, inertia[0], inertia[1], inertia[2], F[0], F[1], F[2]);
     if (!holds) {
       ++started;
       continue;
