@@ -12,6 +12,7 @@
 
 #include "reference/campaign.hpp"
 #include "reference/generator.hpp"
+#include "support/dropped_ball.hpp"
 #include "support/events.hpp"
 #include "support/models.hpp"
 #include "support/support.hpp"
@@ -24,7 +25,9 @@ namespace MACHDYN_UNITY_ID {
 
 using test::at;
 using test::events_of;
+using test::dropped_ball;
 using test::integrator_name;
+using test::integrator_word;
 using test::model_of;
 
 class CampaignDefectsC : public ::testing::TestWithParam<IntegratorChoice> {};
@@ -82,22 +85,6 @@ simulation: {t_end: 1.0 s, dt_out: 0.01 s, rtol: 1e-10, atol: 1e-12}
 
 namespace ref = reference;
 
-/// A ball of 2 kg dropped from 1 m onto a floor at 0 under its weight (a = g = 9.81 m/s²), e = 0.5:
-/// impacts at t₁ = √(2/g), then every 2 v_k/g with v_k = eᵏ √(2 g) (v⁻ of impact k), resting at the
-/// accumulation instant t∞ = t₁ (1 + e)/(1 − e).
-ref::RefModel bouncing_ball() {
-  ref::RefModel m;
-  m.bodies = {{"ball", 2.0, 1.0, 0.0}};
-  ref::Signal G;
-  G.kind = ref::Signal::Kind::constant, G.value = -19.62;
-  m.loads = {{"G", 0, G}};
-  ref::Friction s;
-  s.kind = ref::Friction::Kind::stop, s.name = "floor", s.a = 0, s.stop_pos = 0.0, s.e = 0.5;
-  m.frictions = {s};
-  m.t_end = 2.0, m.dt_out = 0.01;
-  return m;
-}
-
 SimulationResult run_engine(const ref::RefModel& m, const std::string& integrator) {
   Model model = compile_model(parse_yaml_string(ref::to_yaml(m, integrator), "ball.yaml"), "ball.yaml");
   SimulateOptions so;
@@ -121,7 +108,7 @@ std::vector<ref::RefEvent> ref_of_kind(const ref::RefResult& r, const std::strin
 // √(δq/(2g)) (1 + e)/(1 − e); a velocity error δv = kStateTol √(2 g) + 1e-9 (the velocity column's
 // scale |v₀|) moves it by 2 e δv/(g (1 − e)); the first impact's own δq/|v₀| is added.
 TEST(CampaignComparison, AnEventsTimeToleranceIsTheStateToleranceOverTheSwitchingFunctionsRate) {
-  const ref::RefModel m = bouncing_ball();
+  const ref::RefModel m = dropped_ball(1.0, 2.0);
   const ref::RefResult r = ref::simulate_reference(m);
   ASSERT_TRUE(r.error.empty()) << r.error;
   const ref::StateTolerances st = ref::state_tolerances(m, r);
@@ -173,8 +160,8 @@ TEST(CampaignComparison, AGapClosingsToleranceIsTheTwoPositionTolerancesOverTheC
 // tolerance); the seventh impact moved by 1e-4 s, within its tolerance δq/(e⁶ √(2 g)) = 1.4e-4 s
 // (and 0.014 s before t∞, outside the rest's), still agrees.
 TEST_P(CampaignDefectsC, AShiftedBounceOrRestIsAMismatchOfTheComparison) {
-  const std::string w = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
-  const ref::RefModel m = bouncing_ball();
+  const std::string w = integrator_word(GetParam());
+  const ref::RefModel m = dropped_ball(1.0, 2.0);
   const ref::RefResult rr = ref::simulate_reference(m);
   ASSERT_TRUE(rr.error.empty()) << rr.error;
   const SimulationResult r = run_engine(m, w);
@@ -204,7 +191,7 @@ TEST_P(CampaignDefectsC, AShiftedBounceOrRestIsAMismatchOfTheComparison) {
 // reference's (states within their tolerance) — beyond the fixed 1e-6 s, within the rule's
 // tolerance. They agree with the reference on both integrators.
 TEST_P(CampaignDefectsC, ZenoSeriesOfTheStopFamilyAgreeWithTheReference) {
-  const std::string w = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  const std::string w = integrator_word(GetParam());
   for (std::uint64_t i : {22u, 25u, 26u}) {
     const ref::Outcome o = ref::check(ref::random_model("stop", 1, i), w);
     EXPECT_FALSE(o.failed()) << "stop seed 1 #" << i << ": " << ref::to_string(o.kind) << ": " << o.detail;
@@ -218,7 +205,7 @@ TEST_P(CampaignDefectsC, ZenoSeriesOfTheStopFamilyAgreeWithTheReference) {
 // crossing, so the positive flank's dip before it (its closing and bounce) was lost — the audit's
 // `gap.inside`. They agree with the reference simulator on both integrators.
 TEST_P(CampaignDefectsC, AGapFlankTouchedInsideAStepThatReachesTheOtherFlankCloses) {
-  const std::string w = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  const std::string w = integrator_word(GetParam());
   for (std::uint64_t i : {7u, 8u, 83u}) {
     const ref::Outcome o = ref::check(ref::random_model("gap", 3, i), w);
     EXPECT_FALSE(o.failed()) << "gap seed 3 #" << i << ": " << ref::to_string(o.kind) << ": " << o.detail;

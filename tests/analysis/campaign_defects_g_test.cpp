@@ -12,6 +12,7 @@
 
 #include "reference/campaign.hpp"
 #include "reference/generator.hpp"
+#include "support/dropped_ball.hpp"
 #include "support/events.hpp"
 #include "support/models.hpp"
 #include "support/support.hpp"
@@ -24,7 +25,9 @@ namespace MACHDYN_UNITY_ID {
 
 using test::at;
 using test::events_of;
+using test::dropped_ball;
 using test::integrator_name;
+using test::integrator_word;
 using test::model_of;
 namespace ref = reference;
 
@@ -32,7 +35,6 @@ class CampaignDefectsG : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, CampaignDefectsG,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf), integrator_name);
 
-std::string integrator_word(IntegratorChoice ic) { return ic == IntegratorChoice::bdf ? "bdf" : "dopri5"; }
 
 // Claim (the lift-off law, docs/hybrid.md End stop): a load of m = 2 kg resting on its stop at 0
 // under W = 10 N, pulled up by T(t) = 20 t N (a ramp through the weight). The stop holds while it
@@ -135,20 +137,6 @@ TEST_P(CampaignDefectsG, ALoadBouncingOnAnUndampedRopeConvergesToTheReference) {
   }
 }
 
-/// A ball of 2 kg dropped from h onto a floor at 0 under its weight (g = 9.81 m/s²), e = 0.5: its
-/// first impact at √(2 h/g).
-ref::RefModel dropped_ball(double h) {
-  ref::RefModel m;
-  m.bodies = {{"ball", 2.0, h, 0.0}};
-  ref::Signal G;
-  G.kind = ref::Signal::Kind::constant, G.value = -19.62;
-  m.loads = {{"G", 0, G}};
-  ref::Friction s;
-  s.kind = ref::Friction::Kind::stop, s.name = "floor", s.a = 0, s.stop_pos = 0.0, s.e = 0.5;
-  m.frictions = {s};
-  m.t_end = 1.0, m.dt_out = 0.01;
-  return m;
-}
 
 // Claim: the shift allowance does not hide a real shift. The engine's ball dropped from h' with
 // √(2 h'/g) = √(2/g) + 1e-3 s (h' = g (t₁ + 1e-3)²/2) meets the floor 1e-3 s after the reference's

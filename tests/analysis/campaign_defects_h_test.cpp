@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "reference/campaign.hpp"
+#include "reference/generator.hpp"
 #include "reference/reference.hpp"
+#include "support/dropped_ball.hpp"
 #include "support/events.hpp"
 #include "support/models.hpp"
 #include "support/support.hpp"
@@ -22,7 +24,9 @@ namespace MACHDYN_UNITY_ID {
 
 using test::at;
 using test::events_of;
+using test::dropped_ball;
 using test::integrator_name;
+using test::integrator_word;
 using test::model_of;
 namespace ref = reference;
 
@@ -102,7 +106,7 @@ TEST_P(CampaignDefectsH, TheReferenceTiesABodyByItsStuckFreewheelsToo) {
   EXPECT_EQ(rr.events[0].element, "F4");
   EXPECT_EQ(rr.events[0].kind, "slip");
   EXPECT_NEAR(rr.events[0].t, 0.5, 1e-9);
-  const ref::Outcome o = ref::compare(rm, GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5", rr);
+  const ref::Outcome o = ref::compare(rm, integrator_word(GetParam()), rr);
   EXPECT_EQ(o.kind, ref::Outcome::Kind::pass) << o.detail;
 }
 
@@ -119,7 +123,7 @@ TEST_P(CampaignDefectsH, AnUnloadedFreewheelsStuckPhaseIsALabelNotAnEvent) {
   const ref::RefModel rm = ref::random_model("mixed", 1, 52);
   const ref::RefResult rr = ref::simulate_reference(rm);
   ASSERT_TRUE(rr.error.empty()) << rr.error;
-  const std::string ic = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  const std::string ic = integrator_word(GetParam());
   SimulateOptions so;
   so.check = true;
   const SimulationResult r = simulate(compile_model(parse_yaml_string(ref::to_yaml(rm, ic), "m52.yaml"), "m52.yaml"), so);
@@ -161,7 +165,7 @@ TEST_P(CampaignDefectsH, ALoadedFreewheelsStuckPhaseShiftedByAMillisecondIsStill
   ASSERT_EQ(rr.events.size(), 2u);
   EXPECT_NEAR(rr.events[0].t, (10.0 - std::sqrt(60.0)) / 20.0, 1e-9);
   EXPECT_NEAR(rr.events[1].t, 0.5, 1e-9);
-  const std::string ic = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  const std::string ic = integrator_word(GetParam());
   const ref::Outcome same = ref::compare(m, ic, rr);
   EXPECT_FALSE(same.failed()) << same.detail;
   const ref::Outcome late = ref::compare(block_on_backstop(1e-3), ic, rr);
@@ -185,26 +189,13 @@ TEST_P(CampaignDefectsH, AModelTheReferenceDoesNotResolveIsNotCompared) {
   fine.omega_h /= ref::kTightStep;
   const ref::RefResult r4 = ref::simulate_reference(rm, fine);
   EXPECT_GT(ref::reference_spread(rm, rr, r4), 1e3);
-  const std::string ic = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  const std::string ic = integrator_word(GetParam());
   const ref::Outcome tight = ref::tightened(rm, rm, ic);
   ASSERT_EQ(tight.kind, ref::Outcome::Kind::state_mismatch) << tight.detail;
   const ref::Outcome o = ref::unless_unresolved(rm, rr, tight);
   EXPECT_EQ(o.kind, ref::Outcome::Kind::reference_error) << o.detail;
 }
 
-/// A ball of 2 kg dropped from h onto a floor at 0 under its weight (19.62 N), e = 0.5.
-ref::RefModel dropped_ball(double h) {
-  ref::RefModel m;
-  m.bodies = {{"ball", 2.0, h, 0.0}};
-  ref::Signal G;
-  G.kind = ref::Signal::Kind::constant, G.value = -19.62;
-  m.loads = {{"G", 0, G}};
-  ref::Friction s;
-  s.kind = ref::Friction::Kind::stop, s.name = "floor", s.a = 0, s.stop_pos = 0.0, s.e = 0.5;
-  m.frictions = {s};
-  m.t_end = 1.0, m.dt_out = 0.01;
-  return m;
-}
 
 // Claim: the rule does not hide a real difference where the reference resolves the model. A ball
 // dropped from 1 m (impacts at √(2/g) = 0.4515 s and then every e times the flight before) is
@@ -219,7 +210,7 @@ TEST_P(CampaignDefectsH, AMotionShiftedByAMillisecondIsStillAMismatchWhereTheRef
   ref::RefOptions fine;
   fine.omega_h /= ref::kTightStep;
   EXPECT_LT(ref::reference_spread(m, rr, ref::simulate_reference(m, fine)), 0.1);
-  const std::string ic = GetParam() == IntegratorChoice::bdf ? "bdf" : "dopri5";
+  const std::string ic = integrator_word(GetParam());
   const ref::Outcome tight = ref::tightened(m, dropped_ball(h_shift), ic);
   EXPECT_TRUE(tight.failed()) << ref::to_string(tight.kind);
   const ref::Outcome o = ref::unless_unresolved(m, rr, tight);

@@ -18,6 +18,9 @@ inline Model with_integrator(Model m, IntegratorChoice ic) {
   return m;
 }
 
+/// "dopri5" / "bdf": the integrator's word (the reference campaign's `compare` takes it).
+inline std::string integrator_word(IntegratorChoice ic) { return ic == IntegratorChoice::bdf ? "bdf" : "dopri5"; }
+
 /// "dopri5" / "bdf": the suffix of a test parameterized over the integrators.
 inline std::string integrator_name(const ::testing::TestParamInfo<IntegratorChoice>& p) {
   return p.param == IntegratorChoice::bdf ? "bdf" : "dopri5";
