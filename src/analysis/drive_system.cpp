@@ -1236,7 +1236,7 @@ int DriveSystem::natural_drive_mode(int d, double t, const double* y) {
   const int cur = drive_mode(d);
   const bool acc = k.reads_acceleration(cur);
   if (acc) evaluate(t, y, f_.data(), fc_.data());
-  return k.natural_mode(t, acc ? evaluated_motion(d, t, y) : drive_motion(d, y), y + drive_offset(d), cur);
+  return confirm_hold(d, t, y, k.natural_mode(t, acc ? evaluated_motion(d, t, y) : drive_motion(d, y), y + drive_offset(d), cur));
 }
 
 int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
@@ -1244,7 +1244,24 @@ int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
   const int old = drive_mode(d);
   if (!k.settles(old, now)) return now;
   evaluate(t, y, f_.data(), fc_.data());
-  return k.settle(t, evaluated_motion(d, t, y), y + drive_offset(d), old, now);
+  return confirm_hold(d, t, y, k.settle(t, evaluated_motion(d, t, y), y + drive_offset(d), old, now));
+}
+
+// A mode that starts holding a body is judged in itself (its loads, the stuck set's with it, are
+// those of that mode): where its own event function starts negative — the loads outside what it can
+// hold — it is settled again from there at once, as the driver would hand it back.
+int DriveSystem::confirm_hold(int d, double t, const double* y, int md) {
+  const Element& k = drive(d);
+  const int old = drive_mode(d);
+  if (k.held_port(md) < 0 || k.held_port(old) == k.held_port(md)) return md;
+  set_drive_mode(d, md);
+  evaluate(t, y, f_.data(), fc_.data());
+  const ElementMotion b = evaluated_motion(d, t, y);
+  double g[2];
+  k.events(t, b, y + drive_offset(d), md, g);
+  if (g[1] < 0.0) md = k.settle(t, b, y + drive_offset(d), md, k.mode_after(md, 1));
+  set_drive_mode(d, old);
+  return md;
 }
 
 namespace {

@@ -139,9 +139,9 @@ int GearMesh::settle(double, const ElementMotion& m, const double*, int old, int
   const double w[2] = {m.v[0], i * m.v[1]};
   const double tau = tooth_moment(m, n);
   // Whether port p at rest is held: the other drives and −R_p lies in the locking range.
-  auto holds = [&](int p) {
-    return eta < 1.0 && g != 0 && other_drives(g, p, s[1 - p]) && hold_margin(tau, p, m.load[p]) >= 0.0;
-  };
+  // Whether port p at rest is held: the other drives (its margin, judged in the held mode by the
+  // drive system, ends the hold at once where the loads lie outside the range: settle from it).
+  auto holds = [&](int p) { return eta < 1.0 && g != 0 && w[1 - p] != 0.0 && other_drives(g, p, s[1 - p]); };
   if (const int p = held(old) - 1; p >= 0) {  // a hold ends
     const int o = 1 - p;
     const double T = p == 0 ? -tau : i * tau;
@@ -167,20 +167,19 @@ int GearMesh::settle(double, const ElementMotion& m, const double*, int old, int
     // with τ and the contact carrying the rest).
     for (int p = 0; p < 2; ++p)
       if (m.v[p] == 0.0 && w[1 - p] != 0.0 && holds(p)) return mode_of(gm, s[0], s[1]) + 32 * (p + 1);
+    // A body exactly at rest (a stuck contact holds it, ω = ω' = 0) passes no power: its sign is
+    // the one under which it does not drive, sign T_p (−g on the pinion, +g on the wheel), not its
+    // acceleration's rounding.
+    for (int p = 0; p < 2 && eta < 1.0; ++p)
+      if (m.v[p] == 0.0 && m.a[p] == 0.0 && g != 0) s[p] = p == 0 ? -g : g;
     return mode_of(gm, s[0], s[1]);
   }
   // A body reverses: the one at its reversal is held, or takes its sign after the instant.
   const int p = s[0] * w[0] <= s[1] * w[1] ? 0 : 1;
   if (holds(p)) return mode_of(gm, s[0], s[1]) + 32 * (p + 1);
-  if (eta < 1.0 && g != 0 && other_drives(g, p, s[1 - p])) {  // out of the range: the bound's way
-    double lo, hi;
-    hold_range(tau, p, &lo, &hi);
-    const double net = m.load[p] + std::clamp(-m.load[p], lo, hi);
-    if (net != 0.0) s[p] = net > 0.0 ? 1 : -1;
-    else if (s[p] * w[p] < 0.0) s[p] = -s[p];
-    return mode_of(gm, s[0], s[1]);
-  }
   if (s[p] * w[p] < 0.0 || s[p] * m.a[p] < 0.0) s[p] = -s[p];
+  // The other body exactly at rest (a stuck contact holds it) is held once p drives.
+  if (const int q = 1 - p; m.v[q] == 0.0 && w[p] != 0.0 && holds(q)) return mode_of(gm, s[0], s[1]) + 32 * (q + 1);
   return mode_of(gm, s[0], s[1]);
 }
 
@@ -206,10 +205,8 @@ int GearMesh::natural_mode(double, const ElementMotion& m, const double*, int cu
   const int s2 = m.v[1] > 0.0 ? 1 : m.v[1] < 0.0 ? -1 : sign2(cur);
   // A body exactly at rest while the other drives is held where its other loads lie in the range.
   const int s[2] = {s1, s2};
-  const double tau = L.load(D, Dr, g);
   for (int p = 0; p < 2 && eta < 1.0; ++p)
-    if (m.v[p] == 0.0 && m.v[1 - p] != 0.0 && other_drives(static_cast<int>(g), p, s[1 - p]) &&
-        hold_margin(tau, p, m.load[p]) >= 0.0)
+    if (m.v[p] == 0.0 && m.v[1 - p] != 0.0 && other_drives(static_cast<int>(g), p, s[1 - p]))
       return mode_of(g, s1, s2) + 32 * (p + 1);
   return mode_of(g, s1, s2);
 }

@@ -1007,10 +1007,16 @@ class Sim {
     int& sp = p == 0 ? mm.s1 : mm.s2;
     int& so = p == 0 ? mm.s2 : mm.s1;
     if (other_stopped) {
+      // The held body then takes its ideal torque T_p on both sides of rest: sign(R + T_p), R its
+      // other loads with the stuck ones' (J a − M in the held mode).
       const double vo = y[static_cast<size_t>(n_ + o)];
       so = vo != 0.0 ? (vo > 0.0 ? 1 : -1) : -so;
+      const double tau = mesh_tau(G, mm.g, mesh_D(G, y.data()), mesh_Dr(G, y.data()));
+      const double T = p == 0 ? -tau : G.i * tau;
+      const double R = mass_[static_cast<size_t>(j)] * a[static_cast<size_t>(j)] - mesh_M_[k];
+      if (R + T != 0.0) sp = R + T > 0.0 ? 1 : -1;
       mm.held = 0;
-      accel(t, y.data(), md_, a.data(), lam.data());
+      return;
     }
     sp = sign_after(0.0, a[static_cast<size_t>(j)], sp);
     mm.held = 0;
@@ -1553,6 +1559,12 @@ RefResult Sim::run() {
           if (mm.g == 0) {
             mm.g = ge[i].slot == 0 ? 1 : -1;
             signs(true, true);
+            // A body at rest (its acceleration 0: a stuck element holds it) passes no power: the sign
+            // under which it does not drive, that of its ideal torque (−g the pinion, +g the wheel).
+            if (G.eta < 1.0) {
+              if (y[static_cast<size_t>(n_ + G.a)] == 0.0 && a[static_cast<size_t>(G.a)] == 0.0) mm.s1 = -mm.g;
+              if (y[static_cast<size_t>(n_ + G.b)] == 0.0 && a[static_cast<size_t>(G.b)] == 0.0) mm.s2 = mm.g;
+            }
             // A body at rest when the teeth meet while the other drives: held where its loads allow.
             for (int p = 0; p < 2 && mm.held == 0; ++p)
               if (y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))] == 0.0 && y[static_cast<size_t>(n_ + (p == 0 ? G.b : G.a))] != 0.0 &&
@@ -1583,11 +1595,16 @@ RefResult Sim::run() {
             // A body reaches rest: on a lossy flank while the other drives it is held where its
             // loads lie in the range, else it leaves rest the way the bound pushes it.
             const int p = ge[i].slot - 1;
-            if (G.eta < 1.0 && other_drives(mm.g, p, p == 0 ? mm.s2 : mm.s1)) {
+            if (G.eta < 1.0 && y[static_cast<size_t>(n_ + (p == 0 ? G.b : G.a))] != 0.0 && other_drives(mm.g, p, p == 0 ? mm.s2 : mm.s1)) {
               y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))] = 0.0;
               (void)try_hold(k, p, t, y);
             } else {
               signs(ge[i].slot == 1, ge[i].slot == 2);
+              // The other body exactly at rest (a stuck element holds it) is held once p drives.
+              const int q = 1 - p;
+              if (y[static_cast<size_t>(n_ + (q == 0 ? G.a : G.b))] == 0.0 && y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))] != 0.0 &&
+                  G.eta < 1.0 && other_drives(mm.g, q, p == 0 ? mm.s1 : mm.s2))
+                (void)try_hold(k, q, t, y);
             }
             record(t, "mesh", G.name);
           }

@@ -400,6 +400,9 @@ class DriveSystem final : public OdeSystem {
   /// drive_motion() with the accelerations of the last evaluate() (f_) and on every port on one body
   /// the other forces on it with the stuck set's loads, I a − M_p (ElementMotion::load).
   [[nodiscard]] ElementMotion evaluated_motion(int d, double t, const double* y) const;
+  /// Mode md of element d as decided, or where it starts holding a body and its own event function
+  /// is negative in it, the mode its settle() takes from there.
+  int confirm_hold(int d, double t, const double* y, int md);
 
   /// Prescribed motions: from the forces f (before the inertias divide them) each source's force R
   /// (motion_f_) and its work rate into *src; then acc = a(t) on their bodies (after the division).
