@@ -388,7 +388,7 @@ void Audit::check_at(double t, const double* y) {
   // Elements behind the interface: each checks its own law's invariants (Element::violated).
   for (int d = 0; d < sys_.drive_count(); ++d) {
     const Element& k = sys_.drive(d);
-    const ElementMotion b = sys_.drive_motion(d, y);
+    const ElementMotion b = sys_.drive_motion_at(d, t, y);
     double M[ElementMotion::kMax] = {};
     const double* x = y + sys_.drive_offset(d);
     k.forces(t, b, x, sys_.drive_mode(d), M);

@@ -581,6 +581,46 @@ __attribute__((noinline)) void DriveSystem::drive_rates(double t, const double* 
   }
 }
 
+int DriveSystem::port_body(int d, int p) const {
+  const Drive& place = drive_place(d);
+  if (p > 0) return place.others[static_cast<size_t>(p - 1)];
+  return place.body2 < 0 && place.ratio == 1.0 ? place.body : -1;
+}
+
+// An element that holds a body at rest in its mode (Element::held_port) puts there its law's force
+// against everything else on it: forces() above put its force for no other load; the free forces f
+// on the body less that are its load R, and its force for R replaces it. The stuck set's loads,
+// solved after this, carry what it does not (a contact stuck on the same body).
+void DriveSystem::hold_forces(double t, const double* y, double* f) {
+  for (int d = 0; d < nd_; ++d) {
+    const Element& k = drive(d);
+    const int md = drive_mode(d), p = k.held_port(md);
+    if (p < 0) continue;
+    const int j = port_body(d, p);
+    ElementMotion b = drive_motion(d, y);
+    double M[ElementMotion::kMax] = {};
+    k.forces(t, b, y + drive_offset(d), md, M);
+    b.load[p] = f[j] - M[p];
+    k.forces(t, b, y + drive_offset(d), md, M);
+    f[j] = b.load[p] + M[p];
+  }
+}
+
+ElementMotion DriveSystem::drive_motion_at(int d, double t, const double* y) const {
+  ElementMotion b = drive_motion(d, y);
+  const int p = drive(d).held_port(drive_mode(d));
+  if (p < 0) return b;
+  // The free forces on the held body at (t, y), as evaluate() forms them before hold_forces().
+  thread_local std::vector<double> f, fc;
+  f.assign(static_cast<size_t>(n_), 0.0), fc.assign(static_cast<size_t>(nc_), 0.0);
+  double src, fric, damp;
+  const_cast<DriveSystem*>(this)->forces<true>(t, y, f.data(), fc.data(), &src, &fric, &damp);
+  double M[ElementMotion::kMax] = {};
+  drive(d).forces(t, b, y + drive_offset(d), drive_mode(d), M);
+  b.load[p] = f[static_cast<size_t>(port_body(d, p))] - M[p];
+  return b;
+}
+
 void DriveSystem::evaluate(double t, const double* y, double* acc, double* fc) {
   double src, fric, damp;
   if (general_) evaluate_impl<true>(t, y, acc, fc, &src, &fric, &damp);
@@ -592,6 +632,8 @@ template <bool kMach>
 __attribute__((always_inline)) inline void DriveSystem::evaluate_impl(double t, const double* y, double* acc, double* fc,
                                                                        double* src, double* fric, double* damp) {
   forces<kMach>(t, y, acc, fc, src, fric, damp);
+  if constexpr (kMach)
+    if (nd_ > 0) hold_forces(t, y, acc);
   if (ng_ > 0) apply_gears(t, y, acc, fric);
   if constexpr (kMach)
     if (!motions_.empty()) motion_forces(t, y + n_, acc, src);
@@ -1172,9 +1214,21 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
     if (!locks_.empty()) lock_event_functions(t, g);
   }
   for (int d = 0; d < nd_; ++d) {
-    drive(d).events(t, drive_motion(d, y, accelerations ? f_.data() : nullptr), y + drive_offset(d), drive_mode(d),
-                    g + 2 * (nl_ + nc_ + d));
+    drive(d).events(t, accelerations ? evaluated_motion(d, t, y) : drive_motion(d, y), y + drive_offset(d),
+                    drive_mode(d), g + 2 * (nl_ + nc_ + d));
   }
+}
+
+ElementMotion DriveSystem::evaluated_motion(int d, double t, const double* y) const {
+  ElementMotion b = drive_motion(d, y, f_.data());
+  // On each port on one body, everything else on it with the stuck set's loads: I a − M_p.
+  double M[ElementMotion::kMax] = {};
+  const int p_held = drive(d).held_port(drive_mode(d));
+  drive(d).forces(t, p_held < 0 ? b : drive_motion_at(d, t, y), y + drive_offset(d), drive_mode(d), M);
+  for (int p = 0; p < b.n; ++p)
+    if (const int j = port_body(d, p); j >= 0 && (general_ ? im_ : inv_mass_)[static_cast<size_t>(j)] > 0.0)
+      b.load[p] = f_[static_cast<size_t>(j)] / (general_ ? im_ : inv_mass_)[static_cast<size_t>(j)] - M[p];
+  return b;
 }
 
 int DriveSystem::natural_drive_mode(int d, double t, const double* y) {
@@ -1182,7 +1236,7 @@ int DriveSystem::natural_drive_mode(int d, double t, const double* y) {
   const int cur = drive_mode(d);
   const bool acc = k.reads_acceleration(cur);
   if (acc) evaluate(t, y, f_.data(), fc_.data());
-  return k.natural_mode(t, drive_motion(d, y, acc ? f_.data() : nullptr), y + drive_offset(d), cur);
+  return confirm_hold(d, t, y, k.natural_mode(t, acc ? evaluated_motion(d, t, y) : drive_motion(d, y), y + drive_offset(d), cur));
 }
 
 int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
@@ -1190,7 +1244,24 @@ int DriveSystem::settle_drive_mode(int d, double t, const double* y, int now) {
   const int old = drive_mode(d);
   if (!k.settles(old, now)) return now;
   evaluate(t, y, f_.data(), fc_.data());
-  return k.settle(t, drive_motion(d, y, f_.data()), y + drive_offset(d), old, now);
+  return confirm_hold(d, t, y, k.settle(t, evaluated_motion(d, t, y), y + drive_offset(d), old, now));
+}
+
+// A mode that starts holding a body is judged in itself (its loads, the stuck set's with it, are
+// those of that mode): where its own event function starts negative — the loads outside what it can
+// hold — it is settled again from there at once, as the driver would hand it back.
+int DriveSystem::confirm_hold(int d, double t, const double* y, int md) {
+  const Element& k = drive(d);
+  const int old = drive_mode(d);
+  if (k.held_port(md) < 0 || k.held_port(old) == k.held_port(md)) return md;
+  set_drive_mode(d, md);
+  evaluate(t, y, f_.data(), fc_.data());
+  const ElementMotion b = evaluated_motion(d, t, y);
+  double g[2];
+  k.events(t, b, y + drive_offset(d), md, g);
+  if (g[1] < 0.0) md = k.settle(t, b, y + drive_offset(d), md, k.mode_after(md, 1));
+  set_drive_mode(d, old);
+  return md;
 }
 
 namespace {

@@ -1006,6 +1006,9 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     auto stored = [&] { return e.energy(sys_.drive_motion(d, y_.data()), y_.data() + sys_.drive_offset(d), sys_.drive_mode(d)); };
     const double V_old = !initial && e.has_energy() ? stored() : 0.0;
     sys_.set_drive_mode(d, now);
+    // A body the element now holds is at rest exactly (its reversal was located a rounding past 0).
+    if (const int p = e.held_port(now); p >= 0 && e.held_port(old) != p)
+      y_[static_cast<size_t>(n_ + sys_.port_body(d, p))] = 0.0;
     if (!initial) sys_.drive(d).on_switch(t, sys_.drive_motion(d, y_.data()), y_.data() + sys_.drive_offset(d), old, now, located);
     if (!initial && e.has_energy()) {
       const double released = V_old - stored();

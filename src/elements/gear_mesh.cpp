@@ -36,8 +36,26 @@ double GearMesh::tooth_moment(const ElementMotion& m, int mode) const {
   return flanks().load(deflection(m), deflection_rate(m), flank_of(mode));
 }
 
+void GearMesh::hold_range(double tau, int p, double* lo, double* hi) const {
+  const double T = p == 0 ? -tau : i * tau;
+  *lo = std::min(eta * T, T), *hi = std::max(eta * T, T);
+}
+
+double GearMesh::hold_margin(double tau, int p, double R) const {
+  double lo, hi;
+  hold_range(tau, p, &lo, &hi);
+  return std::min(-R - lo, hi + R) + 1e-12 * (std::abs(lo) + std::abs(hi) + std::abs(R));
+}
+
 void GearMesh::forces(double, const ElementMotion& m, const double*, int mode, double* M) const {
   const double tau = tooth_moment(m, mode);
+  if (const int p = held(mode) - 1; p >= 0) {  // held: the other its ideal torque, p the clamp
+    M[0] = -tau, M[1] = i * tau;
+    double lo, hi;
+    hold_range(tau, p, &lo, &hi);
+    M[p] = std::clamp(-m.load[p], lo, hi);
+    return;
+  }
   const int dir = direction(mode);
   M[0] = -(dir < 0 ? eta : 1.0) * tau;
   M[1] = (dir > 0 ? eta : 1.0) * i * tau;
@@ -51,8 +69,9 @@ ElementJacobian GearMesh::jacobian(double, const ElementMotion& m, const double*
   const double D = deflection(m), Dr = deflection_rate(m);
   const bool cap = L.on_cap(D, Dr, g);  // τ = 2 c e: ∂τ/∂Δ = 2c, ∂τ/∂Δ' = 0
   const double tD = cap ? 2.0 * c : c, tR = cap ? 0.0 : d;
-  const int dir = direction(mode);
-  const double k[2] = {-(dir < 0 ? eta : 1.0), (dir > 0 ? eta : 1.0) * i};  // M_p = k_p τ
+  const int dir = held(mode) ? 0 : direction(mode);
+  double k[2] = {-(dir < 0 ? eta : 1.0), (dir > 0 ? eta : 1.0) * i};  // M_p = k_p τ
+  if (held(mode)) k[held(mode) - 1] = 0.0;  // the held torque answers the other loads, not Δ
   const double j[2] = {1.0, -i};                                            // ∂Δ/∂q_r
   for (int p = 0; p < 2; ++p)
     for (int r = 0; r < 2; ++r) {
@@ -68,7 +87,7 @@ double GearMesh::heat_power(double, const ElementMotion& m, const double*, int m
   if (!L.transmits(g)) return 0.0;
   const double damp = L.dissipation(deflection(m), deflection_rate(m), g);
   const int dir = direction(mode);
-  if (dir == 0) return damp;
+  if (dir == 0 || held(mode)) return damp;  // held: a body at rest passes no power
   const double tau = tooth_moment(m, mode);
   return damp + (1.0 - eta) * (dir > 0 ? tau * i * m.v[1] : -tau * m.v[0]);
 }
@@ -93,6 +112,13 @@ void GearMesh::events(double, const ElementMotion& m, const double*, int mode, d
     return;
   }
   ev[0] = static_cast<int>(g) * L.pressing(D - L.flank(g), Dr, L.u0);
+  if (const int p = held(mode) - 1; p >= 0) {
+    // Held: the other body drives, and −R_p (with the stuck set's loads) within the range.
+    const int o = 1 - p;
+    const double w_o = o == 0 ? m.v[0] : i * m.v[1];
+    ev[1] = std::min((p == 1 ? 1.0 : -1.0) * static_cast<int>(g) * w_o, hold_margin(tooth_moment(m, mode), p, m.load[p]));
+    return;
+  }
   ev[1] = std::min(sign1(mode) * m.v[0], sign2(mode) * i * m.v[1]);
 }
 
@@ -100,31 +126,68 @@ int GearMesh::mode_after(int mode, int slot) const {
   const int m = mode % 16;
   const GapMode g = flank_of(m);
   if (g == GapMode::open) return mode_of(LinkLaw::mode_after(g, slot), sign1(m), sign2(m)) + 16;
-  if (slot == 1) return m + 16;  // a body reverses: settle() flips its sign
+  if (slot == 1) return (mode & ~16) | 16;  // a body reverses (or a hold ends): settle() decides
   // The contact ends (free play), or without backlash τ changes sign.
   return mode_of(b > 0.0 ? GapMode::open : GapMode(-static_cast<int>(g)), sign1(m), sign2(m));
 }
 
 int GearMesh::settle(double, const ElementMotion& m, const double*, int old, int now) const {
   const int n = now % 16;
-  int s1 = sign1(old % 16), s2 = sign2(old % 16);
-  if (flank_of(old % 16) == GapMode::open) {  // closing on a flank: the speeds' signs now
-    s1 = sign_after(m.v[0], m.a[0], s1);
-    s2 = sign_after(m.v[1], m.a[1], s2);
-  } else {  // a body reverses: the one at its reversal takes its sign after the instant
-    const double f1 = s1 * m.v[0], f2 = s2 * i * m.v[1];
-    if (f1 <= f2) {
-      if (f1 < 0.0 || s1 * m.a[0] < 0.0) s1 = -s1;
-    } else if (f2 < 0.0 || s2 * m.a[1] < 0.0) {
-      s2 = -s2;
+  const GapMode gm = flank_of(n);
+  const int g = static_cast<int>(gm);
+  int s[2] = {sign1(old % 16), sign2(old % 16)};
+  const double w[2] = {m.v[0], i * m.v[1]};
+  const double tau = tooth_moment(m, n);
+  // Whether port p at rest is held: the other drives and −R_p lies in the locking range.
+  // Whether port p at rest is held: the other drives (its margin, judged in the held mode by the
+  // drive system, ends the hold at once where the loads lie outside the range: settle from it).
+  auto holds = [&](int p) { return eta < 1.0 && g != 0 && w[1 - p] != 0.0 && other_drives(g, p, s[1 - p]); };
+  if (const int p = held(old) - 1; p >= 0) {  // a hold ends
+    const int o = 1 - p;
+    const double T = p == 0 ? -tau : i * tau;
+    double lo, hi;
+    hold_range(tau, p, &lo, &hi);
+    const double R = m.load[p];
+    if (!other_drives(g, p, w[o] > 0.0 ? 1 : w[o] < 0.0 ? -1 : s[o]) || w[o] == 0.0) {
+      // The other stopped driving (it reverses): p takes T_p on both sides of rest.
+      if (w[o] != 0.0) s[o] = w[o] > 0.0 ? 1 : -1;
+      else s[o] = -s[o];
+      if (R + T != 0.0) s[p] = R + T > 0.0 ? 1 : -1;
+    } else {  // its load left the range: it starts the way the bound it reached pushes it
+      const double net = R + std::clamp(-R, lo, hi);
+      if (net != 0.0) s[p] = net > 0.0 ? 1 : -1;
     }
+    return mode_of(gm, s[0], s[1]);
   }
-  return mode_of(flank_of(n), s1, s2);
+  if (flank_of(old % 16) == GapMode::open) {  // closing on a flank: the speeds' signs now
+    s[0] = sign_after(m.v[0], m.a[0], s[0]);
+    s[1] = sign_after(m.v[1], m.a[1], s[1]);
+    // A body at rest when the teeth meet while the other drives: held where its other loads lie in
+    // the range (τ is 0 at the instant: a body a stuck contact holds, its range then growing from 0
+    // with τ and the contact carrying the rest).
+    for (int p = 0; p < 2; ++p)
+      if (m.v[p] == 0.0 && w[1 - p] != 0.0 && holds(p)) return mode_of(gm, s[0], s[1]) + 32 * (p + 1);
+    // A body exactly at rest (a stuck contact holds it, ω = ω' = 0) passes no power: its sign is
+    // the one under which it does not drive, sign T_p (−g on the pinion, +g on the wheel), not its
+    // acceleration's rounding.
+    for (int p = 0; p < 2 && eta < 1.0; ++p)
+      if (m.v[p] == 0.0 && m.a[p] == 0.0 && g != 0) s[p] = p == 0 ? -g : g;
+    return mode_of(gm, s[0], s[1]);
+  }
+  // A body reverses: the one at its reversal is held, or takes its sign after the instant.
+  const int p = s[0] * w[0] <= s[1] * w[1] ? 0 : 1;
+  if (holds(p)) return mode_of(gm, s[0], s[1]) + 32 * (p + 1);
+  if (s[p] * w[p] < 0.0 || s[p] * m.a[p] < 0.0) s[p] = -s[p];
+  // The other body exactly at rest (a stuck contact holds it) is held once p drives.
+  if (const int q = 1 - p; m.v[q] == 0.0 && w[p] != 0.0 && holds(q)) return mode_of(gm, s[0], s[1]) + 32 * (q + 1);
+  return mode_of(gm, s[0], s[1]);
 }
 
 int GearMesh::natural_mode(double, const ElementMotion& m, const double*, int current) const {
   const LinkLaw L = flanks();
   const double D = deflection(m), Dr = deflection_rate(m);
+  // A held body stays held while at rest: its margin, an event function, ends the hold (settle).
+  if (const int p = held(current) - 1; p >= 0 && m.v[p] == 0.0) return current & ~16;
   const int cur = current % 16;
   GapMode g;
   if (L.gap) {
@@ -140,6 +203,11 @@ int GearMesh::natural_mode(double, const ElementMotion& m, const double*, int cu
   }
   const int s1 = m.v[0] > 0.0 ? 1 : m.v[0] < 0.0 ? -1 : sign1(cur);
   const int s2 = m.v[1] > 0.0 ? 1 : m.v[1] < 0.0 ? -1 : sign2(cur);
+  // A body exactly at rest while the other drives is held where its other loads lie in the range.
+  const int s[2] = {s1, s2};
+  for (int p = 0; p < 2 && eta < 1.0; ++p)
+    if (m.v[p] == 0.0 && m.v[1 - p] != 0.0 && other_drives(static_cast<int>(g), p, s[1 - p]))
+      return mode_of(g, s1, s2) + 32 * (p + 1);
   return mode_of(g, s1, s2);
 }
 
@@ -148,6 +216,9 @@ const char* GearMesh::mode_name(int mode) const {
       {"flank-/wheel drives", "flank-/no transmission", "flank-/pinion drives"},
       {"free play", "free play", "free play"},
       {"flank+/wheel drives", "flank+/no transmission", "flank+/pinion drives"}};
+  if (const int h = held(mode))
+    return flank_of(mode) == GapMode::closed_pos ? (h == 1 ? "flank+/pinion held" : "flank+/wheel held")
+                                                 : (h == 1 ? "flank-/pinion held" : "flank-/wheel held");
   return kNames[static_cast<int>(flank_of(mode)) + 1][direction(mode) + 1];
 }
 
@@ -172,7 +243,7 @@ void GearMesh::outputs(double t, const ElementMotion& m, const double* x, int mo
   out[0] = deflection(m);
   out[1] = M[1];
   out[2] = heat_power(t, m, x, mode);
-  out[3] = static_cast<double>(mode % 16);
+  out[3] = static_cast<double>(mode & ~16);  // mode_of(), + 32 the pinion held, + 64 the wheel held
 }
 
 std::string GearMesh::describe(BodyKind) const {

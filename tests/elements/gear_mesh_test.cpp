@@ -280,5 +280,125 @@ TEST(MeshCompile, BadFieldsAreLocated) {
             std::string::npos);
 }
 
+
+// ---- the held flank (elements/gear_mesh.hpp "Held flank") ----
+
+/// A pinion at a prescribed 1 rad/s from φ₁(0) = Δ₀ = 0.01 rad and a wheel J₂ = 0.5 kg·m² at rest
+/// through a mesh i = 2, c = 1000 N·m/rad, η = 0.8 (no backlash, no damping); `wheel` continues the
+/// model (loads, contacts on the wheel). While the wheel rests, τ = c (Δ₀ + t) = 10 + 1000 t, and
+/// the pinion feeds the teeth (T₁ ω₁ = −τ < 0): the wheel's locking range is
+/// [η i τ, i τ] = [16 + 1600 t, 20 + 2000 t] N·m.
+Model held_wheel_model(const std::string& wheel, double t_end, IntegratorChoice integ) {
+  Model m = test::model_text(
+      "bodies:\n  pinion: {inertia: 0.01 kg*m^2, position: 0.01 rad, motion: {speed: 1 rad/s}}\n"
+      "  wheel: {inertia: 0.5 kg*m^2}\nlinks:\n  mesh: {type: gear-mesh, between: [pinion, wheel], ratio: 2, "
+      "stiffness: 1000 N*m/rad, efficiency: 0.8}\n" +
+          wheel + "simulation: {t_end: " + std::to_string(t_end) + " s, dt_out: 1e-4 s, rtol: 1e-10, atol: 1e-12}\n",
+      "held.yaml");
+  m.simulation.integrator = integ;
+  return m;
+}
+
+/// The mesh's switches (kind "mesh") as (t, from, to).
+std::vector<ModeEvent> mesh_switches(const SimulationResult& r) {
+  std::vector<ModeEvent> out;
+  for (const ModeEvent& e : r.hybrid.events)
+    if (e.element == "mesh" && e.kind != "initial") out.push_back(e);
+  return out;
+}
+
+// Claim: a wheel at rest whose load lies inside the mesh's locking range is held — it stays exactly
+// at rest and the mesh carries exactly its load — and it leaves rest, driven, where the range's
+// lower bound η i τ passes the load. Derivation: load −18 N·m on the wheel; held while
+// 16 + 1600 t ≤ 18 ≤ 20 + 2000 t, so until t₂ = 2/1600 = 1.25e-3 s the wheel torque is 18 N·m and
+// ω₂ = 0. After t₂ the wheel is driven (η on its side): J₂ x'' = η i c (Δ₀ + t − i x) − 18, i.e.
+// x'' + ω² x = 3200 (t − t₂) with ω² = η i² c/J₂ = 6400 s⁻², x(t₂) = x'(t₂) = 0:
+// x = ½ s − (1/(2ω)) sin ω s, ω₂ = ½ (1 − cos ω s), s = t − t₂ (≥ 0: no reversal before t_end).
+TEST_P(Mesh, HoldsALoadInsideItsLockingRangeAndReleasesAtItsLowerBound) {
+  const Model m = held_wheel_model("loads:\n  L: {type: constant, body: wheel, value: -18 N*m}\n", 0.02, GetParam());
+  const SimulationResult r = simulate(m);
+  const double t2 = 1.25e-3, w = 80.0;
+  const std::vector<ModeEvent> ev = mesh_switches(r);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_NEAR(ev[0].t, t2, 1e-9);
+  EXPECT_EQ(ev[0].from, "flank+/wheel held");
+  EXPECT_EQ(ev[0].to, "flank+/pinion drives");
+  const auto &t = series(r, "t_s"), &w2 = series(r, "wheel.velocity_rad_s"), &M2 = series(r, "mesh.wheel_torque_N_m");
+  size_t held = 0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < t2) {
+      EXPECT_EQ(w2[k], 0.0) << t[k];
+      EXPECT_NEAR(M2[k], 18.0, 1e-9) << t[k];
+      ++held;
+    } else {
+      const double s = t[k] - t2;
+      EXPECT_NEAR(w2[k], 0.5 * (1.0 - std::cos(w * s)), 1e-7) << t[k];
+    }
+  }
+  EXPECT_EQ(held, 13u);  // the rows 0 … 1.2e-3 s
+}
+
+// Claim: a held wheel whose load grows past the range's upper bound i τ leaves rest backwards, its
+// torque then i τ on both sides (it feeds the teeth with the pinion: no power passes). Derivation:
+// load −(18 + 4000 t) N·m (a constant and a ramp); held while 18 + 4000 t ≤ 20 + 2000 t, until
+// t_r = 1e-3 s; then J₂ x'' = i c (Δ₀ + t − i x) − 18 − 4000 t, x'' + ω² x = −4000 (t − t_r) with
+// ω² = i² c/J₂ = 8000 s⁻²: ω₂ = −½ (1 − cos ω s), s = t − t_r.
+TEST_P(Mesh, ReleasesWhereTheLoadPassesTheUpperBoundOfItsRange) {
+  const Model m = held_wheel_model(
+      "loads:\n  L: {type: constant, body: wheel, value: -18 N*m}\n"
+      "  R: {type: ramp, body: wheel, value: -40 N*m, end: 0.01 s}\n",
+      0.01, GetParam());
+  const SimulationResult r = simulate(m);
+  const double tr = 1e-3, w = std::sqrt(8000.0);
+  const std::vector<ModeEvent> ev = mesh_switches(r);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_NEAR(ev[0].t, tr, 1e-9);
+  EXPECT_EQ(ev[0].from, "flank+/wheel held");
+  EXPECT_EQ(ev[0].to, "flank+/no transmission");
+  const auto &t = series(r, "t_s"), &w2 = series(r, "wheel.velocity_rad_s"), &M2 = series(r, "mesh.wheel_torque_N_m");
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < tr) {
+      EXPECT_EQ(w2[k], 0.0) << t[k];
+      EXPECT_NEAR(M2[k], 18.0 + 4000.0 * t[k], 1e-9) << t[k];
+    } else {
+      EXPECT_NEAR(w2[k], -0.5 * (1.0 - std::cos(w * (t[k] - tr))), 1e-7) << t[k];
+    }
+  }
+}
+
+// Claim: a contact stuck on a held body carries what the mesh's range does not (the mesh holds what
+// its range allows), and the body leaves rest where the contact breaks away. Derivation: load
+// −24 N·m and a contact F_s = 5, F_k = 4 N·m on the wheel; the mesh takes clamp(24, 16 + 1600 t,
+// 20 + 2000 t): 20 + 2000 t until 2e-3 s, then 24 until 5e-3 s, then 16 + 1600 t; the contact the
+// rest, λ = −24 + M (λ = the free forces on the resting wheel, the contact's load on it −λ): −4 +
+// 2000 t, 0, 1600 t − 8, which reaches F_s at t_b = 13/1600 = 8.125e-3 s: the contact slips (+) and
+// the mesh lets the wheel go, driven.
+TEST_P(Mesh, AContactStuckOnAHeldBodyCarriesWhatTheRangeDoesNot) {
+  const Model m = held_wheel_model(
+      "loads:\n  L: {type: constant, body: wheel, value: -24 N*m}\n"
+      "contacts:\n  f: {between: [wheel, ground], static: 5 N*m, kinetic: 4 N*m}\n",
+      0.01, GetParam());
+  const SimulationResult r = simulate(m);
+  const double tb = 13.0 / 1600.0;
+  double slip = -1.0;
+  for (const ModeEvent& e : r.hybrid.events)
+    if (e.element == "f" && e.kind == "slip") slip = e.t;
+  EXPECT_NEAR(slip, tb, 1e-9);
+  const std::vector<ModeEvent> ev = mesh_switches(r);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_NEAR(ev[0].t, tb, 1e-9);
+  EXPECT_EQ(ev[0].from, "flank+/wheel held");
+  EXPECT_EQ(ev[0].to, "flank+/pinion drives");
+  const auto &t = series(r, "t_s"), &w2 = series(r, "wheel.velocity_rad_s"), &M2 = series(r, "mesh.wheel_torque_N_m");
+  const auto& F = series(r, "f.force_N_m");
+  for (size_t k = 0; k < t.size() && t[k] < tb; ++k) {
+    const double M = std::clamp(24.0, 16.0 + 1600.0 * t[k], 20.0 + 2000.0 * t[k]);
+    EXPECT_EQ(w2[k], 0.0) << t[k];
+    EXPECT_NEAR(M2[k], M, 1e-9) << t[k];
+    EXPECT_NEAR(F[k], -24.0 + M, 1e-9) << t[k];
+  }
+  EXPECT_GT(w2.back(), 0.0);
+}
+
 }  // namespace MACHDYN_UNITY_ID
 }  // namespace machdyn

@@ -180,9 +180,10 @@ int sign_of(FMode md) { return md == FMode::slip_pos ? 1 : md == FMode::slip_neg
 bool sliding(FMode md) { return md == FMode::slip_pos || md == FMode::slip_neg; }
 
 /// A gear mesh's mode: the flank g (+1, −1; 0 the free play; without backlash the sign of τ) and
-/// the assumed signs of the pinion's and the wheel's speeds.
+/// the assumed signs of the pinion's and the wheel's speeds; `held` the body at rest it holds on a
+/// lossy flank (1 the pinion, 2 the wheel, 0 none: docs/model-files.md, "Elastic gear mesh").
 struct MeshMode {
-  int g = 0, s1 = 1, s2 = 1;
+  int g = 0, s1 = 1, s2 = 1, held = 0;
 };
 
 /// A two-stage lossy train's mode: s = 0 stuck, else rolling in s with each stage's driving side
@@ -396,6 +397,23 @@ class Sim {
     const double ce = G.c * (D - g * 0.5 * G.backlash), dd = G.d * Dr;
     return g > 0 ? ce + std::min(ce, dd) : ce + std::max(ce, dd);
   }
+  /// The held flank (docs/model-files.md): body p (0 the pinion, 1 the wheel) at rest while the other
+  /// drives — its ideal torque T_p (−τ, i τ) and the other's speed ω_o feed the teeth, T_o ω_o < 0 —
+  /// takes any torque between η T_p and T_p: [lo, hi].
+  static void hold_range(const Mesh& G, double tau, int p, double* lo, double* hi) {
+    const double T = p == 0 ? -tau : G.i * tau;
+    *lo = std::min(G.eta * T, T), *hi = std::max(G.eta * T, T);
+  }
+  /// Whether the other body than p feeds the teeth on flank g with its speed's sign s_o: T_o has the
+  /// sign −g on the pinion, +g on the wheel.
+  static bool other_drives(int g, int p, int s_o) { return (p == 0 ? -g : g) * s_o > 0; }
+  /// −R in the range, as a margin ≥ 0 (R the other loads on p, the stuck ones' included).
+  static double hold_margin(const Mesh& G, double tau, int p, double R) {
+    double lo, hi;
+    hold_range(G, tau, p, &lo, &hi);
+    return std::min(-R - lo, hi + R) + 1e-12 * (std::abs(lo) + std::abs(hi) + std::abs(R));
+  }
+  std::vector<double> mesh_M_;  // accel_core(): a held mesh's torque on its held body
   /// The sign of a speed just after an instant: its own, at 0 its acceleration's, else `keep`.
   static int sign_after(double v, double a, int keep) {
     if (v != 0.0) return v > 0.0 ? 1 : -1;
@@ -679,6 +697,14 @@ class Sim {
       const Mesh& G = m_.meshes[k];
       const MeshMode& mm = md.mesh[k];
       const double tau = mesh_tau(G, mm.g, mesh_D(G, y), mesh_Dr(G, y));
+      if (mm.held == 1) {  // the wheel its ideal torque; the pinion's below, after every other force
+        f[static_cast<size_t>(G.b)] += G.i * tau;
+        continue;
+      }
+      if (mm.held == 2) {
+        f[static_cast<size_t>(G.a)] -= tau;
+        continue;
+      }
       const bool pinion_drives = mm.g * mm.s1 > 0 && mm.g * mm.s2 > 0, wheel_drives = mm.g * mm.s1 < 0 && mm.g * mm.s2 < 0;
       f[static_cast<size_t>(G.a)] -= (wheel_drives ? G.eta : 1.0) * tau;
       f[static_cast<size_t>(G.b)] += (pinion_drives ? G.eta : 1.0) * G.i * tau;
@@ -717,6 +743,20 @@ class Sim {
       } else if (md.fr[k] == FMode::stuck) {
         mask |= 1u << k;
       }
+    }
+    // A held body: the mesh's torque clamp(−R, lo, hi) against every other force R on it but the
+    // stuck elements' (those, solved below, carry the rest).
+    mesh_M_.assign(m_.meshes.size(), 0.0);
+    for (size_t k = 0; k < m_.meshes.size(); ++k) {
+      const Mesh& G = m_.meshes[k];
+      const MeshMode& mm = md.mesh[k];
+      if (mm.held == 0) continue;
+      const int p = mm.held - 1, j = p == 0 ? G.a : G.b;
+      double lo, hi;
+      hold_range(G, mesh_tau(G, mm.g, mesh_D(G, y), mesh_Dr(G, y)), p, &lo, &hi);
+      const double R = f[static_cast<size_t>(j)];
+      mesh_M_[k] = std::clamp(-R, lo, hi);
+      f[static_cast<size_t>(j)] += mesh_M_[k];
     }
     Eigen::Map<Eigen::VectorXd>(a, n_) = P_ * Eigen::Map<const Eigen::VectorXd>(f.data(), n_);
     for (int i = 0; i < n_; ++i)  // P has no row for a prescribed body: its motion is the signal's
@@ -866,6 +906,16 @@ class Sim {
       // forth inside the slide's threshold, the loss turning the body each time).
       auto speed = [&](int b) { return held_[static_cast<size_t>(b)] ? 0.0 : y[static_cast<size_t>(n_ + b)]; };
       auto eps_of = [&](int b) { return sliding_on_[static_cast<size_t>(b)] ? eps_v : 0.0; };
+      if (mm.held != 0) {
+        // Held: the other body's speed in the sign that feeds the teeth (it stops driving: slot 4)
+        // and the range's margin with R = J a − M, the stuck elements' loads included (slot 5).
+        const int p = mm.held - 1, o = p == 0 ? G.b : G.a, j = p == 0 ? G.a : G.b;
+        out.push_back({(p == 0 ? -mm.g : mm.g) * speed(o), eps_of(o), -1, -1, false, mi, 4});
+        const double R = mass_[static_cast<size_t>(j)] * a[static_cast<size_t>(j)] - mesh_M_[k];
+        out.push_back({.g = hold_margin(G, mesh_tau(G, mm.g, D, Dr), p, R), .eps = eps_f, .mesh = mi, .slot = 5,
+                       .res = kLoadResolution * fscale_});
+        continue;
+      }
       out.push_back({mm.s1 * speed(G.a), eps_of(G.a), -1, -1, false, mi, 1});
       out.push_back({mm.s2 * speed(G.b), eps_of(G.b), -1, -1, false, mi, 2});
     }
@@ -929,6 +979,80 @@ class Sim {
   }
 
   // ---- decisions ---------------------------------------------------------------------------------
+  /// Mesh k holds body p (at rest) if −R lies in its range, R = J a − M the other loads on it with
+  /// the stuck elements' (its margin ≥ 0); else p leaves rest the way the held torque's bound
+  /// pushes it (the sign of its acceleration in the held mode). Returns whether it holds.
+  bool try_hold(size_t k, int p, double t, const std::vector<double>& y) {
+    const Mesh& G = m_.meshes[k];
+    MeshMode& mm = md_.mesh[k];
+    const int j = p == 0 ? G.a : G.b;
+    mm.held = p + 1;
+    std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    accel(t, y.data(), md_, a.data(), lam.data());
+    const double R = mass_[static_cast<size_t>(j)] * a[static_cast<size_t>(j)] - mesh_M_[k];
+    if (hold_margin(G, mesh_tau(G, mm.g, mesh_D(G, y.data()), mesh_Dr(G, y.data())), p, R) >= 0.0) return true;
+    int& s = p == 0 ? mm.s1 : mm.s2;
+    s = sign_after(0.0, a[static_cast<size_t>(j)], s);
+    mm.held = 0;
+    return false;
+  }
+  /// The hold of mesh k ends: the other body stops driving (it reverses; the held one then takes its
+  /// ideal torque on both sides of rest) or the loads leave the range (the bound's way).
+  void leave_hold(size_t k, double t, const std::vector<double>& y, bool other_stopped) {
+    const Mesh& G = m_.meshes[k];
+    MeshMode& mm = md_.mesh[k];
+    const int p = mm.held - 1, j = p == 0 ? G.a : G.b, o = p == 0 ? G.b : G.a;
+    std::vector<double> a(static_cast<size_t>(n_)), lam(m_.frictions.size());
+    accel(t, y.data(), md_, a.data(), lam.data());
+    int& sp = p == 0 ? mm.s1 : mm.s2;
+    int& so = p == 0 ? mm.s2 : mm.s1;
+    if (other_stopped) {
+      // The held body then takes its ideal torque T_p on both sides of rest: sign(R + T_p), R its
+      // other loads with the stuck ones' (J a − M in the held mode).
+      const double vo = y[static_cast<size_t>(n_ + o)];
+      so = vo != 0.0 ? (vo > 0.0 ? 1 : -1) : -so;
+      const double tau = mesh_tau(G, mm.g, mesh_D(G, y.data()), mesh_Dr(G, y.data()));
+      const double T = p == 0 ? -tau : G.i * tau;
+      const double R = mass_[static_cast<size_t>(j)] * a[static_cast<size_t>(j)] - mesh_M_[k];
+      if (R + T != 0.0) sp = R + T > 0.0 ? 1 : -1;
+      mm.held = 0;
+      return;
+    }
+    sp = sign_after(0.0, a[static_cast<size_t>(j)], sp);
+    mm.held = 0;
+  }
+  /// After a decision: a held body whose margin (or the other's drive) the decision left negative
+  /// leaves the hold (a stuck contact beside it broke away); at the start and at a breakpoint a
+  /// body exactly at rest on a lossy flank while the other drives is held where its loads allow.
+  void settle_holds(double t, const std::vector<double>& y, bool entry, bool initial) {
+    for (size_t k = 0; k < m_.meshes.size(); ++k) {
+      const Mesh& G = m_.meshes[k];
+      MeshMode& mm = md_.mesh[k];
+      if (mm.g == 0 || !(G.eta < 1.0)) continue;
+      if (mm.held != 0) {
+        const std::vector<Fn> g = functions(t, y);
+        for (const Fn& f : g)
+          if (f.mesh == static_cast<int>(k) && (f.slot == 4 || f.slot == 5) && f.g < -f.eps) {
+            leave_hold(k, t, y, f.slot == 4);
+            if (!initial) record(t, "mesh", G.name);
+            break;
+          }
+        continue;
+      }
+      if (!entry) continue;
+      for (int p = 0; p < 2; ++p) {
+        const double vp = y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))], vo = y[static_cast<size_t>(n_ + (p == 0 ? G.b : G.a))];
+        if (vp != 0.0 || vo == 0.0 || !other_drives(mm.g, p, vo > 0.0 ? 1 : -1)) continue;
+        const MeshMode was = mm;
+        if (try_hold(k, p, t, y)) {
+          if (!initial) record(t, "mesh", G.name);
+          break;
+        }
+        mm = was;
+      }
+    }
+  }
+
   void record(double t, const char* kind, const std::string& el) { res_.events.push_back({t, kind, el, window_}); }
 
   /// The resolution window of an event located at te (RefEvent::window): for every function that
@@ -1295,6 +1419,7 @@ RefResult Sim::run() {
   }
   engage(0.0, y, true);
   decide(0.0, y, {}, true);
+  settle_holds(0.0, y, true, true);
   std::vector<Fn> g0;
   restart(0.0, y, g0);
   bool g0_valid = true;
@@ -1434,9 +1559,24 @@ RefResult Sim::run() {
           if (mm.g == 0) {
             mm.g = ge[i].slot == 0 ? 1 : -1;
             signs(true, true);
+            // A body at rest (its acceleration 0: a stuck element holds it) passes no power: the sign
+            // under which it does not drive, that of its ideal torque (−g the pinion, +g the wheel).
+            if (G.eta < 1.0) {
+              if (y[static_cast<size_t>(n_ + G.a)] == 0.0 && a[static_cast<size_t>(G.a)] == 0.0) mm.s1 = -mm.g;
+              if (y[static_cast<size_t>(n_ + G.b)] == 0.0 && a[static_cast<size_t>(G.b)] == 0.0) mm.s2 = mm.g;
+            }
+            // A body at rest when the teeth meet while the other drives: held where its loads allow.
+            for (int p = 0; p < 2 && mm.held == 0; ++p)
+              if (y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))] == 0.0 && y[static_cast<size_t>(n_ + (p == 0 ? G.b : G.a))] != 0.0 &&
+                  G.eta < 1.0 && other_drives(mm.g, p, p == 0 ? mm.s2 : mm.s1))
+                (void)try_hold(k, p, t, y);
             record(t, "mesh", G.name);
             by_position();
+          } else if (ge[i].slot == 4 || ge[i].slot == 5) {
+            leave_hold(k, t, y, ge[i].slot == 4);
+            record(t, "mesh", G.name);
           } else if (ge[i].slot == 0) {
+            mm.held = 0;  // the contact ends, or τ changes sign: the hold with it
             // Damped: g = c e + d Δ' moved by (c δΔ + d δΔ')/|ġ|, ġ = c Δ' + d Δ'' in the contact's mode.
             double gdot = 0.0;
             if (G.d > 0.0) {
@@ -1452,7 +1592,20 @@ RefResult Sim::run() {
               ev.body = G.a, ev.body2 = G.b, ev.w2 = G.i, ev.dt_dq = G.c / gdot, ev.dt_dv = G.d / gdot;
             }
           } else {
-            signs(ge[i].slot == 1, ge[i].slot == 2);
+            // A body reaches rest: on a lossy flank while the other drives it is held where its
+            // loads lie in the range, else it leaves rest the way the bound pushes it.
+            const int p = ge[i].slot - 1;
+            if (G.eta < 1.0 && y[static_cast<size_t>(n_ + (p == 0 ? G.b : G.a))] != 0.0 && other_drives(mm.g, p, p == 0 ? mm.s2 : mm.s1)) {
+              y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))] = 0.0;
+              (void)try_hold(k, p, t, y);
+            } else {
+              signs(ge[i].slot == 1, ge[i].slot == 2);
+              // The other body exactly at rest (a stuck element holds it) is held once p drives.
+              const int q = 1 - p;
+              if (y[static_cast<size_t>(n_ + (q == 0 ? G.a : G.b))] == 0.0 && y[static_cast<size_t>(n_ + (p == 0 ? G.a : G.b))] != 0.0 &&
+                  G.eta < 1.0 && other_drives(mm.g, q, p == 0 ? mm.s1 : mm.s2))
+                (void)try_hold(k, q, t, y);
+            }
             record(t, "mesh", G.name);
           }
         } else if (ge[i].fr >= 0) {
@@ -1510,6 +1663,7 @@ RefResult Sim::run() {
         }
       }
       decide(t, y, fired_fr);
+      settle_holds(t, y, false, false);
       // A plastic impact whose loads pull the body off the stop at once is one `impact` (docs/hybrid.md,
       // End stop), not a rest: its `stick` and the decision's `slip` at t become that impact.
       for (size_t r = 0; r < rested.size(); ++r) {
@@ -1542,6 +1696,7 @@ RefResult Sim::run() {
         if (released) build_P();
         engage(t, y, false);
         decide(t, y, {});
+        settle_holds(t, y, true, false);
         restart(t, y, g0);
         t_back_ = t, y_back_ = y;
       }

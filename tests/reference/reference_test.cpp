@@ -655,6 +655,34 @@ TEST(ReferenceSimulator, GearMeshContactThroughTheBacklashWithItsEfficiency) {
   EXPECT_NEAR(lost, (1.0 - 0.9) / 0.9 * 0.5 * 0.02 * r.v[k][1] * r.v[k][1], 1e-10);
 }
 
+// Claim: the reference's held flank (docs/model-files.md, "Elastic gear mesh"): a wheel J₂ = 0.5
+// kg·m² at rest under −18 N·m, meshed (i = 2, c = 1000 N·m/rad, η = 0.8, no backlash) with a pinion
+// prescribed at 1 rad/s from Δ₀ = 0.01 rad. The pinion feeds the teeth, τ = c (Δ₀ + t), so the wheel's
+// range is [η i τ, i τ] = [16 + 1600 t, 20 + 2000 t] N·m: held (ω₂ = 0 exactly) until the lower
+// bound reaches 18 at t₂ = 1.25e-3 s, one `mesh` event; then driven, x'' + ω² x = 3200 (t − t₂),
+// ω² = η i² c/J₂ = 6400 s⁻²: ω₂ = ½ (1 − cos ω (t − t₂)).
+TEST(ReferenceSimulator, GearMeshHoldsAWheelInsideItsLockingRange) {
+  RefModel m;
+  m.rotational = true;
+  m.bodies = {{"pinion", 0.01, 0.01, 1.0}, {"wheel", 0.5, 0.0, 0.0}};
+  m.bodies[0].motion = Body::Motion::speed, m.bodies[0].prescribed = constant(1.0);
+  Mesh G;
+  G.name = "mesh", G.a = 0, G.b = 1, G.i = 2.0, G.c = 1000.0, G.eta = 0.8;
+  m.meshes = {G};
+  m.loads = {{"L", 1, constant(-18.0)}};
+  m.t_end = 0.02, m.dt_out = 1e-4;
+  const RefResult r = simulate_reference(m);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  const double t2 = 1.25e-3, w = 80.0;
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].kind, "mesh");
+  EXPECT_NEAR(r.events[0].t, t2, 1e-11);
+  for (size_t k = 0; k < r.t.size(); ++k) {
+    if (r.t[k] < t2) EXPECT_EQ(r.v[k][1], 0.0) << r.t[k];
+    else EXPECT_NEAR(r.v[k][1], 0.5 * (1.0 - std::cos(w * (r.t[k] - t2))), 1e-9) << r.t[k];
+  }
+}
+
 // Claim: the reference's spatial rope (docs/sway.md) swings a load m = 1 kg on a free trolley
 // M = 2 kg with ω² = (g/ℓ)(1 + m/M) (the relative swing ξ = x_L − x_t: m x_L'' = −m g ξ/ℓ,
 // M x_t'' = m g ξ/ℓ), ℓ = L0 + m g/c the hanging length: ξ = a cos ωt within 1e-3 a over two periods

@@ -149,9 +149,14 @@ class DriveSystem final : public OdeSystem {
     }
     return b;
   }
+  /// What element d sees at (t, y) for its forces and columns: drive_motion(), and on a port it holds
+  /// (Element::held_port) the other forces on that body (ElementMotion::load, from the free forces).
+  [[nodiscard]] ElementMotion drive_motion_at(int d, double t, const double* y) const;
+  /// The body of element d's port p, or −1 for a port spread over two bodies.
+  [[nodiscard]] int port_body(int d, int p) const;
   /// The forces M_p of element d on its ports into M (Element::forces).
   void drive_forces_of(int d, double t, const double* y, double* M) const {
-    drive(d).forces(t, drive_motion(d, y), y + drive_offset(d), drive_mode(d), M);
+    drive(d).forces(t, drive_motion_at(d, t, y), y + drive_offset(d), drive_mode(d), M);
   }
   /// The torque (or force) M_0 of element d at its own point (on its first body; Drive::spread puts it
   /// on the bodies), N·m or N.
@@ -168,7 +173,7 @@ class DriveSystem final : public OdeSystem {
   }
   /// The power element d puts into its bodies, Σ_p M_p v_p, W.
   [[nodiscard]] double drive_power(int d, double t, const double* y) const {
-    const ElementMotion b = drive_motion(d, y);
+    const ElementMotion b = drive_motion_at(d, t, y);
     double M[ElementMotion::kMax] = {};
     drive(d).forces(t, b, y + drive_offset(d), drive_mode(d), M);
     double P = M[0] * b.v[0];
@@ -177,7 +182,7 @@ class DriveSystem final : public OdeSystem {
   }
   /// Element d's own output columns at (t, y) (Element::outputs) into out.
   void drive_outputs(int d, double t, const double* y, double* out) const {
-    drive(d).outputs(t, drive_motion(d, y), y + drive_offset(d), drive_mode(d), out);
+    drive(d).outputs(t, drive_motion_at(d, t, y), y + drive_offset(d), drive_mode(d), out);
   }
 
   // Lossy gears (elements/lossy_gear.hpp), in the order of Model::lossy_gears.
@@ -389,6 +394,16 @@ class DriveSystem final : public OdeSystem {
   double drive_forces(double t, const double* y, double* f, double* loss) const;
   /// The drives' state rates into dydt.
   void drive_rates(double t, const double* y, double* dydt) const;
+  /// Elements holding a body (Element::held_port): their force there from the free forces f on it
+  /// (f before the inertias divide it and before the stuck set's loads), into f.
+  void hold_forces(double t, const double* y, double* f);
+  /// drive_motion() with the accelerations of the last evaluate() (f_) and on every port on one body
+  /// the other forces on it with the stuck set's loads, I a − M_p (ElementMotion::load).
+  [[nodiscard]] ElementMotion evaluated_motion(int d, double t, const double* y) const;
+  /// Mode md of element d as decided, or where it starts holding a body and its own event function
+  /// is negative in it, the mode its settle() takes from there.
+  int confirm_hold(int d, double t, const double* y, int md);
+
   /// Prescribed motions: from the forces f (before the inertias divide them) each source's force R
   /// (motion_f_) and its work rate into *src; then acc = a(t) on their bodies (after the division).
   void motion_forces(double t, const double* v, const double* f, double* src);

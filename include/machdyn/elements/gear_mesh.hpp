@@ -39,6 +39,22 @@
 /// is read from the state (a speed at 0, and without backlash τ at 0: +). A run at rest (ω₁ = ω₂ =
 /// 0) keeps its mode. In the free play the signs are kept (they act on nothing there; the contact
 /// reads them again).
+///
+/// Held flank (η < 1): body j at rest (ω_j = 0) passes no power, so while the other body o drives
+/// (T_o ω_o < 0: it feeds the teeth; T_j the ideal torque on j, −τ on the pinion, i τ on the wheel)
+/// j's torque is any value in [η T_j, T_j] (mirrored for T_j < 0) — those of its two neighbouring
+/// modes, j driven and j driving. j is *held* there: its torque is clamp(−R_j, η T_j, T_j), R_j
+/// everything else on j but the stuck set's loads (ElementMotion::load, Element::held_port), o gets
+/// its ideal torque T_o, no loss. Inside the range ω_j stays 0; at a bound the clamp is the torque of
+/// the mode j leaves rest into (η T_j where it is driven, T_j where it drives), and a contact stuck on
+/// j carries what the mesh does not (the mesh holds what its range allows, the friction the rest).
+/// Entered where a body reaches rest (or is at rest when the teeth meet, or at the start) with
+/// −R_j in the range while o drives; events while held: g₀ as on a flank (τ reaching 0), g₁ =
+/// min(the other's driving σ ω_o, the range's margin min(−R_j − lo, hi + R_j) with R_j now
+/// including the stuck set's loads, so a stuck contact carrying the rest keeps it ≥ 0, + 1e-12 of
+/// its scale). Leaving: the margin → j starts in sign(R_j + clamp); o stops driving → o reverses
+/// and j takes T_j on both sides of rest (sign(R_j + T_j)). Modes: bits 5–6 the held body (1 pinion,
+/// 2 wheel), bit 4 a switch to be settled, bits 0–3 mode_of().
 /// Valid for two rotational bodies; nothing is thrown.
 
 #include "machdyn/elements/link.hpp"
@@ -62,6 +78,8 @@ class GearMesh final : public Element {
     return (static_cast<int>(g) + 1) + 3 * (s1 < 0 ? 1 : 0) + 6 * (s2 < 0 ? 1 : 0);
   }
   [[nodiscard]] static GapMode flank_of(int mode) { return GapMode((mode % 16) % 3 - 1); }
+  /// The held body of `mode`: 0 none, 1 the pinion, 2 the wheel.
+  [[nodiscard]] static int held(int mode) { return (mode >> 5) & 3; }
   [[nodiscard]] static int sign1(int mode) { return ((mode % 16) / 3) % 2 ? -1 : 1; }
   [[nodiscard]] static int sign2(int mode) { return (mode % 16) / 6 ? -1 : 1; }
   /// Δ and Δ' from the motion.
@@ -90,7 +108,20 @@ class GearMesh final : public Element {
   [[nodiscard]] bool has_events() const override { return true; }
   void events(double t, const ElementMotion& m, const double* x, int mode, double* g) const override;
   [[nodiscard]] int mode_after(int mode, int slot) const override;
-  [[nodiscard]] bool settles(int, int now) const override { return now >= 16; }
+  [[nodiscard]] bool settles(int, int now) const override { return (now & 16) != 0; }
+  [[nodiscard]] int held_port(int mode) const override { return held(mode) - 1; }
+  /// On a lossy flank: the hold's entry and margin read the bodies' other loads (ElementMotion::load).
+  [[nodiscard]] bool reads_acceleration(int mode) const override {
+    return eta < 1.0 && flank_of(mode) != GapMode::open;
+  }
+  /// The locking range [lo, hi] of port p's torque at rest while the other drives: η T_p … T_p.
+  void hold_range(double tau, int p, double* lo, double* hi) const;
+  /// How far −R (R the other loads on port p's body) lies inside that range, min(−R − lo, hi + R),
+  /// with 1e-12 of its scale for rounding (≥ 0: held).
+  [[nodiscard]] double hold_margin(double tau, int p, double R) const;
+  /// Whether the other body than port p feeds the teeth (T_o ω_o > 0 against it) on flank g with o's
+  /// speed sign s_o.
+  [[nodiscard]] static bool other_drives(int g, int p, int s_o) { return (p == 1 ? g : -g) * s_o > 0; }
   [[nodiscard]] int settle(double t, const ElementMotion& m, const double* x, int old, int now) const override;
   [[nodiscard]] int natural_mode(double t, const ElementMotion& m, const double* x, int current) const override;
   [[nodiscard]] const char* mode_name(int mode) const override;

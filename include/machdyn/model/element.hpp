@@ -49,6 +49,10 @@ struct ElementMotion {
   double q[kMax] = {};
   double v[kMax] = {};
   double a[kMax] = {};
+  /// Per port held by the element (held_port(mode)), the force on its body from everything else
+  /// (N·m or N): in forces() the free forces, before the stuck set's loads; in events(), settle()
+  /// and natural_mode() with them (I a − M_p). 0 on every other port.
+  double load[kMax] = {};
 };
 
 /// The Jacobian terms of an element with up to kMax states on up to ElementMotion::kMax bodies:
@@ -143,6 +147,12 @@ class Element {
                                          int current) const {
     return current;
   }
+  /// The port whose body the element holds at rest in `mode`, or −1 (a gear mesh's body at rest on
+  /// a lossy flank, elements/gear_mesh.hpp). Its force M_p there is its law's function of the body's
+  /// other forces, ElementMotion::load (the drive system supplies them after every other force and
+  /// before the stuck set's loads, which carry what the element does not); the run puts that body's
+  /// velocity at exactly 0 when the element switches into such a mode. Only a port on one body.
+  [[nodiscard]] virtual int held_port(int /*mode*/) const { return -1; }
   /// The name of a mode (event records, JSON).
   [[nodiscard]] virtual const char* mode_name(int /*mode*/) const { return "linear"; }
   /// The kind of a switch to `now` in the event records ("limited", "unlimited", …).
