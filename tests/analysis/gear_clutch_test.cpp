@@ -632,8 +632,10 @@ TEST_P(GearClutchSim, AClutchBetweenTwoGearsEngagesAtTheClosedFormInstant) {
 // clutch's τ = μ_k N r: the motor side decelerates (E1 α = −τ/i1), Y lifts (E2 α_Y = η2 τ + L/i2), the
 // clutch sticks at t_s = (v0/i1)/(α_Y − α/i1); then the train coasts, α = (L/(i1 i2))/M_f, to rest at
 // t_s − v_M(t_s)/α, where both gears stick in the same event (within 1e-8 s) and the self-locking G2
-// holds everything exactly at rest, with no event after it.
-TEST_P(GearClutchSim, TwoGearsTiedByAStuckClutchComeToRestTogetherAndHold) {
+// holds everything exactly at rest, with no event after it. With η'2 = 0.7 instead the load lowers from
+// there: both gears reverse together onto side b in that event, v_M = α_b (t − t_stop), M_b α_b =
+// η'1 η'2 L/(i1 i2) (their start enumerated together: neither starts alone while the clutch holds).
+TEST_P(GearClutchSim, TwoGearsTiedByAStuckClutchComeToRestTogetherAndHoldOrReverse) {
   const TwoGearsClutch g;
   const double v0 = 20.0, L = -300.0, tau = g.mu_k * 4000.0 * g.radius;
   const double a1 = -(tau / g.i1) / g.E1(), aY = (g.e2 * tau + L / g.i2) / g.E2();
@@ -661,6 +663,25 @@ TEST_P(GearClutchSim, TwoGearsTiedByAStuckClutchComeToRestTogetherAndHold) {
       EXPECT_NEAR(vM[n], vs + ac * (t[n] - ts), gc_tol(GetParam(), 10.0)) << t[n];
     }
   }
+  TwoGearsClutch b = g;
+  b.r2 = 0.7;
+  const double ab = b.back_acc(0.0, L);
+  ASSERT_LT(ab, 0.0);
+  const SimulationResult rb = simulate(test::model_text(
+      b.yaml("{type: constant, body: M, value: 0 N*m}", L, "4 kN", v0, tstop + 0.3, GetParam()), "two-gears.yaml"));
+  EXPECT_EQ(events_of(rb, "K").size(), 1u);
+  for (const char* n : {"G1", "G2"}) {
+    const auto ev = events_of(rb, n);
+    ASSERT_EQ(ev.size(), 1u) << n;
+    EXPECT_EQ(ev[0].kind, "reversal") << n;
+    EXPECT_EQ(ev[0].to, "backward_b_drives") << n;
+    EXPECT_NEAR(ev[0].t, tstop, 1e-8) << n;
+  }
+  const auto tb = series(rb, "t_s"), vb = series(rb, "M.velocity_rad_s");
+  for (size_t n = 0; n < tb.size(); ++n)
+    if (tb[n] > tstop) {
+      EXPECT_NEAR(vb[n], ab * (tb[n] - tstop), gc_tol(GetParam(), 10.0)) << tb[n];
+    }
 }
 
 // Claim: the combinations that remain unsupported are located errors at the gear's key, each
