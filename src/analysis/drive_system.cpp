@@ -808,6 +808,17 @@ void DriveSystem::stop_gear(int g, double* y) const {
   y[n_ + k.a] = y[n_ + k.b] = 0.0;
   if (const int tn = train_of_gear_[static_cast<size_t>(g)]; tn >= 0)
     for (int b : trains_[static_cast<size_t>(tn)].bodies) y[n_ + b] = 0.0;
+  // A gear a stuck clutch ties to it stops with it (u ≡ 0 on the clutch: the other's speed is rounding).
+  if (!coupled_) return;
+  for (size_t c = 0; c < contacts_.size(); ++c) {
+    const ContactLaw& law = contacts_[c];
+    if (mode_[c] != ContactMode::stuck || law.joint || law.general || law.b < 0) continue;
+    for (const auto& [from, to] : {std::pair{law.a, law.b}, std::pair{law.b, law.a}}) {
+      const int h = gear_of_body_[static_cast<size_t>(to)];
+      if ((from == k.a || from == k.b) && h >= 0 && h != g && y[n_ + gears_[static_cast<size_t>(h)].a] != 0.0)
+        stop_gear(h, y);
+    }
+  }
 }
 
 void DriveSystem::enforce_stuck(double t, double* acc) const {

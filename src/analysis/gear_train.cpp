@@ -113,10 +113,17 @@ TrainSolution train_rolling(const GearTrain& tr, const std::vector<LossyGearLaw>
 double train_start_margin(const GearTrain& tr, const std::vector<LossyGearLaw>& gears, int s,
                           const std::array<double, 3>& F, const std::array<double, 3>& I) {
   const TrainSolution x = train_rolling(tr, gears, s, F, I, 0.0);
+  const double tol = train_allowance(tr, gears, F);
+  // No side combination consistent: a massless shaft (I_m = 0) whose stages cannot drive it back
+  // (self-locking) takes only a bounded torque from them in s, so its own load pushing against s
+  // leaves its equation without a solution (the header's uniqueness needs I_m > 0 there). The train
+  // cannot start in s; the margin is the least violation, > 0, 0 where a consistent solution appears
+  // (docs/hybrid.md step 5).
+  if (!x.ok || x.violation > tol) return x.ok ? x.violation : 0.0;
   // The solve's rounding of a margin that is 0 exactly (a self-locking stage holding the load alone:
   // α = 0) is no start: below 1e-14 of the torques it reads 0.
   const double m = -s * x.acc * tr.inertia;
-  return std::abs(m) <= 1e-2 * train_allowance(tr, gears, F) ? 0.0 : m;
+  return std::abs(m) <= 1e-2 * tol ? 0.0 : m;
 }
 
 double train_allowance(const GearTrain& tr, const std::vector<LossyGearLaw>& gears, const std::array<double, 3>& F) {

@@ -292,8 +292,9 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
                                                 "{:.12g} and {} {:.12g}; give the velocity on one body of the train only",
                                                 g.name, A.name, A.v0, B.name, B.v0));
     }
-  // Clutches on a gear's body (analysis/gear_clutch.hpp): the other body on no lossy gear (friction to
-  // the ground beside them is decided in the same decision).
+  // Clutches on a gear's body (analysis/gear_clutch.hpp), also to another gear's body (the two decided
+  // together at rest); a freewheel's other body on no lossy gear (friction to the ground beside them is
+  // decided in the same decision).
   auto gear_of = [&](int body) {
     for (size_t k = 0; k < m.lossy_gears.size(); ++k)
       if (m.lossy_gears[k].a == body || m.lossy_gears[k].b == body) return static_cast<int>(k);
@@ -314,8 +315,8 @@ void resolve_lossy(Model& m, const std::vector<LossyGearSpec>& gears, Diagnostic
       else if (on_a && on_b)
         diag.error(where[k], fmt::format("{} joins the gear's own two bodies (the gear fixes their relative motion); "
                                          "remove it", where_c));
-      else if (gear_of(other) >= 0)
-        diag.error(where[k], fmt::format("{} joins it to lossy gear '{}'; a clutch between two lossy gears is not "
+      else if (gear_of(other) >= 0 && c.lock != 0)  // a clutch between two gears: decided together at rest
+        diag.error(where[k], fmt::format("{} joins it to lossy gear '{}'; a freewheel between two lossy gears is not "
                                          "supported yet: put an inertia between them", where_c,
                                          m.lossy_gears[static_cast<size_t>(gear_of(other))].name));
     }

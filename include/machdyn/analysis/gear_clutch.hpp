@@ -47,11 +47,18 @@
 ///      other side (a chain stuck to a brake): the start moves nothing, the modes of 1. are kept
 ///      (else its rest event s v_a would fire again at once, every 1e-13 s);
 ///   3. else no consistent combination: SolverError naming the gear.
+/// Gears a stuck clutch ties at rest (a clutch between two gears' bodies: motor – gear – clutch – gear
+/// – drum) are one degree of freedom: they are decided together, each stuck or starting in ±1, the
+/// fewest starts first, Z decided and the rolling gears' sides settled per combination, the first in
+/// which every stuck gear holds (its margins, with its ground friction's) and every starting gear has
+/// s a > 0 kept (none: SolverError) — a train's enumeration of its directions (analysis/gear_train.hpp);
+/// a gear coming to rest stops the gears its stuck clutch ties to it (DriveSystem::stop_gear).
 /// Events: those of the gear (elements/lossy_gear.hpp) and of the contacts (elements/contact.hpp),
 /// each from the joint solution above.
 /// Supported (compile checks): a two-body friction contact or freewheel (a one-sided clutch: the
 /// one-sided rule above, its lock·λ ≥ 0 its stick rule) with one body on the gear and the other on
-/// no lossy gear (friction to the ground on the same gear is decided in the same decision, above);
+/// no lossy gear, or a two-sided clutch to another gear's body (friction to the ground on the same
+/// gear is decided in the same decision, above);
 /// no variable inertia among the gear's bodies; no prescribed motion in the
 /// model (a stuck chain could tie it to a stuck gear: two kinematic ends, which this solve does not take).
 

@@ -16,10 +16,13 @@
 /// enumerated and the consistent one taken (the least violation; the current one on a tie). In a fixed
 /// direction every gear's output is an increasing function of its input (concave for s = +1, convex
 /// for s = −1), so the train's equation in α is monotone and its solution unique: at a change of one
-/// gear's side both combinations give the same α (the switch is an event, no jump).
+/// gear's side both combinations give the same α (the switch is an event, no jump). A massless shaft
+/// is the exception: a stage its far side cannot drive (self-locking) passes a bounded torque in s, so
+/// the shaft's own load against s may leave no consistent combination — the train cannot move in s.
 ///
 /// At rest (v_r = 0). The train starts in s exactly when the rolling solution in s (coefficients at 0)
-/// has s α_s > 0. The start margins m_s = −s α_s Ī (Ī = Σ I_j ρ_j², a torque in r's coordinate) are the
+/// has s α_s > 0 (with no consistent solution in s it cannot start there: m_s is then the least
+/// violation, > 0; docs/hybrid.md step 5). The start margins m_s = −s α_s Ī (Ī = Σ I_j ρ_j², a torque in r's coordinate) are the
 /// stuck train's event functions (below 1e-14 of the torques they read 0: a self-locking stage holding
 /// the load alone has α = 0 exactly, which the solve rounds); α_+ ≤ α_− (the losses oppose either
 /// start), so at most one direction starts. Cost: 2 directions × 4 combinations × one 3 × 3 solve per evaluation
