@@ -446,11 +446,15 @@ void DriveSystem::form_stuck_solution(const double* im, double t) {
 }
 
 void DriveSystem::share_one_sided(const double* im, double t) {
-  // The one-sided contacts whose least-norm share pulls against their lock.
+  // The one-sided contacts whose least-norm share pulls against their lock beyond its resolution,
+  // the hold allowance ε_h: a share within it is the hold rule's "at the limit" (a freewheel that
+  // carries nothing, its share −7e-13 N by rounding, was masked with a backstop pulled 0.046 N
+  // against its lock; without the freewheel's row the others no longer had the rank, and the plain
+  // share stood for both: campaign `mixed` seed 7 #146, dopri5).
   uint64_t mask = 0;
   for (Eigen::Index j : one_sided_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
-    if (c.lock * lam_(j) < 0.0) mask |= uint64_t{1} << j;
+    if (c.lock * lam_(j) < -c.hold_tol) mask |= uint64_t{1} << j;
   }
   if (mask == 0) return;
   auto it = masked_.find(mask);
