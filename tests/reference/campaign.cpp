@@ -359,15 +359,23 @@ Outcome compare_results(const RefModel& m, const RefResult& ref, const Simulatio
         break;
       }
   }
-  auto in_unresolved_phase = [&](const ModeEvent& e) {
-    for (const Unresolved& x : unresolved_phases)
-      if (x.a->element == e.element && e.t >= x.lo && e.t <= x.hi && (e.kind == x.a->kind || e.kind == x.b->kind)) return true;
-    return false;
-  };
+  // The engine's pair: its first event of the opening kind within the tolerances and the element's
+  // next event, of the closing kind, within them too.
+  std::vector<char> eng_unresolved(r.hybrid.events.size(), 0);
+  for (const Unresolved& x : unresolved_phases)
+    for (size_t i = 0; i < r.hybrid.events.size(); ++i) {
+      const ModeEvent& e = r.hybrid.events[i];
+      if (eng_unresolved[i] || e.element != x.a->element || e.kind != x.a->kind || e.t < x.lo || e.t > x.hi) continue;
+      size_t j = i + 1;
+      while (j < r.hybrid.events.size() && r.hybrid.events[j].element != e.element) ++j;
+      if (j < r.hybrid.events.size() && r.hybrid.events[j].kind == x.b->kind && r.hybrid.events[j].t <= x.hi)
+        eng_unresolved[i] = eng_unresolved[j] = 1;
+      break;
+    }
   std::vector<const ModeEvent*> eng;
   for (size_t i = 0; i < r.hybrid.events.size(); ++i) {
     const auto& e = r.hybrid.events[i];
-    if (eng_brief[i] || eng_label[i] || undecided_reversal(e) || start_decision(e) || in_unresolved_phase(e)) continue;  // a phase shorter than the instants' resolution
+    if (eng_brief[i] || eng_label[i] || undecided_reversal(e) || start_decision(e) || eng_unresolved[i]) continue;  // a phase shorter than the instants' resolution
     auto same = [](const ModeEvent& x) -> const ModeEvent& { return x; };
     if (compared_kinds().count(e.kind) != 0 && e.t < t_cmp - tol_t && e.t > tol_t && !near_rest(e.element, e.kind, e.t) &&
         !zeno_tail(r.hybrid.events, i, same) && !mesh_tie(r.hybrid.events, i, same))
