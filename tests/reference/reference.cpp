@@ -1303,6 +1303,12 @@ RefResult Sim::run() {
     if (!L.has_flanks()) continue;
     const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
     md_.gap[k] = dl > L.hi() ? GMode::closed_pos : dl < L.lo() ? GMode::closed_neg : GMode::open;
+    // Past a flank whose force c e + d δ̇ pulls (a damped flank the bodies leave faster than its
+    // spring presses): open, as settle_gaps decides it after a jump (`mixed` seed 7 #428, #436: the
+    // start left the closed flank's function negative, a reference error).
+    const double ddl = va(y.data(), L.a) - va(y.data(), L.b);
+    if (md_.gap[k] == GMode::closed_pos && L.c * (dl - L.hi()) + L.d * ddl < 0.0) md_.gap[k] = GMode::open;
+    if (md_.gap[k] == GMode::closed_neg && L.c * (dl - L.lo()) + L.d * ddl > 0.0) md_.gap[k] = GMode::open;
   }
   // Gear meshes: the flank by Δ(0) (without backlash the sign of τ, + at 0), the speeds' signs
   // from the state (+ at 0).
