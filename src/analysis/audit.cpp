@@ -382,8 +382,22 @@ void Audit::check_at(double t, const double* y) {
       if (mo.body == k.a) res += 1e-6 * mo.speed_scale;
       if (mo.body == k.b) res += 1e-6 * std::abs(k.i) * mo.speed_scale;
     }
-    audit::check_gear_loss(m_.lossy_gears[static_cast<size_t>(g)].name, t, T.X, T.Y, v[k.a],
-                           std::abs(Fa) + std::abs(Fb), res);
+    double scale = std::abs(Fa) + std::abs(Fb);
+    if (const int tn = sys_.gear_train_of(g); tn >= 0) {
+      // A gear of a two-stage train: X and Y come out of the train's solve, their rounding that of
+      // every load on the train, Σ |ρ_j F_j| in its first body's coordinate, / |ρ_a| in the gear's
+      // (the engine's side functions read that allowance: analysis/drive_system.cpp).
+      const GearTrain& tr = sys_.gear_train(tn);
+      double sum = 0.0;
+      for (int h : tr.gears) {
+        double Fha = 0.0, Fhb = 0.0;
+        sys_.gear_loads(h, t, y, &Fha, &Fhb);
+        const LossyGearLaw& kh = sys_.lossy_gear(h);
+        sum += std::abs(tr.rho_of(kh.a) * Fha) + std::abs(tr.rho_of(kh.b) * Fhb);
+      }
+      scale += sum / std::abs(tr.rho_of(k.a));
+    }
+    audit::check_gear_loss(m_.lossy_gears[static_cast<size_t>(g)].name, t, T.X, T.Y, v[k.a], scale, res);
   }
   // Elements behind the interface: each checks its own law's invariants (Element::violated).
   for (int d = 0; d < sys_.drive_count(); ++d) {

@@ -446,11 +446,15 @@ void DriveSystem::form_stuck_solution(const double* im, double t) {
 }
 
 void DriveSystem::share_one_sided(const double* im, double t) {
-  // The one-sided contacts whose least-norm share pulls against their lock.
+  // The one-sided contacts whose least-norm share pulls against their lock beyond its resolution,
+  // the hold allowance ε_h: a share within it is the hold rule's "at the limit" (a freewheel that
+  // carries nothing, its share −7e-13 N by rounding, was masked with a backstop pulled 0.046 N
+  // against its lock; without the freewheel's row the others no longer had the rank, and the plain
+  // share stood for both: campaign `mixed` seed 7 #146, dopri5).
   uint64_t mask = 0;
   for (Eigen::Index j : one_sided_) {
     const ContactLaw& c = contacts_[static_cast<size_t>(stuck_[static_cast<size_t>(j)])];
-    if (c.lock * lam_(j) < 0.0) mask |= uint64_t{1} << j;
+    if (c.lock * lam_(j) < -c.hold_tol) mask |= uint64_t{1} << j;
   }
   if (mask == 0) return;
   auto it = masked_.find(mask);
@@ -712,6 +716,18 @@ void DriveSystem::apply_gears(double t, const double* y, double* f, double* p_fr
     if (p_fric) *p_fric += LossyGearLaw::loss_power(gear_t_[gi], va);
   }
 }
+
+namespace train_side_detail {
+/// The rounding allowance of the side function s X̃ (or −s Ỹ) of gear g of train tr at its loads F:
+/// it comes out of the train's 3 × 3 solve, so its rounding is that of the train's loads,
+/// 1e-12 Σ |ρ_j F_j| in r's coordinate (train_allowance), in the gear's own coordinate / |ρ_a|
+/// (campaign gear seed 7 #52: at the switch of the second stage's side both combinations read ∓3e-16,
+/// the current one the smaller violation; it was kept with its function at −3e-16 — disarmed, the
+/// switch 1.9 ms late, the gear delivering power meanwhile).
+double allowance(const GearTrain& tr, const std::vector<LossyGearLaw>& gears, const std::array<double, 3>& F, int g) {
+  return train_allowance(tr, gears, F) / std::abs(tr.rho_of(gears[static_cast<size_t>(g)].a));
+}
+}  // namespace train_side_detail
 
 std::array<double, 3> DriveSystem::train_inertia(int t) const {
   const GearTrain& tr = trains_[static_cast<size_t>(t)];
@@ -1219,6 +1235,9 @@ void DriveSystem::event_functions(double t, const double* y, double* g) {
       }
       k.events(gear_mode_[u], gear_fa_[u], gear_fb_[u], 1.0 / inv_mass_[static_cast<size_t>(k.a)],
                1.0 / inv_mass_[static_cast<size_t>(k.b)], y[n_ + k.a], gear_t_[u], g + 2 * (nl_ + nc_ + nd_ + gi));
+      if (const int tn = train_of_gear_[u]; tn >= 0) [[unlikely]]  // a rolling train's side: its rounding allowance
+        g[2 * (nl_ + nc_ + nd_ + gi) + 1] +=
+            train_side_detail::allowance(trains_[static_cast<size_t>(tn)], gears_, train_f_[static_cast<size_t>(tn)], gi);
       if (gear_joint_[u] != 0 && locks_.of_gear[u] < 0)  // held on its locking range by the split: its limit's allowance
         for (int e = 0; e < 2; ++e) g[2 * (nl_ + nc_ + nd_ + gi) + e] += k.allowance(gear_fa_[u], gear_fb_[u]);
     }

@@ -31,8 +31,12 @@
 ///           mesh's `mesh` and `free play`;
 ///   not compared (on either side; the states are): a phase shorter than kEventTol·max(1, t_end)
 ///           (slip or applied → stick, stick → slip, slip → released, a gap opened → closed and
-///           back): the instants are resolved only to that; an event within it of t = 0 (the
-///           start's decision: the engine's initial modes, the reference's located a step later);
+///           back): the instants are resolved only to that; such a phase of the reference shorter
+///           than both its events' tolerances; an event within it of t = 0 (the
+///           start's decision: the engine's initial modes, the reference's located a step later),
+///           and a reference event whose tolerance reaches back to t = 0 with the engine's events
+///           of that element up to its instant plus tolerance (a start from rest whose margin grows
+///           from 0 within the loads' resolution: `gear` seed 2 #5);
 ///           a `reversal` of a brake's or clutch's slide whose tolerance reaches back to its
 ///           `applied` (u's sign at the application is fixed only to δv: applied the other way
 ///           without a reversal is the same motion within the states' tolerance), and the

@@ -437,6 +437,9 @@ class Sim {
   // The start of the step before the current one in this piece (no event or breakpoint since; else
   // the piece's start), for event_window; the window of the events being recorded (0: exact).
   double t_back_ = 0.0, window_ = 0.0;
+  // The initial state, and whether the run is still in its first piece (event_window).
+  std::vector<double> y0_;
+  bool from_start_ = true;
   std::vector<double> y_back_;
   std::vector<int> applied_at_rest_;  // brakes and clutches applied at rest now (engage → decide)
   std::vector<double> f_, lamv_, bv_;
@@ -955,7 +958,7 @@ class Sim {
       } else if (md == FMode::stuck) {
         const double res = kLoadResolution * fscale_;  // a load's resolution (event_window)
         if (f.one_sided()) out.push_back({.g = lock(f) * lam[k] + f.kinetic_level(t) + hold_[k], .eps = eps_f, .fr = fi, .res = res});
-        else out.push_back({.g = f.static_limit(t) - std::abs(lam[k]), .eps = 1e-13 * f.static_limit(t) + eps_f, .fr = fi, .res = res});
+        else out.push_back({.g = f.static_limit(t) - std::abs(lam[k]), .eps = stuck_allowance(f.static_limit(t)), .fr = fi, .res = res});
       } else {
         out.push_back({sign_of(md) * rel_u(f, y.data()), eps_v, -1, fi});
         // The kinks of a kinetic table over the sliding speed: located (no mode changes there), so
@@ -1077,6 +1080,23 @@ class Sim {
           if (side * (ge[i].g - functions(s, ys)[i].g) > ge[i].res) break;
           within = tau;
         }
+        // In the run's first piece (no event or breakpoint before te, the modes the start's), a
+        // window that reaches the step before te goes on back towards t = 0 (from the initial
+        // state), and where the function is within δ all the way, at 0 too, the root is known only
+        // to [0, te]: the window is te, the instant is the start's decision (a train or a freewheel
+        // starting from rest, its margin growing from 0 like c t^k: `gear` seed 2 #5, seed 7 #304).
+        if (side < 0 && from_start_ && within > 0.0 && te - 2.0 * within <= t_back_) {
+          bool all = true;
+          for (double tau = 2.0 * within; all; tau *= 2.0) {
+            const double s = std::max(0.0, te - tau);
+            std::vector<double> ys = y0_;
+            const int pieces = static_cast<int>(std::ceil(s / h_));
+            for (int p = 0; p < pieces; ++p) ys = rk4(s * p / pieces, ys, s / pieces);
+            all = side * (ge[i].g - functions(s, ys)[i].g) <= ge[i].res;
+            if (s == 0.0) break;
+          }
+          if (all) within = te;
+        }
         w = std::max(w, within);
       }
     }
@@ -1168,22 +1188,7 @@ class Sim {
     // there as it opens: it holds nothing, sliding or stuck, and its loop of a clutch and a stuck
     // freewheel would have it slide the other clutch with it; `mixed` seed 2 #68).
     auto two_sided = [](const Friction& f) { return f.kind != Friction::Kind::freewheel && f.kind != Friction::Kind::stop; };
-    std::vector<int> comp(static_cast<size_t>(n_) + 1);
-    auto locked = [&](const Modes& tr, int k) {
-      for (size_t i = 0; i < comp.size(); ++i) comp[i] = static_cast<int>(i);
-      auto node = [&](int b) { return b < 0 ? n_ : b; };
-      auto find = [&](int x) {
-        while (comp[static_cast<size_t>(x)] != x) x = comp[static_cast<size_t>(x)];
-        return x;
-      };
-      for (size_t j = 0; j < m_.frictions.size(); ++j) {
-        const Friction& fj = m_.frictions[j];
-        if (static_cast<int>(j) == k || tr.fr[j] != FMode::stuck) continue;
-        comp[static_cast<size_t>(find(node(fj.a)))] = find(node(fj.b));
-      }
-      const Friction& f = m_.frictions[static_cast<size_t>(k)];
-      return find(node(f.a)) == find(node(f.b));
-    };
+    auto locked = [&](const Modes& tr, int k) { return tied_by_stuck(tr, k); };
     // Consistency of a trial (Modes tr): stuck within limits, sliding accelerating its way.
     auto consistent = [&](const Modes& tr) {
       accel(t, y.data(), tr, a.data(), lam.data());
@@ -1196,8 +1201,12 @@ class Sim {
           if (f.one_sided()) {
             if (lock(f) * lam[static_cast<size_t>(k)] + f.kinetic_level(t) < -hold_[static_cast<size_t>(k)]) return false;
           } else {
+            // The stuck switching function's own allowance, 1e-13 (F_s + the force scale) (one limit:
+            // the decision and the function read one; at 1e-14 a clutch applied at the zero of its
+            // normal force in a loop of stuck elements, F_s = 3e-15 N, was overloaded by its split's
+            // rounding, 4e-13 N of a 120 N loop, and let slide at u ≡ 0: `mixed` seed 2 #68).
             const double Fs = f.static_limit(t);
-            const double allow = is_fired(k) ? 0.0 : 1e-14 * (Fs + fscale_);
+            const double allow = is_fired(k) ? 0.0 : stuck_allowance(Fs);
             if (std::abs(lam[static_cast<size_t>(k)]) > Fs + allow) return false;
           }
         } else if (md == FMode::off) {  // a resting stop left: the body moves off it
@@ -1254,7 +1263,7 @@ class Sim {
         if (f.one_sided()) {
           r = lock(f) * l + f.kinetic_level(t) < -hold_[static_cast<size_t>(k)] ? HUGE_VAL : 0.0;
         } else {
-          const double Fs = f.static_limit(t), allow = is_fired(k) ? 0.0 : 1e-14 * (Fs + fscale_);
+          const double Fs = f.static_limit(t), allow = is_fired(k) ? 0.0 : stuck_allowance(Fs);
           r = std::abs(l) > Fs + allow ? (Fs > 0 ? std::abs(l) / Fs : HUGE_VAL) : 0.0;
         }
         if (r > worst_r) worst_r = r, worst = k;
@@ -1333,6 +1342,27 @@ class Sim {
       if (md_.sway[k] == 0 && rope_at(m_.sway[k], y.data(), 0).F < 0.0) md_.sway[k] = 1, record(t, "slack", m_.sway[k].name);
   }
 
+  /// A stuck friction element's allowance beyond its static limit F_s: its switching function's ε,
+  /// 1e-13 (F_s + the model's force scale), which the decision reads too.
+  double stuck_allowance(double Fs) const { return 1e-13 * (Fs + fscale_); }
+
+  /// Whether the stuck friction elements other than k (freewheels and resting stops among them) tie
+  /// k's two bodies together: both in one component of their graph, the ground a node.
+  bool tied_by_stuck(const Modes& md, int k) const {
+    std::vector<int> comp(static_cast<size_t>(n_) + 1);
+    for (size_t i = 0; i < comp.size(); ++i) comp[i] = static_cast<int>(i);
+    auto node = [&](int b) { return b < 0 ? n_ : b; };
+    auto find = [&](int x) {
+      while (comp[static_cast<size_t>(x)] != x) x = comp[static_cast<size_t>(x)];
+      return x;
+    };
+    for (size_t j = 0; j < m_.frictions.size(); ++j)
+      if (static_cast<int>(j) != k && md.fr[j] == FMode::stuck)
+        comp[static_cast<size_t>(find(node(m_.frictions[j].a)))] = find(node(m_.frictions[j].b));
+    const Friction& f = m_.frictions[static_cast<size_t>(k)];
+    return find(node(f.a)) == find(node(f.b));
+  }
+
   /// Engagement changes of brakes and clutches at t (a breakpoint or the start).
   void engage(double t, const std::vector<double>& y, bool initial) {
     applied_at_rest_.clear();
@@ -1343,8 +1373,12 @@ class Sim {
         // At rest where u is 0 within the resolution of the sliding functions, 1e-12 (1 + |v_a| +
         // |v_b|): the projection of a stuck chain leaves its bodies 1e-19 m/s apart (and the engine's
         // integration, its rounding, applied_at_rest in analysis/run.cpp).
+        // A clutch whose two bodies the stuck elements tie (one component of their graph, the
+        // ground a node) is at rest whatever u's rounding reads: its bodies move as one (the tie
+        // rule of decide(); `mixed` seed 2 #68: a loop of a stuck clutch and a stuck freewheel
+        // left the pair 1e-12 m/s apart after 0.1 s of RK4 and the reference logged `applied`).
         const double S = std::abs(va(y.data(), f.a)) + std::abs(va(y.data(), f.b)), u0 = rel_u(f, y.data());
-        const double u = std::abs(u0) <= 1e-12 * (1.0 + S) ? 0.0 : u0;
+        const double u = std::abs(u0) <= 1e-12 * (1.0 + S) || tied_by_stuck(md_, static_cast<int>(k)) ? 0.0 : u0;
         md_.fr[k] = u > 0 ? FMode::slip_pos : u < 0 ? FMode::slip_neg : FMode::stuck;
         // An `applied` event where it is applied while its bodies move (docs/hybrid.md); applied at
         // rest it simply holds, or slips at once (decided with the rest: its slide is `applied`).
@@ -1393,6 +1427,12 @@ RefResult Sim::run() {
     if (!L.has_flanks()) continue;
     const double dl = qa(y.data(), L.a) - qa(y.data(), L.b);
     md_.gap[k] = dl > L.hi() ? GMode::closed_pos : dl < L.lo() ? GMode::closed_neg : GMode::open;
+    // Past a flank whose force c e + d δ̇ pulls (a damped flank the bodies leave faster than its
+    // spring presses): open, as settle_gaps decides it after a jump (`mixed` seed 7 #428, #436: the
+    // start left the closed flank's function negative, a reference error).
+    const double ddl = va(y.data(), L.a) - va(y.data(), L.b);
+    if (md_.gap[k] == GMode::closed_pos && L.c * (dl - L.hi()) + L.d * ddl < 0.0) md_.gap[k] = GMode::open;
+    if (md_.gap[k] == GMode::closed_neg && L.c * (dl - L.lo()) + L.d * ddl > 0.0) md_.gap[k] = GMode::open;
   }
   // Gear meshes: the flank by Δ(0) (without backlash the sign of τ, + at 0), the speeds' signs
   // from the state (+ at 0).
@@ -1423,7 +1463,7 @@ RefResult Sim::run() {
   std::vector<Fn> g0;
   restart(0.0, y, g0);
   bool g0_valid = true;
-  t_back_ = 0.0, y_back_ = y;
+  t_back_ = 0.0, y_back_ = y, y0_ = y, from_start_ = true;
 
   std::vector<double> bps;
   for (const auto& l : m_.loads) l.s.breakpoints(bps, m_.t_end);
@@ -1679,7 +1719,7 @@ RefResult Sim::run() {
         imp.body = m_.frictions[k].a, imp.dt_dq = rested_v[r] > 0.0 ? 1.0 / rested_v[r] : 0.0;
       }
       restart(t, y, g0), g0_valid = true;
-      window_ = 0.0, t_back_ = t, y_back_ = y;
+      window_ = 0.0, t_back_ = t, y_back_ = y, from_start_ = false;
     } else {
       t_back_ = t, y_back_ = y;  // this step's start: the next event's window may reach back to it
       y = std::move(y1);
@@ -1698,7 +1738,7 @@ RefResult Sim::run() {
         decide(t, y, {});
         settle_holds(t, y, true, false);
         restart(t, y, g0);
-        t_back_ = t, y_back_ = y;
+        t_back_ = t, y_back_ = y, from_start_ = false;
       }
       project_stuck(y);
       if (t == t_row) row(t), ++next_row;
