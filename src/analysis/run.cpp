@@ -60,7 +60,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (m.loads[k].kind != LoadKind::constant) varying_.push_back(k);
     for (int i = 0; i < n_; ++i)
       if (m.bodies[static_cast<size_t>(i)].machine) machine_bodies_.push_back(i);
-    has_events_ = nc_ > 0 || ng_ > 0 || jumps_.count() > 0;
+    jump_events_ = jumps_.count() > 0;
+    has_events_ = nc_ > 0 || ng_ > 0 || jump_events_;
     for (int l = 0; l < nl_; ++l)
       if (sys_.link(l).gap) flank_links_.push_back(l);
     has_events_ = has_events_ || !flank_links_.empty();
@@ -181,8 +182,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// evaluates none.
   [[nodiscard]] int event_count() const override { return has_events_ ? sys_.event_slots() + jumps_.count() : 0; }
   void event_functions(double t, const double* y, double* g) override {
+    // Without stepwise gears the drive system's functions are all: its call is a tail call.
+    if (jump_events_) [[unlikely]] return event_functions_with_jumps(t, y, g);
     sys_.event_functions(t, y, g);
-    if (jumps_.count() > 0) jumps_.event_functions(y, g + sys_.event_slots());
+  }
+  __attribute__((noinline)) void event_functions_with_jumps(double t, const double* y, double* g) {
+    sys_.event_functions(t, y, g);
+    jumps_.event_functions(y, g + sys_.event_slots());
   }
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   [[nodiscard]] double sampling_step(double, double t_end) const override { return machdyn::sampling_step(m_, t_end); }
@@ -1500,6 +1506,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   detail::Heat heat_;
   int n_, N_, nl_, nc_, nd_, ng_;
   bool has_events_ = false;
+  bool jump_events_ = false;  // stepwise gears' jump functions follow the drive system's (event_functions)
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
   bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
   bool contact_rows_ = false;  // the rows end with the contacts and gap modes (output_contacts)
