@@ -100,6 +100,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // rows, which the run visits for it even when it keeps no series.
     if (SwayObserver sway(m_); !sway.empty()) sway_ = std::make_unique<SwayObserver>(std::move(sway));
     observed_rows_ = audit_ || sway_;
+    row_fast_end_ = observed_rows_ ? 0 : row_cap_;
     StepperOptions so;
     so.rtol = s.rtol;
     so.atol = s.atol;
@@ -316,24 +317,33 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void on_output(double t, const double* y) override {
-    if (observed_rows_) [[unlikely]] return output_observed(t, y);
-    const size_t row = next_row();
+    // One test for every rare row: observers of the rows, or columns without room (row_fast_end_).
+    if (row_ >= row_fast_end_) [[unlikely]] return output_rare(t, y);
+    const size_t row = row_++;
     // Tail calls: the row's writer returns to the driver (no frame here, nothing kept across).
     if (plain_rows_) return output_head(row, t, y);
     if (contact_rows_) return output_contacts(row, t, y);
     output(row, t, y);
   }
+  /// A row with observers of the rows, or one the columns have no room for yet.
+  __attribute__((noinline)) void output_rare(double t, const double* y) {
+    if (observed_rows_) return output_observed(t, y);
+    write_row(next_row(), t, y);
+  }
   /// A row with observers of the rows: the row (when the series is kept) and the audit's check of it
   /// (audit.hpp), the sway summary (sway_summary.hpp).
-  __attribute__((noinline)) void output_observed(double t, const double* y) {
+  void output_observed(double t, const double* y) {
     if (opt_.record_series) {
-      const size_t row = next_row();
-      if (plain_rows_) output_head(row, t, y);
-      else if (contact_rows_) output_contacts(row, t, y);
-      else output(row, t, y);
+      write_row(next_row(), t, y);
       if (audit_) audit_->row(t, y);
     }
     if (sway_) sway_->row(sys_, t, y);
+  }
+  /// Row `row` by the writer of the model's columns.
+  void write_row(size_t row, double t, const double* y) {
+    if (plain_rows_) output_head(row, t, y);
+    else if (contact_rows_) output_contacts(row, t, y);
+    else output(row, t, y);
   }
   void on_event(double t, const double* y, const std::vector<int>& fired) override {
     peaks_.restart();
@@ -453,6 +463,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// Out of line: inlined, its loop gave on_output() a stack frame and six saved registers per row.
   __attribute__((noinline)) void grow_rows() {
     row_cap_ = 2 * row_cap_ + 16;
+    row_fast_end_ = observed_rows_ ? 0 : row_cap_;
     for (auto& col : out_.columns) col.resize(row_cap_);
     point_columns();
   }
@@ -1511,7 +1522,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
   bool contact_rows_ = false;  // the rows end with the contacts and gap modes (output_contacts)
   bool extremes_only_ = false;  // a piece has only the extremes to follow (on_segment)
-  size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
+  size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold
+  size_t row_fast_end_ = 0;       // on_output's rows below it need no test (row_cap_; 0 with observers of the rows)  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
