@@ -100,6 +100,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // rows, which the run visits for it even when it keeps no series.
     if (SwayObserver sway(m_); !sway.empty()) sway_ = std::make_unique<SwayObserver>(std::move(sway));
     observed_rows_ = audit_ || sway_;
+    step_watch_ = audit_ || opt_.progress;
     row_fast_end_ = observed_rows_ ? 0 : row_cap_;
     StepperOptions so;
     so.rtol = s.rtol;
@@ -267,11 +268,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
-    // No breakpoint ahead (bp_next_ = ∞): no call of t() (virtual) per step.
-    if (bp_next_ != std::numeric_limits<double>::infinity() && st.t() >= bp_next_) [[unlikely]]
-      next_breakpoint(st.t());
+    // No breakpoint ahead (bp_next_ = ∞), no audit and no progress report (step_watch_): nothing more,
+    // and no call of t() (virtual) per step.
+    if (step_watch_ || bp_next_ != std::numeric_limits<double>::infinity()) [[unlikely]] return on_step_rest(st);
+  }
+  __attribute__((noinline)) void on_step_rest(const Stepper& st) {
+    if (bp_next_ != std::numeric_limits<double>::infinity() && st.t() >= bp_next_) next_breakpoint(st.t());
     if (audit_) [[unlikely]] audit_->settle();
-    if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
+    if (opt_.progress) report_progress(st, start_, false);
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
     if (!extremes_only_) [[unlikely]] return on_piece(st, ta, tb);
@@ -1569,6 +1573,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
   std::unique_ptr<Audit> audit_;  // the invariant audit, when SimulateOptions::check (else none)
   std::unique_ptr<SwayObserver> sway_;  // the spatial ropes' sway summary (none without a spatial rope)
+  bool step_watch_ = false;             // audit_ or a progress report: on_step goes through on_step_rest()
   bool observed_rows_ = false;          // audit_ or sway_: on_output goes through output_observed()
 };
 
