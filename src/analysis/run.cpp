@@ -491,8 +491,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// Row `row` of a model whose rows end with its contacts and gap modes (no machine, eliminated
   /// joint or later group: contact_rows_, the travel start-up): output()'s columns without its checks.
   __attribute__((noinline)) void output_contacts(size_t row, double t, const double* y) {
-    head(row, t, y);
-    double* const* col = col_.data() + 1 + 2 * n_ + nl_;
+    double* const* col = col_.data();
+    (*col++)[row] = t;
+    for (int i = 0; i < n_; ++i, col += 2) {
+      col[0][row] = y[i];
+      col[1][row] = y[n_ + i];
+    }
+    // The link loads by their law inline, straight into their columns (head()'s loads_ serve the
+    // rope columns of output() alone).
+    for (int l = 0; l < nl_; ++l) (*col++)[row] = sys_.link_load(l, y);
     sys_.contact_forces(t, y, fc_.data());
     col = contact_columns(row, t, y, col);
     gap_columns(row, col);
