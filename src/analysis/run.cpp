@@ -158,8 +158,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // step): the stages of the step at its end (dopri5's c = 1, BDF's implicit t_n) used to take the
     // value after the jump, an error of O(h ΔF) in the state the next piece starts from — a brake
     // applied on a body at rest set it sliding at 1e-11 m/s, BDF's stops and rests came 1e-6 s off.
-    if (t == bp_next_) [[unlikely]] t = std::nextafter(t, -std::numeric_limits<double>::infinity());
+    if (t == bp_next_) [[unlikely]] return rhs_left_limit(t, y, dydt);  // out of line: no frame here
     last_t_ = t, last_y_ = y;  // the integrator's own buffer: where a failure was met (state_name)
+    sys_.rhs(t, y, dydt);
+  }
+  __attribute__((noinline)) void rhs_left_limit(double t, const double* y, double* dydt) {
+    t = std::nextafter(t, -std::numeric_limits<double>::infinity());
+    last_t_ = t, last_y_ = y;
     sys_.rhs(t, y, dydt);
   }
   [[nodiscard]] bool has_jacobian() const override { return sys_.has_jacobian(); }
