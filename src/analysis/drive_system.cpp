@@ -893,7 +893,11 @@ const DriveSystem::AffineMode& DriveSystem::compile_affine() {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(N), d(N);
   rhs_general<false>(0.0, y.data(), a.c.data());
   a.force_c = Eigen::Map<const Eigen::VectorXd>(fc_.data(), nc_);
-  for (int j = 0; j < N; ++j) {
+  // The energy books (the last three states) are quadratures that no rate reads: their columns of J
+  // and G are 0, not evaluated.
+  const int read = energy_ ? energy_index() : N;
+  J.rightCols(N - read).setZero(), G.rightCols(N - read).setZero();
+  for (int j = 0; j < read; ++j) {
     y(j) = 1.0;
     rhs_general<false>(0.0, y.data(), d.data());
     J.col(j) = d - a.c;

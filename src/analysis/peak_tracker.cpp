@@ -44,7 +44,7 @@ void bernstein_bounds(const Eigen::Matrix<double, D + 1, 1>& v, double& lo, doub
 }  // namespace
 
 PeakTracker::PeakTracker(int state_size, const PeakSignals& signals)
-    : signals_(signals), sig_(static_cast<size_t>(signals.count())), y_(static_cast<size_t>(state_size)),
+    : signals_(signals), count_(signals.count()), sig_(static_cast<size_t>(count_)), y_(static_cast<size_t>(state_size)),
       dy_(static_cast<size_t>(state_size)), samples_(static_cast<size_t>((kDegree - 1) * state_size)), vals_(static_cast<size_t>(signals.count())),
       rates_(static_cast<size_t>(signals.count())) {}
 
@@ -149,41 +149,50 @@ bool PeakTracker::inside_so_far(int j, double lo, double hi) const {
   return true;
 }
 
+void PeakTracker::start_piece(const Stepper& s, double ta, const NewMax& on_new_max) {
+  s.interpolate(ta, y_.data());
+  s.derivative(ta, dy_.data());
+  for (int j = 0; j < count_; ++j) {
+    Extremes& g = sig_[static_cast<size_t>(j)];
+    g.rate_prev = signals_.rate(j, y_.data(), dy_.data());
+    g.value_prev = signals_.value(j, y_.data());
+    consider_value(j, ta, g.value_prev, y_.data(), on_new_max);
+  }
+  started_ = true;
+}
+
+const double* PeakTracker::piece_end(const Stepper& s, double tb) {
+  yb_.resize(y_.size());
+  db_.resize(y_.size());
+  s.interpolate(tb, yb_.data());
+  s.derivative(tb, db_.data());
+  return yb_.data();
+}
+
+void PeakTracker::interior(const Stepper& s, int j, double ta, double tb, double r1, double v1,
+                           const NewMax& on_new_max) {
+  const Extremes& g = sig_[static_cast<size_t>(j)];
+  if (!every_ && inside_extremes(s, j, ta, tb, g.value_prev, v1)) return;
+  const double te = locate_extremum(s, j, ta, g.rate_prev, tb, r1);
+  s.interpolate(te, y_.data());
+  consider(j, te, y_.data(), on_new_max);
+}
+
 void PeakTracker::on_segment(const Stepper& s, double ta, double tb, const NewMax& on_new_max) {
-  const int n = static_cast<int>(sig_.size());
+  const int n = count_;
   if (n == 0) return;  // a model without links has nothing to track
-  if (ta != last_end_) {  // a fresh start: the state and the rates at ta
-    s.interpolate(ta, y_.data());
-    s.derivative(ta, dy_.data());
-    for (int j = 0; j < n; ++j) {
-      Extremes& g = sig_[static_cast<size_t>(j)];
-      g.rate_prev = signals_.rate(j, y_.data(), dy_.data());
-      g.value_prev = signals_.value(j, y_.data());
-      consider_value(j, ta, g.value_prev, y_.data(), on_new_max);
-    }
-    started_ = true;
-  }
-  const double* y1 = s.y();
-  const double* dy1 = s.dydt();
+  if (ta != last_end_) start_piece(s, ta, on_new_max);  // a fresh start: the state and the rates at ta
   const bool step_end = tb == s.t();  // read once: t() is virtual
-  if (!step_end) {
-    yb_.resize(y_.size());
-    db_.resize(y_.size());
-    s.interpolate(tb, yb_.data());
-    s.derivative(tb, db_.data());
-    y1 = yb_.data(), dy1 = db_.data();
-  }
+  const double* y1 = step_end ? s.y() : piece_end(s, tb);
+  const double* dy1 = step_end ? s.dydt() : db_.data();
   signals_.values_and_rates(y1, dy1, vals_.data(), rates_.data());
   sampled_ = false;
   for (int j = 0; j < n; ++j) {
     Extremes& g = sig_[static_cast<size_t>(j)];
     const double r1 = rates_[static_cast<size_t>(j)], v1 = vals_[static_cast<size_t>(j)];
-    if (((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) &&
-        (every_ || !inside_extremes(s, j, ta, tb, g.value_prev, v1))) {
-      const double te = locate_extremum(s, j, ta, g.rate_prev, tb, r1);
-      s.interpolate(te, y_.data());
-      consider(j, te, y_.data(), on_new_max);
-    }
+    // The rate changes sign: an interior extremum (out of line: a few steps in ten).
+    if ((g.rate_prev > 0 && r1 < 0) || (g.rate_prev < 0 && r1 > 0)) [[unlikely]]
+      interior(s, j, ta, tb, r1, v1, on_new_max);
     consider_value(j, tb, v1, y1, on_new_max);
     g.rate_prev = r1, g.value_prev = v1;
   }

@@ -60,7 +60,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
       if (m.loads[k].kind != LoadKind::constant) varying_.push_back(k);
     for (int i = 0; i < n_; ++i)
       if (m.bodies[static_cast<size_t>(i)].machine) machine_bodies_.push_back(i);
-    has_events_ = nc_ > 0 || ng_ > 0 || jumps_.count() > 0;
+    jump_events_ = jumps_.count() > 0;
+    has_events_ = nc_ > 0 || ng_ > 0 || jump_events_;
     for (int l = 0; l < nl_; ++l)
       if (sys_.link(l).gap) flank_links_.push_back(l);
     has_events_ = has_events_ || !flank_links_.empty();
@@ -99,6 +100,8 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // rows, which the run visits for it even when it keeps no series.
     if (SwayObserver sway(m_); !sway.empty()) sway_ = std::make_unique<SwayObserver>(std::move(sway));
     observed_rows_ = audit_ || sway_;
+    step_watch_ = audit_ || opt_.progress;
+    row_fast_end_ = observed_rows_ ? 0 : row_cap_;
     StepperOptions so;
     so.rtol = s.rtol;
     so.atol = s.atol;
@@ -155,8 +158,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
     // step): the stages of the step at its end (dopri5's c = 1, BDF's implicit t_n) used to take the
     // value after the jump, an error of O(h ΔF) in the state the next piece starts from — a brake
     // applied on a body at rest set it sliding at 1e-11 m/s, BDF's stops and rests came 1e-6 s off.
-    if (t == bp_next_) [[unlikely]] t = std::nextafter(t, -std::numeric_limits<double>::infinity());
+    if (t == bp_next_) [[unlikely]] return rhs_left_limit(t, y, dydt);  // out of line: no frame here
     last_t_ = t, last_y_ = y;  // the integrator's own buffer: where a failure was met (state_name)
+    sys_.rhs(t, y, dydt);
+  }
+  __attribute__((noinline)) void rhs_left_limit(double t, const double* y, double* dydt) {
+    t = std::nextafter(t, -std::numeric_limits<double>::infinity());
+    last_t_ = t, last_y_ = y;
     sys_.rhs(t, y, dydt);
   }
   [[nodiscard]] bool has_jacobian() const override { return sys_.has_jacobian(); }
@@ -181,8 +189,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// evaluates none.
   [[nodiscard]] int event_count() const override { return has_events_ ? sys_.event_slots() + jumps_.count() : 0; }
   void event_functions(double t, const double* y, double* g) override {
+    // Without stepwise gears the drive system's functions are all: its call is a tail call.
+    if (jump_events_) [[unlikely]] return event_functions_with_jumps(t, y, g);
     sys_.event_functions(t, y, g);
-    if (jumps_.count() > 0) jumps_.event_functions(y, g + sys_.event_slots());
+  }
+  __attribute__((noinline)) void event_functions_with_jumps(double t, const double* y, double* g) {
+    sys_.event_functions(t, y, g);
+    jumps_.event_functions(y, g + sys_.event_slots());
   }
   [[nodiscard]] std::vector<double> breakpoints(double, double) const override { return out_.hybrid.breakpoints; }
   [[nodiscard]] double sampling_step(double, double t_end) const override { return machdyn::sampling_step(m_, t_end); }
@@ -260,11 +273,14 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   // ---- the observer of the driver ----
   void on_step(const Stepper& st) override {
     step_ = &st;
-    // No breakpoint ahead (bp_next_ = ∞): no call of t() (virtual) per step.
-    if (bp_next_ != std::numeric_limits<double>::infinity() && st.t() >= bp_next_) [[unlikely]]
-      next_breakpoint(st.t());
+    // No breakpoint ahead (bp_next_ = ∞), no audit and no progress report (step_watch_): nothing more,
+    // and no call of t() (virtual) per step.
+    if (step_watch_ || bp_next_ != std::numeric_limits<double>::infinity()) [[unlikely]] return on_step_rest(st);
+  }
+  __attribute__((noinline)) void on_step_rest(const Stepper& st) {
+    if (bp_next_ != std::numeric_limits<double>::infinity() && st.t() >= bp_next_) next_breakpoint(st.t());
     if (audit_) [[unlikely]] audit_->settle();
-    if (opt_.progress) report_progress(st, start_, false);  // the check inline: every step's cost without one
+    if (opt_.progress) report_progress(st, start_, false);
   }
   void on_segment(const Stepper& st, double ta, double tb) override {
     if (!extremes_only_) [[unlikely]] return on_piece(st, ta, tb);
@@ -310,24 +326,33 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   }
 
   void on_output(double t, const double* y) override {
-    if (observed_rows_) [[unlikely]] return output_observed(t, y);
-    const size_t row = next_row();
+    // One test for every rare row: observers of the rows, or columns without room (row_fast_end_).
+    if (row_ >= row_fast_end_) [[unlikely]] return output_rare(t, y);
+    const size_t row = row_++;
     // Tail calls: the row's writer returns to the driver (no frame here, nothing kept across).
     if (plain_rows_) return output_head(row, t, y);
     if (contact_rows_) return output_contacts(row, t, y);
     output(row, t, y);
   }
+  /// A row with observers of the rows, or one the columns have no room for yet.
+  __attribute__((noinline)) void output_rare(double t, const double* y) {
+    if (observed_rows_) return output_observed(t, y);
+    write_row(next_row(), t, y);
+  }
   /// A row with observers of the rows: the row (when the series is kept) and the audit's check of it
   /// (audit.hpp), the sway summary (sway_summary.hpp).
-  __attribute__((noinline)) void output_observed(double t, const double* y) {
+  void output_observed(double t, const double* y) {
     if (opt_.record_series) {
-      const size_t row = next_row();
-      if (plain_rows_) output_head(row, t, y);
-      else if (contact_rows_) output_contacts(row, t, y);
-      else output(row, t, y);
+      write_row(next_row(), t, y);
       if (audit_) audit_->row(t, y);
     }
     if (sway_) sway_->row(sys_, t, y);
+  }
+  /// Row `row` by the writer of the model's columns.
+  void write_row(size_t row, double t, const double* y) {
+    if (plain_rows_) output_head(row, t, y);
+    else if (contact_rows_) output_contacts(row, t, y);
+    else output(row, t, y);
   }
   void on_event(double t, const double* y, const std::vector<int>& fired) override {
     peaks_.restart();
@@ -447,6 +472,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// Out of line: inlined, its loop gave on_output() a stack frame and six saved registers per row.
   __attribute__((noinline)) void grow_rows() {
     row_cap_ = 2 * row_cap_ + 16;
+    row_fast_end_ = observed_rows_ ? 0 : row_cap_;
     for (auto& col : out_.columns) col.resize(row_cap_);
     point_columns();
   }
@@ -470,8 +496,15 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   /// Row `row` of a model whose rows end with its contacts and gap modes (no machine, eliminated
   /// joint or later group: contact_rows_, the travel start-up): output()'s columns without its checks.
   __attribute__((noinline)) void output_contacts(size_t row, double t, const double* y) {
-    head(row, t, y);
-    double* const* col = col_.data() + 1 + 2 * n_ + nl_;
+    double* const* col = col_.data();
+    (*col++)[row] = t;
+    for (int i = 0; i < n_; ++i, col += 2) {
+      col[0][row] = y[i];
+      col[1][row] = y[n_ + i];
+    }
+    // The link loads by their law inline, straight into their columns (head()'s loads_ serve the
+    // rope columns of output() alone).
+    for (int l = 0; l < nl_; ++l) (*col++)[row] = sys_.link_load(l, y);
     sys_.contact_forces(t, y, fc_.data());
     col = contact_columns(row, t, y, col);
     gap_columns(row, col);
@@ -1503,11 +1536,13 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   detail::Heat heat_;
   int n_, N_, nl_, nc_, nd_, ng_;
   bool has_events_ = false;
+  bool jump_events_ = false;  // stepwise gears' jump functions follow the drive system's (event_functions)
   bool plain_rows_ = false;  // the output rows hold t, the states and the link loads only
   bool tail_groups_ = false;  // some column group after the gap modes (drives … extra outputs)
   bool contact_rows_ = false;  // the rows end with the contacts and gap modes (output_contacts)
   bool extremes_only_ = false;  // a piece has only the extremes to follow (on_segment)
-  size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold  // some element has an event function (else event_count() is 0)
+  size_t row_ = 0, row_cap_ = 0;  // output rows written, rows the columns hold
+  size_t row_fast_end_ = 0;       // on_output's rows below it need no test (row_cap_; 0 with observers of the rows)  // some element has an event function (else event_count() is 0)
   PeakTracker peaks_;
   PeakTracker::NewMax on_new_max_;
   std::vector<size_t> varying_;     // indices of the loads that depend on t or v
@@ -1553,6 +1588,7 @@ class DriveRun final : public EventSystem, public StepObserver, public PeakSigna
   std::vector<double> acc_rows_;  // accelerations at the output rows (machines only)
   std::unique_ptr<Audit> audit_;  // the invariant audit, when SimulateOptions::check (else none)
   std::unique_ptr<SwayObserver> sway_;  // the spatial ropes' sway summary (none without a spatial rope)
+  bool step_watch_ = false;             // audit_ or a progress report: on_step goes through on_step_rest()
   bool observed_rows_ = false;          // audit_ or sway_: on_output goes through output_observed()
 };
 

@@ -124,6 +124,13 @@ class PeakTracker {
     }
   }
   void new_value(int j, double t, double v, const double* y, const NewMax& on_new_max);
+  /// A piece that does not continue the last: the state, values and rates at its start ta.
+  void start_piece(const Stepper& s, double ta, const NewMax& on_new_max);
+  /// A piece that ends inside its step: the state (returned) and its derivative (db_) at tb.
+  const double* piece_end(const Stepper& s, double tb);
+  /// Signal j's rate changes sign on [ta, tb] (r1, v1 at tb): its interior extremum, located where
+  /// it could be a new extreme (inside_extremes).
+  void interior(const Stepper& s, int j, double ta, double tb, double r1, double v1, const NewMax& on_new_max);
   double locate_extremum(const Stepper& s, int j, double t0, double r0, double t1, double r1);
   /// Whether signal j on the piece [ta, tb] (values v0, v1 at its ends) stays inside its extremes
   /// so far, and inside those of every open window, by a margin: then its interior extremum need
@@ -132,6 +139,7 @@ class PeakTracker {
   /// Whether [lo, hi] lies inside signal j's extremes so far and inside every open window's.
   [[nodiscard]] bool inside_so_far(int j, double lo, double hi) const;
   const PeakSignals& signals_;
+  int count_;                  // signals_.count()
   std::vector<Extremes> sig_;
   bool started_ = false;
   double last_end_ = -1.0;  // end of the last piece when it ended its step, else −1
