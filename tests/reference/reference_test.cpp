@@ -16,9 +16,11 @@
 namespace machdyn::reference {
 namespace MACHDYN_UNITY_ID {
 
-/// True in a build with AddressSanitizer (GCC defines __SANITIZE_ADDRESS__, clang has the feature):
-/// the tests over many random models take fewer of them there.
-#if defined(__SANITIZE_ADDRESS__)
+/// True when the tests run against the library built with AddressSanitizer (the sanitizer tree of
+/// `make test`, which compiles the test files themselves without it and defines
+/// MACHDYN_TESTS_UNDER_ASAN; or a tree instrumenting everything): the tests over many random models
+/// take fewer of them there.
+#if defined(MACHDYN_TESTS_UNDER_ASAN) || defined(__SANITIZE_ADDRESS__)
 constexpr bool kUnderAsan = true;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
