@@ -12,6 +12,7 @@
 
 #include "reference/campaign.hpp"
 #include "reference/generator.hpp"
+#include "support/campaign_model.hpp"
 #include "support/events.hpp"
 #include "support/models.hpp"
 #include "support/support.hpp"
@@ -19,6 +20,7 @@
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::against_reference;
 using test::events_of;
 using test::integrator_name;
 using test::model_of;
@@ -122,12 +124,6 @@ simulation: {t_end: 0.3 s, dt_out: 0.0015 s, rtol: 1e-10, atol: 1e-12}
     EXPECT_NEAR(v0[i], v2[i], 1e-14) << i;
     EXPECT_NEAR(v2[i], v3[i], 1e-14) << i;
   }
-}
-
-/// The campaign's model `index` of `family` at `seed` against the reference simulator on ic
-/// (tests/reference/campaign.hpp: events and states within the stated tolerances).
-reference::Outcome against_reference(const std::string& family, std::uint64_t seed, std::uint64_t index, IntegratorChoice ic) {
-  return reference::check(reference::random_model(family, seed, index), ic == IntegratorChoice::bdf ? "bdf" : "dopri5");
 }
 
 // Claim (campaign `mixed` seed 2 model 83), against the reference simulator: a contact that stuck

@@ -11,6 +11,7 @@
 #include "reference/campaign.hpp"
 #include "reference/generator.hpp"
 #include "reference/reference.hpp"
+#include "support/campaign_model.hpp"
 #include "support/events.hpp"
 #include "support/models.hpp"
 #include "support/support.hpp"
@@ -21,6 +22,7 @@
 namespace machdyn {
 namespace MACHDYN_UNITY_ID {
 
+using test::against_reference;
 using test::at;
 using test::events_of;
 using test::integrator_name;
@@ -31,15 +33,6 @@ namespace ref = reference;
 class CampaignDefectsK : public ::testing::TestWithParam<IntegratorChoice> {};
 INSTANTIATE_TEST_SUITE_P(Integrators, CampaignDefectsK,
                          ::testing::Values(IntegratorChoice::dopri5, IntegratorChoice::bdf), integrator_name);
-
-/// The engine (audit on) on a campaign model against the reference: every rule of the comparison.
-ref::Outcome against_reference(const char* family, std::uint64_t seed, std::uint64_t index, IntegratorChoice ic,
-                               ref::RefResult* out = nullptr) {
-  const ref::RefModel rm = ref::random_model(family, seed, index);
-  const ref::RefResult rr = ref::simulate_reference(rm);
-  if (out) *out = rr;
-  return ref::compare(rm, integrator_word(ic), rr);
-}
 
 // ---- a slide whose application falls into its zero (elements/contact.hpp `closing`) ----------------
 
